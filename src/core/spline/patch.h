@@ -1,0 +1,60 @@
+// Patch: the unit the limit surface is made of, on the CPU and (mirrored) on the GPU.
+//
+// CONTROL-POINT ORDER (the one place it is documented; shaders/common/patch_eval.glsl refers here):
+//   cp[4*j + i], i = 0..3 along u, j = 0..3 along v.
+//   For a Regular / Boundary / PolarRing / EndCap patch the cp are uniform bicubic B-spline control
+//   points; the patch covers the middle knot span (u,v) in [0,1]^2, whose corners
+//   (0,0),(1,0),(1,1),(0,1) sit over cp[5], cp[6], cp[10], cp[9], i.e. over the mesh face
+//   (v0, v1, v2, v3) in its counter-clockwise order, so x_u x x_v points along the face normal.
+//   For a polar ring patch u runs radially outwards (link i -> i+1) and v periodically (j -> j+1).
+//
+// PoleCap (the Taylor cap closing the hole at a pole, paper (32)), per sector j of n:
+//   cp[0..5]  = p0..p5 (in the cap's own radial unit: the hole is r <= R)
+//   cp[6..9]  = B-spline control points b_{j-1..j+2} of the ring's inner boundary curve at r = R
+//   cp[10]    = (tau0, dtau, R): the sector covers tau in [tau0, tau0 + dtau] (tau in turns, [0,1))
+//   cp[11]    = (taylorOrder, 0, 0): 2 = full quadratic Taylor (C2PS, RTS), 1 = tangent plane (BPS)
+//   cp[12..15]= unused (zero)
+//   Parameter: u = r / R in [0,1] (u = 0 is the pole), v in [0,1] along the sector.
+//   Position: T(x,y) + u^3 (C(v) - T(R c, R s)), T = p0 + p1 x + p2 y + p3(x^2+y^2) + p4(x^2-y^2)
+//   + 2 p5 x y, (x,y) = r (cos 2 pi tau, sin 2 pi tau), C the boundary B-spline. The u^3 blend keeps
+//   the value, normal and curvature at the pole exactly those of the Taylor expansion.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/poly_mesh.h"
+
+namespace polarview {
+
+enum class PatchKind : uint8_t {
+  Regular = 0,    // face with a regular 4x4 neighbourhood (Catmull-Clark region)
+  Boundary = 1,   // regular face on a boundary: missing points mirrored (OpenSubdiv's rule)
+  PolarRing = 2,  // face of a polar spline ring (paper (6)-(8))
+  PoleCap = 3,    // Taylor cap at a pole (layout above)
+  EndCap = 4,     // face next to an extraordinary vertex left after the last level
+};
+const char* patchKindName(PatchKind kind);
+
+struct Patch {
+  std::array<Point, 16> cp{};
+  PatchKind kind = PatchKind::Regular;
+  uint8_t level = 0;   // refinement level the patch was extracted at
+  int32_t ring = -1;   // polar ring index m (PolarRing, PoleCap); -1 otherwise
+  int32_t pole = -1;   // index of the pole (in the scheme's pole list) it belongs to; -1 otherwise
+  int32_t face = -1;   // face index at `level` it was made from (-1 for caps)
+};
+
+// Differential quantities of a patch at one parameter (u,v).
+struct SurfacePoint {
+  Point position{}, du{}, dv{}, duu{}, duv{}, dvv{};
+  Point normal{};           // unit, along du x dv
+  double gaussian = 0.0;    // K
+  double mean = 0.0;        // H (sign: positive where the surface bends towards the normal)
+};
+
+// Evaluates position, first and second derivatives, normal, K and H. [O(1)]
+SurfacePoint evaluatePatch(const Patch& patch, double u, double v);
+
+}  // namespace polarview

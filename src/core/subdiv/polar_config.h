@@ -1,0 +1,33 @@
+// Polar configurations found in a mesh: a triangle fan around a polar vertex, ringed by quads
+// with 4-valent vertices (paper Section 3). Detection reports both the refinable ones and the
+// vertices that look polar but must fall back to Catmull-Clark, with the reason.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/mesh/poly_mesh.h"
+#include "core/mesh/topology.h"
+
+namespace polarview {
+
+struct PolarConfig {
+  Index pole = -1;       // the polar vertex
+  int valence = 0;       // n: number of fan triangles
+  // Vertex ids by link: links[(i-1)*valence + j] = q_{ij} for i = 1..linkCount, in the column
+  // order of PolarGrid (fan triangles (pole, q_{1j}, q_{1,j+1}) counter-clockwise).
+  std::vector<Index> links;
+  int linkCount = 0;     // complete links found (link 1 always; link i+1 exists when all q_{ij} are 4-valent interior vertices joined by quads)
+  int regularLinks = 0;  // links 1..regularLinks consist of regular 4-valent interior vertices
+  // How the region ends beyond the last link: another pole (globe), a boundary loop (cap), or CC mesh.
+  enum class Outer { Pole, Boundary, Mesh } outer = Outer::Mesh;
+  Index oppositePole = -1;  // the other polar vertex when outer == Pole
+  bool refinable = false;   // C2PS/RTS/BPS may refine it; otherwise Catmull-Clark does
+  std::string reason;       // why not refinable (empty when refinable)
+};
+
+// Finds every vertex that looks polar (interior, all incident faces triangles, valence >= 3) and
+// decides whether it can be refined as a pole. [O(mesh)]
+std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopology& topo);
+
+}  // namespace polarview
