@@ -1,0 +1,72 @@
+// Framebuffer capture: read pixels back, write PNGs atomically, and an offscreen render target
+// (FBO with optional supersampling and a transparent background) for screenshots and tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace polarview {
+
+// Tightly packed RGBA8 pixels, rows top to bottom (image order, already flipped from GL).
+struct RgbaImage {
+  int width = 0, height = 0;
+  std::vector<uint8_t> pixels;  // width * height * 4
+  const uint8_t* at(int x, int y) const { return pixels.data() + 4 * (size_t(y) * width + x); }
+};
+
+// Reads (x, y, width, height) of the currently bound read framebuffer (bottom-left origin, as GL)
+// into an image with rows top to bottom. Needs a current GL context.
+RgbaImage readFramebuffer(int x, int y, int width, int height);
+
+// Writes a PNG via stb_image_write to `path + ".tmp"` and renames it over `path`, so readers never
+// see a half-written file. Throws std::runtime_error (with the path) on failure.
+void writePngAtomic(const std::string& path, const RgbaImage& image);
+
+// An offscreen colour + depth target of width x height output pixels, rendered at `supersample`
+// times the size (1, 2 or 4) and box-filtered down on read. Needs a current GL context.
+class OffscreenTarget {
+ public:
+  OffscreenTarget() = default;
+  ~OffscreenTarget();
+  OffscreenTarget(const OffscreenTarget&) = delete;
+  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+
+  // Creates (or re-creates) the FBO; false with a message when the FBO is incomplete.
+  bool create(int width, int height, int supersample, std::string* error);
+  // Binds the FBO, sets the full viewport and clears to `clear` (alpha 0 gives a transparent
+  // background in the PNG).
+  void bindAndClear(float r, float g, float b, float a);
+  // Render size (width * supersample): pass these to ViewParams::viewport.
+  int renderWidth() const { return width_ * supersample_; }
+  int renderHeight() const { return height_ * supersample_; }
+  int supersample() const { return supersample_; }
+  // Reads the FBO and box-filters it to width x height (straight alpha, rows top to bottom).
+  RgbaImage read() const;
+  // Binds the default framebuffer again.
+  static void bindDefault();
+
+ private:
+  void destroy();
+  unsigned fbo_ = 0, color_ = 0, depth_ = 0;
+  int width_ = 0, height_ = 0, supersample_ = 1;
+};
+
+// Float target for probes and tests: RGBA32F colour + depth, readback as floats.
+class FloatTarget {
+ public:
+  FloatTarget() = default;
+  ~FloatTarget();
+  FloatTarget(const FloatTarget&) = delete;
+  FloatTarget& operator=(const FloatTarget&) = delete;
+  bool create(int width, int height, std::string* error);
+  void bindAndClear(float r, float g, float b, float a);
+  // width * height * 4 floats, rows bottom to top (GL order).
+  std::vector<float> read() const;
+
+ private:
+  unsigned fbo_ = 0, color_ = 0, depth_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace polarview

@@ -1,0 +1,131 @@
+// PatchRenderer: draws a set of bicubic Patch'es (src/core/spline/patch.h) with GPU tessellation,
+// coloured by lighting, Gaussian / mean curvature or highlight / reflection lines, plus overlays
+// (control net, patch boundaries, tessellation wireframe, pole markers).
+//
+// The tessellation evaluation shader mirrors polarview::evaluatePatch (shaders/common/
+// patch_eval.glsl, same formulas and names). All GL calls of polarview live in src/render/.
+// Every method except the pure CPU ones needs a current GL 4.5 core context (init() first).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/mesh/poly_mesh.h"
+#include "core/spline/patch.h"
+
+namespace polarview {
+
+class ShaderLibrary;
+
+// How the surface is coloured.
+struct ShadingParams {
+  enum class Mode { Shaded, Gaussian, Mean, Highlight, Reflection };
+  enum class ColorMap { Paper, CoolWarm, Viridis };
+  Mode mode = Mode::Shaded;
+  ColorMap colormap = ColorMap::Paper;
+  float range = 1.0f;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
+  float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
+  // Highlight lines (Beier & Chen 1994, SCHEMES.md section 7): parallel light lines with direction
+  // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
+  // direction) placed 2 bounding radii from the model centre. Spacing is in units of the model's
+  // bounding radius; width is the fraction of one spacing that is dark (0..1).
+  // Reflection lines use the same direction, spacing as an angle fraction, and width.
+  glm::vec3 highlightDir{1.0f, 0.0f, 0.0f};
+  glm::vec3 highlightPlaneNormal{0.0f, 0.0f, 1.0f};
+  float highlightSpacing = 0.1f;
+  float highlightWidth = 0.3f;
+  float tessPixels = 12.0f;   // target screen length of a tessellated edge, in pixels
+  int maxTessLevel = 64;      // clamp of the adaptive level (llvmpipe gets ~5x slower from 15 up)
+  glm::vec3 surfaceColor{0.78f, 0.80f, 0.84f};  // base colour of Shaded mode
+};
+
+// What is drawn.
+struct DisplayFlags {
+  enum class BoundaryColor { Kind, Ring };
+  bool surface = true;
+  bool controlNet = false;
+  bool patchBoundaries = false;
+  bool poleMarkers = true;
+  bool wireframe = false;  // tessellation triangles over (or, with surface off, instead of) it
+  BoundaryColor boundaryColor = BoundaryColor::Kind;
+};
+
+// Camera for one draw. view/proj map world coordinates (the Patch coordinates) to clip space;
+// viewport is (x, y, width, height) in framebuffer pixels, bottom-left origin as glViewport.
+struct ViewParams {
+  glm::mat4 view{1.0f}, proj{1.0f};
+  glm::ivec4 viewport{0, 0, 1, 1};
+  glm::vec3 eye{0.0f, 0.0f, 1.0f};  // camera position in world coordinates
+};
+
+// Statistics of the last draw() (GPU time via a timer query, read back one draw later).
+struct DrawStats {
+  int patchCount = 0;
+  double gpuMilliseconds = 0.0;  // of the draw before the last one; 0 until available
+};
+
+// Colours used for DisplayFlags::BoundaryColor::Kind (index = PatchKind), also for a UI legend.
+glm::vec3 patchKindColor(PatchKind kind);
+// Colour for a ring index (cycles through a qualitative palette; -1 = grey).
+glm::vec3 ringColor(int ring);
+// The curvature colour map on the CPU, identical to shaders/common/colormap.glsl: value in
+// [-range, range] -> RGB in [0,1]. For legends and tests.
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range);
+
+class PatchRenderer {
+ public:
+  PatchRenderer();
+  ~PatchRenderer();
+  PatchRenderer(const PatchRenderer&) = delete;
+  PatchRenderer& operator=(const PatchRenderer&) = delete;
+
+  // Compiles the shaders and creates the GL objects. Several renderers (one per scheme, drawn in
+  // side-by-side viewports) may share one ShaderLibrary; pass nullptr to make a private one.
+  // Returns false with the compile log (FILE:LINE) in *error.
+  bool init(std::string* error, std::shared_ptr<ShaderLibrary> shaders = nullptr);
+  // Re-reads the shader files; on failure keeps the previous programs and returns the log.
+  bool reloadShaders(std::string* error);
+
+  // Uploads the patches (positions are stored relative to their bounding-box centre in float).
+  // [O(patches)]
+  void setPatches(const std::vector<Patch>& patches);
+  // Uploads the control mesh drawn by DisplayFlags::controlNet (its edges). [O(edges)]
+  void setControlMesh(const PolyMesh& mesh);
+  // Uploads the pole positions drawn by DisplayFlags::poleMarkers.
+  void setPoleMarkers(const std::vector<Point>& poles);
+
+  // Draws into the currently bound framebuffer, inside view.viewport (sets glViewport and the
+  // scissor-free depth test; does not clear). [O(patches)]
+  void draw(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
+
+  // Bounding box of the uploaded patches (their control points / cap positions), world coords.
+  glm::dvec3 boundsMin() const { return boundsMin_; }
+  glm::dvec3 boundsMax() const { return boundsMax_; }
+  glm::dvec3 center() const { return center_; }
+  double boundingRadius() const { return radius_; }
+  int patchCount() const { return patchCount_; }
+  const DrawStats& lastDrawStats() const { return stats_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0}, center_{0.0};
+  double radius_ = 1.0;
+  int patchCount_ = 0;
+  DrawStats stats_;
+};
+
+// Curvature samples of patches for the auto range (CPU, via evaluatePatch): samplesPerPatch^2
+// values K (mode Gaussian) or H (mode Mean) per patch at cell centres. [O(patches * samples^2)]
+std::vector<float> sampleCurvature(const std::vector<Patch>& patches, ShadingParams::Mode mode,
+                                   int samplesPerPatch);
+// A symmetric colour-map range that covers `quantile` (e.g. 0.95) of |values|; 1 when empty or 0.
+float suggestCurvatureRange(std::vector<float> values, float quantile);
+
+}  // namespace polarview
