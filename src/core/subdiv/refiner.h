@@ -8,7 +8,11 @@
 //    overridden by rules (1)-(3) and each pole-corner quad is split along its diagonal, so the
 //    polar valence doubles.
 //  * RTS / BPS: on meshes made only of polar configurations (caps, globes) the mesh is refined
-//    radially with the valence fixed (Figs 3d, 10). Elsewhere see README "RTS/BPS next to CC".
+//    radially with the valence fixed (Figs 3d, 10): `radialOnly()` is true. Where a polar region
+//    borders Catmull-Clark mesh, level m has C2PS's connectivity (CC elsewhere) and the polar region
+//    (links 0..K_m-1 of the radially refined configuration) holds the radial refinement refined
+//    m times periodically by (5): exact knot insertion, so the spline rings are the scheme's own
+//    (paper Fig. 5: "BPS refines radially k times, then periodically k times").
 #pragma once
 
 #include <memory>
@@ -16,7 +20,9 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/mesh/topology.h"
+#include "core/spline/pole_taylor.h"
 #include "core/subdiv/polar_config.h"
+#include "core/subdiv/polar_grid.h"
 #include "core/subdiv/scheme.h"
 
 namespace polarview {
@@ -26,6 +32,11 @@ struct RefinedLevel {
   MeshTopology topology;
   std::vector<Index> faceParent;   // per face: parent face at level-1 (empty at level 0)
   std::vector<PolarConfig> poles;  // polar configurations the scheme treats as poles here
+  // Parallel to `poles` (filled for C2PS, RTS and BPS; empty for CC): the pole's points in
+  // PolarGrid order (links 0..3 of this level's mesh) and the scheme's Taylor expansion (32) in
+  // this level's radial unit (link i at r = i), from which the viewer closes the hole.
+  std::vector<PolarGrid> poleGrids;
+  std::vector<TaylorCoefficients> poleTaylor;
 };
 
 class Refinement {
@@ -42,6 +53,8 @@ class Refinement {
   int levelCount() const { return int(levels_.size()); }  // levels + 1 (level 0 is the base)
   const RefinedLevel& level(int m) const { return levels_[m]; }
   const RefinedLevel& finest() const { return levels_.back(); }
+  // True when RTS/BPS refined the whole mesh radially (valence fixed; caps and globes).
+  bool radialOnly() const;
 
   // Recomputes every level's points from new base points (same count as the base). [O(output)]
   void updatePositions(const std::vector<Point>& basePoints);

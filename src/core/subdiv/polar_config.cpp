@@ -1,0 +1,204 @@
+#include "core/subdiv/polar_config.h"
+
+#include <algorithm>
+
+namespace polarview {
+
+namespace {
+
+// The corner of face f that holds vertex v, or -1. [O(face size)]
+int cornerOf(const PolyMesh& mesh, Index f, Index v) {
+  for (int c = 0; c < mesh.faceSize(f); ++c)
+    if (mesh.face(f)[c] == v) return c;
+  return -1;
+}
+
+// The edge joining a and b, or -1. [O(valence)]
+Index edgeBetween(const MeshTopology& topo, Index a, Index b) {
+  for (Index k = topo.vertexEdgeStart[a]; k < topo.vertexEdgeStart[a + 1]; ++k)
+    if (topo.otherEnd(topo.vertexEdges[k], a) == b) return topo.vertexEdges[k];
+  return -1;
+}
+
+// The face across edge e from face f (-1 on a boundary). [O(1)]
+Index faceAcross(const MeshTopology& topo, Index e, Index f) {
+  Index f0 = topo.edgeFaces[2 * e], f1 = topo.edgeFaces[2 * e + 1];
+  return f0 == f ? f1 : f0;
+}
+
+bool allFacesHaveSize(const PolyMesh& mesh, const MeshTopology& topo, Index v, int size, int* count) {
+  int n = 0;
+  for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
+    n += mesh.faceSize(topo.vertexFaces[k]) == size;
+  if (count) *count = n;
+  return n == topo.faceValence(v);
+}
+
+std::string vertexName(Index v) { return "vertex " + std::to_string(v); }
+
+// Orders the fan around `pole` so that triangles (pole, q_{1j}, q_{1,j+1}) follow the face winding.
+// Returns false (with a reason) when the fan is not a simple cycle.
+bool orderFan(const PolyMesh& mesh, const MeshTopology& topo, Index pole, std::vector<Index>& link1,
+              std::vector<Index>& fanFaces, std::string& reason) {
+  const Index n = topo.faceValence(pole);
+  link1.assign(n, -1);
+  fanFaces.assign(n, -1);
+  // Successor of each link-1 vertex along the fan, from each triangle's winding.
+  Index f = topo.vertexFaces[topo.vertexFaceStart[pole]];
+  int c = cornerOf(mesh, f, pole);
+  Index start = mesh.face(f)[(c + 1) % 3];
+  Index current = start;
+  for (Index j = 0; j < n; ++j) {
+    // The fan triangle whose corner after the pole is `current`.
+    Index found = -1;
+    for (Index k = topo.vertexFaceStart[pole]; k < topo.vertexFaceStart[pole + 1]; ++k) {
+      Index g = topo.vertexFaces[k];
+      int cg = cornerOf(mesh, g, pole);
+      if (mesh.face(g)[(cg + 1) % 3] == current) { found = g; break; }
+    }
+    if (found < 0) { reason = "its fan is not a closed cycle of triangles"; return false; }
+    link1[j] = current;
+    fanFaces[j] = found;
+    current = mesh.face(found)[(cornerOf(mesh, found, pole) + 2) % 3];
+  }
+  if (current != start) { reason = "its fan is not a closed cycle of triangles"; return false; }
+  std::vector<Index> sorted = link1;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+    reason = "its fan visits a vertex twice";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopology& topo) {
+  std::vector<PolarConfig> configs;
+  std::vector<int> linkMark(topo.vertexCount, -1);  // which config's links claimed a vertex
+  std::vector<Index> link1, fanFaces, inner, outer, innerFaces, outerFaces;
+
+  for (Index v = 0; v < topo.vertexCount; ++v) {
+    if (!topo.vertexUsed[v] || topo.vertexOnBoundary[v]) continue;
+    if (topo.valence(v) < 3 || !allFacesHaveSize(mesh, topo, v, 3, nullptr)) continue;
+
+    PolarConfig config;
+    config.pole = v;
+    config.valence = topo.valence(v);
+    const int n = config.valence;
+    std::string& reason = config.reason;
+
+    // Link 1: the fan's rim, each a 4-valent interior vertex with two fan triangles and two quads.
+    if (!orderFan(mesh, topo, v, link1, fanFaces, reason)) { configs.push_back(config); continue; }
+    bool ok = true;
+    for (Index q : link1) {
+      int quads = 0;
+      allFacesHaveSize(mesh, topo, q, 4, &quads);
+      if (topo.vertexOnBoundary[q]) { reason = "its 1-link vertex " + std::to_string(q) + " is on a boundary"; ok = false; break; }
+      if (topo.valence(q) != 4) {
+        reason = "its 1-link has a " + std::to_string(topo.valence(q)) + "-valent vertex (" + vertexName(q) + ")";
+        ok = false;
+        break;
+      }
+      if (quads != 2) { reason = "its 1-link vertex " + std::to_string(q) + " is not surrounded by 2 triangles and 2 quads"; ok = false; break; }
+    }
+    config.links = link1;
+    config.linkCount = 1;
+    config.regularLinks = ok ? 1 : 0;
+    if (!ok) { configs.push_back(config); continue; }
+
+    // Walk outwards link by link: across each link edge, away from the pole, lies a quad of the
+    // next ring, the fan of an opposite pole, a boundary, or irregular mesh.
+    inner = link1;
+    innerFaces = fanFaces;
+    std::vector<Index> visited(link1.begin(), link1.end());
+    visited.push_back(v);
+    auto isVisited = [&](Index q) { return std::find(visited.begin(), visited.end(), q) != visited.end(); };
+    while (true) {
+      outer.assign(n, -1);
+      outerFaces.assign(n, -1);
+      int boundaryEdges = 0, triangles = 0;
+      bool valid = true;
+      Index capPole = -1;
+      for (int j = 0; j < n && valid; ++j) {
+        Index a = inner[j], b = inner[(j + 1) % n];
+        Index e = edgeBetween(topo, a, b);
+        if (e < 0) { valid = false; break; }
+        if (topo.edgeOnBoundary(e)) { ++boundaryEdges; continue; }
+        Index g = faceAcross(topo, e, innerFaces[j]);
+        int ca = cornerOf(mesh, g, a);
+        if (mesh.faceSize(g) == 3) {  // possibly the fan of an opposite pole
+          Index p = mesh.face(g)[(ca + 1) % 3];
+          if (triangles++ == 0) capPole = p;
+          if (p != capPole) valid = false;
+          continue;
+        }
+        if (mesh.faceSize(g) != 4) { valid = false; break; }
+        // The quad runs (b, a, q_{i+1,j}, q_{i+1,j+1}).
+        Index qa = mesh.face(g)[(ca + 1) % 4], qb = mesh.face(g)[(ca + 2) % 4];
+        if (outer[j] >= 0 && outer[j] != qa) valid = false;
+        outer[j] = qa;
+        if (outer[(j + 1) % n] >= 0 && outer[(j + 1) % n] != qb) valid = false;
+        outer[(j + 1) % n] = qb;
+        outerFaces[j] = g;
+      }
+      if (boundaryEdges == n) { config.outer = PolarConfig::Outer::Boundary; break; }
+      if (triangles == n && valid && capPole >= 0 && !isVisited(capPole) && topo.valence(capPole) == n &&
+          allFacesHaveSize(mesh, topo, capPole, 3, nullptr)) {
+        config.outer = PolarConfig::Outer::Pole;
+        config.oppositePole = capPole;
+        break;
+      }
+      if (!valid || boundaryEdges > 0 || triangles > 0) break;
+      // A proper new link: distinct vertices never seen before.
+      std::vector<Index> sorted = outer;
+      std::sort(sorted.begin(), sorted.end());
+      bool fresh = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+      for (int j = 0; j < n && fresh; ++j) fresh = !isVisited(outer[j]);
+      if (!fresh) break;
+      config.links.insert(config.links.end(), outer.begin(), outer.end());
+      ++config.linkCount;
+      visited.insert(visited.end(), outer.begin(), outer.end());
+      // Keep walking only through regular links (4-valent interior vertices among quads); an
+      // irregular link is the last one the configuration owns.
+      bool regular = true;
+      for (Index q : outer)
+        regular = regular && !topo.vertexOnBoundary[q] && topo.valence(q) == 4 && allFacesHaveSize(mesh, topo, q, 4, nullptr);
+      if (!regular) {
+        // A ring that only borders an opposite fan or a boundary is still regular enough for the walk.
+        bool nextToEnd = true;
+        for (Index q : outer) nextToEnd = nextToEnd && topo.valence(q) <= 4;
+        if (!nextToEnd) break;
+      } else {
+        config.regularLinks = config.linkCount;
+      }
+      inner = outer;
+      innerFaces = outerFaces;
+    }
+
+    if (config.linkCount < 2) {
+      config.reason = "it has too few links (the 2-link is missing or not a ring of quads)";
+    } else {
+      config.refinable = true;
+    }
+    configs.push_back(config);
+  }
+
+  // Poles whose rule stencils (fan and 1-link) overlap cannot both be refined as poles.
+  for (size_t k = 0; k < configs.size(); ++k) {
+    PolarConfig& config = configs[k];
+    if (!config.refinable) continue;
+    bool clash = linkMark[config.pole] >= 0;
+    for (int j = 0; j < config.valence && !clash; ++j) clash = linkMark[config.links[j]] >= 0;
+    if (clash) {
+      config.refinable = false;
+      config.reason = "its stencil overlaps the pole at vertex " + std::to_string(configs[std::max(0, linkMark[config.pole])].pole);
+      continue;
+    }
+    linkMark[config.pole] = int(k);
+    for (int j = 0; j < config.valence; ++j) linkMark[config.links[j]] = int(k);
+  }
+  return configs;
+}
+
+}  // namespace polarview

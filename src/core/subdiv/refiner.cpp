@@ -1,0 +1,463 @@
+// Refiner: Catmull-Clark everywhere, the chosen polar scheme at polar configurations.
+// [SECTION] helpers: grids and lookups
+// [SECTION] generic levels: Catmull-Clark connectivity (+ C2PS's split pole quads)
+// [SECTION] radial levels: RTS/BPS on meshes made only of polar regions
+// [SECTION] Refinement
+#include "core/subdiv/refiner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "core/mesh/input_error.h"
+#include "core/subdiv/bps.h"
+#include "core/subdiv/c2ps.h"
+#include "core/subdiv/catmull_clark.h"
+#include "core/subdiv/polar_rules.h"
+#include "core/subdiv/rts.h"
+
+namespace polarview {
+
+namespace {
+
+// [SECTION] helpers: grids and lookups
+
+// The scheme's radial rules (valence fixed), so RTS and BPS share the level drivers below.
+struct RadialScheme {
+  std::function<Point(const PolarGrid&)> pole;
+  std::function<void(const PolarGrid&, Point*)> link1;
+  std::function<void(const PolarGrid&, Point*, bool)> link2;
+  std::function<PolarGrid(const PolarGrid&, bool)> grid;
+};
+
+RadialScheme radialSchemeFor(Scheme scheme) {
+  if (scheme == Scheme::BPS)  // BPS's 2-link rule already is the uniform one
+    return {bps::refinePole, bps::refineLink1, [](const PolarGrid& g, Point* out, bool) { bps::refineLink2(g, out); },
+            [](const PolarGrid& g, bool) { return bps::refineGrid(g); }};
+  return {rts::refinePole, rts::refineLink1, rts::refineLink2,
+          [](const PolarGrid& g, bool uniform) { return rts::refineGrid(g, uniform); }};
+}
+
+// Copies a configuration's points (pole and links 1..linkCount) into a PolarGrid.
+PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config, int linkCount) {
+  PolarGrid grid(config.valence, linkCount);
+  grid.pole = points[config.pole];
+  for (size_t k = 0; k < grid.ring.size(); ++k) grid.ring[k] = points[config.links[k]];
+  return grid;
+}
+
+// The edge joining a and b (-1 if none). [O(valence)]
+Index edgeBetween(const MeshTopology& topo, Index a, Index b) {
+  for (Index k = topo.vertexEdgeStart[a]; k < topo.vertexEdgeStart[a + 1]; ++k)
+    if (topo.otherEnd(topo.vertexEdges[k], a) == b) return topo.vertexEdges[k];
+  return -1;
+}
+
+// The face on edge (a,b) that also holds vertex c (-1 if none). [O(valence + face size)]
+Index faceWith(const PolyMesh& mesh, const MeshTopology& topo, Index a, Index b, Index c) {
+  Index e = edgeBetween(topo, a, b);
+  if (e < 0) return -1;
+  for (int s = 0; s < 2; ++s) {
+    Index f = topo.edgeFaces[2 * e + s];
+    if (f < 0) continue;
+    const Index* loop = mesh.face(f);
+    if (std::find(loop, loop + mesh.faceSize(f), c) != loop + mesh.faceSize(f)) return f;
+  }
+  return -1;
+}
+
+// Repeats periodic refinement (5) `times` times: n points -> n 2^times points.
+void refinePeriodically(const Point* link, int n, int times, std::vector<Point>& out, std::vector<Point>& scratch) {
+  out.assign(link, link + n);
+  for (int t = 0; t < times; ++t) {
+    scratch.resize(out.size() * 2);
+    refinePeriodicLink(out.data(), int(out.size()), scratch.data());
+    out.swap(scratch);
+  }
+}
+
+// [SECTION] generic levels: Catmull-Clark connectivity (+ C2PS's split pole quads)
+
+// The configuration one Catmull-Clark/C2PS step makes of `parent` (column j -> 2j). Link 2i holds
+// the vertex points of link i (even columns) and the edge points of its edges (odd); link 2i+1
+// the edge points of the radial edges i->i+1 (even) and the face points between (odd).
+PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, const MeshTopology& topo) {
+  const int n = parent.valence, K = parent.linkCount;
+  auto q = [&](int i, int j) { return i == 0 ? parent.pole : parent.links[size_t(i - 1) * n + ((j % n) + n) % n]; };
+  PolarConfig child;
+  child.pole = ccVertexPoint(topo, parent.pole);
+  child.valence = 2 * n;
+  child.linkCount = 2 * K;
+  child.links.resize(size_t(2 * K) * 2 * n);
+  for (int i = 0; i <= K; ++i) {
+    for (int j = 0; j < n; ++j) {
+      if (i >= 1) {  // link 2i
+        Index* row = &child.links[size_t(2 * i - 1) * 2 * n];
+        row[2 * j] = ccVertexPoint(topo, q(i, j));
+        row[2 * j + 1] = ccEdgePoint(topo, edgeBetween(topo, q(i, j), q(i, j + 1)));
+      }
+      if (i < K) {  // link 2i+1
+        Index* row = &child.links[size_t(2 * i) * 2 * n];
+        row[2 * j] = ccEdgePoint(topo, edgeBetween(topo, q(i, j), q(i + 1, j)));
+        row[2 * j + 1] = ccFacePoint(topo, i == 0 ? faceWith(mesh, topo, q(1, j), q(1, j + 1), parent.pole)
+                                                  : faceWith(mesh, topo, q(i, j), q(i, j + 1), q(i + 1, j)));
+      }
+    }
+  }
+  child.regularLinks = parent.regularLinks == K ? 2 * K : 2 * parent.regularLinks + 1;
+  child.outer = parent.outer;
+  child.oppositePole = parent.oppositePole >= 0 ? ccVertexPoint(topo, parent.oppositePole) : -1;
+  child.refinable = true;
+  return child;
+}
+
+// One Catmull-Clark step of the connectivity; with `splitPoleQuads` each quad at a pole's corner is
+// split along its diagonal (pole - face point) into two triangles, doubling the polar valence.
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, const std::string& source) {
+  RefinedLevel child;
+  PolyMesh quads = refineCatmullClarkTopology(parent.mesh, parent.topology, &child.faceParent);
+  if (!splitPoleQuads || parent.poles.empty()) {
+    child.mesh = std::move(quads);
+  } else {
+    // Child face c is the child of parent corner c: mark the corners at each pole.
+    std::vector<uint8_t> split(quads.faceCount(), 0);
+    size_t extra = 0;
+    for (const PolarConfig& pole : parent.poles)
+      for (Index k = parent.topology.vertexFaceStart[pole.pole]; k < parent.topology.vertexFaceStart[pole.pole + 1]; ++k) {
+        split[parent.topology.vertexCorners[k]] = 1;
+        ++extra;
+      }
+    PolyMesh& mesh = child.mesh;
+    mesh.points.resize(quads.points.size());
+    mesh.faceStart.reserve(quads.faceStart.size() + extra);
+    mesh.faceVerts.reserve(quads.faceVerts.size() + 2 * extra);
+    std::vector<Index> faceParent;
+    faceParent.reserve(child.faceParent.size() + extra);
+    for (Index f = 0; f < quads.faceCount(); ++f) {
+      const Index* v = quads.face(f);  // (pole', E_a, F, E_b)
+      if (split[f]) {
+        mesh.addFace({v[0], v[1], v[2]});
+        mesh.addFace({v[0], v[2], v[3]});
+        faceParent.push_back(child.faceParent[f]);
+      } else {
+        mesh.addFace(v, 4);
+      }
+      faceParent.push_back(child.faceParent[f]);
+    }
+    child.faceParent.swap(faceParent);
+  }
+  child.topology = buildTopology(child.mesh, source);
+  for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
+  return child;
+}
+
+// [SECTION] radial levels: RTS/BPS on meshes made only of polar regions
+
+// A polar region refined radially: pole A, `links` rings of n points, then pole B (closed) or
+// nothing (the last ring is a boundary). Rows: 0 = A, 1..links = rings, links+1 = B.
+struct RadialRegion {
+  int n = 0, links = 0;
+  bool closed = false;
+  Index vertexBase = 0, faceBase = 0;  // first vertex / face of the region at this level
+  std::vector<Index> vertexIds;        // level 0 only: mesh ids by row (A, rings, B)
+  std::vector<Index> faceIds;          // level 0 only: mesh face ids by row and column
+
+  int rowCount() const { return links + (closed ? 2 : 1); }
+  Index vertexCount() const { return Index(n) * links + (closed ? 2 : 1); }
+  Index faceCount() const { return Index(n) * (closed ? links + 1 : links); }
+  // Vertex id of row r, column j at a level >= 1 (laid out row by row).
+  Index vertex(int r, int j) const {
+    if (r == 0) return vertexBase;
+    if (r == links + 1) return vertexBase + 1 + Index(n) * links;
+    return vertexBase + 1 + Index(r - 1) * n + ((j % n) + n) % n;
+  }
+};
+
+// Regions covering the whole mesh, or empty when some face lies outside every polar region.
+std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level) {
+  std::vector<RadialRegion> regions;
+  size_t faces = 0;
+  for (const PolarConfig& config : level.poles) {
+    if (config.outer == PolarConfig::Outer::Mesh || config.regularLinks < config.linkCount - 1) return {};
+    if (config.outer == PolarConfig::Outer::Pole && config.oppositePole < config.pole) continue;  // counted from the other end
+    RadialRegion region;
+    region.n = config.valence;
+    region.links = config.linkCount;
+    region.closed = config.outer == PolarConfig::Outer::Pole;
+    region.vertexIds.push_back(config.pole);
+    region.vertexIds.insert(region.vertexIds.end(), config.links.begin(), config.links.end());
+    if (region.closed) region.vertexIds.push_back(config.oppositePole);
+    const int n = region.n;
+    auto q = [&](int r, int j) { return r == region.links + 1 ? region.vertexIds.back() : region.vertexIds[1 + size_t(r - 1) * n + ((j % n) + n) % n]; };
+    for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(1, j), q(1, j + 1), config.pole));
+    for (int r = 1; r < region.links; ++r)
+      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(r, j), q(r, j + 1), q(r + 1, j)));
+    if (region.closed)
+      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(region.links, j), q(region.links, j + 1), config.oppositePole));
+    if (std::find(region.faceIds.begin(), region.faceIds.end(), Index(-1)) != region.faceIds.end()) return {};
+    faces += region.faceIds.size();
+    regions.push_back(std::move(region));
+  }
+  if (regions.empty() || faces != size_t(level.mesh.faceCount())) return {};
+  return regions;
+}
+
+// Builds the connectivity of the next radial level: every region keeps n and gets 2 links + 1
+// (closed) or 2 links (boundary) rings; faces laid out row by row, parents at row / 2.
+RefinedLevel refineRadialTopology(const std::vector<RadialRegion>& parentRegions, std::vector<RadialRegion>& childRegions,
+                                  const std::string& source) {
+  RefinedLevel child;
+  PolyMesh& mesh = child.mesh;
+  childRegions.clear();
+  Index vertexBase = 0, faceBase = 0;
+  for (const RadialRegion& parent : parentRegions) {
+    RadialRegion region;
+    region.n = parent.n;
+    region.closed = parent.closed;
+    region.links = parent.closed ? 2 * parent.links + 1 : 2 * parent.links;
+    region.vertexBase = vertexBase;
+    region.faceBase = faceBase;
+    const int n = region.n;
+    auto parentFace = [&](int row, int j) {
+      int r = row / 2;
+      return parent.faceIds.empty() ? parent.faceBase + Index(r) * n + j : parent.faceIds[size_t(r) * n + j];
+    };
+    for (int j = 0; j < n; ++j) {
+      mesh.addFace({region.vertex(0, 0), region.vertex(1, j), region.vertex(1, j + 1)});
+      child.faceParent.push_back(parentFace(0, j));
+    }
+    for (int r = 1; r < region.links; ++r)
+      for (int j = 0; j < n; ++j) {
+        mesh.addFace({region.vertex(r, j), region.vertex(r + 1, j), region.vertex(r + 1, j + 1), region.vertex(r, j + 1)});
+        child.faceParent.push_back(parentFace(r, j));
+      }
+    if (region.closed)
+      for (int j = 0; j < n; ++j) {
+        mesh.addFace({region.vertex(region.links + 1, 0), region.vertex(region.links, j + 1), region.vertex(region.links, j)});
+        child.faceParent.push_back(parentFace(region.links, j));
+      }
+    vertexBase += region.vertexCount();
+    faceBase += region.faceCount();
+    childRegions.push_back(region);
+  }
+  mesh.points.resize(vertexBase);
+  child.topology = buildTopology(mesh, source);
+
+  // Poles: A with columns as laid out; B sees the columns reversed (its fan is counter-clockwise).
+  for (const RadialRegion& region : childRegions) {
+    const int n = region.n;
+    PolarConfig a;
+    a.pole = region.vertex(0, 0);
+    a.valence = n;
+    a.linkCount = region.links;
+    a.regularLinks = region.links;
+    a.outer = region.closed ? PolarConfig::Outer::Pole : PolarConfig::Outer::Boundary;
+    a.refinable = true;
+    for (int r = 1; r <= region.links; ++r)
+      for (int j = 0; j < n; ++j) a.links.push_back(region.vertex(r, j));
+    if (region.closed) {
+      PolarConfig b = a;
+      b.pole = region.vertex(region.links + 1, 0);
+      b.oppositePole = a.pole;
+      a.oppositePole = b.pole;
+      b.links.clear();
+      for (int r = region.links; r >= 1; --r)
+        for (int j = 0; j < n; ++j) b.links.push_back(region.vertex(r, n - j));
+      child.poles.push_back(a);
+      child.poles.push_back(b);
+    } else {
+      child.poles.push_back(a);
+    }
+  }
+  return child;
+}
+
+// The rows (A, rings, B) of a region as a PolarGrid seen from A, or from B (reversed columns).
+PolarGrid regionGrid(const std::vector<Point>& rows, const RadialRegion& region, bool fromB) {
+  const int n = region.n, K = region.links;
+  PolarGrid grid(n, K);
+  grid.pole = fromB ? rows.back() : rows.front();
+  for (int i = 1; i <= K; ++i)
+    for (int j = 0; j < n; ++j) {
+      int row = fromB ? K + 1 - i : i;
+      int col = fromB ? (n - j) % n : j;
+      grid.q(i, j) = rows[1 + size_t(row - 1) * n + col];
+    }
+  return grid;
+}
+
+// One radial step of a region's rows (A, links 1..K, B?) into the child's rows: rules (9)-(12) at
+// each pole, the uniform radial cubic rules between, a boundary ring kept in place.
+void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& parent, const RadialScheme& rules,
+                          bool uniformFirstStep, std::vector<Point>& childRows) {
+  const int n = parent.n, K = parent.links;
+  const int childLinks = parent.closed ? 2 * K + 1 : 2 * K;
+  childRows.assign(size_t(childLinks) * n + (parent.closed ? 2 : 1), Point(0.0));
+  auto childRow = [&](int r) { return &childRows[1 + size_t(r - 1) * n]; };
+  // Uniform rules between the special rows: child links 3..2K-1 from parent links 1..K.
+  refineOuterLinksRadially(&rows[1], n, K, childRow(3));
+  // Pole A's rows 0..2.
+  PolarGrid a = regionGrid(rows, parent, false);
+  childRows[0] = rules.pole(a);
+  rules.link1(a, childRow(1));
+  rules.link2(a, childRow(2), uniformFirstStep);
+  if (parent.closed) {  // pole B's rows, columns reversed back
+    PolarGrid b = regionGrid(rows, parent, true);
+    std::vector<Point> link(n);
+    childRows.back() = rules.pole(b);
+    rules.link1(b, link.data());
+    for (int j = 0; j < n; ++j) childRow(childLinks)[(n - j) % n] = link[j];
+    rules.link2(b, link.data(), uniformFirstStep);
+    for (int j = 0; j < n; ++j) childRow(childLinks - 1)[(n - j) % n] = link[j];
+  } else {  // the boundary ring stays: radially Catmull-Clark's boundary rule (mirrored phantom) fixes it
+    std::copy(&rows[1 + size_t(K - 1) * n], &rows[1 + size_t(K) * n], childRow(childLinks));
+  }
+}
+
+}  // namespace
+
+// [SECTION] Refinement
+
+struct Refinement::Plan {
+  bool radial = false;
+  std::vector<std::vector<RadialRegion>> regions;  // radial mode: per level
+  std::string source;
+};
+
+size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options) {
+  if (options.levels <= 0) return size_t(base.faceCount());
+  // Catmull-Clark: one quad per corner, then x4 per level; polar splits add < corners per level.
+  double faces = double(base.faceVerts.size()) * std::pow(4.0, options.levels - 1);
+  return size_t(std::min(faces * 1.25, 1e18));
+}
+
+Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName, size_t maxFaces)
+    : options_(options), plan_(std::make_unique<Plan>()) {
+  plan_->source = sourceName;
+  if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
+  size_t estimate = estimateFaceCount(base, options);
+  if (estimate > maxFaces)
+    throw InputError(sourceName, 0,
+                     "level " + std::to_string(options.levels) + " would need about " + std::to_string(estimate) +
+                         " faces, over the memory budget of " + std::to_string(maxFaces) + " faces");
+
+  RefinedLevel level0;
+  level0.mesh = base;
+  level0.topology = buildTopology(base, sourceName);
+  if (options.scheme != Scheme::CatmullClark)
+    for (PolarConfig& config : findPolarConfigs(base, level0.topology))
+      if (config.refinable) level0.poles.push_back(std::move(config));
+  levels_.push_back(std::move(level0));
+
+  // RTS/BPS on caps and globes: radial refinement of the whole mesh.
+  if (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS) {
+    std::vector<RadialRegion> regions = findRadialRegions(levels_[0]);
+    plan_->radial = !regions.empty();
+    if (plan_->radial) plan_->regions.push_back(std::move(regions));
+  }
+  for (int m = 1; m <= options.levels; ++m) {
+    if (plan_->radial) {
+      std::vector<RadialRegion> childRegions;
+      levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
+      plan_->regions.push_back(std::move(childRegions));
+    } else {
+      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, sourceName));
+    }
+  }
+  updatePositions(base.points);
+}
+
+Refinement::~Refinement() = default;
+Refinement::Refinement(Refinement&&) noexcept = default;
+Refinement& Refinement::operator=(Refinement&&) noexcept = default;
+
+bool Refinement::radialOnly() const { return plan_->radial; }
+
+void Refinement::updatePositions(const std::vector<Point>& basePoints) {
+  levels_[0].mesh.points = basePoints;
+  const Scheme scheme = options_.scheme;
+  const bool polar = scheme != Scheme::CatmullClark;
+  const int gridLinks = 5;  // links kept in poleGrids: enough for ring 0 and the cap
+  auto fillPoleData = [&](RefinedLevel& level, const std::vector<PolarGrid>* schemeGrids) {
+    level.poleGrids.clear();
+    level.poleTaylor.clear();
+    if (!polar) return;
+    for (size_t k = 0; k < level.poles.size(); ++k) {
+      const PolarConfig& config = level.poles[k];
+      level.poleGrids.push_back(gatherGrid(level.mesh.points, config, std::min(gridLinks, config.linkCount)));
+      const PolarGrid& source = schemeGrids ? (*schemeGrids)[k] : level.poleGrids.back();
+      level.poleTaylor.push_back(poleTaylorCoefficients(source, scheme));
+    }
+  };
+
+  if (plan_->radial) {
+    // Structured rows per region; level 0 gathers them from the input's ids.
+    RadialScheme rules = radialSchemeFor(scheme);
+    std::vector<std::vector<Point>> rows;
+    for (const RadialRegion& region : plan_->regions[0]) {
+      rows.emplace_back();
+      for (Index id : region.vertexIds) rows.back().push_back(basePoints[id]);
+    }
+    fillPoleData(levels_[0], nullptr);
+    std::vector<Point> childRows;
+    for (int m = 1; m < levelCount(); ++m) {
+      RefinedLevel& level = levels_[m];
+      for (size_t r = 0; r < rows.size(); ++r) {
+        const RadialRegion& parent = plan_->regions[m - 1][r];
+        refineRegionRadially(rows[r], parent, rules, options_.uniformFirstStep && m == 1, childRows);
+        std::copy(childRows.begin(), childRows.end(), level.mesh.points.begin() + plan_->regions[m][r].vertexBase);
+        rows[r].swap(childRows);
+      }
+      fillPoleData(level, nullptr);
+    }
+    return;
+  }
+
+  // Generic levels: Catmull-Clark points, then the polar overrides.
+  const bool radialPoles = scheme == Scheme::RTS || scheme == Scheme::BPS;
+  RadialScheme rules = radialSchemeFor(scheme);
+  std::vector<PolarGrid> radialGrids;  // RTS/BPS: each pole's own radially refined configuration
+  if (radialPoles)
+    for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
+  fillPoleData(levels_[0], radialPoles ? &radialGrids : nullptr);
+
+  std::vector<Point> link1, link2, refined, scratch;
+  for (int m = 1; m < levelCount(); ++m) {
+    const RefinedLevel& parent = levels_[m - 1];
+    RefinedLevel& level = levels_[m];
+    level.mesh.points.resize(ccChildVertexCount(parent.topology));
+    computeCatmullClarkPoints(parent.topology, parent.mesh, parent.mesh.points.data(), level.mesh.points.data());
+    const bool uniformStep = options_.uniformFirstStep && m == 1;
+    for (size_t k = 0; k < level.poles.size(); ++k) {
+      const PolarConfig& child = level.poles[k];
+      std::vector<Point>& points = level.mesh.points;
+      if (scheme == Scheme::C2PS) {
+        // Rules (1)-(3) override the pole, the new 1-link and the new 2-link.
+        PolarGrid grid = gatherGrid(parent.mesh.points, parent.poles[k], 2);
+        const int n2 = child.valence;
+        link1.resize(n2);
+        link2.resize(n2);
+        c2ps::refineLink1(grid, link1.data());
+        c2ps::refineLink2(grid, link2.data(), uniformStep);
+        points[child.pole] = c2ps::refinePole(grid);
+        for (int j = 0; j < n2; ++j) {
+          points[child.links[j]] = link1[j];
+          points[child.links[size_t(n2) + j]] = link2[j];
+        }
+      } else if (radialPoles) {
+        // The radially refined configuration, refined m times periodically, owns links 0..K_m-1.
+        PolarGrid& grid = radialGrids[k];
+        grid = rules.grid(grid, uniformStep);
+        points[child.pole] = grid.pole;
+        const int owned = std::min(grid.links - 1, child.linkCount);
+        for (int i = 1; i <= owned; ++i) {
+          refinePeriodically(&grid.q(i, 0), grid.n, m, refined, scratch);
+          for (int j = 0; j < child.valence; ++j) points[child.links[size_t(i - 1) * child.valence + j]] = refined[j];
+        }
+      }
+    }
+    fillPoleData(level, radialPoles ? &radialGrids : nullptr);
+  }
+}
+
+}  // namespace polarview
