@@ -1,0 +1,196 @@
+#include "ui/orbit_camera.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace polarview {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxPitchDeg = 89.0;  // keeps +z up without a roll flip at the poles of the orbit
+constexpr double kOrbitDegPerPixel = 0.4;
+constexpr double kZoomPerNotch = 0.85;
+
+double radians(double deg) { return deg * kPi / 180.0; }
+double degrees(double rad) { return rad * 180.0 / kPi; }
+
+// Minimal JSON reader for one flat object of numbers and number arrays (all a camera needs).
+class JsonCursor {
+ public:
+  explicit JsonCursor(const std::string& text) : s_(text) {}
+  void skipSpace() {
+    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
+  }
+  bool consume(char c) {
+    skipSpace();
+    if (i_ < s_.size() && s_[i_] == c) {
+      ++i_;
+      return true;
+    }
+    return false;
+  }
+  bool atEnd() {
+    skipSpace();
+    return i_ >= s_.size();
+  }
+  bool readString(std::string* out) {
+    if (!consume('"')) return false;
+    size_t end = s_.find('"', i_);
+    if (end == std::string::npos) return false;
+    *out = s_.substr(i_, end - i_);
+    i_ = end + 1;
+    return true;
+  }
+  bool readNumber(double* out) {
+    skipSpace();
+    const char* begin = s_.c_str() + i_;
+    char* end = nullptr;
+    *out = std::strtod(begin, &end);
+    if (end == begin || !std::isfinite(*out)) return false;
+    i_ += size_t(end - begin);
+    return true;
+  }
+  // Reads a number or an array of numbers.
+  bool readValue(std::vector<double>* out) {
+    out->clear();
+    double x = 0.0;
+    if (!consume('[')) {
+      if (!readNumber(&x)) return false;
+      out->push_back(x);
+      return true;
+    }
+    if (consume(']')) return true;
+    do {
+      if (!readNumber(&x)) return false;
+      out->push_back(x);
+    } while (consume(','));
+    return consume(']');
+  }
+
+ private:
+  const std::string& s_;
+  size_t i_ = 0;
+};
+
+}  // namespace
+
+glm::dvec3 OrbitCamera::forward() const {
+  double yaw = radians(yawDeg), pitch = radians(pitchDeg);
+  return -glm::dvec3(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch));
+}
+glm::dvec3 OrbitCamera::eye() const { return target - distance * forward(); }
+glm::dvec3 OrbitCamera::right() const {
+  double yaw = radians(yawDeg);
+  return glm::dvec3(-std::sin(yaw), std::cos(yaw), 0.0);
+}
+glm::dvec3 OrbitCamera::up() const { return glm::cross(right(), forward()); }
+
+glm::mat4 OrbitCamera::viewMatrix() const {
+  return glm::mat4(glm::lookAt(eye(), target, up()));
+}
+
+glm::mat4 OrbitCamera::projectionMatrix(double aspect, double sceneRadius) const {
+  // Near/far bracket a sphere of 2x the scene radius around the target, with a floor on near so
+  // the depth buffer keeps its precision when zoomed far in.
+  double radius = std::max(sceneRadius, 1e-6);
+  double farPlane = distance + 4.0 * radius;
+  double nearPlane = std::max(distance - 4.0 * radius, farPlane * 1e-4);
+  return glm::mat4(glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane));
+}
+
+void OrbitCamera::orbit(double dxPixels, double dyPixels) {
+  yawDeg = std::remainder(yawDeg - kOrbitDegPerPixel * dxPixels, 360.0);
+  pitchDeg = std::clamp(pitchDeg + kOrbitDegPerPixel * dyPixels, -kMaxPitchDeg, kMaxPitchDeg);
+}
+
+void OrbitCamera::pan(double dxPixels, double dyPixels, double viewportHeightPixels) {
+  // World length of one pixel at the target's depth.
+  double worldPerPixel = 2.0 * distance * std::tan(radians(fovDeg) / 2.0) / std::max(viewportHeightPixels, 1.0);
+  target += worldPerPixel * (-dxPixels * right() + dyPixels * up());
+}
+
+void OrbitCamera::zoom(double wheelNotches) {
+  distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), 1e-6, 1e9);
+}
+
+void OrbitCamera::setPivotKeepingEye(const glm::dvec3& point) {
+  glm::dvec3 eyeNow = eye();
+  glm::dvec3 offset = eyeNow - point;
+  double length = glm::length(offset);
+  if (!(length > 1e-12)) return;
+  target = point;
+  distance = length;
+  yawDeg = degrees(std::atan2(offset.y, offset.x));
+  pitchDeg = std::clamp(degrees(std::asin(std::clamp(offset.z / length, -1.0, 1.0))), -kMaxPitchDeg, kMaxPitchDeg);
+}
+
+void OrbitCamera::frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax) {
+  target = 0.5 * (boxMin + boxMax);
+  double radius = std::max(0.5 * glm::length(boxMax - boxMin), 1e-6);
+  distance = 1.1 * radius / std::sin(radians(fovDeg) / 2.0);
+}
+
+void OrbitCamera::applyPreset(ViewPreset preset) {
+  switch (preset) {
+    case ViewPreset::Front: yawDeg = -90.0; pitchDeg = 0.0; break;
+    case ViewPreset::Top: yawDeg = -90.0; pitchDeg = kMaxPitchDeg; break;
+    case ViewPreset::Side: yawDeg = 0.0; pitchDeg = 0.0; break;
+    case ViewPreset::Iso: yawDeg = -45.0; pitchDeg = degrees(std::atan(1.0 / std::sqrt(2.0))); break;
+  }
+}
+
+const char* viewPresetName(ViewPreset preset) {
+  switch (preset) {
+    case ViewPreset::Front: return "front";
+    case ViewPreset::Top: return "top";
+    case ViewPreset::Side: return "side";
+    case ViewPreset::Iso: return "iso";
+  }
+  return "?";
+}
+
+std::string cameraToJson(const OrbitCamera& c) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer,
+                "{\"target\":[%.17g,%.17g,%.17g],\"distance\":%.17g,\"yaw\":%.17g,\"pitch\":%.17g,\"fov\":%.17g}",
+                c.target.x, c.target.y, c.target.z, c.distance, c.yawDeg, c.pitchDeg, c.fovDeg);
+  return buffer;
+}
+
+std::optional<OrbitCamera> cameraFromJson(const std::string& json, const OrbitCamera& base, std::string* error) {
+  auto fail = [&](const std::string& why) -> std::optional<OrbitCamera> {
+    if (error) *error = "camera JSON: " + why;
+    return std::nullopt;
+  };
+  OrbitCamera camera = base;
+  JsonCursor cursor(json);
+  if (!cursor.consume('{')) return fail("expected '{'");
+  if (!cursor.consume('}')) {
+    do {
+      std::string key;
+      std::vector<double> value;
+      if (!cursor.readString(&key)) return fail("expected a quoted key");
+      if (!cursor.consume(':')) return fail("expected ':' after \"" + key + "\"");
+      if (!cursor.readValue(&value)) return fail("expected a finite number or [numbers] for \"" + key + "\"");
+      bool scalar = value.size() == 1;
+      if (key == "target" && value.size() == 3) camera.target = {value[0], value[1], value[2]};
+      else if (key == "distance" && scalar && value[0] > 0.0) camera.distance = value[0];
+      else if (key == "yaw" && scalar) camera.yawDeg = value[0];
+      else if (key == "pitch" && scalar) camera.pitchDeg = std::clamp(value[0], -kMaxPitchDeg, kMaxPitchDeg);
+      else if (key == "fov" && scalar && value[0] > 0.0 && value[0] < 180.0) camera.fovDeg = value[0];
+      else return fail("bad key or value \"" + key + "\" (keys: target[3], distance>0, yaw, pitch, fov in (0,180))");
+    } while (cursor.consume(','));
+    if (!cursor.consume('}')) return fail("expected ',' or '}'");
+  }
+  if (!cursor.atEnd()) return fail("text after the closing '}'");
+  return camera;
+}
+
+}  // namespace polarview

@@ -1,0 +1,54 @@
+// OrbitCamera: a turntable camera around a pivot (z is up), the one the viewer's views and the
+// `render` command share. Plain data plus GLM math: no GL, no ImGui.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace polarview {
+
+enum class ViewPreset { Front, Top, Side, Iso };
+
+struct OrbitCamera {
+  glm::dvec3 target{0.0};  // pivot the camera orbits and looks at
+  double distance = 3.0;   // eye to target
+  double yawDeg = -60.0;   // azimuth of the eye around +z, 0 = on +x
+  double pitchDeg = 25.0;  // elevation of the eye, clamped to (-89, 89) so +z stays up
+  double fovDeg = 35.0;    // vertical field of view
+
+  glm::dvec3 eye() const;
+  glm::dvec3 forward() const;  // unit, eye -> target
+  glm::dvec3 right() const;    // unit, screen x
+  glm::dvec3 up() const;       // unit, screen y
+
+  // View and projection matrices; `sceneRadius` sets near/far so a framed model is never clipped.
+  glm::mat4 viewMatrix() const;
+  glm::mat4 projectionMatrix(double aspect, double sceneRadius) const;
+
+  // Left drag: turns by pixel deltas (0.4 degrees per pixel).
+  void orbit(double dxPixels, double dyPixels);
+  // Right/middle drag: moves the target in the screen plane so the point under the cursor follows it.
+  void pan(double dxPixels, double dyPixels, double viewportHeightPixels);
+  // Wheel: each notch moves 15% closer (positive) or further (negative).
+  void zoom(double wheelNotches);
+  // Double-click: the pivot becomes `point`; the eye stays where it is and turns to look at it.
+  void setPivotKeepingEye(const glm::dvec3& point);
+  // F: centres the bounding box and backs off until its bounding sphere fits the view.
+  void frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax);
+  // Presets keep target and distance and set the direction.
+  void applyPreset(ViewPreset preset);
+};
+
+const char* viewPresetName(ViewPreset preset);
+
+// {"target":[x,y,z],"distance":d,"yaw":deg,"pitch":deg,"fov":deg} with 17 significant digits.
+std::string cameraToJson(const OrbitCamera& camera);
+
+// Parses a JSON object with any subset of the keys above over `base` (missing keys keep base's
+// values). Returns nullopt and sets `error` on malformed text, unknown keys or non-finite values.
+std::optional<OrbitCamera> cameraFromJson(const std::string& json, const OrbitCamera& base, std::string* error);
+
+}  // namespace polarview

@@ -1,0 +1,460 @@
+// Viewer panels, overlay and input (see viewer_panels.h). Edits ViewerState only.
+#include "ui/viewer_panels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>  // key codes only (the ImGui 1.86 GLFW backend indexes io.KeysDown by them)
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+namespace polarview {
+namespace {
+
+// [SECTION] Helpers
+
+ImU32 toImColour(const glm::vec3& c, float alpha = 1.0f) {
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, alpha));
+}
+
+const char* colourMapName(ShadingParams::ColorMap map) {
+  switch (map) {
+    case ShadingParams::ColorMap::Paper: return "paper";
+    case ShadingParams::ColorMap::CoolWarm: return "coolwarm";
+    case ShadingParams::ColorMap::Viridis: return "viridis";
+  }
+  return "?";
+}
+
+constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Shaded, ShadingParams::Mode::Gaussian,
+                                               ShadingParams::Mode::Mean, ShadingParams::Mode::Highlight,
+                                               ShadingParams::Mode::Reflection};
+constexpr const char* kShadeLabels[] = {"Lit (L)", "Gaussian K (G)", "Mean H (M)", "Highlight lines (H)",
+                                        "Reflection lines / zebra (Z)"};
+
+void cycleScheme(ViewerState& state, int view, int step) {
+  int next = (int(state.views[view].scheme) + step + kSchemeChoiceCount) % kSchemeChoiceCount;
+  state.views[view].scheme = static_cast<SchemeChoice>(next);
+}
+
+// Keeps a typed light direction usable (unit length, never zero).
+void normaliseDirection(glm::vec3& d) {
+  float length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  d = length > 1e-6f ? d / length : glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+// A tick label short enough for the bar: 3 significant digits.
+std::string formatTick(float value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", std::abs(value) < 1e-30f ? 0.0f : value);
+  return buffer;
+}
+
+// [SECTION] Panels
+
+void drawFilePanel(ViewerState& state) {
+  FileSettings& file = state.file;
+  ImGui::TextWrapped("Model: %s (%d vertices, %d faces)", file.modelName.c_str(), file.modelVertices,
+                     file.modelFaces);
+  ImGui::SetNextItemWidth(-90.0f);
+  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) state.requests.load = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Open (Enter)")) state.requests.load = true;
+  if (ImGui::Button("Reload (Ctrl+R)")) state.requests.reload = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Default model")) state.requests.loadDefault = true;
+  ImGui::TextDisabled("Or drop an .obj file on the window.");
+  if (!file.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "Error: %s", file.error.c_str());
+  for (size_t i = 0; i < file.warnings.size() && i < 3; ++i) {
+    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "Warning: %s", file.warnings[i].c_str());
+  }
+  if (file.warnings.size() > 3) ImGui::TextDisabled("(%zu more warnings)", file.warnings.size() - 3);
+  if (!file.recent.empty() && ImGui::TreeNode("Recent files")) {
+    for (const std::string& path : file.recent) {
+      if (ImGui::Selectable(path.c_str())) {
+        file.pathField = path;
+        state.requests.load = true;
+      }
+    }
+    ImGui::TreePop();
+  }
+}
+
+void drawViewsPanel(ViewerState& state) {
+  ImGui::SliderInt("Views (V)", &state.viewCount, 1, kMaxViews);
+  state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
+  ImGui::Checkbox("Link cameras (K)", &state.linkCameras);
+  ImGui::SameLine();
+  ImGui::Checkbox("Link levels", &state.linkLevels);
+  for (int v = 0; v < state.viewCount; ++v) {
+    ImGui::PushID(v);
+    ViewSettings& view = state.views[v];
+    const ViewStatus& status = state.status[v];
+    ImGui::Separator();
+    ImGui::Text("View %d%s", v + 1, v == state.activeView ? " (active)" : "");
+    int scheme = int(view.scheme);
+    const char* names[kSchemeChoiceCount];
+    for (int i = 0; i < kSchemeChoiceCount; ++i) names[i] = schemeChoiceLabel(static_cast<SchemeChoice>(i));
+    if (ImGui::Combo("Scheme (S)", &scheme, names, kSchemeChoiceCount)) view.scheme = static_cast<SchemeChoice>(scheme);
+    int level = view.level;
+    if (ImGui::SliderInt("Level (0-9)", &level, 0, kMaxLevel)) {
+      state.activeView = v;
+      requestLevel(state, level);
+    }
+    if (status.refining) {
+      ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "refining %s %d... %.1f s", schemeChoiceLabel(view.scheme),
+                         view.level, status.refiningSeconds);
+    }
+    if (!status.message.empty()) ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", status.message.c_str());
+    ImGui::PopID();
+  }
+}
+
+void drawDisplayPanel(ViewerState& state) {
+  DisplayFlags& d = state.display;
+  ImGui::Checkbox("Limit surface (U)", &d.surface);
+  ImGui::Checkbox("Control net of the level (N)", &d.controlNet);
+  ImGui::Checkbox("Patch / ring boundaries (B)", &d.patchBoundaries);
+  if (d.patchBoundaries) {
+    int colouring = d.boundaryColor == DisplayFlags::BoundaryColor::Kind ? 0 : 1;
+    ImGui::Indent();
+    ImGui::RadioButton("by patch kind", &colouring, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("by ring index", &colouring, 1);
+    d.boundaryColor = colouring == 0 ? DisplayFlags::BoundaryColor::Kind : DisplayFlags::BoundaryColor::Ring;
+    if (colouring == 0) {
+      for (int k = 0; k < kPatchKindCount; ++k) {
+        glm::vec3 c = patchKindColor(static_cast<PatchKind>(k));
+        ImGui::ColorButton(patchKindName(static_cast<PatchKind>(k)), ImVec4(c.x, c.y, c.z, 1.0f),
+                           ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+        ImGui::SameLine();
+        ImGui::Text("%s", patchKindName(static_cast<PatchKind>(k)));
+      }
+    }
+    ImGui::Unindent();
+  }
+  ImGui::Checkbox("Pole markers (P)", &d.poleMarkers);
+  ImGui::Checkbox("Wireframe over surface (W)", &d.wireframe);
+  ImGui::SliderFloat("Tessellation (px per edge)", &state.shading.tessPixels, 2.0f, 40.0f, "%.0f");
+}
+
+void drawShadingPanel(ViewerState& state) {
+  ShadingParams& s = state.shading;
+  int mode = 0;
+  for (int i = 0; i < 5; ++i) {
+    if (kShadeModes[i] == s.mode) mode = i;
+  }
+  for (int i = 0; i < 5; ++i) ImGui::RadioButton(kShadeLabels[i], &mode, i);
+  s.mode = kShadeModes[mode];
+  if (s.mode == ShadingParams::Mode::Highlight || s.mode == ShadingParams::Mode::Reflection) {
+    if (ImGui::SliderFloat3("Light direction", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
+    ImGui::SliderFloat("Line spacing", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("Line width", &s.highlightWidth, 0.02f, 0.98f, "%.2f");
+  }
+  if (state.showsColourBar()) ImGui::SliderFloat("Lighting on colours", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
+}
+
+void drawColourPanel(ViewerState& state) {
+  ShadingParams& s = state.shading;
+  int map = int(s.colormap);
+  const char* maps[] = {"paper (green 0, blue -, red +)", "coolwarm", "viridis"};
+  if (ImGui::Combo("Colour map (C)", &map, maps, 3)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
+  ImGui::Checkbox("Automatic range (A)", &state.colour.automatic);
+  if (state.colour.automatic) {
+    float percent = state.colour.quantile * 100.0f;
+    if (ImGui::SliderFloat("Percentile of |value|", &percent, 50.0f, 100.0f, "%.1f")) {
+      state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
+    }
+    ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
+  } else {
+    if (ImGui::InputFloat("Range +-", &state.colour.typedRange, 0.0f, 0.0f, "%.6g")) {
+      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);
+    }
+    if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.autoRange;
+  }
+}
+
+void drawCameraPanel(ViewerState& state) {
+  if (ImGui::Button("Front (F1)")) state.requests.preset = ViewPreset::Front;
+  ImGui::SameLine();
+  if (ImGui::Button("Top (F2)")) state.requests.preset = ViewPreset::Top;
+  ImGui::SameLine();
+  if (ImGui::Button("Side (F3)")) state.requests.preset = ViewPreset::Side;
+  ImGui::SameLine();
+  if (ImGui::Button("Iso (F4)")) state.requests.preset = ViewPreset::Iso;
+  if (ImGui::Button("Frame model (F)")) state.requests.frame = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Copy (Ctrl+C)")) state.requests.copyCamera = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Paste (Ctrl+V)")) state.requests.pasteCamera = true;
+  float fov = float(state.camera(state.activeView).fovDeg);
+  if (ImGui::SliderFloat("Field of view", &fov, 5.0f, 90.0f, "%.0f deg")) state.camera(state.activeView).fovDeg = fov;
+  ImGui::TextDisabled("Left drag orbits, right/middle drag pans, wheel zooms,\ndouble-click sets the pivot.");
+}
+
+void drawScreenshotPanel(ViewerState& state) {
+  if (ImGui::Button("Screenshot (X)")) state.requests.screenshot = true;
+  ImGui::SameLine();
+  ImGui::RadioButton("1x", &state.screenshot.supersample, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("2x", &state.screenshot.supersample, 2);
+  ImGui::SameLine();
+  ImGui::RadioButton("4x", &state.screenshot.supersample, 4);
+  ImGui::Checkbox("Transparent background", &state.screenshot.transparent);
+  if (!state.screenshot.lastPath.empty()) ImGui::TextWrapped("Last: %s", state.screenshot.lastPath.c_str());
+}
+
+void drawStatsPanel(const ViewerState& state) {
+  ImGui::Text("Frame: %.1f ms", state.frameMs);
+  for (int v = 0; v < state.viewCount; ++v) {
+    const ViewStatus& s = state.status[v];
+    if (!s.hasSurface) {
+      ImGui::Text("View %d: (nothing yet)", v + 1);
+      continue;
+    }
+    ImGui::Text("View %d: %s level %d, %d patches, %d control faces, refine %.1f ms", v + 1,
+                schemeChoiceLabel(s.shownScheme), s.shownLevel, s.patchCount, s.controlFaces, s.refineMs);
+    ImGui::Indent();
+    for (int k = 0; k < kPatchKindCount; ++k) {
+      if (s.patchesPerKind[k] == 0) continue;
+      ImGui::SameLine(0.0f, k == 0 ? 0.0f : 10.0f);
+      ImGui::Text("%s %d", patchKindName(static_cast<PatchKind>(k)), s.patchesPerKind[k]);
+    }
+    ImGui::NewLine();
+    ImGui::Unindent();
+  }
+  if (!state.glInfo.empty()) ImGui::TextDisabled("%s", state.glInfo.c_str());
+}
+
+void drawHelpWindow(ViewerState& state) {
+  if (!state.showHelp) return;
+  ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Controls (?)", &state.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+      for (const HotkeyHelp& h : hotkeyList()) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextUnformatted(h.keys);
+        ImGui::TableSetColumnIndex(1);
+        ImGui::TextUnformatted(h.action);
+      }
+      ImGui::EndTable();
+    }
+  }
+  ImGui::End();
+}
+
+// [SECTION] Input
+
+bool keyPressed(int key) { return ImGui::IsKeyPressed(key, false); }
+
+void handleHotkeys(ViewerState& state) {
+  ImGuiIO& io = ImGui::GetIO();
+  for (ImWchar c : io.InputQueueCharacters) {
+    if (c == '?') state.showHelp = !state.showHelp;
+  }
+  if (io.KeyCtrl) {
+    if (keyPressed(GLFW_KEY_C)) state.requests.copyCamera = true;
+    if (keyPressed(GLFW_KEY_V)) state.requests.pasteCamera = true;
+    if (keyPressed(GLFW_KEY_R)) state.requests.reload = true;
+    return;
+  }
+  for (int digit = 0; digit <= 9; ++digit) {
+    if (keyPressed(GLFW_KEY_0 + digit) || keyPressed(GLFW_KEY_KP_0 + digit)) requestLevel(state, digit);
+  }
+  if (keyPressed(GLFW_KEY_S)) cycleScheme(state, state.activeView, io.KeyShift ? -1 : 1);
+  if (keyPressed(GLFW_KEY_V)) state.viewCount = state.viewCount % kMaxViews + 1;
+  if (keyPressed(GLFW_KEY_K)) state.linkCameras = !state.linkCameras;
+  if (keyPressed(GLFW_KEY_L)) state.shading.mode = ShadingParams::Mode::Shaded;
+  if (keyPressed(GLFW_KEY_G)) state.shading.mode = ShadingParams::Mode::Gaussian;
+  if (keyPressed(GLFW_KEY_M)) state.shading.mode = ShadingParams::Mode::Mean;
+  if (keyPressed(GLFW_KEY_H)) state.shading.mode = ShadingParams::Mode::Highlight;
+  if (keyPressed(GLFW_KEY_Z)) state.shading.mode = ShadingParams::Mode::Reflection;
+  if (keyPressed(GLFW_KEY_C)) state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 3);
+  if (keyPressed(GLFW_KEY_A)) state.colour.automatic = !state.colour.automatic;
+  if (keyPressed(GLFW_KEY_U)) state.display.surface = !state.display.surface;
+  if (keyPressed(GLFW_KEY_N)) state.display.controlNet = !state.display.controlNet;
+  if (keyPressed(GLFW_KEY_B)) state.display.patchBoundaries = !state.display.patchBoundaries;
+  if (keyPressed(GLFW_KEY_P)) state.display.poleMarkers = !state.display.poleMarkers;
+  if (keyPressed(GLFW_KEY_W)) state.display.wireframe = !state.display.wireframe;
+  if (keyPressed(GLFW_KEY_F)) state.requests.frame = true;
+  if (keyPressed(GLFW_KEY_X)) state.requests.screenshot = true;
+  if (keyPressed(GLFW_KEY_TAB)) state.showPanels = !state.showPanels;
+  if (keyPressed(GLFW_KEY_F1)) state.requests.preset = ViewPreset::Front;
+  if (keyPressed(GLFW_KEY_F2)) state.requests.preset = ViewPreset::Top;
+  if (keyPressed(GLFW_KEY_F3)) state.requests.preset = ViewPreset::Side;
+  if (keyPressed(GLFW_KEY_F4)) state.requests.preset = ViewPreset::Iso;
+}
+
+}  // namespace
+
+// [SECTION] Public functions
+
+const std::vector<HotkeyHelp>& hotkeyList() {
+  static const std::vector<HotkeyHelp> list = {
+      {"Left drag", "orbit around the pivot"},
+      {"Right / middle drag, Shift+left drag", "pan"},
+      {"Wheel", "zoom"},
+      {"Double-click", "set the pivot to the surface point under the cursor"},
+      {"F", "frame the model"},
+      {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
+      {"Ctrl+C / Ctrl+V", "copy / paste the camera as JSON"},
+      {"0 - 9", "subdivision level (all views when levels are linked, else the active one)"},
+      {"S / Shift+S", "next / previous scheme of the active view (CC, C2PS, C2PS-U, RTS, BPS)"},
+      {"V", "number of views 1..4"},
+      {"K", "link / unlink the cameras of the views"},
+      {"L / G / M / H / Z", "lit / Gaussian / mean / highlight lines / reflection lines (zebra)"},
+      {"C", "next colour map (paper, coolwarm, viridis)"},
+      {"A", "automatic colour range on / off"},
+      {"U / N / B / P / W", "limit surface / control net / patch boundaries / pole markers / wireframe"},
+      {"X", "screenshot polarview_NNNN.png (colour bar and labels included)"},
+      {"Ctrl+R", "reload the model file"},
+      {"Tab", "hide / show the panels"},
+      {"?", "this help"},
+      {"Drop a file", "open a dropped .obj"},
+  };
+  return list;
+}
+
+float colourBarReserve(const ViewerState& state, float scale) { return state.showsColourBar() ? 64.0f * scale : 0.0f; }
+
+std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve) {
+  count = std::clamp(count, 1, kMaxViews);
+  std::vector<ScreenRect> rects(static_cast<size_t>(count));
+  float height = std::max(frame.h - bottomReserve, 1.0f);
+  for (int v = 0; v < count; ++v) {
+    // Integer edges so neighbouring views share a pixel boundary exactly.
+    float left = std::floor(frame.x + frame.w * float(v) / float(count));
+    float right = std::floor(frame.x + frame.w * float(v + 1) / float(count));
+    rects[size_t(v)] = {left, frame.y, right - left, height};
+  }
+  return rects;
+}
+
+void requestLevel(ViewerState& state, int level) {
+  if (level < 0 || level > kMaxLevel) {
+    state.notice = "level " + std::to_string(level) + " is above the maximum " + std::to_string(kMaxLevel);
+    return;
+  }
+  if (state.linkLevels) {
+    for (ViewSettings& view : state.views) view.level = level;
+  } else {
+    state.views[size_t(state.activeView)].level = level;
+  }
+}
+
+void drawViewerPanels(ViewerState& state) {
+  drawHelpWindow(state);
+  if (!state.showPanels) return;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (ImGui::Begin("polarview (Tab hides, ? for help)")) {
+    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(state);
+    if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(state);
+    if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(state);
+    if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) drawShadingPanel(state);
+    if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(state);
+    if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(state);
+    if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(state);
+    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
+    if (!state.notice.empty()) ImGui::TextWrapped("%s", state.notice.c_str());
+  }
+  ImGui::End();
+}
+
+void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
+                     const ScreenRect& frame, float scale) {
+  const float fontSize = 15.0f * scale;
+  const ImU32 text = IM_COL32(255, 255, 255, 255);
+  const ImU32 box = IM_COL32(20, 20, 24, 190);
+
+  // Labels "scheme · level" at the top of each view, centred.
+  for (size_t v = 0; v < views.size(); ++v) {
+    const ScreenRect& r = views[v];
+    const ViewStatus& status = state.status[v];
+    const ViewSettings& wanted = state.views[v];
+    std::string label = status.hasSurface ? std::string(schemeChoiceLabel(status.shownScheme)) + " \xC2\xB7 " +
+                                                std::to_string(status.shownLevel)
+                                          : std::string("(no surface)");
+    if (status.refining) {
+      label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
+               std::to_string(wanted.level) + "...";
+    }
+    ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, label.c_str());
+    ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f * scale);
+    list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
+                        box, 4.0f * scale);
+    list->AddText(font, fontSize, at, text, label.c_str());
+    if (v > 0) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
+  }
+
+  if (!state.showsColourBar()) return;
+  // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
+  const float range = state.colourRange();
+  const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
+  const float barHeight = 14.0f * scale;
+  const float reserve = colourBarReserve(state, scale);
+  const float left = frame.x + 0.5f * (frame.w - barWidth);
+  const float top = frame.y + frame.h - reserve + 8.0f * scale;
+  std::string title = state.shading.mode == ShadingParams::Mode::Gaussian ? "Gaussian curvature K" : "mean curvature H";
+  title += std::string("  (") + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
+  ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
+  list->AddRectFilled(ImVec2(left - 40 * scale, top - 4 * scale),
+                      ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), box, 4.0f * scale);
+  const int segments = 96;
+  for (int i = 0; i < segments; ++i) {
+    float v0 = -range + 2.0f * range * float(i) / segments;
+    float v1 = -range + 2.0f * range * float(i + 1) / segments;
+    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range));
+    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range));
+    float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
+    list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
+  }
+  list->AddRect(ImVec2(left, top), ImVec2(left + barWidth, top + barHeight), IM_COL32(230, 230, 230, 255), 0.0f, 0, scale);
+  for (int t = 0; t <= 4; ++t) {
+    float x = left + barWidth * float(t) / 4.0f;
+    float value = -range + 2.0f * range * float(t) / 4.0f;
+    list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), text, scale);
+    std::string tick = formatTick(value);
+    ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());
+    list->AddText(font, fontSize, ImVec2(x - 0.5f * tickSize.x, top + barHeight + 5 * scale), text, tick.c_str());
+  }
+  list->AddText(font, fontSize * 0.9f, ImVec2(left + 0.5f * (barWidth - titleSize.x * 0.9f), top + barHeight + 5 * scale + fontSize),
+                IM_COL32(210, 210, 210, 255), title.c_str());
+}
+
+std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) handleHotkeys(state);
+  state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
+
+  bool anyDown = ImGui::IsMouseDown(0) || ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2);
+  if (!anyDown) dragView_ = -1;
+  if (io.WantCaptureMouse) return std::nullopt;
+
+  int hovered = -1;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (views[v].contains(io.MousePos.x, io.MousePos.y)) hovered = int(v);
+  }
+  if (dragView_ < 0 && hovered >= 0 && (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2))) {
+    dragView_ = hovered;
+  }
+  if (hovered >= 0 && !anyDown) state.activeView = hovered;
+  if (dragView_ >= 0 && dragView_ < int(views.size())) {
+    OrbitCamera& camera = state.camera(dragView_);
+    ImVec2 delta = io.MouseDelta;
+    bool pan = ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
+    if (delta.x != 0.0f || delta.y != 0.0f) {
+      if (pan) camera.pan(delta.x, delta.y, views[size_t(dragView_)].h);
+      else if (ImGui::IsMouseDown(0)) camera.orbit(delta.x, delta.y);
+    }
+  }
+  if (hovered >= 0 && io.MouseWheel != 0.0f) state.camera(hovered).zoom(io.MouseWheel);
+  if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) return PivotPick{hovered, io.MousePos.x, io.MousePos.y};
+  return std::nullopt;
+}
+
+}  // namespace polarview

@@ -1,0 +1,65 @@
+// The viewer's ImGui panels, on-screen overlay (view labels, colour bar) and input handling.
+// They read and write a ViewerState only: no GL calls, no GPU objects.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "ui/viewer_state.h"
+
+struct ImDrawList;
+struct ImFont;
+
+namespace polarview {
+
+// A rectangle in window coordinates (top-left origin, y down), as ImGui uses.
+struct ScreenRect {
+  float x = 0, y = 0, w = 0, h = 0;
+  bool contains(float px, float py) const { return px >= x && px < x + w && py >= y && py < y + h; }
+};
+
+// One hotkey or mouse gesture and what it does; the help window lists them all.
+struct HotkeyHelp {
+  const char* keys;
+  const char* action;
+};
+const std::vector<HotkeyHelp>& hotkeyList();
+
+// Height kept free under the views for the colour bar (0 when the shading has none).
+float colourBarReserve(const ViewerState& state, float scale);
+// `count` views side by side in `frame`, above a strip of `bottomReserve`. [O(count)]
+std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve);
+
+// All panels (file, views, display, shading, colour, camera, screenshot, stats) and the help
+// window. Call between ImGui::NewFrame and ImGui::Render.
+void drawViewerPanels(ViewerState& state);
+
+// View labels ("C2PS · 3"), refining indicators and the colour bar with numeric ticks, drawn into
+// `list` (the background list on screen, a private list for screenshots). `scale` multiplies
+// sizes (supersampled screenshots).
+void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state,
+                     const std::vector<ScreenRect>& views, const ScreenRect& frame, float scale);
+
+// A double-click on a view: the app reads the depth there and sets the pivot.
+struct PivotPick {
+  int view = 0;
+  float x = 0, y = 0;  // window coordinates
+};
+
+// Hotkeys and mouse camera control. Keys are ignored while ImGui wants the keyboard and the mouse
+// while it wants the mouse (io.WantCaptureKeyboard / WantCaptureMouse). Keeps which view a drag
+// started in, so a drag that crosses into another view keeps turning the first one.
+class ViewerInput {
+ public:
+  // Call after ImGui::NewFrame. Returns a double-click position to resolve, if any.
+  std::optional<PivotPick> handle(ViewerState& state, const std::vector<ScreenRect>& views);
+
+ private:
+  int dragView_ = -1;
+};
+
+// Sets the level of the active view (or every view when levels are linked); levels above
+// kMaxLevel leave the state unchanged and set a notice.
+void requestLevel(ViewerState& state, int level);
+
+}  // namespace polarview

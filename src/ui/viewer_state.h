@@ -1,0 +1,128 @@
+// ViewerState: everything the viewer's panels show and edit, as plain data. The panels (ui/) only
+// read and write this struct; the app (app/viewer_app.cpp) turns changes into refinement jobs and
+// GPU uploads, and writes back status (refining, patch counts, timings, errors).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/subdiv/scheme.h"
+#include "render/patch_renderer.h"
+#include "ui/orbit_camera.h"
+
+namespace polarview {
+
+// The five schemes a view can show (C2PS twice: with and without the uniform first step, paper §6).
+enum class SchemeChoice : uint8_t { CatmullClark, C2PS, C2PSUniformFirstStep, RTS, BPS };
+constexpr int kSchemeChoiceCount = 5;
+constexpr int kMaxViews = 4;
+constexpr int kMaxLevel = 8;
+constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
+
+// On-screen name: "CC", "C2PS", "C2PS-U", "RTS", "BPS".
+const char* schemeChoiceLabel(SchemeChoice scheme);
+// Command-line name: "cc", "c2ps", "c2ps-u", "rts", "bps".
+const char* schemeChoiceCliName(SchemeChoice scheme);
+// Accepts the command-line names (case-insensitive; also "c2ps-uniform", "catmull-clark").
+std::optional<SchemeChoice> parseSchemeChoice(const std::string& name);
+// Refinement options of a scheme choice at `level`.
+RefineOptions refineOptionsFor(SchemeChoice scheme, int level);
+// Name of a shading mode for labels ("shaded", "gaussian", "mean", "highlight", "reflection").
+const char* shadeModeName(ShadingParams::Mode mode);
+std::optional<ShadingParams::Mode> parseShadeMode(const std::string& name);
+
+// What one view shows.
+struct ViewSettings {
+  SchemeChoice scheme = SchemeChoice::C2PS;
+  int level = 3;
+  OrbitCamera camera;  // used when the cameras are not linked
+};
+
+// What the app reports about one view (read-only for panels).
+struct ViewStatus {
+  bool refining = false;           // a refinement job is running for this view
+  double refiningSeconds = 0.0;    // how long it has run
+  bool hasSurface = false;         // some refinement is shown
+  SchemeChoice shownScheme = SchemeChoice::C2PS;
+  int shownLevel = 0;
+  int patchCount = 0;
+  std::array<int, kPatchKindCount> patchesPerKind{};
+  int controlFaces = 0;            // faces of the shown level's control mesh
+  double refineMs = 0.0;           // refinement + patch extraction of the shown result
+  std::string message;             // e.g. "level 8 refused: ..." (empty when all is well)
+};
+
+// The colour range shared by all views.
+struct ColourRangeSettings {
+  bool automatic = true;     // robust percentile of |K| or |H| over the shown patches
+  float quantile = 0.98f;    // which percentile of |value| the range covers
+  float typedRange = 1.0f;   // used when not automatic
+  float autoRange = 1.0f;    // last automatic value (written by the app)
+};
+
+struct FileSettings {
+  std::string pathField;                 // the path text field
+  std::vector<std::string> recent;       // most recent first
+  std::string modelName;                 // shown model ("default: ..." or a path)
+  std::string loadedPath;                // empty for the built-in default model
+  std::string error;                     // last load error (the model stays)
+  std::vector<std::string> warnings;     // non-fatal findings of the last load
+  int modelVertices = 0, modelFaces = 0;
+};
+
+struct ScreenshotSettings {
+  int supersample = 1;       // 1, 2 or 4
+  bool transparent = false;  // alpha 0 background
+  std::string lastPath;      // last written file
+};
+
+// One-shot actions panels and hotkeys ask the app for; the app clears them when done.
+struct ViewerRequests {
+  bool load = false;          // load file.pathField
+  bool reload = false;        // reload file.loadedPath
+  bool loadDefault = false;   // the built-in default model
+  bool screenshot = false;
+  bool frame = false;         // F
+  bool copyCamera = false;    // Ctrl+C
+  bool pasteCamera = false;   // Ctrl+V
+  std::optional<ViewPreset> preset;
+};
+
+struct ViewerState {
+  int viewCount = 1;
+  std::array<ViewSettings, kMaxViews> views{};
+  int activeView = 0;          // the view hotkeys (0-9, scheme) apply to; last one hovered/clicked
+  bool linkCameras = true;     // all views use sharedCamera
+  bool linkLevels = true;      // the level slider and keys 0-9 set every view's level
+  OrbitCamera sharedCamera;
+
+  ShadingParams shading;
+  DisplayFlags display;
+  ColourRangeSettings colour;
+  FileSettings file;
+  ScreenshotSettings screenshot;
+  ViewerRequests requests;
+
+  bool showPanels = true;      // Tab
+  bool showHelp = false;       // ?
+  bool showStats = true;
+  std::array<ViewStatus, kMaxViews> status{};
+  double frameMs = 0.0;        // CPU wall time of the last frame (to swap, GL finished)
+  std::string glInfo;          // GL_VERSION / GL_RENDERER
+  std::string notice;          // last message for the user (screenshot path, camera copied, ...)
+
+  // The camera view `v` draws with.
+  OrbitCamera& camera(int v) { return linkCameras ? sharedCamera : views[v].camera; }
+  const OrbitCamera& camera(int v) const { return linkCameras ? sharedCamera : views[v].camera; }
+  // The colour range every view uses now.
+  float colourRange() const { return colour.automatic ? colour.autoRange : colour.typedRange; }
+  // True when the shading is a curvature map (then the colour bar is shown).
+  bool showsColourBar() const {
+    return shading.mode == ShadingParams::Mode::Gaussian || shading.mode == ShadingParams::Mode::Mean;
+  }
+};
+
+}  // namespace polarview
