@@ -42,6 +42,7 @@ struct ShadingParams {
   float highlightWidth = 0.3f;
   float tessPixels = 12.0f;   // target screen length of a tessellated edge, in pixels
   int maxTessLevel = 64;      // clamp of the adaptive level (llvmpipe gets ~5x slower from 15 up)
+  int fixedTessLevel = 0;     // > 0: this level on every edge instead of the adaptive one
   glm::vec3 surfaceColor{0.78f, 0.80f, 0.84f};  // base colour of Shaded mode
 };
 
@@ -68,6 +69,14 @@ struct ViewParams {
 struct DrawStats {
   int patchCount = 0;
   double gpuMilliseconds = 0.0;  // of the draw before the last one; 0 until available
+};
+
+// One tessellation vertex read back from the GPU evaluator (PatchRenderer::probeSurface).
+struct SurfaceProbe {
+  int patch = 0;           // index into the vector given to setPatches
+  float u = 0, v = 0;      // patch parameter
+  float gaussian = 0, mean = 0;
+  glm::dvec3 position{0.0};  // world coordinates
 };
 
 // Colours used for DisplayFlags::BoundaryColor::Kind (index = PatchKind), also for a UI legend.
@@ -103,6 +112,10 @@ class PatchRenderer {
   // Draws into the currently bound framebuffer, inside view.viewport (sets glViewport and the
   // scissor-free depth test; does not clear). [O(patches)]
   void draw(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
+
+  // Runs the tessellation evaluation shader at a fixed level (every (i/level, j/level) of every
+  // patch; caps have one vertex at the pole) and reads position, K, H back by transform feedback.
+  std::vector<SurfaceProbe> probeSurface(int tessLevel);
 
   // Bounding box of the uploaded patches (their control points / cap positions), world coords.
   glm::dvec3 boundsMin() const { return boundsMin_; }

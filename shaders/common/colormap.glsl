@@ -1,0 +1,44 @@
+// Curvature colour maps. Mirror of polarview::colorMapCpu (src/render/patch_renderer.cpp); the
+// render tests compare the two. Values are mapped symmetrically: t = clamp(value / range, -1, 1).
+
+const int kColorMapPaper = 0;
+const int kColorMapCoolWarm = 1;
+const int kColorMapViridis = 2;
+
+// The paper's Fig. 13 map: green at zero, blue negative, red positive (hue 240 -> 120 -> 0 degrees,
+// through cyan and yellow), saturating beyond the range.
+vec3 paperColorMap(float t) {
+  float hue = (1.0 - t) * 2.0;  // in units of 60 degrees: 0 red, 2 green, 4 blue
+  vec3 rgb = clamp(abs(mod(hue + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
+  return 0.95 * rgb;
+}
+
+// Piecewise-linear through five stops at t = 0, 0.25, 0.5, 0.75, 1 (t in [0,1]).
+vec3 fiveStopColorMap(float t, vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec3 c4) {
+  float x = clamp(t, 0.0, 1.0) * 4.0;
+  if (x < 1.0) return mix(c0, c1, x);
+  if (x < 2.0) return mix(c1, c2, x - 1.0);
+  if (x < 3.0) return mix(c2, c3, x - 2.0);
+  return mix(c3, c4, x - 3.0);
+}
+
+// Moreland's diverging cool-warm (blue - light grey - red).
+vec3 coolWarmColorMap(float t) {
+  return fiveStopColorMap(0.5 * (t + 1.0), vec3(0.230, 0.299, 0.754), vec3(0.552, 0.690, 0.996),
+                          vec3(0.865, 0.865, 0.865), vec3(0.958, 0.603, 0.482),
+                          vec3(0.706, 0.016, 0.150));
+}
+
+// Viridis (perceptually uniform, sequential; -range -> dark purple, +range -> yellow).
+vec3 viridisColorMap(float t) {
+  return fiveStopColorMap(0.5 * (t + 1.0), vec3(0.267, 0.005, 0.329), vec3(0.229, 0.322, 0.546),
+                          vec3(0.128, 0.567, 0.551), vec3(0.369, 0.789, 0.383),
+                          vec3(0.993, 0.906, 0.144));
+}
+
+vec3 curvatureColor(int colormap, float value, float range) {
+  float t = clamp(value / max(range, 1e-30), -1.0, 1.0);
+  if (colormap == kColorMapCoolWarm) return coolWarmColorMap(t);
+  if (colormap == kColorMapViridis) return viridisColorMap(t);
+  return paperColorMap(t);
+}

@@ -1,0 +1,95 @@
+#version 410 core
+// Screen-space adaptive tessellation levels. Each outer level is computed only from the boundary
+// curve of that edge (its Bezier control polygon, projected), with expressions symmetric under
+// reversal of the edge, so two patches sharing an edge get the same level (no cracks).
+#include "common/patch_eval.glsl"
+
+layout(vertices = 16) out;
+
+in vec3 vc_controlPoint[];
+flat in ivec2 vc_kindRing[];
+out vec3 tc_controlPoint[];
+flat out ivec2 tc_kindRing[];
+
+uniform mat4 u_modelViewProjection;  // model = translation by the model centre
+uniform vec2 u_viewportSize;         // pixels
+uniform float u_tessPixels;          // target edge length in pixels
+uniform float u_maxTessLevel;
+uniform float u_fixedTessLevel;      // > 0: use this level everywhere (probes, comparisons)
+
+vec2 toPixels(vec3 p) {
+  vec4 clip = u_modelViewProjection * vec4(p, 1.0);
+  // Points behind the eye: a large but finite screen distance (the edge gets a high level).
+  float w = max(clip.w, 1e-4);
+  return (clip.xy / w) * 0.5 * u_viewportSize;
+}
+
+// Edge curve with B-spline control points e0..e3 over its middle span -> projected length of its
+// Bezier polygon (SCHEMES.md section 6), summed symmetrically in e0..e3 <-> e3..e0.
+float projectedCurveLength(vec3 e0, vec3 e1, vec3 e2, vec3 e3) {
+  vec2 b0 = toPixels(((e0 + e2) + 4.0 * e1) / 6.0);
+  vec2 b1 = toPixels((2.0 * e1 + e2) / 3.0);
+  vec2 b2 = toPixels((e1 + 2.0 * e2) / 3.0);
+  vec2 b3 = toPixels(((e1 + e3) + 4.0 * e2) / 6.0);
+  return (distance(b0, b1) + distance(b2, b3)) + distance(b1, b2);
+}
+
+// B-spline control point k of the curve along a patch edge: the surface's B-spline at the edge
+// knot, a row/column average (a + c) + 4 b in the same order from both neighbouring patches.
+vec3 edgePoint(int a, int b, int c) {
+  return ((vc_controlPoint[a] + vc_controlPoint[c]) + 4.0 * vc_controlPoint[b]) / 6.0;
+}
+
+float levelFor(float pixels) {
+  if (u_fixedTessLevel > 0.0) return u_fixedTessLevel;
+  return clamp(ceil(pixels / u_tessPixels), 1.0, u_maxTessLevel);
+}
+
+// All 16 control points outside one clip plane: the patch (inside their hull) is invisible.
+bool outsideFrustum() {
+  ivec3 below = ivec3(0), above = ivec3(0);
+  for (int k = 0; k < 16; ++k) {
+    vec4 clip = u_modelViewProjection * vec4(vc_controlPoint[k], 1.0);
+    below += ivec3(lessThan(clip.xyz, vec3(-clip.w)));
+    above += ivec3(greaterThan(clip.xyz, vec3(clip.w)));
+  }
+  return any(equal(below, ivec3(16))) || any(equal(above, ivec3(16)));
+}
+
+void main() {
+  tc_controlPoint[gl_InvocationID] = vc_controlPoint[gl_InvocationID];
+  tc_kindRing[gl_InvocationID] = vc_kindRing[gl_InvocationID];
+  if (gl_InvocationID != 0) return;
+
+  // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
+  float outer0, outer1, outer2, outer3;
+  if (vc_kindRing[0].x == kPatchPoleCap) {
+    // Pole edge u = 0 is a point; the radial edges v = 0, 1 run from p0 to the boundary curve's
+    // ends; the edge u = 1 is the boundary curve b0..b3 shared with the innermost ring.
+    vec3 start = ((vc_controlPoint[6] + vc_controlPoint[8]) + 4.0 * vc_controlPoint[7]) / 6.0;
+    vec3 end = ((vc_controlPoint[7] + vc_controlPoint[9]) + 4.0 * vc_controlPoint[8]) / 6.0;
+    vec2 pole = toPixels(vc_controlPoint[0]);
+    outer0 = 1.0;
+    outer1 = levelFor(1.5 * distance(pole, toPixels(start)));
+    outer3 = levelFor(1.5 * distance(pole, toPixels(end)));
+    outer2 = levelFor(projectedCurveLength(vc_controlPoint[6], vc_controlPoint[7],
+                                           vc_controlPoint[8], vc_controlPoint[9]));
+  } else if (u_fixedTessLevel <= 0.0 && outsideFrustum()) {
+    outer0 = outer1 = outer2 = outer3 = 0.0;  // discards the patch
+  } else {
+    outer0 = levelFor(projectedCurveLength(edgePoint(0, 1, 2), edgePoint(4, 5, 6),
+                                           edgePoint(8, 9, 10), edgePoint(12, 13, 14)));
+    outer2 = levelFor(projectedCurveLength(edgePoint(1, 2, 3), edgePoint(5, 6, 7),
+                                           edgePoint(9, 10, 11), edgePoint(13, 14, 15)));
+    outer1 = levelFor(projectedCurveLength(edgePoint(0, 4, 8), edgePoint(1, 5, 9),
+                                           edgePoint(2, 6, 10), edgePoint(3, 7, 11)));
+    outer3 = levelFor(projectedCurveLength(edgePoint(4, 8, 12), edgePoint(5, 9, 13),
+                                           edgePoint(6, 10, 14), edgePoint(7, 11, 15)));
+  }
+  gl_TessLevelOuter[0] = outer0;
+  gl_TessLevelOuter[1] = outer1;
+  gl_TessLevelOuter[2] = outer2;
+  gl_TessLevelOuter[3] = outer3;
+  gl_TessLevelInner[0] = max(outer1, outer3);  // along u
+  gl_TessLevelInner[1] = max(outer0, outer2);  // along v
+}

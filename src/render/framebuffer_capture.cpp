@@ -1,0 +1,169 @@
+// Readback, PNG writing and offscreen targets (see framebuffer_capture.h).
+#include "render/framebuffer_capture.h"
+
+#include <glad/gl.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+namespace polarview {
+
+RgbaImage readFramebuffer(int x, int y, int width, int height) {
+  RgbaImage image;
+  image.width = width;
+  image.height = height;
+  image.pixels.resize(size_t(width) * height * 4);
+  std::vector<uint8_t> glOrder(image.pixels.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, glOrder.data());
+  // GL rows run bottom to top; images top to bottom.
+  const size_t rowBytes = size_t(width) * 4;
+  for (int row = 0; row < height; ++row)
+    std::copy_n(glOrder.data() + size_t(height - 1 - row) * rowBytes, rowBytes,
+                image.pixels.data() + size_t(row) * rowBytes);
+  return image;
+}
+
+void writePngAtomic(const std::string& path, const RgbaImage& image) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != size_t(image.width) * image.height * 4)
+    throw std::runtime_error("writePngAtomic: empty or inconsistent image for " + path);
+  const std::string temporary = path + ".tmp";
+  if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.pixels.data(),
+                      image.width * 4)) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot write PNG " + temporary);
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot rename " + temporary + " to " + path);
+  }
+}
+
+// [SECTION] OffscreenTarget
+
+OffscreenTarget::~OffscreenTarget() { destroy(); }
+
+void OffscreenTarget::destroy() {
+  if (fbo_) glDeleteFramebuffers(1, &fbo_);
+  if (color_) glDeleteRenderbuffers(1, &color_);
+  if (depth_) glDeleteRenderbuffers(1, &depth_);
+  fbo_ = color_ = depth_ = 0;
+}
+
+bool OffscreenTarget::create(int width, int height, int supersample, std::string* error) {
+  destroy();
+  if (width <= 0 || height <= 0 || !(supersample == 1 || supersample == 2 || supersample == 4)) {
+    if (error) *error = "OffscreenTarget: bad size or supersample factor";
+    return false;
+  }
+  width_ = width;
+  height_ = height;
+  supersample_ = supersample;
+  glGenFramebuffers(1, &fbo_);
+  glGenRenderbuffers(1, &color_);
+  glGenRenderbuffers(1, &depth_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, renderWidth(), renderHeight());
+  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, renderWidth(), renderHeight());
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    if (error) *error = "OffscreenTarget: framebuffer incomplete (" + std::to_string(status) + ")";
+    destroy();
+    return false;
+  }
+  return true;
+}
+
+void OffscreenTarget::bindAndClear(float r, float g, float b, float a) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, renderWidth(), renderHeight());
+  glClearColor(r, g, b, a);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void OffscreenTarget::bindDefault() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
+
+RgbaImage OffscreenTarget::read() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  RgbaImage full = readFramebuffer(0, 0, renderWidth(), renderHeight());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  if (supersample_ == 1) return full;
+  // Box filter, alpha-weighted so a transparent background does not darken silhouettes.
+  RgbaImage image;
+  image.width = width_;
+  image.height = height_;
+  image.pixels.resize(size_t(width_) * height_ * 4);
+  const int s = supersample_;
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      double rgb[3] = {0, 0, 0}, alpha = 0;
+      for (int dy = 0; dy < s; ++dy)
+        for (int dx = 0; dx < s; ++dx) {
+          const uint8_t* p = full.at(x * s + dx, y * s + dy);
+          const double a = p[3] / 255.0;
+          for (int c = 0; c < 3; ++c) rgb[c] += p[c] * a;
+          alpha += a;
+        }
+      uint8_t* out = image.pixels.data() + 4 * (size_t(y) * width_ + x);
+      for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<uint8_t>(alpha > 0 ? rgb[c] / alpha + 0.5 : 0);
+      out[3] = static_cast<uint8_t>(alpha / (s * s) * 255.0 + 0.5);
+    }
+  return image;
+}
+
+// [SECTION] FloatTarget
+
+FloatTarget::~FloatTarget() {
+  if (fbo_) glDeleteFramebuffers(1, &fbo_);
+  if (color_) glDeleteRenderbuffers(1, &color_);
+  if (depth_) glDeleteRenderbuffers(1, &depth_);
+}
+
+bool FloatTarget::create(int width, int height, std::string* error) {
+  width_ = width;
+  height_ = height;
+  glGenFramebuffers(1, &fbo_);
+  glGenRenderbuffers(1, &color_);
+  glGenRenderbuffers(1, &depth_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    if (error) *error = "FloatTarget: framebuffer incomplete";
+    return false;
+  }
+  return true;
+}
+
+void FloatTarget::bindAndClear(float r, float g, float b, float a) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+  glClearColor(r, g, b, a);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+std::vector<float> FloatTarget::read() const {
+  std::vector<float> pixels(size_t(width_) * height_ * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, pixels.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return pixels;
+}
+
+}  // namespace polarview

@@ -1,0 +1,172 @@
+// Render tests of PatchRenderer: curvature colours, highlight lines, viewports (run under xvfb-run).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "render_test_support.h"
+
+namespace polarview {
+namespace {
+
+using test::colorDistance;
+
+constexpr ShadingParams::ColorMap kAllMaps[] = {ShadingParams::ColorMap::Paper,
+                                                ShadingParams::ColorMap::CoolWarm,
+                                                ShadingParams::ColorMap::Viridis};
+
+// Renders one renderer into a fresh offscreen target of w x h with a transparent background.
+RgbaImage renderOffscreen(PatchRenderer& renderer, const ViewParams& view,
+                          const ShadingParams& shading, const DisplayFlags& flags, int w, int h) {
+  OffscreenTarget target;
+  std::string error;
+  REQUIRE_MESSAGE(target.create(w, h, 1, &error), error);
+  target.bindAndClear(0, 0, 0, 0);
+  renderer.draw(view, shading, flags);
+  RgbaImage image = target.read();
+  OffscreenTarget::bindDefault();
+  return image;
+}
+
+bool covered(const uint8_t* pixel) { return pixel[3] == 255; }
+
+TEST_CASE("renderer: a planar grid shows exactly the colour map's zero colour in K and H modes") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // A tilted plane z = 0.3 x - 0.2 y: K = H = 0 everywhere, normal not along the view axis.
+  renderer->setPatches(test::graphPatches([](double x, double y) { return 0.3 * x - 0.2 * y; },
+                                          4, 4, -2.0, -2.0, 1.0));
+  const ViewParams view = test::topView(renderer->center(), 2.5, {0, 0, 96, 96});
+  for (ShadingParams::ColorMap map : kAllMaps)
+    for (ShadingParams::Mode mode : {ShadingParams::Mode::Gaussian, ShadingParams::Mode::Mean}) {
+      CAPTURE(int(map));
+      CAPTURE(int(mode));
+      const RgbaImage image = renderOffscreen(*renderer, view, test::flatCurvature(mode, map, 0.5f),
+                                              test::surfaceOnly(), 96, 96);
+      const glm::vec3 zero = colorMapCpu(map, 0.0f, 0.5f);
+      int coveredCount = 0, worst = 0;
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+          if (covered(image.at(x, y))) {
+            ++coveredCount;
+            worst = std::max(worst, colorDistance(image.at(x, y), zero));
+          }
+      CHECK(coveredCount > image.width * image.height / 2);  // the plane fills the middle
+      CHECK(worst <= 1);
+    }
+}
+
+TEST_CASE("renderer: the pole of a paraboloid cap shows the colour of K = 4 and H = 2") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  for (int n : {5, 8, 12}) {
+    renderer->setPatches(test::paraboloidCap(n, 1.0, 1.1));
+    // An odd viewport puts the centre pixel's centre exactly on the pole.
+    const int size = 65;
+    const glm::dvec3 pole(0.0);
+    const ViewParams view = test::topView(pole, 1.2, {0, 0, size, size});
+    for (float range : {5.0f, 8.0f, 16.0f})
+      for (ShadingParams::ColorMap map : kAllMaps) {
+        CAPTURE(n);
+        CAPTURE(range);
+        CAPTURE(int(map));
+        auto shading = test::flatCurvature(ShadingParams::Mode::Gaussian, map, range);
+        shading.fixedTessLevel = 16;
+        RgbaImage image = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+        CHECK(colorDistance(image.at(size / 2, size / 2), colorMapCpu(map, 4.0f, range)) <= 2);
+        shading.mode = ShadingParams::Mode::Mean;
+        image = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+        CHECK(colorDistance(image.at(size / 2, size / 2), colorMapCpu(map, 2.0f, range)) <= 2);
+      }
+  }
+}
+
+TEST_CASE("renderer: the same K renders to the same colour in two side-by-side viewports") {
+  test::glContext();
+  // Two renderers (as for two schemes) sharing one shader library, zoomed differently.
+  auto left = test::makeRenderer();
+  auto right = test::makeRenderer();
+  left->setPatches(test::paraboloidCap(6, 1.0, 1.05));
+  right->setPatches(test::paraboloidCap(10, 1.0, 0.95, Point(5.0, -3.0, 2.0)));
+  const int w = 65, h = 65;
+  OffscreenTarget target;
+  std::string error;
+  REQUIRE(target.create(2 * w, h, 1, &error));
+  for (float range : {4.5f, 10.0f}) {
+    CAPTURE(range);
+    target.bindAndClear(0, 0, 0, 0);
+    auto shading = test::flatCurvature(ShadingParams::Mode::Gaussian, ShadingParams::ColorMap::Paper, range);
+    shading.fixedTessLevel = 12;
+    left->draw(test::topView(Point(0.0), 1.2, {0, 0, w, h}), shading, test::surfaceOnly());
+    right->draw(test::topView(Point(5.0, -3.0, 2.0), 0.6, {w, 0, w, h}), shading,
+                test::surfaceOnly());
+    const RgbaImage image = target.read();
+    const uint8_t* a = image.at(w / 2, h / 2);
+    const uint8_t* b = image.at(w + w / 2, h / 2);
+    for (int c = 0; c < 4; ++c) CHECK(std::abs(int(a[c]) - int(b[c])) <= 1);
+    CHECK(colorDistance(a, colorMapCpu(ShadingParams::ColorMap::Paper, 4.0f, range)) <= 2);
+  }
+  OffscreenTarget::bindDefault();
+}
+
+TEST_CASE("renderer: highlight lines on a cylinder are stripes parallel to its rulings") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // Parabolic cylinder z = -0.4 y^2: rulings along x; light lines along x as well.
+  renderer->setPatches(test::graphPatches([](double, double y) { return -0.4 * y * y; }, 4, 4,
+                                          -2.0, -2.0, 1.0));
+  const int size = 128;
+  const ViewParams view = test::topView(Point(0.0, 0.0, -1.0), 2.0, {0, 0, size, size});
+  for (float spacing : {0.1f, 0.2f}) {
+    CAPTURE(spacing);
+    ShadingParams shading;
+    shading.mode = ShadingParams::Mode::Highlight;
+    shading.highlightDir = {1, 0, 0};
+    shading.highlightPlaneNormal = {0, 0, 1};
+    shading.highlightSpacing = spacing;
+    shading.highlightWidth = 0.35f;
+    const RgbaImage image = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+    // Dark = inside a light line. Image rows are lines of constant y (rulings).
+    auto dark = [&](int x, int y) { return image.at(x, y)[0] < 60; };
+    int transitionsAcross = 0, mismatches = 0, checked = 0;
+    const int x0 = size / 8, x1 = size - size / 8;  // stay inside the surface
+    for (int y = size / 8; y < size - size / 8; ++y) {
+      // Along a row the classification is that of the row's middle pixel, except anti-aliased
+      // pixels right at a stripe boundary, which are equally grey along the whole row.
+      const bool reference = dark(size / 2, y);
+      for (int x = x0; x < x1; ++x, ++checked) mismatches += dark(x, y) != reference;
+      if (y > size / 8 && dark(size / 2, y) != dark(size / 2, y - 1)) ++transitionsAcross;
+    }
+    CHECK(mismatches <= checked / 200);
+    CHECK(transitionsAcross >= 6);  // several stripes across the rulings
+  }
+}
+
+TEST_CASE("renderer: overlays draw boundary curves in kind colours and pole markers") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  renderer->setPatches(test::paraboloidCap(6, 1.0, 1.0));
+  renderer->setPoleMarkers({Point(0.0)});
+  const int size = 97;
+  const ViewParams view = test::topView(Point(0.0), 1.3, {0, 0, size, size});
+  ShadingParams shading;
+  DisplayFlags flags;
+  flags.surface = false;
+  flags.patchBoundaries = true;
+  flags.poleMarkers = true;
+  const RgbaImage image = renderOffscreen(*renderer, view, shading, flags, size, size);
+  // The pole marker covers the centre; boundary pixels carry the PoleCap colour.
+  CHECK(covered(image.at(size / 2, size / 2)));
+  int capColored = 0, others = 0;
+  const glm::vec3 capColor = patchKindColor(PatchKind::PoleCap);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (!covered(image.at(x, y)) || std::abs(x - size / 2) + std::abs(y - size / 2) < 10) continue;
+      (colorDistance(image.at(x, y), capColor) <= 2 ? capColored : others)++;
+    }
+  CHECK(capColored > 100);
+  CHECK(others == 0);
+}
+
+}  // namespace
+}  // namespace polarview
