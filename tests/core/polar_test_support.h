@@ -88,13 +88,53 @@ inline Point evaluateRingSpline(const PolarGrid& g, int first, double spacing, d
   return x;
 }
 
+// Largest distance between the spline ring of links 1..K of `coarse` (spacing 1) and that of the new
+// links 3..2K-1 of `fine` (spacing 1/2), sampled over r in [2, K-1] where both are defined. Zero when
+// the rules beyond the 2-link are exact knot insertion ((12), (29)).
+inline double outerRingDefect(const PolarGrid& coarse, const PolarGrid& fine) {
+  double worst = 0.0;
+  const int samples = 30;
+  for (int s = 0; s <= samples; ++s)
+    for (double tau : {0.0, 0.07, 0.31, 0.5, 0.93}) {
+      double r = 2.0 + (coarse.links - 3.0) * s / samples;
+      worst = std::max(worst, distance(evaluateRingSpline(coarse, 1, 1.0, r, tau), evaluateRingSpline(fine, 3, 0.5, r, tau)));
+    }
+  return worst;
+}
+
+using Refine = std::function<PolarGrid(const PolarGrid&)>;
+
+// Affine invariance: |refine(f(g)) - f(refine(g))| for a fixed general affine map f. Zero iff every
+// rule's weights sum to one (f has a translation and a non-orthogonal linear part).
+inline double affineDefect(const Refine& refine, const PolarGrid& g) {
+  auto f = [](const Point& p) {
+    return Point(0.3 * p.x - 1.2 * p.y + 0.5 * p.z + 4.0, 2.0 * p.x + 0.1 * p.z - 3.0, -p.x + 0.7 * p.y + 1.5 * p.z + 0.25);
+  };
+  return maxGridDistance(refine(mapGrid(g, f)), mapGrid(refine(g), f));
+}
+
+// Cyclic symmetry: |refine(rotate(g, 1)) - rotate(refine(g), outputShift)|.
+inline double rotationDefect(const Refine& refine, const PolarGrid& g, int outputShift) {
+  return maxGridDistance(refine(rotateColumns(g, 1)), rotateColumns(refine(g), outputShift));
+}
+
+// Plane reproduction: the largest distance from a fixed plane of the refined points of a random
+// control net lying on that plane.
+inline double planeDefect(const Refine& refine, int n, int links, unsigned seed) {
+  Point origin(0.4, -1.0, 2.0), u = glm::normalize(Point(1.0, 2.0, -0.5)), v = glm::normalize(Point(-0.3, 0.2, 1.0));
+  Point normal = glm::normalize(glm::cross(u, v));
+  PolarGrid fine = refine(mapGrid(randomGrid(n, links, seed), [&](const Point& p) { return origin + 3.0 * p.x * u + 2.0 * p.y * v; }));
+  double offPlane = std::abs(glm::dot(fine.pole - origin, normal));
+  for (const Point& p : fine.ring) offPlane = std::max(offPlane, std::abs(glm::dot(p - origin, normal)));
+  return offPlane;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Subdivision matrix (13) of a valence-preserving polar scheme on links 0..5, the pole listed once
 // per column (q_{0j} = q00), unknowns ordered q = [q_{0,0}, .., q_{5,0}, q_{0,1}, .., q_{5,n-1}].
 // Column (h, c) is the scheme applied to the unit input at q_{c,h}; the pole's column is split
 // evenly among its n copies, as in (13).
 using Matrix = std::vector<std::vector<double>>;
-using Refine = std::function<PolarGrid(const PolarGrid&)>;
 
 inline int matrixIndex(int link, int column) { return 6 * column + link; }
 

@@ -17,7 +17,9 @@
 // a Catmull-Clark mesh. Verified by tests: sum gamma = beta (affine invariance), spectrum
 // 1, 1/2, 1/2, 1/4, 1/4, 1/4, 1/8 for n >= 6 and the invariant limit point 1/2 q00 + 1/2 M.
 // Note: gamma_g = (1/n)(beta + c + 1/2 cos 2g + 1/8 cos 3g); at n = 5 the cos 3g mode aliases onto
-// mode 2 (its eigenvalue becomes 1/4 + 1/16 = 5/16 > 1/4), and at n = 4 onto mode 1.
+// mode 2 (its eigenvalue becomes 1/4 + 1/16 = 5/16 > 1/4); at n = 4 it aliases onto mode 1
+// (1/2 + 1/16); at n = 3 onto mode 0: the weights then sum to 1 + 1/8, so BPS as published in that
+// code is NOT affine invariant at valence 3 (kept as is, tested; callers should not use BPS at n = 3).
 #pragma once
 
 #include "core/subdiv/polar_grid.h"
