@@ -1,0 +1,427 @@
+// Feature-adaptive patch extraction (rules and end-cap construction: patch_extraction.h).
+// [SECTION] vertex and face classification
+// [SECTION] regular patches: gathering the 4x4 stencil
+// [SECTION] end caps: limit points, tangents, Bezier nets
+// [SECTION] pole caps
+// [SECTION] extraction driver
+#include "core/spline/patch_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace polarview {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// [SECTION] vertex and face classification
+
+enum class VertexClass : uint8_t { Irregular, Interior, Boundary };
+
+// Interior valence 4 with four quads, or boundary valence 3 with two quads (patch_extraction.h).
+VertexClass classifyVertex(const PolyMesh& mesh, const MeshTopology& topo, Index v) {
+  const Index faces = topo.faceValence(v), valence = topo.valence(v);
+  for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
+    if (mesh.faceSize(topo.vertexFaces[k]) != 4) return VertexClass::Irregular;
+  if (!topo.vertexOnBoundary[v]) return valence == 4 && faces == 4 ? VertexClass::Interior : VertexClass::Irregular;
+  return valence == 3 && faces == 2 ? VertexClass::Boundary : VertexClass::Irregular;
+}
+
+struct LevelClasses {
+  std::vector<VertexClass> vertex;
+  std::vector<uint8_t> faceRegular;  // 1 when the face gets a B-spline patch at this level
+};
+
+LevelClasses classifyLevel(const RefinedLevel& level) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  LevelClasses classes;
+  classes.vertex.resize(mesh.vertexCount());
+  for (Index v = 0; v < mesh.vertexCount(); ++v) classes.vertex[v] = classifyVertex(mesh, topo, v);
+  classes.faceRegular.assign(mesh.faceCount(), 0);
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    if (mesh.faceSize(f) != 4) continue;
+    const Index* loop = mesh.face(f);
+    bool regular = true;
+    for (int c = 0; c < 4; ++c) regular = regular && classes.vertex[loop[c]] != VertexClass::Irregular;
+    classes.faceRegular[f] = regular;
+  }
+  return classes;
+}
+
+// Per vertex: up to two poles whose links 1..5 hold it (two for short globes), -1 otherwise.
+struct RingMembership {
+  std::vector<int32_t> first, second;
+  bool holds(Index v, int pole) const { return first[v] == pole || second[v] == pole; }
+};
+
+RingMembership markRingLinks(const RefinedLevel& level) {
+  RingMembership rings;
+  rings.first.assign(level.mesh.vertexCount(), -1);
+  rings.second.assign(level.mesh.vertexCount(), -1);
+  for (size_t p = 0; p < level.poles.size(); ++p) {
+    const PolarConfig& config = level.poles[p];
+    const size_t count = size_t(std::min(config.linkCount, 5)) * config.valence;
+    for (size_t k = 0; k < count && k < config.links.size(); ++k) {
+      const Index v = config.links[k];
+      if (rings.first[v] < 0) rings.first[v] = int32_t(p);
+      else if (rings.first[v] != int32_t(p)) rings.second[v] = int32_t(p);
+    }
+  }
+  return rings;
+}
+
+// [SECTION] regular patches: gathering the 4x4 stencil
+
+Index nextCorner(const PolyMesh& mesh, Index face, Index corner) {
+  const Index start = mesh.faceStart[face];
+  return start + (corner - start + 1) % mesh.faceSize(face);
+}
+
+Index cornerAt(const PolyMesh& mesh, Index face, Index vertex) {
+  for (Index c = mesh.faceStart[face]; c < mesh.faceStart[face + 1]; ++c)
+    if (mesh.faceVerts[c] == vertex) return c;
+  return -1;
+}
+
+Index faceAcross(const MeshTopology& topo, Index edge, Index face) {
+  return topo.edgeFaces[2 * edge] == face ? topo.edgeFaces[2 * edge + 1] : topo.edgeFaces[2 * edge];
+}
+
+// The 16 stencil vertex ids of a regular face, ids[4*j + i] as in patch.h; -1 where the point is a
+// phantom beyond the boundary. `sideMissing[s]` tells whether side s (corner s -> s+1) is a
+// boundary edge.
+void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, Index f, std::array<Index, 16>& ids,
+                   std::array<bool, 4>& sideMissing) {
+  ids.fill(-1);
+  const Index* loop = mesh.face(f);
+  // Grid positions (i, j) of the face corners, of the outward points of each side (at its first
+  // and second corner) and of the diagonal point at each corner.
+  static constexpr int kInner[4][2] = {{1, 1}, {2, 1}, {2, 2}, {1, 2}};
+  static constexpr int kOutward[4][2][2] = {{{1, 0}, {2, 0}}, {{3, 1}, {3, 2}}, {{2, 3}, {1, 3}}, {{0, 2}, {0, 1}}};
+  static constexpr int kDiagonal[4][2] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
+  auto at = [&](const int (&ij)[2]) -> Index& { return ids[4 * ij[1] + ij[0]]; };
+  for (int c = 0; c < 4; ++c) at(kInner[c]) = loop[c];
+  for (int s = 0; s < 4; ++s) {
+    const Index edge = topo.cornerEdge[mesh.faceStart[f] + s];
+    const Index g = faceAcross(topo, edge, f);
+    sideMissing[s] = g < 0;
+    if (g < 0) continue;
+    // g runs v_{s+1} -> v_s; after v_s come the point outward of v_s, then the one outward of v_{s+1}.
+    const Index c = nextCorner(mesh, g, cornerAt(mesh, g, loop[s]));
+    at(kOutward[s][0]) = mesh.faceVerts[c];
+    at(kOutward[s][1]) = mesh.faceVerts[nextCorner(mesh, g, c)];
+  }
+  for (int c = 0; c < 4; ++c) {
+    const Index v = loop[c];
+    if (topo.vertexOnBoundary[v]) continue;  // mirrored later
+    // Interior valence 4: the face two steps round v from f is diagonal; take its corner opposite v.
+    const Index first = topo.vertexFaceStart[v];
+    Index k = first;
+    while (topo.vertexFaces[k] != f) ++k;
+    const Index diagonalCorner = topo.vertexCorners[first + (k - first + 2) % 4];
+    const Index diagonalFace = topo.cornerFace[diagonalCorner];
+    at(kDiagonal[c]) = mesh.faceVerts[nextCorner(mesh, diagonalFace, nextCorner(mesh, diagonalFace, diagonalCorner))];
+  }
+}
+
+// Control points of a regular face: mesh points, phantoms mirrored (patch_extraction.h).
+void fillControlPoints(const std::vector<Point>& points, const std::array<Index, 16>& ids,
+                       const std::array<bool, 4>& sideMissing, std::array<Point, 16>& cp) {
+  auto P = [&](int i, int j) -> Point& { return cp[4 * j + i]; };
+  for (int k = 0; k < 16; ++k)
+    if (ids[k] >= 0) cp[k] = points[ids[k]];
+  // Sides first (the rows/columns next to a boundary edge), then the corners beyond them.
+  for (int t = 1; t <= 2; ++t) {
+    if (sideMissing[0]) P(t, 0) = 2.0 * P(t, 1) - P(t, 2);
+    if (sideMissing[2]) P(t, 3) = 2.0 * P(t, 2) - P(t, 1);
+    if (sideMissing[3]) P(0, t) = 2.0 * P(1, t) - P(2, t);
+    if (sideMissing[1]) P(3, t) = 2.0 * P(2, t) - P(1, t);
+  }
+  // Corner (i, j) sits between a row side and a column side; mirror along whichever is missing.
+  auto mirrorCorner = [&](int i, int j, int rowSide, int columnSide, int di, int dj) {
+    if (ids[4 * j + i] >= 0) return;
+    if (sideMissing[rowSide]) P(i, j) = 2.0 * P(i, j + dj) - P(i, j + 2 * dj);
+    else if (sideMissing[columnSide]) P(i, j) = 2.0 * P(i + di, j) - P(i + 2 * di, j);
+  };
+  mirrorCorner(0, 0, 0, 3, 1, 1);
+  mirrorCorner(3, 0, 0, 1, -1, 1);
+  mirrorCorner(3, 3, 2, 1, -1, -1);
+  mirrorCorner(0, 3, 2, 3, 1, -1);
+}
+
+// [SECTION] end caps: limit points, tangents, Bezier nets
+
+// The point diagonal to vertex v in face `face` (corner c at v) between its edges to `a` and `b`:
+// the opposite vertex of a quad; for other faces the parallelogram completion of the centroid,
+// 4 centroid - v - a - b, which equals it for quads.
+Point diagonalPoint(const PolyMesh& mesh, Index face, Index corner, const Point& v, const Point& a, const Point& b) {
+  const Index size = mesh.faceSize(face);
+  if (size == 4) return mesh.points[mesh.faceVerts[nextCorner(mesh, face, nextCorner(mesh, face, corner))]];
+  Point sum(0.0);
+  for (Index c = mesh.faceStart[face]; c < mesh.faceStart[face + 1]; ++c) sum += mesh.points[mesh.faceVerts[c]];
+  return (4.0 / size) * sum - v - a - b;
+}
+
+// Limit point and tangents of the Catmull-Clark limit at one vertex (patch_extraction.h).
+class VertexLimit {
+ public:
+  VertexLimit(const PolyMesh& mesh, const MeshTopology& topo, Index v) : mesh_(mesh), topo_(topo), v_(v) {
+    const Index edgeFirst = topo.vertexEdgeStart[v], faceFirst = topo.vertexFaceStart[v];
+    k_ = topo.valence(v);
+    faces_ = topo.faceValence(v);
+    boundary_ = topo.vertexOnBoundary[v] != 0;
+    // Edge neighbours e_j and diagonals f_j (face j lies between edges j and j+1).
+    e_.resize(k_);
+    for (Index j = 0; j < k_; ++j) e_[j] = mesh.points[topo.otherEnd(topo.vertexEdges[edgeFirst + j], v)];
+    f_.resize(faces_);
+    const Point& p = mesh.points[v];
+    for (Index j = 0; j < faces_; ++j)
+      f_[j] = diagonalPoint(mesh, topo.vertexFaces[faceFirst + j], topo.vertexCorners[faceFirst + j], p, e_[j], e_[(j + 1) % k_]);
+    if (boundary_) {
+      limit_ = (e_.front() + 4.0 * p + e_.back()) / 6.0;
+    } else {
+      Point edgeSum(0.0), faceSum(0.0);
+      for (Index j = 0; j < k_; ++j) {
+        edgeSum += e_[j];
+        faceSum += f_[j];
+      }
+      const double k = k_;
+      limit_ = (k / (k + 5.0)) * p + (4.0 / (k * (k + 5.0))) * edgeSum + (1.0 / (k * (k + 5.0))) * faceSum;
+    }
+  }
+
+  const Point& limit() const { return limit_; }
+  Index valence() const { return k_; }
+  bool onBoundary() const { return boundary_; }
+
+  // Limit tangent along `edge` (pointing from v to its other end), in the parameter scale of a
+  // regular B-spline patch (one unit per edge). [O(valence)]
+  Point tangent(Index edge) const {
+    const Index first = topo_.vertexEdgeStart[v_];
+    Index i = 0;
+    while (topo_.vertexEdges[first + i] != edge) ++i;
+    if (boundary_) {
+      if (i == 0) return 0.5 * (e_.front() - e_.back());
+      if (i == k_ - 1) return 0.5 * (e_.back() - e_.front());
+      return (f_[i - 1] + 4.0 * e_[i] + f_[i]) / 6.0 - limit_;
+    }
+    // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
+    // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12).
+    const double k = k_, step = 2.0 * kPi / k;
+    const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
+    const double scale = 1.0 / (k * (0.5 * A + 1.0 + std::cos(step)));
+    Point t(0.0);
+    for (Index j = 0; j < k_; ++j) {
+      const double a = step * double(j - i), b = step * double(j + 1 - i);
+      t += (A * std::cos(a)) * e_[j] + (std::cos(a) + std::cos(b)) * f_[j];
+    }
+    return scale * t;
+  }
+
+ private:
+  const PolyMesh& mesh_;
+  const MeshTopology& topo_;
+  Index v_;
+  Index k_ = 0, faces_ = 0;
+  bool boundary_ = false;
+  std::vector<Point> e_, f_;
+  Point limit_{};
+};
+
+using Bezier = std::array<Point, 4>;
+
+// The Hermite cubic of an edge from its end vertices' limit points and tangents: identical for
+// both faces on the edge (up to direction).
+Bezier edgeCurve(const VertexLimit& a, const VertexLimit& b, Index edge) {
+  return {a.limit(), a.limit() + a.tangent(edge) / 3.0, b.limit() + b.tangent(edge) / 3.0, b.limit()};
+}
+
+// Bezier net b[i][j] (i along u) -> B-spline control points cp[4*j + i] of the same surface.
+std::array<Point, 16> bezierToBSpline(const std::array<Point, 16>& b) {
+  auto convert = [](const Point& b0, const Point& b1, const Point& b2, const Point& b3, Point* d, int stride) {
+    d[0] = 6.0 * b0 - 7.0 * b1 + 2.0 * b2;
+    d[stride] = 2.0 * b1 - b2;
+    d[2 * stride] = 2.0 * b2 - b1;
+    d[3 * stride] = 6.0 * b3 - 7.0 * b2 + 2.0 * b1;
+  };
+  std::array<Point, 16> rows, cp;
+  for (int j = 0; j < 4; ++j) convert(b[4 * j], b[4 * j + 1], b[4 * j + 2], b[4 * j + 3], &rows[4 * j], 1);
+  for (int i = 0; i < 4; ++i) convert(rows[i], rows[4 + i], rows[8 + i], rows[12 + i], &cp[i], 4);
+  return cp;
+}
+
+// Loop-Schaefer interior Bezier point at a corner v with neighbours a, b along the face and d
+// diagonal; valence 4 at boundary vertices.
+Point interiorPoint(const VertexLimit& limit, const Point& v, const Point& a, const Point& b, const Point& d) {
+  const double k = limit.onBoundary() ? 4.0 : double(limit.valence());
+  return (k * v + 2.0 * (a + b) + d) / (k + 5.0);
+}
+
+// End cap of a quad face (patch_extraction.h).
+Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f) {
+  const Index* loop = mesh.face(f);
+  const Index start = mesh.faceStart[f];
+  const VertexLimit limits[4] = {VertexLimit(mesh, topo, loop[0]), VertexLimit(mesh, topo, loop[1]),
+                                 VertexLimit(mesh, topo, loop[2]), VertexLimit(mesh, topo, loop[3])};
+  std::array<Point, 16> b;
+  auto B = [&](int i, int j) -> Point& { return b[4 * j + i]; };
+  // Boundary curves, side s from corner s to s+1; grid positions of its 4 Bezier points.
+  static constexpr int kSide[4][4][2] = {{{0, 0}, {1, 0}, {2, 0}, {3, 0}},
+                                         {{3, 0}, {3, 1}, {3, 2}, {3, 3}},
+                                         {{3, 3}, {2, 3}, {1, 3}, {0, 3}},
+                                         {{0, 3}, {0, 2}, {0, 1}, {0, 0}}};
+  for (int s = 0; s < 4; ++s) {
+    const Bezier curve = edgeCurve(limits[s], limits[(s + 1) % 4], topo.cornerEdge[start + s]);
+    for (int k = 0; k < 4; ++k) B(kSide[s][k][0], kSide[s][k][1]) = curve[k];
+  }
+  const Point* p[4] = {&mesh.points[loop[0]], &mesh.points[loop[1]], &mesh.points[loop[2]], &mesh.points[loop[3]]};
+  B(1, 1) = interiorPoint(limits[0], *p[0], *p[1], *p[3], *p[2]);
+  B(2, 1) = interiorPoint(limits[1], *p[1], *p[2], *p[0], *p[3]);
+  B(2, 2) = interiorPoint(limits[2], *p[2], *p[3], *p[1], *p[0]);
+  B(1, 2) = interiorPoint(limits[3], *p[3], *p[0], *p[2], *p[1]);
+  Patch patch;
+  patch.cp = bezierToBSpline(b);
+  return patch;
+}
+
+// End caps of a k-gon (k != 4): k quads (corner, edge midpoint, centre, previous edge midpoint).
+void polygonEndCaps(const PolyMesh& mesh, const MeshTopology& topo, Index f, std::vector<Patch>& out) {
+  const Index k = mesh.faceSize(f), start = mesh.faceStart[f];
+  std::vector<VertexLimit> limits;
+  limits.reserve(k);
+  for (Index c = 0; c < k; ++c) limits.emplace_back(mesh, topo, mesh.faceVerts[start + c]);
+  // Halves of each edge curve by de Casteljau at 1/2.
+  std::vector<Bezier> firstHalf(k), secondHalf(k);
+  Point centre(0.0);
+  for (Index c = 0; c < k; ++c) {
+    const Bezier e = edgeCurve(limits[c], limits[(c + 1) % k], topo.cornerEdge[start + c]);
+    const Point m01 = 0.5 * (e[0] + e[1]), m12 = 0.5 * (e[1] + e[2]), m23 = 0.5 * (e[2] + e[3]);
+    const Point m012 = 0.5 * (m01 + m12), m123 = 0.5 * (m12 + m23), mid = 0.5 * (m012 + m123);
+    firstHalf[c] = {e[0], m01, m012, mid};
+    secondHalf[c] = {mid, m123, m23, e[3]};
+    centre += mid / double(k);
+  }
+  auto spoke = [&](Index c) {  // straight, from edge c's midpoint to the centre
+    const Point& m = firstHalf[c][3];
+    return Bezier{m, m + (centre - m) / 3.0, m + 2.0 * (centre - m) / 3.0, centre};
+  };
+  for (Index c = 0; c < k; ++c) {
+    const Index prev = (c + k - 1) % k;
+    const Bezier row0 = firstHalf[c], row3 = spoke(prev), column3 = spoke(c);
+    const Bezier& back = secondHalf[prev];  // runs from edge prev's midpoint to this corner
+    std::array<Point, 16> b;
+    auto B = [&](int i, int j) -> Point& { return b[4 * j + i]; };
+    for (int t = 0; t < 4; ++t) {
+      B(t, 0) = row0[t];
+      B(0, t) = back[3 - t];
+      B(3, t) = column3[t];
+      B(t, 3) = row3[t];
+    }
+    // Zero-twist interior points.
+    B(1, 1) = B(1, 0) + B(0, 1) - B(0, 0);
+    B(2, 1) = B(2, 0) + B(3, 1) - B(3, 0);
+    B(1, 2) = B(0, 2) + B(1, 3) - B(0, 3);
+    B(2, 2) = B(3, 2) + B(2, 3) - B(3, 3);
+    Patch patch;
+    patch.cp = bezierToBSpline(b);
+    out.push_back(patch);
+  }
+}
+
+// [SECTION] pole caps
+
+// One PoleCap per column of a pole (patch.h layout), closing the disc inside link 2.
+void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vector<Patch>& out, int level, int pole) {
+  const int n = grid.n;
+  auto boundaryPoint = [&](int j) { return (grid.q(1, j) + 4.0 * grid.q(2, j) + grid.q(3, j)) / 6.0; };
+  for (int j = 0; j < n; ++j) {
+    Patch cap;
+    cap.kind = PatchKind::PoleCap;
+    for (int k = 0; k < 6; ++k) cap.cp[k] = taylor.p[k];
+    for (int k = 0; k < 4; ++k) cap.cp[6 + k] = boundaryPoint(j - 1 + k);
+    cap.cp[10] = Point(double(j) / n, 1.0 / n, 2.0);
+    cap.cp[11] = Point(double(taylor.order), 0.0, 0.0);
+    cap.level = uint8_t(std::clamp(level, 0, 255));
+    cap.ring = level;
+    cap.pole = pole;
+    cap.face = -1;
+    out.push_back(cap);
+  }
+}
+
+}  // namespace
+
+// [SECTION] extraction driver
+
+PatchSet extractPatches(const Refinement& refinement) {
+  PatchSet set;
+  const int finest = refinement.levelCount() - 1;
+  LevelClasses parentClasses;
+  for (int m = 0; m <= finest; ++m) {
+    const RefinedLevel& level = refinement.level(m);
+    const PolyMesh& mesh = level.mesh;
+    const MeshTopology& topo = level.topology;
+    LevelClasses classes = classifyLevel(level);
+    const RingMembership rings = markRingLinks(level);
+
+    // Regular (and boundary, polar-ring) patches whose parent was not regular.
+    std::array<Index, 16> ids;
+    std::array<bool, 4> sideMissing;
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+      if (!classes.faceRegular[f]) continue;
+      if (m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
+      gatherStencil(mesh, topo, f, ids, sideMissing);
+      Patch patch;
+      fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
+      const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
+      patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
+      for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
+        if (candidate < 0) continue;
+        bool inRing = true;
+        for (Index id : ids) inRing = inRing && (id < 0 || rings.holds(id, candidate));
+        if (!inRing) continue;
+        patch.kind = PatchKind::PolarRing;
+        patch.ring = m;
+        patch.pole = candidate;
+        break;
+      }
+      patch.level = uint8_t(std::min(m, 255));
+      patch.face = f;
+      set.patches.push_back(patch);
+    }
+
+    if (m == finest) {
+      // Pole caps replace the faces around the pole and its 1-link.
+      std::vector<uint8_t> inHole(mesh.faceCount(), 0);
+      for (size_t p = 0; p < level.poles.size(); ++p) {
+        if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
+        poleCaps(level.poleGrids[p], level.poleTaylor[p], set.patches, m, int(p));
+        const PolarConfig& config = level.poles[p];
+        auto markFaces = [&](Index v) {
+          for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) inHole[topo.vertexFaces[k]] = 1;
+        };
+        markFaces(config.pole);
+        for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
+      }
+      // End caps for everything else not covered.
+      for (Index f = 0; f < mesh.faceCount(); ++f) {
+        if (classes.faceRegular[f] || inHole[f]) continue;
+        const size_t first = set.patches.size();
+        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, topo, f));
+        else polygonEndCaps(mesh, topo, f, set.patches);
+        for (size_t k = first; k < set.patches.size(); ++k) {
+          set.patches[k].kind = PatchKind::EndCap;
+          set.patches[k].level = uint8_t(std::min(m, 255));
+          set.patches[k].face = f;
+        }
+      }
+    }
+    parentClasses = std::move(classes);
+  }
+  for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
+  return set;
+}
+
+}  // namespace polarview

@@ -1,0 +1,62 @@
+// Feature-adaptive patch extraction: the limit surface of a Refinement as bicubic patches
+// (SCHEMES.md section 6; Myles & Peters 2009, Section 5.1, (6)-(8)).
+//
+// At each level m a patch is emitted for every face whose 4x4 neighbourhood is regular and whose
+// parent face was not (so each piece of surface is covered once, by the coarsest patch that
+// represents it exactly):
+//  * Regular: a quad whose 4 corners are interior valence-4 vertices with only quads around them.
+//  * Boundary: the same with some corners on the boundary, each such corner of valence 3 with two
+//    quads; the missing control points are mirrored (phantom = 2 * boundary point - interior point),
+//    so the boundary curve is the cubic B-spline of the boundary polygon, Catmull-Clark's
+//    VTX_BOUNDARY_EDGE_ONLY limit. A valence-2 corner is NOT regular here: under EDGE_ONLY it is a
+//    smooth boundary vertex with limit 2/3 v + 1/6 (a + b), which a mirrored corner patch (it
+//    interpolates v) would miss; OpenSubdiv too treats it as regular only when it is sharp. Such
+//    faces are refined to the last level and end as EndCaps (which do reproduce that limit).
+//  * PolarRing: a regular (or boundary) patch whose whole stencil lies in links 1..5 of one polar
+//    configuration of that level: paper (6), ring = m, pole = index in RefinedLevel::poles.
+// At the finest level L:
+//  * PoleCap: every pole of finest().poles with Taylor data (RefinedLevel::poleTaylor) and at least
+//    3 links gets one cap per column j (patch.h layout): p0..p5 of poleTaylor, boundary points
+//    b_j = (q1j + 4 q2j + q3j) / 6 (the inner boundary of ring L), tau0 = j/n, dtau = 1/n, R = 2.
+//    They replace the faces between links 0-1 and 1-2.
+//  * EndCap: every other face not covered. Built in Bezier form and converted to the B-spline
+//    control points of patch.h (Bezier -> B-spline per direction: d0 = 6b0 - 7b1 + 2b2,
+//    d1 = 2b1 - b2, d2 = 2b2 - b1, d3 = 6b3 - 7b2 + 2b1, the inverse of SCHEMES.md's map):
+//      - corners: Catmull-Clark limit points (interior valence k: k/(k+5) v + 4/(k(k+5)) sum e +
+//        1/(k(k+5)) sum f; boundary: 2/3 v + 1/6 (a + b));
+//      - each boundary curve: the cubic Hermite curve of the limit points and limit tangents of its
+//        two end vertices along that edge (interior: the Catmull-Clark tangent mask
+//        sum_j A_k cos(2 pi (j-i)/k) e_j + (cos(2 pi (j-i)/k) + cos(2 pi (j+1-i)/k)) f_j, scaled so
+//        k = 4 gives the B-spline derivative; boundary edge: (b - a)/2; interior edge at a boundary
+//        vertex: (f_{i-1} + 4 e_i + f_i)/6 - limit). It depends only on the edge, so both faces
+//        compute the same curve; at regular end vertices it IS the neighbouring B-spline patch's
+//        boundary curve, on the boundary it is the EDGE_ONLY limit curve;
+//      - interior Bezier points: Loop-Schaefer's (k v + 2 e_a + 2 e_b + d)/(k+5) per corner (k = 4
+//        at boundary vertices).
+//    Continuity: G0 (watertight up to round-off) everywhere; the normal is continuous at the
+//    extraordinary vertex itself (all its tangents lie in one plane) and only approximately along
+//    the end caps' edges. A non-quad face (only possible at level 0, or at a pole left without a
+//    cap) is split into k quads (corner, edge midpoint, centre, edge midpoint) whose outer edges
+//    are the halves of the edge curves (still watertight) and whose spokes are straight.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/spline/patch.h"
+#include "core/subdiv/refiner.h"
+
+namespace polarview {
+
+struct PatchSet {
+  std::vector<Patch> patches;          // flat, in extraction order (level by level, then caps)
+  std::array<size_t, 5> kindCounts{};  // indexed by PatchKind
+
+  // Number of patches of one kind. [O(1)]
+  size_t count(PatchKind kind) const { return kindCounts[size_t(kind)]; }
+};
+
+// Extracts the patches of every level of `refinement` (rules above). [O(faces of all levels)]
+PatchSet extractPatches(const Refinement& refinement);
+
+}  // namespace polarview
