@@ -21,7 +21,7 @@ void main() {
   vec3 cp[16];
   for (int k = 0; k < 16; ++k) cp[k] = tc_controlPoint[k];
   float u = gl_TessCoord.x, v = gl_TessCoord.y;
-  SurfacePoint s = evaluatePatch(cp, tc_kindRing[0].x, u, v);
+  SurfacePoint s = evaluatePatchLocally(cp, tc_kindRing[0].x, u, v);
 #ifdef PROBE
   probe_uvKH = vec4(u, v, s.gaussian, s.mean);
   probe_positionPatch = vec4(s.position, float(gl_PrimitiveID));

@@ -18,7 +18,7 @@ void main() {
   float t = gl_TessCoord.x;
   vec2 uv = edge == 0 ? vec2(t, 0.0) : edge == 1 ? vec2(1.0, t) : edge == 2 ? vec2(t, 1.0)
                                                                               : vec2(0.0, t);
-  SurfacePoint s = evaluatePatch(cp, tc_kindRing[0].x, uv.x, uv.y);
+  SurfacePoint s = evaluatePatchLocally(cp, tc_kindRing[0].x, uv.x, uv.y);
   be_kindRing = tc_kindRing[0];
   gl_Position = u_modelViewProjection * vec4(s.position, 1.0);
 }

@@ -122,3 +122,17 @@ SurfacePoint evaluatePatch(vec3 cp[16], int kind, float u, float v) {
   if (kind == kPatchPoleCap) return evaluatePoleCap(cp, u, v);
   return evaluateBSplinePatch(cp, u, v);
 }
+
+// GPU only, for float precision: evaluates relative to a point of the patch (cp[5], or p0 of a
+// cap) so that derivatives are differences of small numbers, then moves the position back.
+SurfacePoint evaluatePatchLocally(vec3 cp[16], int kind, float u, float v) {
+  int originSlot = kind == kPatchPoleCap ? 0 : 5;
+  vec3 origin = cp[originSlot];
+  for (int k = 0; k < 16; ++k) {
+    bool isPosition = kind != kPatchPoleCap || k == 0 || (k >= 6 && k <= 9);
+    if (isPosition) cp[k] -= origin;
+  }
+  SurfacePoint s = evaluatePatch(cp, kind, u, v);
+  s.position += origin;
+  return s;
+}

@@ -38,7 +38,7 @@ struct ShadingParams {
   // Reflection lines use the same direction, spacing as an angle fraction, and width.
   glm::vec3 highlightDir{1.0f, 0.0f, 0.0f};
   glm::vec3 highlightPlaneNormal{0.0f, 0.0f, 1.0f};
-  float highlightSpacing = 0.1f;
+  float highlightSpacing = 0.25f;
   float highlightWidth = 0.3f;
   float tessPixels = 12.0f;   // target screen length of a tessellated edge, in pixels
   int maxTessLevel = 64;      // clamp of the adaptive level (llvmpipe gets ~5x slower from 15 up)

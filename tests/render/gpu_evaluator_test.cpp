@@ -1,0 +1,162 @@
+// The GPU evaluator (shaders/common/patch_eval.glsl, read back by transform feedback) against the
+// CPU evaluatePatch (src/core/spline/bicubic_patch.cpp) and against closed-form curvature.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "render_test_support.h"
+
+namespace polarview {
+namespace {
+
+// Random but smooth B-spline patches: a jittered grid with random heights, of the given kind.
+std::vector<Patch> randomBSplinePatches(std::mt19937& rng, PatchKind kind, int count) {
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2), height(-0.6, 0.6);
+  std::vector<Patch> patches;
+  for (int k = 0; k < count; ++k) {
+    Patch patch;
+    patch.kind = kind;
+    patch.ring = kind == PatchKind::PolarRing ? k : -1;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)
+        patch.cp[4 * j + i] = Point(i + jitter(rng) + 5.0 * k, j + jitter(rng), height(rng));
+    patches.push_back(patch);
+  }
+  return patches;
+}
+
+// Random Taylor caps: random p0..p5 (p1, p2 roughly orthogonal so the tangent plane is regular)
+// and a boundary curve near the expansion on the circle, n sectors, Taylor order 2 or 1.
+std::vector<Patch> randomPoleCaps(std::mt19937& rng, int n, int order) {
+  std::uniform_real_distribution<double> noise(-0.1, 0.1);
+  const double R = 1.5;
+  Point p[6] = {Point(noise(rng), noise(rng), 3.0),           Point(1.0, noise(rng), noise(rng)),
+                Point(noise(rng), 1.0, noise(rng)),           Point(noise(rng), noise(rng), 0.7),
+                Point(noise(rng), noise(rng), 0.3 + noise(rng)), Point(noise(rng), noise(rng), -0.2)};
+  std::vector<Point> b(n);
+  for (int j = 0; j < n; ++j) {
+    const double t = 6.283185307179586 * j / n, x = R * std::cos(t), y = R * std::sin(t);
+    b[j] = p[0] + p[1] * x + p[2] * y + p[3] * (x * x + y * y) + p[4] * (x * x - y * y) +
+           p[5] * (2 * x * y) + Point(noise(rng), noise(rng), noise(rng));
+  }
+  std::vector<Patch> caps;
+  for (int j = 0; j < n; ++j) {
+    Patch patch;
+    patch.kind = PatchKind::PoleCap;
+    for (int k = 0; k < 6; ++k) patch.cp[k] = p[k];
+    for (int k = 0; k < 4; ++k) patch.cp[6 + k] = b[(j - 1 + k + n) % n];
+    patch.cp[10] = Point(double(j) / n, 1.0 / n, R);
+    patch.cp[11] = Point(order, 0, 0);
+    caps.push_back(patch);
+  }
+  return caps;
+}
+
+struct Agreement {
+  double position = 0, gaussian = 0, mean = 0;  // worst errors relative to the scales below
+  size_t samples = 0;
+};
+
+// Worst GPU-vs-CPU differences: positions relative to the bounding radius, K and H relative to
+// max(|CPU value|, 1% of the largest |value| in the set), so zero crossings do not divide by 0.
+Agreement compareWithCpu(PatchRenderer& renderer, const std::vector<Patch>& patches, int level) {
+  const std::vector<SurfaceProbe> probes = renderer.probeSurface(level);
+  std::vector<SurfacePoint> cpu;
+  double maxK = 0, maxH = 0;
+  for (const SurfaceProbe& probe : probes) {
+    cpu.push_back(evaluatePatch(patches.at(probe.patch), probe.u, probe.v));
+    maxK = std::max(maxK, std::abs(cpu.back().gaussian));
+    maxH = std::max(maxH, std::abs(cpu.back().mean));
+  }
+  Agreement a;
+  a.samples = probes.size();
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const SurfacePoint& c = cpu[k];
+    a.position = std::max(a.position, glm::length(probes[k].position - c.position) /
+                                          renderer.boundingRadius());
+    a.gaussian = std::max(a.gaussian, std::abs(probes[k].gaussian - c.gaussian) /
+                                          std::max(std::abs(c.gaussian), 0.01 * maxK));
+    a.mean = std::max(a.mean, std::abs(probes[k].mean - c.mean) /
+                                  std::max(std::abs(c.mean), 0.01 * maxH));
+  }
+  return a;
+}
+
+TEST_CASE("gpu evaluator: K, H and positions equal evaluatePatch for every patch kind") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  std::mt19937 rng(20090801);
+  struct Case {
+    std::string name;
+    std::vector<Patch> patches;
+  };
+  std::vector<Case> cases;
+  for (PatchKind kind : {PatchKind::Regular, PatchKind::Boundary, PatchKind::PolarRing, PatchKind::EndCap})
+    cases.push_back({patchKindName(kind), randomBSplinePatches(rng, kind, 12)});
+  for (int n : {3, 6, 17}) {
+    cases.push_back({"pole-cap order 2", randomPoleCaps(rng, n, 2)});
+    cases.push_back({"pole-cap order 1", randomPoleCaps(rng, n, 1)});
+  }
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    CAPTURE(c.patches.size());
+    renderer->setPatches(c.patches);
+    const int level = 8;
+    const Agreement a = compareWithCpu(*renderer, c.patches, level);
+    MESSAGE(c.name << ": " << a.samples << " samples, worst position " << a.position << ", K "
+                   << a.gaussian << ", H " << a.mean);
+    // Every patch's (level+1)^2 grid comes back (caps: the pole edge has 2 vertices).
+    CHECK(a.samples >= c.patches.size() * (level + 1) * level);
+    CHECK(a.position < 2e-6);
+    CHECK(a.gaussian < 1e-4);
+    CHECK(a.mean < 1e-4);
+  }
+}
+
+TEST_CASE("gpu evaluator: a quadratic graph has its closed-form K and H at every probe") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // z = a x^2 + b y^2 + c x y: B-splines reproduce it up to a constant (render_test_support.h).
+  for (const auto& [a, b, c] : {std::tuple{0.5, 0.5, 0.0}, std::tuple{0.3, -0.7, 0.2},
+                                std::tuple{0.0, 0.8, 0.0}, std::tuple{-0.4, -0.1, 0.6}}) {
+    CAPTURE(a);
+    CAPTURE(b);
+    CAPTURE(c);
+    const auto patches = test::graphPatches(
+        [=](double x, double y) { return a * x * x + b * y * y + c * x * y; }, 3, 3, -1.5, -1.5, 1.0);
+    renderer->setPatches(patches);
+    double worstK = 0, worstH = 0;
+    for (const SurfaceProbe& p : renderer->probeSurface(6)) {
+      const double x = p.position.x, y = p.position.y;
+      const auto exact = test::graphCurvature(2 * a * x + c * y, 2 * b * y + c * x, 2 * a, 2 * b, c);
+      worstK = std::max(worstK, std::abs(p.gaussian - exact.gaussian));
+      worstH = std::max(worstH, std::abs(p.mean - exact.mean));
+    }
+    // Curvatures here are O(1): absolute 1e-5 is float round-off, far below any colour step.
+    CHECK(worstK < 1e-5);
+    CHECK(worstH < 1e-5);
+  }
+}
+
+TEST_CASE("gpu evaluator: the pole of a Taylor cap has exactly the expansion's K and H") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  for (int n : {4, 7, 24}) {
+    for (double scale : {0.9, 1.3}) {
+      renderer->setPatches(test::paraboloidCap(n, 0.8, scale));
+      int poleSamples = 0;
+      for (const SurfaceProbe& p : renderer->probeSurface(4)) {
+        if (p.u != 0.0f) continue;
+        ++poleSamples;
+        CHECK(p.gaussian == doctest::Approx(4.0).epsilon(1e-6));
+        CHECK(p.mean == doctest::Approx(2.0).epsilon(1e-6));
+        CHECK(glm::length(p.position) < 1e-6);
+      }
+      CHECK(poleSamples >= 2 * n);  // both ends of the degenerate edge of every sector
+    }
+  }
+}
+
+}  // namespace
+}  // namespace polarview
