@@ -1,3 +1,39 @@
-// polarview entry point (placeholder until the CLI lands).
-#include <cstdio>
-int main() { std::puts("polarview"); return 0; }
+// polarview: the viewer when run bare or with `view`, otherwise a command-line subcommand.
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli_commands.h"
+#ifdef POLARVIEW_HAVE_VIEWER
+#include "app/viewer_app.h"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace polarview::cli;
+  const std::string command = argc > 1 ? argv[1] : "";
+  Args args(argv + std::min(argc, 2), argv + argc);
+  const std::string file = args.empty() ? "" : args[0];
+  if (command == "refine") return guarded(file, runRefine, args);
+  if (command == "info") return guarded(file, runInfo, args);
+  if (command == "pole") return guarded(file, runPole, args);
+  if (command == "bench") return guarded(file, runBench, args);
+  if (command == "shape") return guarded("", runShape, args);
+  if (command == "-h" || command == "--help" || command == "help") {
+    std::cout << usageText();
+    return 0;
+  }
+#ifdef POLARVIEW_HAVE_VIEWER
+  if (command.empty()) return polarview::runViewer("");
+  if (command == "view") return polarview::runViewerCommand(args);
+  if (command == "render") return polarview::runRenderCommand(args);
+#else
+  if (command.empty() || command == "view" || command == "render") {
+    std::cerr << "polarview: built without the viewer (POLARVIEW_BUILD_VIEWER=OFF)\n";
+    return 2;
+  }
+#endif
+  std::cerr << "polarview: unknown command '" << command << "'\n" << usageText();
+  return 2;
+}

@@ -1,0 +1,383 @@
+#include "app/cli_commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <new>
+#include <numeric>
+#include <optional>
+
+#include "app/bench_peer.h"
+#include "app/json_writer.h"
+#include "core/mesh/input_error.h"
+#include "core/mesh/obj_io.h"
+#include "core/mesh/shapes.h"
+#include "core/mesh/topology.h"
+#include "core/spline/patch_extraction.h"
+#include "core/spline/pole_taylor.h"
+#include "core/subdiv/polar_config.h"
+#include "core/subdiv/refiner.h"
+
+namespace polarview::cli {
+
+namespace {
+
+// A usage error: printed with the usage text, exit code 2.
+struct UsageError {
+  std::string what;
+};
+
+// Options shared by the subcommands, parsed from "--name value" / "--flag" pairs.
+struct CommonOptions {
+  std::string input, output;
+  Scheme scheme = Scheme::C2PS;
+  bool schemeGiven = false;
+  int levels = -1;
+  int reps = 5;
+  bool uniformFirstStep = false;
+  bool json = false;
+};
+
+int parseInt(const std::string& flag, const std::string& text, int low, int high) {
+  try {
+    size_t used = 0;
+    long v = std::stol(text, &used);
+    if (used != text.size() || v < low || v > high) throw std::out_of_range(text);
+    return int(v);
+  } catch (const std::exception&) {
+    throw UsageError{flag + " needs an integer in " + std::to_string(low) + ".." + std::to_string(high) + ", got '" + text + "'"};
+  }
+}
+
+CommonOptions parseOptions(const Args& args, const std::vector<std::string>& allowed) {
+  CommonOptions o;
+  auto isAllowed = [&](const std::string& flag) { return std::find(allowed.begin(), allowed.end(), flag) != allowed.end(); };
+  for (size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto next = [&]() -> const std::string& {
+      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
+      return args[++k];
+    };
+    if (a.size() > 1 && a[0] == '-' && !isAllowed(a)) throw UsageError{"unknown option " + a};
+    if (a == "-o" || a == "--output") o.output = next();
+    else if (a == "--scheme") {
+      std::optional<Scheme> s = parseScheme(next());
+      if (!s) throw UsageError{"unknown scheme '" + args[k] + "' (cc, c2ps, rts, bps)"};
+      o.scheme = *s;
+      o.schemeGiven = true;
+    } else if (a == "--levels" || a == "--level") o.levels = parseInt(a, next(), 0, 64);
+    else if (a == "--reps") o.reps = parseInt(a, next(), 1, 1000);
+    else if (a == "--uniform-first-step") o.uniformFirstStep = true;
+    else if (a == "--json") o.json = true;
+    else if (o.input.empty()) o.input = a;
+    else throw UsageError{"unexpected argument '" + a + "'"};
+  }
+  if (o.input.empty()) throw UsageError{"missing input file"};
+  return o;
+}
+
+// Loads the OBJ and prints its warnings on stderr.
+PolyMesh loadInput(const std::string& path) {
+  std::vector<std::string> warnings;
+  PolyMesh mesh = loadObj(path, &warnings);
+  for (const std::string& w : warnings) std::cerr << "polarview: warning: " << path << ": " << w << "\n";
+  return mesh;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t h = v.size() / 2;
+  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+}
+
+const char* outerName(PolarConfig::Outer outer) {
+  switch (outer) {
+    case PolarConfig::Outer::Pole: return "pole";
+    case PolarConfig::Outer::Boundary: return "boundary";
+    case PolarConfig::Outer::Mesh: return "mesh";
+  }
+  return "?";
+}
+
+// What `scheme` does at a polar configuration, in words.
+std::string schemeAction(Scheme scheme, const PolarConfig& c, bool radialMesh) {
+  if (!c.refinable || scheme == Scheme::CatmullClark)
+    return "Catmull-Clark (valence " + std::to_string(c.valence) + " stays; extraordinary vertex)";
+  if (scheme == Scheme::C2PS) return "C2PS rules (1)-(5): valence doubles each level";
+  std::string name = scheme == Scheme::RTS ? "RTS" : "BPS";
+  return name + (radialMesh ? " radial refinement of the whole mesh (valence fixed)"
+                            : " radial refinement of links 0.." + std::to_string(c.linkCount) +
+                                  ", refined periodically to meet Catmull-Clark");
+}
+
+// Number of boundary loops: connected components of the boundary edges.
+int countBoundaryLoops(const MeshTopology& topo) {
+  std::vector<Index> parent(topo.vertexCount);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<uint8_t> onBoundary(topo.vertexCount, 0);
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (topo.edgeOnBoundary(e)) {
+      Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+      onBoundary[a] = onBoundary[b] = 1;
+      parent[find(a)] = find(b);
+    }
+  int loops = 0;
+  for (Index v = 0; v < topo.vertexCount; ++v) loops += onBoundary[v] && find(v) == v;
+  return loops;
+}
+
+}  // namespace
+
+const char* usageText() {
+  return "usage:\n"
+         "  polarview                          open the viewer on the built-in model\n"
+         "  polarview view FILE.obj            open the viewer on a file\n"
+         "  polarview render FILE.obj -o OUT.png --scheme c2ps[,rts,...] --level L\n"
+         "                   --shade gaussian|mean|highlight|shaded --size WxH [--range R] [--camera JSON]\n"
+         "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|rts|bps --levels L [--uniform-first-step]\n"
+         "  polarview info IN.obj [--json]\n"
+         "  polarview pole IN.obj [--scheme c2ps|rts|bps] [--uniform-first-step] [--json]\n"
+         "  polarview bench IN.obj --scheme S --levels L [--reps N] [--json]\n"
+         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n";
+}
+
+int guarded(const std::string& file, int (*command)(const Args&), const Args& args) {
+  try {
+    return command(args);
+  } catch (const UsageError& e) {
+    std::cerr << "polarview: " << e.what << "\n" << usageText();
+    return 2;
+  } catch (const InputError& e) {
+    std::cerr << "polarview: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+int runRefine(const Args& args) {
+  CommonOptions o = parseOptions(args, {"-o", "--output", "--scheme", "--levels", "--level", "--uniform-first-step"});
+  if (o.output.empty()) throw UsageError{"refine needs -o OUT.obj"};
+  if (o.levels < 0) throw UsageError{"refine needs --levels L"};
+  PolyMesh mesh = loadInput(o.input);
+  Refinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input);
+  saveObj(o.output, refinement.finest().mesh);
+  return 0;
+}
+
+int runInfo(const Args& args) {
+  CommonOptions o = parseOptions(args, {"--json"});
+  PolyMesh mesh = loadInput(o.input);
+  MeshTopology topo = buildTopology(mesh, o.input);
+  std::vector<PolarConfig> poles = findPolarConfigs(mesh, topo);
+
+  // Which schemes refine the whole mesh radially (RTS/BPS on caps and globes).
+  bool radialMesh = false;
+  if (!poles.empty()) {
+    try {
+      radialMesh = Refinement(mesh, {Scheme::RTS, 0, false}, o.input).radialOnly();
+    } catch (const std::exception&) {
+    }
+  }
+  std::vector<uint8_t> isPole(topo.vertexCount, 0);
+  for (const PolarConfig& c : poles) isPole[c.pole] = c.refinable;
+  int used = 0, triangles = 0, quads = 0, polygons = 0;
+  for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    int k = mesh.faceSize(f);
+    triangles += k == 3;
+    quads += k == 4;
+    polygons += k > 4;
+  }
+  // Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
+  struct Extraordinary { Index vertex; int valence; bool boundary; bool pole; };
+  std::vector<Extraordinary> extraordinary;
+  for (Index v = 0; v < topo.vertexCount; ++v) {
+    if (!topo.vertexUsed[v]) continue;
+    int k = topo.valence(v);
+    bool boundary = topo.vertexOnBoundary[v];
+    if ((!boundary && k != 4) || (boundary && k > 3)) extraordinary.push_back({v, k, boundary, bool(isPole[v])});
+  }
+  const int loops = countBoundaryLoops(topo);
+
+  if (o.json) {
+    JsonWriter w;
+    w.beginObject();
+    w.field("file", o.input).field("vertices", used).field("unreferenced_vertices", topo.vertexCount - used);
+    w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", triangles);
+    w.field("quads", quads).field("polygons", polygons).field("boundary_loops", loops);
+    w.field("closed", loops == 0).field("radial_mesh", radialMesh);
+    w.key("poles").beginArray();
+    for (const PolarConfig& c : poles) {
+      w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
+      w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
+      if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
+      w.field("refinable", c.refinable);
+      if (!c.refinable) w.field("reason", c.reason);
+      w.key("schemes").beginObject();
+      for (Scheme s : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) w.field(schemeName(s), schemeAction(s, c, radialMesh));
+      w.endObject().endObject();
+    }
+    w.endArray();
+    w.key("extraordinary_vertices").beginArray();
+    for (const Extraordinary& x : extraordinary) {
+      w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
+      w.field("pole", x.pole);
+      w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
+      w.endObject();
+    }
+    w.endArray().endObject();
+    std::cout << w.str() << "\n";
+    return 0;
+  }
+
+  std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
+              o.input.c_str(), used, mesh.faceCount(), triangles, quads, polygons, topo.edgeCount, loops, loops == 1 ? "" : "s");
+  if (topo.vertexCount > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - used);
+  std::printf("poles: %zu\n", poles.size());
+  for (const PolarConfig& c : poles) {
+    std::printf("  vertex %d: valence %d, %d link%s (%d regular), ends at %s", c.pole, c.valence, c.linkCount,
+                c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
+    if (c.oppositePole >= 0) std::printf(" %d", c.oppositePole);
+    std::printf("\n");
+    if (!c.refinable)
+      std::printf("    vertex %d looks polar but %s: refined by Catmull-Clark\n", c.pole, c.reason.c_str());
+    else
+      for (Scheme s : {Scheme::C2PS, Scheme::RTS, Scheme::BPS, Scheme::CatmullClark})
+        std::printf("    %-4s %s\n", schemeName(s), schemeAction(s, c, radialMesh).c_str());
+  }
+  std::printf("extraordinary vertices (Catmull-Clark): %zu\n", extraordinary.size());
+  for (const Extraordinary& x : extraordinary)
+    std::printf("  vertex %d: valence %d%s%s\n", x.vertex, x.valence, x.boundary ? " (boundary)" : "",
+                x.pole ? " — a pole: polar schemes refine it, cc treats it as extraordinary" : " — Catmull-Clark in every scheme");
+  if (triangles + polygons > 0)
+    std::printf("non-quad faces: %d (their face points become extraordinary vertices after one Catmull-Clark step)\n",
+                triangles + polygons);
+  return 0;
+}
+
+int runPole(const Args& args) {
+  CommonOptions o = parseOptions(args, {"--scheme", "--uniform-first-step", "--json"});
+  if (o.scheme == Scheme::CatmullClark) throw UsageError{"pole analysis needs --scheme c2ps, rts or bps"};
+  PolyMesh mesh = loadInput(o.input);
+  // Level 0 only: the expansion is that of the input's own configuration (the Section-6 variant
+  // leaves links 0 and 1, hence p0..p5, unchanged).
+  Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
+  const RefinedLevel& level = refinement.level(0);
+  JsonWriter w;
+  w.beginObject().key("poles").beginArray();
+  for (size_t k = 0; k < level.poles.size(); ++k) {
+    const TaylorCoefficients& t = level.poleTaylor[k];
+    PoleDifferential d = analyzePole(t);
+    if (!o.json)
+      std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
+                  level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
+                  d.normal.z, d.gaussian, d.mean, d.curvatureDefined ? "" : " (curvature not defined: BPS is C1 at the pole)");
+    w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
+    w.field("scheme", schemeName(o.scheme)).field("limit", d.limit).field("normal", d.normal);
+    if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
+    else w.key("gaussian_curvature").null().key("mean_curvature").null();
+    w.key("p").beginArray();
+    for (const Point& p : t.p) w.value(p);
+    w.endArray().endObject();
+  }
+  w.endArray().endObject();
+  if (o.json) std::cout << w.str() << "\n";
+  else if (level.poles.empty()) std::printf("no refinable poles\n");
+  return 0;
+}
+
+int runBench(const Args& args) {
+  CommonOptions o = parseOptions(args, {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json"});
+  if (o.levels < 0) throw UsageError{"bench needs --levels L"};
+  PolyMesh mesh = loadInput(o.input);
+  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  std::vector<double> build, positions, patches;
+  size_t outVertices = 0, outFaces = 0, patchCount = 0;
+  for (int rep = 0; rep < o.reps; ++rep) {
+    auto t0 = std::chrono::steady_clock::now();
+    Refinement refinement(mesh, options, o.input);
+    build.push_back(millisecondsSince(t0));
+    t0 = std::chrono::steady_clock::now();
+    refinement.updatePositions(mesh.points);
+    positions.push_back(millisecondsSince(t0));
+    t0 = std::chrono::steady_clock::now();
+    PatchSet set = extractPatches(refinement);
+    patches.push_back(millisecondsSince(t0));
+    outVertices = refinement.finest().mesh.points.size();
+    outFaces = size_t(refinement.finest().mesh.faceCount());
+    patchCount = set.patches.size();
+  }
+  // The constructor builds topology and computes positions once: topology = build - positions.
+  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
+  std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps);
+
+  JsonWriter w;
+  w.beginObject().field("file", o.input).field("scheme", schemeName(o.scheme)).field("levels", o.levels);
+  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
+  w.field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
+  w.field("patches", patchCount);
+  if (peer) {
+    w.key("peer").beginObject().field("name", peer->name).field("topology_ms", peer->topologyMs);
+    w.field("positions_ms", peer->positionsMs).field("out_vertices", peer->outVertices).field("out_faces", peer->outFaces);
+    w.endObject();
+    w.field("topology_speedup", peer->topologyMs / std::max(topologyMs, 1e-9));
+    w.field("positions_speedup", peer->positionsMs / std::max(positionsMs, 1e-9));
+  }
+  w.endObject();
+  if (o.json) {
+    std::cout << w.str() << "\n";
+  } else {
+    std::printf("%s %s level %d: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, %zu patches\n",
+                o.input.c_str(), schemeName(o.scheme), o.levels, topologyMs, positionsMs, median(patches), outVertices,
+                outFaces, patchCount);
+    if (peer)
+      std::printf("%s: topology %.3f ms, positions %.3f ms (speed-up %.2fx, %.2fx)\n", peer->name.c_str(), peer->topologyMs,
+                  peer->positionsMs, peer->topologyMs / std::max(topologyMs, 1e-9),
+                  peer->positionsMs / std::max(positionsMs, 1e-9));
+  }
+  return 0;
+}
+
+int runShape(const Args& args) {
+  std::string name, output;
+  int valence = 12, links = 6;
+  for (size_t k = 0; k < args.size(); ++k) {
+    auto next = [&]() -> const std::string& {
+      if (k + 1 >= args.size()) throw UsageError{args[k] + " needs a value"};
+      return args[++k];
+    };
+    if (args[k] == "-o" || args[k] == "--output") output = next();
+    else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20);
+    else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16);
+    else if (name.empty() && args[k][0] != '-') name = args[k];
+    else throw UsageError{"unexpected argument '" + args[k] + "'"};
+  }
+  if (output.empty()) throw UsageError{"shape needs -o OUT.obj"};
+  PolyMesh mesh;
+  if (name == "globe") mesh = shapes::globe(valence, links);
+  else if (name == "cap") mesh = shapes::polarCap(valence, links);
+  else if (name == "mushroom") {
+    if (valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
+    mesh = shapes::mushroom(valence);
+  } else if (name == "cube") mesh = shapes::cube();
+  else if (name == "torus") mesh = shapes::torus(valence, links);
+  else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus)"};
+  saveObj(output, mesh);
+  return 0;
+}
+
+}  // namespace polarview::cli
