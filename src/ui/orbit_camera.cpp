@@ -96,12 +96,13 @@ glm::mat4 OrbitCamera::viewMatrix() const {
   return glm::mat4(glm::lookAt(eye(), target, up()));
 }
 
-glm::mat4 OrbitCamera::projectionMatrix(double aspect, double sceneRadius) const {
-  // Near/far bracket a sphere of 2x the scene radius around the target, with a floor on near so
-  // the depth buffer keeps its precision when zoomed far in.
+glm::mat4 OrbitCamera::projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const {
+  // Near/far bracket the scene's bounding sphere (with margin), with a floor on near so the depth
+  // buffer keeps its precision when the eye is inside the sphere.
   double radius = std::max(sceneRadius, 1e-6);
-  double farPlane = distance + 4.0 * radius;
-  double nearPlane = std::max(distance - 4.0 * radius, farPlane * 1e-4);
+  double centreDepth = glm::dot(sceneCentre - eye(), forward());
+  double farPlane = std::max(centreDepth + 1.5 * radius, 1e-6);
+  double nearPlane = std::max(centreDepth - 1.5 * radius, farPlane * 1e-4);
   return glm::mat4(glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane));
 }
 

@@ -24,9 +24,9 @@ struct OrbitCamera {
   glm::dvec3 right() const;    // unit, screen x
   glm::dvec3 up() const;       // unit, screen y
 
-  // View and projection matrices; `sceneRadius` sets near/far so a framed model is never clipped.
+  // View and projection matrices; the scene's bounding sphere sets near/far so it is never clipped.
   glm::mat4 viewMatrix() const;
-  glm::mat4 projectionMatrix(double aspect, double sceneRadius) const;
+  glm::mat4 projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const;
 
   // Left drag: turns by pixel deltas (0.4 degrees per pixel).
   void orbit(double dxPixels, double dyPixels);

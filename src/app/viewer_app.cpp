@@ -1,0 +1,519 @@
+// ViewerApp: window, frame loop, refinement jobs, drawing and screenshots (see viewer_app.h).
+#include "app/viewer_app.h"
+
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/mesh/input_error.h"
+#include "core/mesh/obj_io.h"
+#include "core/mesh/shapes.h"
+#include "core/mesh/topology.h"
+#include "render/gl_context.h"
+#include "render/patch_renderer.h"
+#include "render/shader_library.h"
+
+namespace polarview {
+namespace {
+
+// [SECTION] Constants and helpers
+
+constexpr size_t kMaxRecentFiles = 10;
+constexpr float kBackground[3] = {0.17f, 0.18f, 0.20f};
+constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+std::string recentFilePath() {
+  const char* home = std::getenv("HOME");
+  if (!home || !*home) return {};
+  return std::string(home) + "/.config/polarview/recent.txt";
+}
+
+// Mixes a value into a running hash (to notice when the colour range inputs changed).
+void hashMix(uint64_t& h, uint64_t value) { h = (h ^ value) * 1099511628211ull; }
+
+}  // namespace
+
+// [SECTION] Set-up and tear-down
+
+ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {}
+
+ViewerApp::~ViewerApp() {
+  // Jobs finish first (their futures block), then GL objects go while the context still exists.
+  for (ViewRuntime& view : views_) view.job.wait();
+  if (window_) {
+    glfwMakeContextCurrent(window_);
+    for (ViewRuntime& view : views_) view.renderer.reset();
+    shaders_.reset();
+    if (imguiReady_) {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+    glfwDestroyWindow(window_);
+  }
+}
+
+bool ViewerApp::init(std::string* error) {
+  // GLFW and the window (hidden for batch work): GL 4.5 core, 4.1 accepted.
+  glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "polarview: GLFW error %d: %s\n", code, message); });
+  if (!glfwInit()) {
+    if (error) *error = "cannot initialise GLFW (no display? run under xvfb-run -a)";
+    return false;
+  }
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_VISIBLE, options_.hidden ? GLFW_FALSE : GLFW_TRUE);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  window_ = glfwCreateWindow(options_.width, options_.height, "polarview", nullptr, nullptr);
+  if (!window_) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+    window_ = glfwCreateWindow(options_.width, options_.height, "polarview", nullptr, nullptr);
+  }
+  if (!window_) {
+    if (error) *error = "cannot create a window with a GL 4.1+ core context";
+    return false;
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(options_.vsync ? 1 : 0);
+  if (!loadGlFunctions()) {
+    if (error) *error = "cannot load GL 4.1+ functions (glad)";
+    return false;
+  }
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetDropCallback(window_, &ViewerApp::onDrop);
+
+  // ImGui: its GLFW backend chains to callbacks set before it (the drop callback is ours only).
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  if (options_.hidden) io.IniFilename = nullptr;
+  if (std::filesystem::exists(kFontPath)) io.Fonts->AddFontFromFileTTF(kFontPath, 15.0f);
+  else io.Fonts->AddFontDefault();
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 410");
+  imguiReady_ = true;
+
+  // One renderer per view over one shader library.
+  shaders_ = std::make_shared<ShaderLibrary>();
+  for (ViewRuntime& view : views_) {
+    view.renderer = std::make_unique<PatchRenderer>();
+    std::string log;
+    if (!view.renderer->init(&log, shaders_)) {
+      if (error) *error = "shaders: " + log;
+      return false;
+    }
+  }
+  state_.glInfo = std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) + " / " +
+                  reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (options_.persistRecent) loadRecent();
+  return true;
+}
+
+// [SECTION] Models and files
+
+bool ViewerApp::loadFile(const std::string& path) {
+  state_.file.pathField = path;
+  try {
+    std::vector<std::string> warnings;
+    PolyMesh mesh = loadObj(path, &warnings);
+    if (!loadMesh(std::move(mesh), path, path)) return false;
+    state_.file.warnings = std::move(warnings);
+    return true;
+  } catch (const std::exception& e) {
+    state_.file.error = e.what();
+    state_.notice = "could not open " + path + " (the current model stays)";
+    return false;
+  }
+}
+
+bool ViewerApp::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
+  try {
+    buildTopology(mesh, name);  // throws InputError for non-manifold or unsupported meshes
+  } catch (const std::exception& e) {
+    state_.file.error = e.what();
+    return false;
+  }
+  if (mesh.points.empty() || mesh.faceCount() == 0) {
+    state_.file.error = name + ": no faces";
+    return false;
+  }
+  modelMin_ = modelMax_ = mesh.points.front();
+  for (const Point& p : mesh.points) {
+    modelMin_ = glm::min(modelMin_, p);
+    modelMax_ = glm::max(modelMax_, p);
+  }
+  state_.file.modelVertices = mesh.vertexCount();
+  state_.file.modelFaces = mesh.faceCount();
+  model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
+  state_.file.modelName = name;
+  state_.file.loadedPath = path;
+  state_.file.error.clear();
+  state_.file.warnings.clear();
+  for (ViewRuntime& view : views_) view.failed.reset();
+  for (ViewStatus& status : state_.status) status.message.clear();
+  if (!path.empty()) rememberRecent(path);
+  frameModel();
+  return true;
+}
+
+void ViewerApp::loadDefaultModel() {
+  std::string asset = std::string(POLARVIEW_ASSET_DIR) + "/default.obj";
+  if (std::filesystem::exists(asset) && loadFile(asset)) {
+    state_.file.modelName = "default: " + asset;
+    return;
+  }
+  loadMesh(shapes::mushroom(12), "default: mushroom (generated, n = 12)");
+}
+
+void ViewerApp::rememberRecent(const std::string& path) {
+  std::vector<std::string>& recent = state_.file.recent;
+  std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
+  recent.erase(std::remove(recent.begin(), recent.end(), absolute), recent.end());
+  recent.insert(recent.begin(), absolute);
+  if (recent.size() > kMaxRecentFiles) recent.resize(kMaxRecentFiles);
+  if (!options_.persistRecent) return;
+  std::string file = recentFilePath();
+  if (file.empty()) return;
+  std::error_code ignored;
+  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ignored);
+  std::ofstream out(file);
+  for (const std::string& p : recent) out << p << '\n';
+}
+
+void ViewerApp::loadRecent() {
+  std::ifstream in(recentFilePath());
+  std::string line;
+  while (std::getline(in, line) && state_.file.recent.size() < kMaxRecentFiles) {
+    if (!line.empty()) state_.file.recent.push_back(line);
+  }
+}
+
+void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
+  auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(window));
+  if (!app || count < 1) return;
+  app->state_.file.pathField = paths[0];
+  app->state_.requests.load = true;
+}
+
+void ViewerApp::frameModel() {
+  if (state_.linkCameras) {
+    state_.sharedCamera.frame(modelMin_, modelMax_);
+  } else {
+    for (ViewSettings& view : state_.views) view.camera.frame(modelMin_, modelMax_);
+  }
+  framedOnce_ = true;
+}
+
+// [SECTION] Requests from panels and hotkeys
+
+void ViewerApp::processRequests() {
+  ViewerRequests& r = state_.requests;
+  if (r.load) loadFile(state_.file.pathField);
+  if (r.reload) {
+    if (state_.file.loadedPath.empty()) loadDefaultModel();
+    else loadFile(state_.file.loadedPath);
+  }
+  if (r.loadDefault) loadDefaultModel();
+  if (r.frame) frameModel();
+  if (r.preset) {
+    for (int v = 0; v < kMaxViews; ++v) state_.camera(v).applyPreset(*r.preset);
+  }
+  OrbitCamera& active = state_.camera(state_.activeView);
+  if (r.copyCamera) {
+    std::string json = cameraToJson(active);
+    glfwSetClipboardString(window_, json.c_str());
+    state_.notice = "camera copied: " + json;
+  }
+  if (r.pasteCamera) {
+    const char* text = glfwGetClipboardString(window_);
+    std::string error;
+    std::optional<OrbitCamera> camera = cameraFromJson(text ? text : "", active, &error);
+    if (camera) {
+      active = *camera;
+      state_.notice = "camera pasted";
+    } else {
+      state_.notice = error;
+    }
+  }
+  bool screenshot = r.screenshot;
+  r = ViewerRequests{};
+  if (screenshot) saveScreenshot();
+}
+
+// [SECTION] Rebuilding what is dirty
+
+SurfaceKey ViewerApp::wantedKey(int v) const {
+  return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level};
+}
+
+void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
+  ViewRuntime& view = views_[size_t(v)];
+  view.renderer->setPatches(surface->patches);
+  view.renderer->setControlMesh(surface->controlMesh);
+  view.renderer->setPoleMarkers(surface->poles);
+  view.shown = std::move(surface);
+}
+
+void ViewerApp::updateSurfaces() {
+  if (!model_.mesh) return;
+  for (int v = 0; v < kMaxViews; ++v) {
+    ViewRuntime& view = views_[size_t(v)];
+    ViewStatus& status = state_.status[size_t(v)];
+    const bool visible = v < state_.viewCount;
+
+    // A finished job: show it if it is still wanted, else drop it (a newer request follows).
+    if (std::optional<SurfaceJob::Outcome> outcome = view.job.poll()) {
+      if (!outcome->error.empty()) {
+        view.failed = outcome->key;
+        status.message = outcome->error;
+      } else if (outcome->key == wantedKey(v)) {
+        show(v, outcome->surface);
+        status.message.clear();
+      }
+    }
+
+    // A refused or failed key reverts the view to what it shows, so the controls tell the truth.
+    SurfaceKey wanted = wantedKey(v);
+    if (view.failed && *view.failed == wanted && view.shown && view.shown->key.model == wanted.model) {
+      state_.views[size_t(v)].scheme = view.shown->key.scheme;
+      state_.views[size_t(v)].level = view.shown->key.level;
+      wanted = view.shown->key;
+    }
+
+    // Start what the settings ask for: reuse another view's surface, else refine in the background.
+    bool dirty = visible && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted);
+    if (dirty && !view.job.running()) {
+      std::shared_ptr<const BuiltSurface> twin;
+      for (const ViewRuntime& other : views_) {
+        if (other.shown && other.shown->key == wanted) twin = other.shown;
+      }
+      if (twin) {
+        show(v, twin);
+      } else if (std::string refusal = checkFaceBudget(model_, wanted, options_.faceBudget); !refusal.empty()) {
+        view.failed = wanted;
+        status.message = refusal;
+      } else {
+        view.job.start(model_, wanted, options_.faceBudget);
+      }
+    }
+
+    // Report.
+    status.refining = view.job.running();
+    status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;
+    status.hasSurface = view.shown != nullptr;
+    if (view.shown) {
+      status.shownScheme = view.shown->key.scheme;
+      status.shownLevel = view.shown->key.level;
+      status.patchCount = int(view.shown->patches.size());
+      status.patchesPerKind = view.shown->patchesPerKind;
+      status.controlFaces = view.shown->controlMesh.faceCount();
+      status.refineMs = view.shown->refineMs;
+    }
+  }
+}
+
+void ViewerApp::updateColourRange() {
+  const ShadingParams::Mode mode = state_.shading.mode;
+  if (mode != ShadingParams::Mode::Gaussian && mode != ShadingParams::Mode::Mean) return;
+  uint64_t signature = 14695981039346656037ull;
+  hashMix(signature, uint64_t(mode));
+  hashMix(signature, uint64_t(state_.colour.quantile * 1e6f));
+  for (int v = 0; v < state_.viewCount; ++v) hashMix(signature, uint64_t(uintptr_t(views_[size_t(v)].shown.get())));
+  if (signature == colourRangeSignature_) return;
+  colourRangeSignature_ = signature;
+
+  // One range over the samples of every visible view, so equal colours mean equal values.
+  std::vector<float> values;
+  for (int v = 0; v < state_.viewCount; ++v) {
+    if (!views_[size_t(v)].shown) continue;
+    const BuiltSurface& s = *views_[size_t(v)].shown;
+    const std::vector<float>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussianSamples : s.meanSamples;
+    values.insert(values.end(), samples.begin(), samples.end());
+  }
+  if (!values.empty()) state_.colour.autoRange = suggestCurvatureRange(std::move(values), state_.colour.quantile);
+}
+
+bool ViewerApp::busy() const {
+  for (int v = 0; v < state_.viewCount; ++v) {
+    const ViewRuntime& view = views_[size_t(v)];
+    if (view.job.running()) return true;
+    SurfaceKey wanted = wantedKey(v);
+    if (model_.mesh && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted)) return true;
+  }
+  return false;
+}
+
+void ViewerApp::waitUntilIdle() {
+  while (busy()) {
+    for (ViewRuntime& view : views_) {
+      if (view.job.running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    updateSurfaces();
+  }
+  updateColourRange();
+}
+
+// [SECTION] Drawing
+
+void ViewerApp::drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight) {
+  glm::dvec3 centre = 0.5 * (modelMin_ + modelMax_);
+  double radius = 0.5 * glm::length(modelMax_ - modelMin_);
+  ShadingParams shading = state_.shading;
+  shading.range = state_.colourRange();
+  for (size_t v = 0; v < rects.size(); ++v) {
+    if (!views_[v].shown) continue;
+    const ScreenRect& r = rects[v];
+    const OrbitCamera& camera = state_.camera(int(v));
+    ViewParams params;
+    params.viewport = glm::ivec4(int(r.x * pixelScale), framebufferHeight - int((r.y + r.h) * pixelScale),
+                                 int(r.w * pixelScale), int(r.h * pixelScale));
+    params.view = camera.viewMatrix();
+    params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
+    params.eye = glm::vec3(camera.eye());
+    views_[v].renderer->draw(params, shading, state_.display);
+  }
+}
+
+void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale,
+                             int framebufferHeight) {
+  // Depth under the cursor (default framebuffer, right after the views were drawn).
+  int x = int(pick.x * pixelScale), y = framebufferHeight - 1 - int(pick.y * pixelScale);
+  float depth = 1.0f;
+  glReadPixels(x, y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+  if (depth >= 1.0f) {
+    state_.notice = "no surface under the cursor";
+    return;
+  }
+  const ScreenRect& r = rects[size_t(pick.view)];
+  OrbitCamera& camera = state_.camera(pick.view);
+  glm::dvec3 centre = 0.5 * (modelMin_ + modelMax_);
+  double radius = 0.5 * glm::length(modelMax_ - modelMin_);
+  glm::vec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale, r.h * pixelScale);
+  glm::vec3 world = glm::unProject(glm::vec3(float(x) + 0.5f, float(y) + 0.5f, depth), camera.viewMatrix(),
+                                   camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius), viewport);
+  camera.setPivotKeepingEye(glm::dvec3(world));
+  state_.notice = "pivot set";
+}
+
+void ViewerApp::runFrame() {
+  auto frameStart = std::chrono::steady_clock::now();
+  glfwPollEvents();
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+
+  // Panels and input edit the state; requests and dirty views are handled right after.
+  ImGuiIO& io = ImGui::GetIO();
+  int fbWidth = 0, fbHeight = 0;
+  glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
+  float pixelScale = io.DisplaySize.x > 0 ? float(fbWidth) / io.DisplaySize.x : 1.0f;
+  ScreenRect frame{0, 0, io.DisplaySize.x, io.DisplaySize.y};
+  std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
+  std::optional<PivotPick> pick = input_.handle(state_, rects);
+  drawViewerPanels(state_);
+  rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
+  processRequests();
+  updateSurfaces();
+  updateColourRange();
+
+  // Draw the views, then the overlay and the UI over them.
+  glViewport(0, 0, fbWidth, fbHeight);
+  glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (fbWidth > 0 && fbHeight > 0) {
+    drawViews(rects, pixelScale, fbHeight);
+    if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
+  }
+  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f);
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  glFinish();  // frame time includes the GPU work (not the swap's wait for vsync)
+  state_.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+  glfwSwapBuffers(window_);
+  ++framesDrawn_;
+}
+
+bool ViewerApp::shouldClose() const { return glfwWindowShouldClose(window_); }
+
+// [SECTION] Offscreen images and screenshots
+
+RgbaImage ViewerApp::renderImage(int width, int height, int supersample, bool transparent) {
+  if (framesDrawn_ == 0) runFrame();  // builds the ImGui font texture and draw-list data
+  OffscreenTarget target;
+  std::string error;
+  if (!target.create(width, height, supersample, &error)) throw std::runtime_error("offscreen target: " + error);
+  target.bindAndClear(kBackground[0], kBackground[1], kBackground[2], transparent ? 0.0f : 1.0f);
+
+  // Same layout as on screen, in render pixels, without the panels.
+  const float scale = float(target.supersample());
+  ScreenRect frame{0, 0, float(target.renderWidth()), float(target.renderHeight())};
+  std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, scale));
+  drawViews(rects, 1.0f, target.renderHeight());
+
+  // Labels and colour bar: a private ImGui draw list rendered by the OpenGL3 backend.
+  ImDrawList list(ImGui::GetDrawListSharedData());
+  list._ResetForNewFrame();
+  list.PushTextureID(ImGui::GetIO().Fonts->TexID);
+  list.PushClipRect(ImVec2(0, 0), ImVec2(frame.w, frame.h));
+  drawViewOverlay(&list, ImGui::GetIO().Fonts->Fonts[0], state_, rects, frame, scale);
+  ImDrawList* lists[] = {&list};
+  ImDrawData data;
+  data.Valid = true;
+  data.CmdLists = lists;
+  data.CmdListsCount = 1;
+  data.TotalVtxCount = list.VtxBuffer.Size;
+  data.TotalIdxCount = list.IdxBuffer.Size;
+  data.DisplayPos = ImVec2(0, 0);
+  data.DisplaySize = ImVec2(frame.w, frame.h);
+  data.FramebufferScale = ImVec2(1, 1);
+  ImGui_ImplOpenGL3_RenderDrawData(&data);
+
+  RgbaImage image = target.read();
+  OffscreenTarget::bindDefault();
+  return image;
+}
+
+std::string ViewerApp::saveScreenshot() {
+  namespace fs = std::filesystem;
+  std::string path;
+  for (int i = 1; i < 100000; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "polarview_%04d.png", i);
+    if (!fs::exists(name)) {
+      path = name;
+      break;
+    }
+  }
+  try {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    RgbaImage image = renderImage(std::max(width, 1), std::max(height, 1), state_.screenshot.supersample,
+                                  state_.screenshot.transparent);
+    writePngAtomic(path, image);
+  } catch (const std::exception& e) {
+    state_.notice = std::string("screenshot failed: ") + e.what();
+    return {};
+  }
+  std::string absolute = fs::absolute(path).string();
+  std::printf("%s\n", absolute.c_str());
+  std::fflush(stdout);
+  state_.screenshot.lastPath = absolute;
+  state_.notice = "wrote " + absolute;
+  return absolute;
+}
+
+}  // namespace polarview

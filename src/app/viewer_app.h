@@ -1,0 +1,122 @@
+// The polarview viewer application: one ViewerApp object owns the window, the ImGui context, one
+// PatchRenderer per view and the background refinement jobs. No globals: GLFW callbacks reach the
+// app through glfwSetWindowUserPointer.
+//
+// Frame order (Dear ImGui's example): poll events, new frame, panels + input, requests, rebuild
+// what is dirty (finished jobs are uploaded, new jobs started), draw the views, overlay + UI, swap.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "app/viewer_surface.h"
+#include "render/framebuffer_capture.h"
+#include "ui/viewer_panels.h"
+#include "ui/viewer_state.h"
+
+struct GLFWwindow;
+
+namespace polarview {
+
+class PatchRenderer;
+class ShaderLibrary;
+
+// `polarview` / `polarview view FILE.obj`: opens the viewer (empty path: the default model).
+int runViewer(const std::string& objPathOrEmpty);
+// `polarview view [FILE.obj] [--frames N --stats] [--scheme a,b] [--level L] [--size WxH]`:
+// the arguments after "view". With --frames it runs N frames and prints frame times as JSON.
+int runViewerCommand(const std::vector<std::string>& args);
+// `polarview render ...`: the arguments after "render"; 0 ok, 1 bad input ("polarview: FILE:LINE:
+// msg" on stderr, no output file), 2 usage.
+int runRenderCommand(const std::vector<std::string>& args);
+
+struct ViewerOptions {
+  int width = 1600, height = 900;
+  bool hidden = false;         // invisible window: batch rendering and tests
+  bool persistRecent = true;   // keep recent files in ~/.config/polarview/recent.txt
+  bool vsync = true;
+  size_t faceBudget = kDefaultFaceBudget;
+};
+
+class ViewerApp {
+ public:
+  explicit ViewerApp(const ViewerOptions& options);
+  ~ViewerApp();
+  ViewerApp(const ViewerApp&) = delete;
+  ViewerApp& operator=(const ViewerApp&) = delete;
+
+  // Creates the window and GL context, loads glad, starts ImGui and the renderers.
+  bool init(std::string* error);
+
+  // Loads an OBJ; on failure the message goes to state().file.error, the model stays, false.
+  bool loadFile(const std::string& path);
+  // Shows `mesh` (validated here; false with the error in the state when it is not usable).
+  bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "");
+  // assets/default.obj, or the generated mushroom when the asset is missing.
+  void loadDefaultModel();
+
+  // One iteration of the main loop.
+  void runFrame();
+  bool shouldClose() const;
+  // True while a refinement runs or a view waits for one.
+  bool busy() const;
+  // Runs frames until every view shows what its settings ask for (or failed). [blocks]
+  void waitUntilIdle();
+
+  // Views, labels and colour bar rendered offscreen at width x height (rendered at supersample x
+  // that size and filtered down). Needs a finished frame (ImGui fonts).
+  RgbaImage renderImage(int width, int height, int supersample, bool transparent);
+  // Writes the next free polarview_NNNN.png in the current directory; returns its path (empty and
+  // a notice on failure).
+  std::string saveScreenshot();
+  // Points every view's camera (or the shared one) at the model's bounding box.
+  void frameModel();
+
+  ViewerState& state() { return state_; }
+  const ViewerState& state() const { return state_; }
+  GLFWwindow* window() const { return window_; }
+  // Bounding box of the current model's control points.
+  glm::dvec3 modelMin() const { return modelMin_; }
+  glm::dvec3 modelMax() const { return modelMax_; }
+  // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
+  const BuiltSurface* shownSurface(int v) const { return views_[size_t(v)].shown.get(); }
+  uint64_t modelGeneration() const { return model_.generation; }
+
+ private:
+  struct ViewRuntime {
+    std::unique_ptr<PatchRenderer> renderer;
+    std::shared_ptr<const BuiltSurface> shown;
+    SurfaceJob job;
+    std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
+  };
+
+  static void onDrop(GLFWwindow* window, int count, const char** paths);
+  void processRequests();
+  void updateSurfaces();
+  void show(int v, std::shared_ptr<const BuiltSurface> surface);
+  void updateColourRange();
+  void drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
+  void resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
+  void rememberRecent(const std::string& path);
+  void loadRecent();
+  SurfaceKey wantedKey(int v) const;
+
+  ViewerOptions options_;
+  ViewerState state_;
+  ViewerInput input_;
+  GLFWwindow* window_ = nullptr;
+  bool imguiReady_ = false;
+  bool framedOnce_ = false;
+  int framesDrawn_ = 0;
+  std::shared_ptr<ShaderLibrary> shaders_;
+  std::array<ViewRuntime, kMaxViews> views_;
+  Model model_;
+  glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
+  uint64_t colourRangeSignature_ = 0;
+};
+
+}  // namespace polarview

@@ -1,0 +1,381 @@
+// `polarview` / `polarview view` and `polarview render`: argument parsing around ViewerApp.
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/viewer_app.h"
+
+namespace polarview {
+namespace {
+
+// [SECTION] Shared option parsing
+
+// A command-line mistake: printed with the usage, exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* kRenderUsage =
+    "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u]] [--level L] "
+    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R] [--camera JSON] "
+    "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis] [--supersample 1|2|4] [--transparent] "
+    "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
+const char* kViewUsage =
+    "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
+    "[--frames N [--stats]] [--hidden]\n";
+
+// Walks the argument list; values of options are taken with value().
+class ArgCursor {
+ public:
+  explicit ArgCursor(const std::vector<std::string>& args) : args_(args) {}
+  bool done() const { return i_ >= args_.size(); }
+  const std::string& next() { return args_[i_++]; }
+  const std::string& value(const std::string& option) {
+    if (done()) throw UsageError(option + " needs a value");
+    return next();
+  }
+
+ private:
+  const std::vector<std::string>& args_;
+  size_t i_ = 0;
+};
+
+int parseInt(const std::string& text, const std::string& option, int lo, int hi) {
+  size_t used = 0;
+  int value = 0;
+  try {
+    value = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || value < lo || value > hi) {
+    throw UsageError(option + " expects an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + text + "'");
+  }
+  return value;
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  size_t x = text.find('x');
+  if (x == std::string::npos) throw UsageError("--size expects WxH, got '" + text + "'");
+  return {parseInt(text.substr(0, x), "--size width", 16, 8192), parseInt(text.substr(x + 1), "--size height", 16, 8192)};
+}
+
+std::vector<SchemeChoice> parseSchemes(const std::string& text) {
+  std::vector<SchemeChoice> schemes;
+  std::stringstream list(text);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    std::optional<SchemeChoice> scheme = parseSchemeChoice(name);
+    if (!scheme) throw UsageError("unknown scheme '" + name + "' (cc, c2ps, c2ps-u, rts, bps)");
+    schemes.push_back(*scheme);
+  }
+  if (schemes.empty() || int(schemes.size()) > kMaxViews) throw UsageError("--scheme takes 1 to 4 schemes");
+  return schemes;
+}
+
+ShadingParams::Mode parseShade(const std::string& text) {
+  std::optional<ShadingParams::Mode> mode = parseShadeMode(text);
+  if (!mode) throw UsageError("unknown --shade '" + text + "' (gaussian, mean, highlight, reflection, shaded)");
+  return *mode;
+}
+
+// Puts one view per scheme, all at `level`.
+void setViews(ViewerState& state, const std::vector<SchemeChoice>& schemes, int level) {
+  state.viewCount = int(schemes.size());
+  for (size_t v = 0; v < schemes.size(); ++v) {
+    state.views[v].scheme = schemes[v];
+    state.views[v].level = level;
+  }
+}
+
+// Prints the first refusal or refinement error of the visible views (a view that does not show
+// what was asked for); true if there was one.
+bool reportViewErrors(const ViewerApp& app) {
+  const ViewerState& state = app.state();
+  for (int v = 0; v < state.viewCount; ++v) {
+    const BuiltSurface* shown = app.shownSurface(v);
+    const ViewSettings& wanted = state.views[size_t(v)];
+    bool showsWanted = shown && shown->key.model == app.modelGeneration() && shown->key.scheme == wanted.scheme &&
+                       shown->key.level == wanted.level;
+    if (!showsWanted || !state.status[size_t(v)].message.empty()) {
+      std::string message = state.status[size_t(v)].message;
+      std::cerr << "polarview: " << (message.empty() ? "view " + std::to_string(v + 1) + " could not be built" : message) << "\n";
+      return true;
+    }
+  }
+  return false;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// {"frames":N,"views":k,"schemes":[...],"level":L,"size":[w,h],"patches":[...],"median_ms":...}
+std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& frameMs, int width, int height) {
+  const ViewerState& state = app.state();
+  std::ostringstream json;
+  json << "{\"frames\":" << frameMs.size() << ",\"views\":" << state.viewCount << ",\"schemes\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(state.views[size_t(v)].scheme) << '"';
+  json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "],\"patches\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].patchCount;
+  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\"";
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", median(frameMs),
+                frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end()),
+                frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end()));
+  json << numbers;
+  return json.str();
+}
+
+// [SECTION] render
+
+struct RenderRequest {
+  std::string input, output;
+  std::vector<SchemeChoice> schemes{SchemeChoice::C2PS};
+  int level = 3;
+  ShadingParams::Mode shade = ShadingParams::Mode::Gaussian;
+  std::optional<ShadingParams::ColorMap> colormap;
+  int width = 1200, height = 800, supersample = 1;
+  std::optional<float> range;
+  std::string cameraJson;
+  std::optional<ViewPreset> preset;
+  bool transparent = false, controlNet = false, boundaries = false, wireframe = false, poles = true;
+  int timeFrames = 0;
+};
+
+RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
+  RenderRequest r;
+  ArgCursor cursor(args);
+  while (!cursor.done()) {
+    const std::string& arg = cursor.next();
+    if (arg == "-o" || arg == "--output") r.output = cursor.value(arg);
+    else if (arg == "--scheme" || arg == "--schemes") r.schemes = parseSchemes(cursor.value(arg));
+    else if (arg == "--level") r.level = parseInt(cursor.value(arg), arg, 0, kMaxLevel);
+    else if (arg == "--shade") r.shade = parseShade(cursor.value(arg));
+    else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
+    else if (arg == "--camera") r.cameraJson = cursor.value(arg);
+    else if (arg == "--supersample") r.supersample = parseInt(cursor.value(arg), arg, 1, 4);
+    else if (arg == "--transparent") r.transparent = true;
+    else if (arg == "--net") r.controlNet = true;
+    else if (arg == "--boundaries") r.boundaries = true;
+    else if (arg == "--wireframe") r.wireframe = true;
+    else if (arg == "--no-poles") r.poles = false;
+    else if (arg == "--time") r.timeFrames = parseInt(cursor.value(arg), arg, 1, 10000);
+    else if (arg == "--range") {
+      const std::string& text = cursor.value(arg);
+      char* end = nullptr;
+      float value = std::strtof(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(value > 0.0f) || !std::isfinite(value)) {
+        throw UsageError("--range expects a positive number, got '" + text + "'");
+      }
+      r.range = value;
+    } else if (arg == "--preset") {
+      const std::string& name = cursor.value(arg);
+      for (ViewPreset p : {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso}) {
+        if (name == viewPresetName(p)) r.preset = p;
+      }
+      if (!r.preset) throw UsageError("unknown --preset '" + name + "' (front, top, side, iso)");
+    } else if (arg == "--colormap") {
+      const std::string& name = cursor.value(arg);
+      if (name == "paper") r.colormap = ShadingParams::ColorMap::Paper;
+      else if (name == "coolwarm") r.colormap = ShadingParams::ColorMap::CoolWarm;
+      else if (name == "viridis") r.colormap = ShadingParams::ColorMap::Viridis;
+      else throw UsageError("unknown --colormap '" + name + "' (paper, coolwarm, viridis)");
+    } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
+      throw UsageError("unknown option '" + arg + "'");
+    } else if (r.input.empty()) {
+      r.input = arg;
+    } else {
+      throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
+    }
+  }
+  if (r.output.empty() && r.timeFrames == 0) throw UsageError("missing -o OUT.png");
+  return r;
+}
+
+int renderWithApp(const RenderRequest& r) {
+  ViewerOptions options;
+  options.width = std::min(r.width, 1920);
+  options.height = std::min(r.height, 1080);
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  ViewerApp app(options);
+  ViewerState& state = app.state();
+
+  // The model first: a bad file fails before any window or output exists.
+  if (r.input.empty()) {
+    app.loadDefaultModel();
+  } else if (!app.loadFile(r.input)) {
+    std::cerr << "polarview: " << state.file.error << "\n";
+    return 1;
+  }
+  std::string error;
+  if (!app.init(&error)) {
+    std::cerr << "polarview: " << error << "\n";
+    return 1;
+  }
+
+  // Views, shading, colour range and camera as asked.
+  setViews(state, r.schemes, r.level);
+  state.linkCameras = true;
+  state.showPanels = false;
+  state.shading.mode = r.shade;
+  if (r.colormap) state.shading.colormap = *r.colormap;
+  if (r.range) {
+    state.colour.automatic = false;
+    state.colour.typedRange = *r.range;
+  }
+  state.display.controlNet = r.controlNet;
+  state.display.patchBoundaries = r.boundaries;
+  state.display.wireframe = r.wireframe;
+  state.display.poleMarkers = r.poles;
+  app.frameModel();
+  if (r.preset) state.sharedCamera.applyPreset(*r.preset);
+  if (!r.cameraJson.empty()) {
+    std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
+    if (!camera) {
+      std::cerr << "polarview: render: --camera: " << error << "\n" << kRenderUsage;
+      return 2;
+    }
+    state.sharedCamera = *camera;
+  }
+
+  // Refine every view (a refused level or a refinement error is bad input: exit 1, no file).
+  app.runFrame();
+  app.waitUntilIdle();
+  if (reportViewErrors(app)) return 1;
+
+  RgbaImage image;
+  std::vector<double> frameMs;
+  int frames = std::max(r.timeFrames, 1);
+  try {
+    for (int f = 0; f < frames; ++f) {
+      auto start = std::chrono::steady_clock::now();
+      image = app.renderImage(r.width, r.height, r.supersample, r.transparent);
+      frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    if (!r.output.empty()) writePngAtomic(r.output, image);
+  } catch (const std::exception& e) {
+    std::cerr << "polarview: " << e.what() << "\n";
+    return 1;
+  }
+  if (r.timeFrames > 0) std::cout << frameStatsJson(app, frameMs, r.width, r.height) << "\n";
+  else std::cout << r.output << "\n";
+  return 0;
+}
+
+// [SECTION] view
+
+struct ViewRequest {
+  std::string input;
+  std::vector<SchemeChoice> schemes;
+  std::optional<int> level;
+  std::optional<ShadingParams::Mode> shade;
+  int width = 1600, height = 900;
+  int frames = 0;
+  bool stats = false, hidden = false;
+};
+
+ViewRequest parseViewArgs(const std::vector<std::string>& args) {
+  ViewRequest r;
+  ArgCursor cursor(args);
+  while (!cursor.done()) {
+    const std::string& arg = cursor.next();
+    if (arg == "--scheme" || arg == "--schemes") r.schemes = parseSchemes(cursor.value(arg));
+    else if (arg == "--level") r.level = parseInt(cursor.value(arg), arg, 0, kMaxLevel);
+    else if (arg == "--shade") r.shade = parseShade(cursor.value(arg));
+    else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
+    else if (arg == "--frames") r.frames = parseInt(cursor.value(arg), arg, 1, 100000);
+    else if (arg == "--stats") r.stats = true;
+    else if (arg == "--hidden") r.hidden = true;
+    else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "'");
+    else if (r.input.empty()) r.input = arg;
+    else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
+  }
+  return r;
+}
+
+int viewWithApp(const ViewRequest& r) {
+  ViewerOptions options;
+  options.width = r.width;
+  options.height = r.height;
+  options.hidden = r.hidden;
+  options.persistRecent = r.frames == 0;
+  options.vsync = r.frames == 0;
+  ViewerApp app(options);
+  ViewerState& state = app.state();
+  if (r.input.empty()) {
+    app.loadDefaultModel();
+  } else if (!app.loadFile(r.input)) {
+    std::cerr << "polarview: " << state.file.error << "\n";
+    return 1;
+  }
+  std::string error;
+  if (!app.init(&error)) {
+    std::cerr << "polarview: " << error << "\n";
+    return 1;
+  }
+  if (!r.schemes.empty()) setViews(state, r.schemes, r.level.value_or(state.views[0].level));
+  else if (r.level) requestLevel(state, *r.level);
+  if (r.shade) state.shading.mode = *r.shade;
+
+  if (r.frames == 0) {
+    while (!app.shouldClose()) app.runFrame();
+    return 0;
+  }
+
+  // Benchmark: refine first, then time N frames (panels included, as a user sees them).
+  app.runFrame();
+  app.waitUntilIdle();
+  std::vector<double> frameMs;
+  for (int f = 0; f < r.frames && !app.shouldClose(); ++f) {
+    app.runFrame();
+    frameMs.push_back(state.frameMs);
+  }
+  if (r.stats) std::cout << frameStatsJson(app, frameMs, r.width, r.height) << "\n";
+  return 0;
+}
+
+template <class Request, class Parse, class Run>
+int guardedCommand(const std::vector<std::string>& args, Parse parse, Run run, const char* name, const char* usage) {
+  int code = 0;
+  try {
+    Request request = parse(args);
+    code = run(request);
+  } catch (const UsageError& e) {
+    std::cerr << "polarview: " << name << ": " << e.what() << "\n" << usage;
+    code = 2;
+  } catch (const std::exception& e) {
+    std::cerr << "polarview: " << e.what() << "\n";
+    code = 1;
+  }
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace
+
+int runViewer(const std::string& objPathOrEmpty) {
+  std::vector<std::string> args;
+  if (!objPathOrEmpty.empty()) args.push_back(objPathOrEmpty);
+  return runViewerCommand(args);
+}
+
+int runViewerCommand(const std::vector<std::string>& args) {
+  return guardedCommand<ViewRequest>(args, parseViewArgs, viewWithApp, "view", kViewUsage);
+}
+
+int runRenderCommand(const std::vector<std::string>& args) {
+  return guardedCommand<RenderRequest>(args, parseRenderArgs, renderWithApp, "render", kRenderUsage);
+}
+
+}  // namespace polarview

@@ -1,0 +1,100 @@
+#include "app/viewer_surface.h"
+
+#include <algorithm>
+#include <map>
+
+#include "core/mesh/input_error.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/refiner.h"
+#include "render/patch_renderer.h"
+
+namespace polarview {
+namespace {
+
+// Samples per patch (per direction) for the colour range: enough for a robust percentile, capped
+// at about 200k evaluations so a level-6 model still builds in well under a second.
+int curvatureSamplesPerPatch(size_t patchCount) {
+  if (patchCount == 0) return 1;
+  double perPatch = 200000.0 / double(patchCount);
+  return std::clamp(int(std::sqrt(perPatch)), 1, 4);
+}
+
+// Pole markers: the cap's p0 is the exact limit of the pole (paper (32)); schemes without caps
+// (Catmull-Clark) mark the pole vertices of the finest control mesh.
+std::vector<Point> polePositions(const std::vector<Patch>& patches, const RefinedLevel& finest) {
+  std::map<int32_t, Point> capPoles;
+  for (const Patch& patch : patches) {
+    if (patch.kind == PatchKind::PoleCap) capPoles.emplace(patch.pole, patch.cp[0]);
+  }
+  std::vector<Point> poles;
+  for (const auto& [index, position] : capPoles) poles.push_back(position);
+  if (poles.empty()) {
+    for (const PolarConfig& config : finest.poles) poles.push_back(finest.mesh.points[size_t(config.pole)]);
+  }
+  return poles;
+}
+
+}  // namespace
+
+std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {
+  size_t faces = estimateFaceCount(*model.mesh, refineOptionsFor(key.scheme, key.level));
+  if (faces <= faceBudget) return {};
+  return "level " + std::to_string(key.level) + " refused: " + schemeChoiceLabel(key.scheme) + " would make about " +
+         std::to_string(faces) + " faces, over the budget of " + std::to_string(faceBudget);
+}
+
+std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget) {
+  auto start = std::chrono::steady_clock::now();
+  auto surface = std::make_shared<BuiltSurface>();
+  surface->key = key;
+
+  // Refine and extract the limit patches.
+  Refinement refinement(*model.mesh, refineOptionsFor(key.scheme, key.level), model.name, faceBudget);
+  PatchSet patchSet = extractPatches(refinement);
+  surface->patches = std::move(patchSet.patches);
+  surface->controlMesh = refinement.finest().mesh;
+  surface->poles = polePositions(surface->patches, refinement.finest());
+  surface->refineMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  // Statistics and curvature samples (the shared automatic colour range is taken over all views).
+  for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
+  int samples = curvatureSamplesPerPatch(surface->patches.size());
+  surface->gaussianSamples = sampleCurvature(surface->patches, ShadingParams::Mode::Gaussian, samples);
+  surface->meanSamples = sampleCurvature(surface->patches, ShadingParams::Mode::Mean, samples);
+  return surface;
+}
+
+SurfaceJob::~SurfaceJob() {
+  if (future_.valid()) future_.wait();
+}
+
+double SurfaceJob::runningSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+}
+
+void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget) {
+  if (running()) return;
+  key_ = key;
+  started_ = std::chrono::steady_clock::now();
+  future_ = std::async(std::launch::async, [model, key, faceBudget] { return buildSurface(model, key, faceBudget); });
+}
+
+std::optional<SurfaceJob::Outcome> SurfaceJob::poll() {
+  if (!future_.valid() || future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+  return wait();
+}
+
+std::optional<SurfaceJob::Outcome> SurfaceJob::wait() {
+  if (!future_.valid()) return std::nullopt;
+  Outcome outcome;
+  outcome.key = key_;
+  try {
+    outcome.surface = future_.get();
+  } catch (const std::exception& e) {
+    // InputError (budget, unsupported mesh) and bad_alloc alike: the view keeps what it shows.
+    outcome.error = e.what();
+  }
+  return outcome;
+}
+
+}  // namespace polarview

@@ -1,0 +1,84 @@
+// Building what a view shows, off the GL thread: refine the model with one scheme to one level,
+// extract the limit patches, count them and sample their curvature for the shared colour range.
+// SurfaceJobs keeps one job per view in flight (std::async) so the window never waits on it.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/mesh/poly_mesh.h"
+#include "core/spline/patch.h"
+#include "ui/viewer_state.h"
+
+namespace polarview {
+
+// Faces the finest level may have; above it a level is refused with a message (about 0.5 KB of
+// patch and mesh data per face on the CPU, a fifth of it on the GPU).
+constexpr size_t kDefaultFaceBudget = size_t(1) << 21;
+
+// What a surface is a function of.
+struct SurfaceKey {
+  uint64_t model = 0;  // model generation (bumped on every load)
+  SchemeChoice scheme = SchemeChoice::C2PS;
+  int level = 0;
+  bool operator==(const SurfaceKey& o) const { return model == o.model && scheme == o.scheme && level == o.level; }
+  bool operator!=(const SurfaceKey& o) const { return !(*this == o); }
+};
+
+struct BuiltSurface {
+  SurfaceKey key;
+  std::vector<Patch> patches;
+  PolyMesh controlMesh;              // the refined control mesh of `level`
+  std::vector<Point> poles;          // limit positions of the poles (markers)
+  std::array<int, kPatchKindCount> patchesPerKind{};
+  std::vector<float> gaussianSamples, meanSamples;  // for the automatic colour range
+  double refineMs = 0.0;             // refinement + patch extraction
+};
+
+// The model every view refines: the mesh and where it came from.
+struct Model {
+  std::shared_ptr<const PolyMesh> mesh;
+  std::string name;        // file path or "default: ..."
+  uint64_t generation = 0;
+};
+
+// Refines and extracts (worker-thread safe: touches no shared state). Throws InputError when the
+// level is over `faceBudget` or the mesh cannot be refined. [O(output)]
+std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);
+
+// Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
+std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
+
+// One view's background job: at most one in flight; a newer request waits for it (a std::future
+// from std::async blocks on destruction, so jobs are never dropped, only their results).
+class SurfaceJob {
+ public:
+  ~SurfaceJob();
+  bool running() const { return future_.valid(); }
+  const SurfaceKey& runningKey() const { return key_; }
+  double runningSeconds() const;
+  // Starts building `key` (only when nothing is running).
+  void start(const Model& model, const SurfaceKey& key, size_t faceBudget);
+  // The finished result, or nullopt while running / idle. On failure: the error message.
+  struct Outcome {
+    std::shared_ptr<const BuiltSurface> surface;
+    std::string error;
+    SurfaceKey key;
+  };
+  std::optional<Outcome> poll();
+  // Blocks until the running job (if any) has finished and returns its outcome.
+  std::optional<Outcome> wait();
+
+ private:
+  std::future<std::shared_ptr<const BuiltSurface>> future_;
+  SurfaceKey key_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+}  // namespace polarview
