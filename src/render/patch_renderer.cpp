@@ -308,6 +308,21 @@ void PatchRenderer::setPoleMarkers(const std::vector<Point>& poles) {
 
 // [SECTION] Drawing
 
+glm::mat4 PatchRenderer::modelViewProjection(const ViewParams& view) const {
+  // Model matrix = translation to the centre, composed in double to keep precision.
+  const glm::dmat4 model = glm::translate(glm::dmat4(1.0), center_);
+  return glm::mat4(glm::dmat4(view.proj) * glm::dmat4(view.view) * model);
+}
+
+void PatchRenderer::setTessellationUniforms(unsigned program, const ViewParams& view,
+                                            const ShadingParams& shading) const {
+  setUniform(program, "u_modelViewProjection", modelViewProjection(view));
+  setUniform(program, "u_viewportSize", glm::vec2(view.viewport.z, view.viewport.w));
+  setUniform(program, "u_tessPixels", std::max(shading.tessPixels, 0.5f));
+  setUniform(program, "u_maxTessLevel", static_cast<float>(std::clamp(shading.maxTessLevel, 1, 64)));
+  setUniform(program, "u_fixedTessLevel", static_cast<float>(std::min(shading.fixedTessLevel, 64)));
+}
+
 void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
                          const DisplayFlags& flags) {
   Impl& g = *impl_;
@@ -317,11 +332,8 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glDisable(GL_CULL_FACE);  // two-sided surfaces
   glDisable(GL_BLEND);
 
-  // Model matrix = translation to the centre, composed in double to keep precision.
-  const glm::dmat4 model = glm::translate(glm::dmat4(1.0), center_);
-  const glm::mat4 mvp(glm::dmat4(view.proj) * glm::dmat4(view.view) * model);
+  const glm::mat4 mvp = modelViewProjection(view);
   const glm::vec3 eye(glm::dvec3(view.eye) - center_);
-  const glm::vec2 viewportSize(view.viewport.z, view.viewport.w);
 
   // GPU time of the previous use of this query slot (non-blocking when available).
   const int slot = g.timerIndex;
@@ -347,11 +359,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     const glm::vec3 keyView = glm::normalize(glm::vec3(-0.35f, 0.55f, 0.76f));
     const glm::vec3 keyWorld = glm::normalize(glm::transpose(glm::mat3(view.view)) * keyView);
 
-    setUniform(program, "u_modelViewProjection", mvp);
-    setUniform(program, "u_viewportSize", viewportSize);
-    setUniform(program, "u_tessPixels", std::max(shading.tessPixels, 0.5f));
-    setUniform(program, "u_maxTessLevel", static_cast<float>(std::clamp(shading.maxTessLevel, 1, 64)));
-    setUniform(program, "u_fixedTessLevel", static_cast<float>(std::min(shading.fixedTessLevel, 64)));
+    setTessellationUniforms(program, view, shading);
     setUniform(program, "u_mode", static_cast<int>(shading.mode));
     setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
     setUniform(program, "u_range", shading.range);
@@ -428,16 +436,21 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
 // [SECTION] Probe (transform feedback)
 
 std::vector<SurfaceProbe> PatchRenderer::probeSurface(int tessLevel) {
+  ShadingParams shading;
+  shading.fixedTessLevel = std::clamp(tessLevel, 1, 64);
+  return probeSurface(ViewParams{}, shading);
+}
+
+std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
+                                                      const ShadingParams& shading) {
   Impl& g = *impl_;
   std::vector<SurfaceProbe> samples;
   if (patchCount_ == 0) return samples;
-  tessLevel = std::clamp(tessLevel, 1, 64);
   const GLuint program = g.shaders->program(kProbeProgram);
-  setUniform(program, "u_modelViewProjection", glm::mat4(1.0f));
-  setUniform(program, "u_viewportSize", glm::vec2(1.0f));
-  setUniform(program, "u_tessPixels", 1.0f);
-  setUniform(program, "u_maxTessLevel", 64.0f);
-  setUniform(program, "u_fixedTessLevel", static_cast<float>(tessLevel));
+  setTessellationUniforms(program, view, shading);
+  // The buffer must hold the most vertices any patch can produce.
+  const int tessLevel = shading.fixedTessLevel > 0 ? std::min(shading.fixedTessLevel, 64)
+                                                   : std::clamp(shading.maxTessLevel, 1, 64);
 
   // At most (level+1)^2 points per patch; 8 floats each.
   const size_t capacity = size_t(patchCount_) * (tessLevel + 1) * (tessLevel + 1);

@@ -116,6 +116,9 @@ class PatchRenderer {
   // Runs the tessellation evaluation shader at a fixed level (every (i/level, j/level) of every
   // patch; caps have one vertex at the pole) and reads position, K, H back by transform feedback.
   std::vector<SurfaceProbe> probeSurface(int tessLevel);
+  // The same with the tessellation draw() would use for this view and shading (adaptive levels
+  // unless shading.fixedTessLevel > 0): exposes the levels, e.g. to check shared edges match.
+  std::vector<SurfaceProbe> probeSurface(const ViewParams& view, const ShadingParams& shading);
 
   // Bounding box of the uploaded patches (their control points / cap positions), world coords.
   glm::dvec3 boundsMin() const { return boundsMin_; }
@@ -127,6 +130,9 @@ class PatchRenderer {
 
  private:
   struct Impl;
+  glm::mat4 modelViewProjection(const ViewParams& view) const;
+  void setTessellationUniforms(unsigned program, const ViewParams& view,
+                               const ShadingParams& shading) const;
   std::unique_ptr<Impl> impl_;
   glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0}, center_{0.0};
   double radius_ = 1.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <set>
 
 #include "render_test_support.h"
 
@@ -155,6 +156,71 @@ TEST_CASE("gpu evaluator: the pole of a Taylor cap has exactly the expansion's K
       }
       CHECK(poleSamples >= 2 * n);  // both ends of the degenerate edge of every sector
     }
+  }
+}
+
+}  // namespace
+}  // namespace polarview
+
+namespace polarview {
+namespace {
+
+// Parameters along the edge where patch `a`'s side meets its neighbour (sorted, rounded to 1e-4).
+std::vector<long> edgeParameters(const std::vector<SurfaceProbe>& probes, int patch, bool uEdge,
+                                 float edgeValue) {
+  std::vector<long> params;
+  for (const SurfaceProbe& p : probes) {
+    if (p.patch != patch) continue;
+    const float across = uEdge ? p.u : p.v, along = uEdge ? p.v : p.u;
+    if (across == edgeValue) params.push_back(std::lround(along * 1e4));
+  }
+  std::sort(params.begin(), params.end());
+  return params;
+}
+
+TEST_CASE("tessellation: neighbouring patches get equal levels on their shared edge (no cracks)") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> bump(-0.5, 0.5);
+  std::vector<double> heights(64 * 64);
+  for (double& h : heights) h = bump(rng);
+  const int nx = 8, ny = 8;
+  // A wavy graph seen in steep perspective, so edge lengths (and levels) vary a lot.
+  const auto patches = test::graphPatches(
+      [&](double x, double y) { return heights[size_t(std::lround(x + 20) * 64 + std::lround(y + 20))]; },
+      nx, ny, -4.0, -4.0, 1.0);
+  renderer->setPatches(patches);
+  ViewParams view;
+  view.eye = glm::vec3(-1.0f, -9.0f, 2.5f);
+  view.view = glm::lookAt(view.eye, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+  view.proj = glm::perspective(0.9f, 1.5f, 0.1f, 100.0f);
+  view.viewport = {0, 0, 900, 600};
+  for (float pixels : {3.0f, 7.0f, 20.0f}) {
+    CAPTURE(pixels);
+    ShadingParams shading;
+    shading.tessPixels = pixels;
+    const auto probes = renderer->probeSurface(view, shading);
+    std::set<size_t> distinctCounts;
+    int sharedEdges = 0;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int k = j * nx + i;
+        if (i + 1 < nx) {  // right neighbour: our u = 1 is its u = 0
+          const auto mine = edgeParameters(probes, k, true, 1.0f);
+          CHECK(mine == edgeParameters(probes, k + 1, true, 0.0f));
+          distinctCounts.insert(mine.size());
+          ++sharedEdges;
+        }
+        if (j + 1 < ny) {  // upper neighbour: our v = 1 is its v = 0
+          const auto mine = edgeParameters(probes, k, false, 1.0f);
+          CHECK(mine == edgeParameters(probes, k + nx, false, 0.0f));
+          distinctCounts.insert(mine.size());
+          ++sharedEdges;
+        }
+      }
+    CHECK(sharedEdges == 2 * nx * (ny - 1));
+    CHECK(distinctCounts.size() >= 3);  // the levels really are adaptive
   }
 }
 
