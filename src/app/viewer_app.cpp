@@ -337,14 +337,19 @@ void ViewerApp::updateColourRange() {
   colourRangeSignature_ = signature;
 
   // One range over the samples of every visible view, so equal colours mean equal values.
-  std::vector<float> values;
+  // Each view counts by area: weights are normalised per view so a finer level does not outvote.
+  std::vector<float> values, weights;
   for (int v = 0; v < state_.viewCount; ++v) {
     if (!views_[size_t(v)].shown) continue;
     const BuiltSurface& s = *views_[size_t(v)].shown;
     const std::vector<float>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussianSamples : s.meanSamples;
+    double area = 0.0;
+    for (float a : s.sampleAreas) area += a;
+    if (!(area > 0.0)) continue;
     values.insert(values.end(), samples.begin(), samples.end());
+    for (float a : s.sampleAreas) weights.push_back(float(a / area));
   }
-  if (!values.empty()) state_.colour.autoRange = suggestCurvatureRange(std::move(values), state_.colour.quantile);
+  if (!values.empty()) state_.colour.autoRange = weightedAbsQuantile(values, weights, state_.colour.quantile);
 }
 
 bool ViewerApp::busy() const {

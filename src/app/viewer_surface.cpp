@@ -1,12 +1,14 @@
 #include "app/viewer_surface.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+
+#include <glm/geometric.hpp>
 
 #include "core/mesh/input_error.h"
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/refiner.h"
-#include "render/patch_renderer.h"
 
 namespace polarview {
 namespace {
@@ -34,7 +36,46 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
   return poles;
 }
 
+// K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
+void sampleCurvatures(BuiltSurface& surface, int s) {
+  size_t count = surface.patches.size() * size_t(s) * size_t(s);
+  surface.gaussianSamples.reserve(count);
+  surface.meanSamples.reserve(count);
+  surface.sampleAreas.reserve(count);
+  for (const Patch& patch : surface.patches) {
+    for (int j = 0; j < s; ++j) {
+      for (int i = 0; i < s; ++i) {
+        SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
+        double area = glm::length(glm::cross(p.du, p.dv)) / double(s * s);
+        if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
+        surface.gaussianSamples.push_back(float(p.gaussian));
+        surface.meanSamples.push_back(float(p.mean));
+        surface.sampleAreas.push_back(float(area));
+      }
+    }
+  }
+}
+
 }  // namespace
+
+float weightedAbsQuantile(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
+  std::vector<std::pair<float, float>> byMagnitude;
+  byMagnitude.reserve(values.size());
+  double total = 0.0;
+  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0f)) continue;
+    byMagnitude.emplace_back(std::abs(values[i]), weights[i]);
+    total += weights[i];
+  }
+  if (!(total > 0.0)) return 1.0f;
+  std::sort(byMagnitude.begin(), byMagnitude.end());
+  double needed = std::clamp(double(quantile), 0.0, 1.0) * total, sum = 0.0;
+  for (const auto& [magnitude, weight] : byMagnitude) {
+    sum += weight;
+    if (sum >= needed) return magnitude > 0.0f ? magnitude : 1.0f;
+  }
+  return byMagnitude.back().first > 0.0f ? byMagnitude.back().first : 1.0f;
+}
 
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {
   size_t faces = estimateFaceCount(*model.mesh, refineOptionsFor(key.scheme, key.level));
@@ -58,9 +99,7 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).
   for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
-  int samples = curvatureSamplesPerPatch(surface->patches.size());
-  surface->gaussianSamples = sampleCurvature(surface->patches, ShadingParams::Mode::Gaussian, samples);
-  surface->meanSamples = sampleCurvature(surface->patches, ShadingParams::Mode::Mean, samples);
+  sampleCurvatures(*surface, curvatureSamplesPerPatch(surface->patches.size()));
   return surface;
 }
 

@@ -37,7 +37,9 @@ struct BuiltSurface {
   PolyMesh controlMesh;              // the refined control mesh of `level`
   std::vector<Point> poles;          // limit positions of the poles (markers)
   std::array<int, kPatchKindCount> patchesPerKind{};
-  std::vector<float> gaussianSamples, meanSamples;  // for the automatic colour range
+  // Curvature samples for the automatic colour range, each with the surface area it stands for
+  // (small patches crowd around extraordinary points; unweighted they would dominate the range).
+  std::vector<float> gaussianSamples, meanSamples, sampleAreas;
   double refineMs = 0.0;             // refinement + patch extraction
 };
 
@@ -51,6 +53,10 @@ struct Model {
 // Refines and extracts (worker-thread safe: touches no shared state). Throws InputError when the
 // level is over `faceBudget` or the mesh cannot be refined. [O(output)]
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);
+
+// The smallest r with |value| <= r on at least `quantile` of the total weight (a weighted
+// percentile of |value|); 1 when there is no weight. [O(n log n)]
+float weightedAbsQuantile(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
 
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);

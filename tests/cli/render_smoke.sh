@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# `polarview render` end to end: a generated globe renders to a PNG of the requested size (checked in
+# the PNG header), several schemes side by side and supersampling keep that size, and bad input
+# (malformed OBJ, missing file, bad options) fails with one line on stderr and writes no file.
+# Usage: bash render_smoke.sh <polarview-exe> <repo>. Needs an X display: re-runs itself under Xvfb.
+set -u
+exe="$1"
+if [ -z "${DISPLAY:-}" ]; then
+  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
+fi
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# A globe: poles of valence n at z = +-1 and `links` latitude rings, counter-clockwise from outside.
+write_globe() {  # n links file
+  awk -v n="$1" -v links="$2" 'BEGIN {
+    pi = 3.14159265358979
+    print "v 0 0 1"
+    for (k = 1; k <= links; ++k) {
+      theta = pi * k / (links + 1)
+      for (j = 0; j < n; ++j) printf "v %.9f %.9f %.9f\n", sin(theta) * cos(2 * pi * j / n), sin(theta) * sin(2 * pi * j / n), cos(theta)
+    }
+    print "v 0 0 -1"
+    bottom = 2 + links * n
+    for (j = 0; j < n; ++j) printf "f 1 %d %d\n", 2 + j, 2 + (j + 1) % n
+    for (k = 1; k < links; ++k)
+      for (j = 0; j < n; ++j) {
+        a = 2 + (k - 1) * n + j; b = 2 + (k - 1) * n + (j + 1) % n
+        printf "f %d %d %d %d\n", a, a + n, b + n, b
+      }
+    for (j = 0; j < n; ++j) printf "f %d %d %d\n", bottom, 2 + (links - 1) * n + (j + 1) % n, 2 + (links - 1) * n + j
+  }' > "$3"
+}
+
+# Width and height from the IHDR chunk (bytes 16..23, big-endian), after checking the signature.
+png_size() {
+  local sig
+  sig="$(od -An -tx1 -N8 "$1" | tr -d ' \n')"
+  [ "$sig" = "89504e470d0a1a0a" ] || { echo "not-a-png"; return; }
+  od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%dx%d\n", $1*16777216 + $2*65536 + $3*256 + $4, $5*16777216 + $6*65536 + $7*256 + $8 }'
+}
+
+write_globe 8 5 "$work/globe.obj"
+
+# 1. One view, Gaussian curvature, exact size.
+"$exe" render "$work/globe.obj" -o "$work/one.png" --scheme c2ps --level 2 --shade gaussian --size 320x200 > "$work/out.txt" 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 0 ] || fail "render exited $rc: $(cat "$work/err.txt")"
+[ "$(png_size "$work/one.png")" = "320x200" ] || fail "one.png is $(png_size "$work/one.png"), expected 320x200"
+
+# 2. Four schemes side by side, 2x supersampled, mean curvature with a typed range and a camera.
+"$exe" render "$work/globe.obj" -o "$work/four.png" --scheme c2ps,rts,bps,cc --level 1 --shade mean --size 480x160 \
+  --supersample 2 --range 2 --camera '{"yaw":10,"pitch":30}' > /dev/null 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 0 ] || fail "four-view render exited $rc: $(cat "$work/err.txt")"
+[ "$(png_size "$work/four.png")" = "480x160" ] || fail "four.png is $(png_size "$work/four.png"), expected 480x160"
+
+# 3. Highlight lines, transparent background, odd size.
+"$exe" render "$work/globe.obj" -o "$work/hl.png" --shade highlight --transparent --size 257x131 > /dev/null 2> "$work/err.txt"
+[ $? -eq 0 ] || fail "highlight render failed: $(cat "$work/err.txt")"
+[ "$(png_size "$work/hl.png")" = "257x131" ] || fail "hl.png is $(png_size "$work/hl.png"), expected 257x131"
+
+# 4. A malformed OBJ (face index out of range on line 4): exit 1, one line naming FILE:LINE, no PNG.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' > "$work/bad.obj"
+"$exe" render "$work/bad.obj" -o "$work/bad.png" --size 320x200 > /dev/null 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 1 ] || fail "bad.obj: exit $rc, expected 1"
+[ ! -e "$work/bad.png" ] || fail "bad.obj: bad.png was written"
+[ "$(wc -l < "$work/err.txt")" -eq 1 ] || fail "bad.obj: expected one line on stderr, got: $(cat "$work/err.txt")"
+grep -q "^polarview: .*bad.obj:4: " "$work/err.txt" || fail "bad.obj: message lacks 'polarview: FILE:4:': $(cat "$work/err.txt")"
+
+# 5. A missing file: exit 1, no PNG.
+"$exe" render "$work/missing.obj" -o "$work/missing.png" 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 1 ] || fail "missing.obj: exit $rc, expected 1"
+[ ! -e "$work/missing.png" ] || fail "missing.obj: a PNG was written"
+
+# 6. Usage errors: exit 2, no PNG.
+for args in "--size 10" "--scheme xyz" "--level 99" "--camera {bad" "--frobnicate"; do
+  # shellcheck disable=SC2086
+  "$exe" render "$work/globe.obj" -o "$work/usage.png" $args > /dev/null 2>&1
+  rc=$?
+  [ $rc -eq 2 ] || fail "'$args': exit $rc, expected 2"
+  [ ! -e "$work/usage.png" ] || fail "'$args': a PNG was written"
+done
+
+if [ $failures -ne 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "render smoke: all checks passed"
