@@ -134,7 +134,17 @@ PolyMesh cube() {
   return m;
 }
 
-std::vector<PolyMesh> sampleMeshes() { return {cube(), mixedOpenMesh(), closedMixedMesh(), randomGrid(4, 3).mesh}; }
+// Two hexagons stacked on a 3 x 3 point grid: the middle vertex is interior with valence 2.
+PolyMesh stackedHexagons() {
+  PolyMesh m;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.points.emplace_back(i + 0.1 * j * j, j + 0.2 * i * i, 0.3 * i * j + (i == 1 && j == 1 ? 0.5 : 0));
+  m.addFace({0, 1, 2, 5, 4, 3});
+  m.addFace({3, 4, 5, 8, 7, 6});
+  return m;
+}
+
+std::vector<PolyMesh> sampleMeshes() { return {cube(), mixedOpenMesh(), closedMixedMesh(), stackedHexagons(), randomGrid(4, 3).mesh}; }
 
 // L steps of Catmull-Clark.
 PolyMesh refineLevels(PolyMesh m, int levels) {

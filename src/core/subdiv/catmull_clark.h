@@ -37,7 +37,8 @@ PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, st
 
 // Limit positions of the vertices of an all-quad mesh (e.g. any level >= 1): smooth valence k:
 // k/(k+5) v + 4/(k(k+5)) sum of edge ends + 1/(k(k+5)) sum of face diagonals; boundary:
-// 2/3 v + 1/6 (a + b); unused vertices copied. Throws std::invalid_argument when a used vertex
+// 2/3 v + 1/6 (a + b); unused vertices copied. Interior valence 2 gets the same formula, the true
+// limit (OpenSubdiv's Limit returns the vertex itself there; elsewhere it agrees). Throws std::invalid_argument when a used vertex
 // touches a face that is not a quad. [O(corners)]
 std::vector<Point> catmullClarkLimitPoints(const MeshTopology& topo, const PolyMesh& mesh);
 

@@ -1,0 +1,280 @@
+// Catmull-Clark against OpenSubdiv 3.5 as the oracle: same options as OpenSubdiv's own tools
+// (VTX_BOUNDARY_EDGE_ONLY, CREASE_UNIFORM, TRI_SUB_CATMARK), refined uniformly level by level
+// with Far::PrimvarRefinerReal<double>; positions must agree to round-off at every level.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <glm/geometric.hpp>
+
+#include "core/mesh/topology.h"
+#include "core/subdiv/catmull_clark.h"
+
+using namespace polarview;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kLevels = 4;
+
+// The vertex type PrimvarRefiner interpolates (its Clear / AddWithWeight interface).
+struct OsdPoint {
+  Point p{0.0};
+  void Clear(void* = nullptr) { p = Point(0.0); }
+  void AddWithWeight(const OsdPoint& src, double weight) { p += weight * src.p; }
+};
+
+// [SECTION] Test meshes, each generated here
+
+PolyMesh cube() {
+  PolyMesh m;
+  for (int i = 0; i < 8; ++i) m.points.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  m.addFace({0, 2, 3, 1});
+  m.addFace({4, 5, 7, 6});
+  m.addFace({0, 1, 5, 4});
+  m.addFace({2, 6, 7, 3});
+  m.addFace({0, 4, 6, 2});
+  m.addFace({1, 3, 7, 5});
+  return m;
+}
+
+// An nu x nv grid of cells, open or wrapped into a torus, whose cells are randomly made into quads,
+// triangle pairs, 4-triangle fans around a centre vertex, hexagons (two cells merged) or a pentagon
+// plus a triangle (a cell merged with half of its neighbour). `mixed` false keeps all quads.
+PolyMesh cellGrid(int nu, int nv, bool torus, bool mixed, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  PolyMesh m;
+  const int cu = torus ? nu : nu + 1, cv = torus ? nv : nv + 1;
+  auto place = [&](double i, double j) {
+    if (!torus) return Point(i + jitter(rng), j + jitter(rng), 0.5 * std::sin(i) * std::cos(0.7 * j) + jitter(rng));
+    const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv, r = 1 + jitter(rng);
+    return Point((3 + r * std::cos(v)) * std::cos(u), (3 + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+  };
+  for (int j = 0; j < cv; ++j)
+    for (int i = 0; i < cu; ++i) m.points.push_back(place(i, j));
+  auto id = [&](int i, int j) { return Index((j % cv) * cu + (i % cu)); };
+
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      const Index a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      const int kind = mixed ? int(rng() % 5) : 0;
+      const bool roomForTwo = i + 1 < nu;  // merged cells never wrap around
+      if (kind == 1) {
+        m.addFace({a, b, c});
+        m.addFace({a, c, d});
+      } else if (kind == 2) {
+        const Index centre = m.vertexCount();
+        m.points.push_back(place(i + 0.5, j + 0.5));
+        m.addFace({a, b, centre});
+        m.addFace({b, c, centre});
+        m.addFace({c, d, centre});
+        m.addFace({d, a, centre});
+      } else if (kind == 3 && roomForTwo) {
+        m.addFace({a, b, id(i + 2, j), id(i + 2, j + 1), c, d});  // hexagon over two cells
+        ++i;
+      } else if (kind == 4 && roomForTwo) {
+        const Index e = id(i + 2, j), g = id(i + 2, j + 1);
+        m.addFace({a, b, g, c, d});  // pentagon: this cell and half of the next
+        m.addFace({b, e, g});
+        ++i;
+      } else {
+        m.addFace({a, b, c, d});
+      }
+    }
+  }
+  return m;
+}
+
+// A valence-n triangle fan around a pole, ringed by `rings` rings of quads; open at the outer ring
+// or closed by a second pole (a globe).
+PolyMesh poleMesh(int n, int rings, bool closed) {
+  PolyMesh m;
+  m.points.emplace_back(0, 0, 1);
+  for (int r = 1; r <= rings; ++r)
+    for (int j = 0; j < n; ++j) {
+      const double t = (closed ? kPi : 0.5 * kPi) * r / (rings + 1), a = 2 * kPi * j / n;
+      m.points.emplace_back(std::sin(t) * std::cos(a), std::sin(t) * std::sin(a), std::cos(t) + 0.05 * std::cos(3 * a));
+    }
+  auto q = [&](int r, int j) { return Index(1 + (r - 1) * n + (j % n)); };
+  for (int j = 0; j < n; ++j) m.addFace({0, q(1, j), q(1, j + 1)});
+  for (int r = 1; r < rings; ++r)
+    for (int j = 0; j < n; ++j) m.addFace({q(r, j), q(r + 1, j), q(r + 1, j + 1), q(r, j + 1)});
+  if (closed) {
+    const Index south = m.vertexCount();
+    m.points.emplace_back(0, 0, -1);
+    for (int j = 0; j < n; ++j) m.addFace({south, q(rings, j + 1), q(rings, j)});
+  }
+  return m;
+}
+
+// [SECTION] OpenSubdiv side
+
+std::unique_ptr<Far::TopologyRefiner> osdRefiner(const PolyMesh& m, int levels) {
+  std::vector<int> faceSizes(m.faceCount());
+  for (Index f = 0; f < m.faceCount(); ++f) faceSizes[f] = m.faceSize(f);
+  Far::TopologyDescriptor desc;
+  desc.numVertices = m.vertexCount();
+  desc.numFaces = m.faceCount();
+  desc.numVertsPerFace = faceSizes.data();
+  desc.vertIndicesPerFace = m.faceVerts.data();
+
+  Sdc::Options options;
+  options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  options.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
+  options.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
+  REQUIRE(refiner);
+  Far::TopologyRefiner::UniformOptions uniform(levels);
+  uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs the finest level's vertex rings
+  refiner->RefineUniform(uniform);
+  return refiner;
+}
+
+// Maps our child vertices and faces to OpenSubdiv's at the next level, given the maps at this
+// level. Face and vertex points map through their parents; edge points through the parent edge's
+// end vertices (the two libraries number edges differently).
+void mapChildLevel(const MeshTopology& topo, const PolyMesh& child, const Far::TopologyLevel& osdParent,
+                   const Far::TopologyLevel& osdChild, const std::vector<int>& vertexMap, const std::vector<int>& faceMap,
+                   std::vector<int>& childVertexMap, std::vector<int>& childFaceMap) {
+  childVertexMap.assign(child.vertexCount(), -1);
+  for (Index f = 0; f < topo.faceCount; ++f) childVertexMap[ccFacePoint(topo, f)] = osdParent.GetFaceChildVertex(faceMap[f]);
+  for (Index e = 0; e < topo.edgeCount; ++e) {
+    const int a = vertexMap[topo.edgeVerts[2 * e]], b = vertexMap[topo.edgeVerts[2 * e + 1]];
+    const int osdEdge = osdParent.FindEdge(a, b);
+    REQUIRE(osdEdge >= 0);
+    const auto ends = osdParent.GetEdgeVertices(osdEdge);
+    REQUIRE(std::min(ends[0], ends[1]) == std::min(a, b));
+    REQUIRE(std::max(ends[0], ends[1]) == std::max(a, b));
+    childVertexMap[ccEdgePoint(topo, e)] = osdParent.GetEdgeChildVertex(osdEdge);
+  }
+  for (Index v = 0; v < topo.vertexCount; ++v) childVertexMap[ccVertexPoint(topo, v)] = osdParent.GetVertexChildVertex(vertexMap[v]);
+
+  // Child face c (of parent corner c) is the OSD child face of the same parent containing its vertex point.
+  childFaceMap.assign(child.faceCount(), -1);
+  for (Index c = 0; c < child.faceCount(); ++c) {
+    const int vertexPoint = childVertexMap[child.face(c)[0]];
+    for (int osdFace : osdParent.GetFaceChildFaces(faceMap[topo.cornerFace[c]])) {
+      const auto verts = osdChild.GetFaceVertices(osdFace);
+      if (std::find(verts.begin(), verts.end(), vertexPoint) != verts.end()) childFaceMap[c] = osdFace;
+    }
+    REQUIRE(childFaceMap[c] >= 0);
+    // Same quad, same orientation: OSD's loop is ours mapped, up to rotation.
+    const auto verts = osdChild.GetFaceVertices(childFaceMap[c]);
+    REQUIRE(verts.size() == 4);
+    const int shift = int(std::find(verts.begin(), verts.end(), vertexPoint) - verts.begin());
+    for (int k = 0; k < 4; ++k) CHECK(verts[(shift + k) % 4] == childVertexMap[child.face(c)[k]]);
+  }
+}
+
+double boundingDiagonal(const std::vector<Point>& points) {
+  Point lo(points[0]), hi(points[0]);
+  for (const Point& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return glm::length(hi - lo);
+}
+
+// Refines `base` kLevels times with both libraries and compares counts and positions per level,
+// then the limit positions of the finest level.
+void compareWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
+  CAPTURE(name);
+  const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(base, kLevels);
+  const Far::PrimvarRefinerReal<double> primvar(*refiner);
+  const double scale = boundingDiagonal(base.points);
+  const double tolerance = 1e-12 * scale;
+
+  std::vector<OsdPoint> osdPoints(base.vertexCount());
+  for (Index v = 0; v < base.vertexCount(); ++v) osdPoints[v].p = base.points[v];
+  std::vector<int> vertexMap(base.vertexCount()), faceMap(base.faceCount());
+  for (size_t i = 0; i < vertexMap.size(); ++i) vertexMap[i] = int(i);
+  for (size_t i = 0; i < faceMap.size(); ++i) faceMap[i] = int(i);
+
+  PolyMesh ours = base;
+  MeshTopology topo = buildTopology(ours);
+  for (int level = 1; level <= kLevels; ++level) {
+    CAPTURE(level);
+    const Far::TopologyLevel& osdParent = refiner->GetLevel(level - 1);
+    const Far::TopologyLevel& osdChild = refiner->GetLevel(level);
+    REQUIRE(osdParent.GetNumEdges() == topo.edgeCount);
+
+    PolyMesh child = refineCatmullClark(ours, topo);
+    REQUIRE(child.faceCount() == osdChild.GetNumFaces());
+    REQUIRE(child.vertexCount() == osdChild.GetNumVertices());
+    std::vector<OsdPoint> osdChildPoints(osdChild.GetNumVertices());
+    OsdPoint* dst = osdChildPoints.data();  // PrimvarRefiner takes the destination by reference
+    primvar.Interpolate(level, osdPoints.data(), dst);
+
+    std::vector<int> childVertexMap, childFaceMap;
+    mapChildLevel(topo, child, osdParent, osdChild, vertexMap, faceMap, childVertexMap, childFaceMap);
+    double maxDifference = 0;
+    for (Index v = 0; v < child.vertexCount(); ++v)
+      maxDifference = std::max(maxDifference, glm::length(child.points[v] - osdChildPoints[childVertexMap[v]].p));
+    MESSAGE(name, " level ", level, ": ", child.faceCount(), " faces, max |ours - OpenSubdiv| = ", maxDifference,
+            " (scale ", scale, ")");
+    CHECK(maxDifference <= tolerance);
+
+    ours = std::move(child);
+    topo = buildTopology(ours);
+    osdPoints = std::move(osdChildPoints);
+    vertexMap = std::move(childVertexMap);
+    faceMap = std::move(childFaceMap);
+  }
+
+  // Limit positions of the finest level (all quads) against OSD's limit masks. OSD gives an
+  // interior valence-2 vertex its own position (Sdc's corner mask), not the limit its vertex
+  // points converge to; ours is that limit (catmull_clark_test: it stays put under refinement),
+  // so those vertices are skipped here.
+  std::vector<OsdPoint> osdLimit(osdPoints.size());
+  OsdPoint* limitDst = osdLimit.data();
+  primvar.Limit(osdPoints.data(), limitDst);
+  const std::vector<Point> limit = catmullClarkLimitPoints(topo, ours);
+  double maxLimitDifference = 0;
+  int skipped = 0;
+  for (Index v = 0; v < ours.vertexCount(); ++v) {
+    if (!topo.vertexOnBoundary[v] && topo.valence(v) == 2) {
+      ++skipped;
+      continue;
+    }
+    maxLimitDifference = std::max(maxLimitDifference, glm::length(limit[v] - osdLimit[vertexMap[v]].p));
+  }
+  MESSAGE(name, " limit points at level ", kLevels, ": max |ours - OpenSubdiv| = ", maxLimitDifference, " (",
+          skipped, " interior valence-2 vertices skipped)");
+  CHECK(maxLimitDifference <= tolerance);
+}
+
+}  // namespace
+
+TEST_CASE("opensubdiv oracle: a closed cube refines identically") { compareWithOpenSubdiv("cube", cube()); }
+
+TEST_CASE("opensubdiv oracle: a closed mesh of triangles, quads, pentagons and hexagons refines identically") {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const std::string name = "closed mixed torus seed " + std::to_string(seed);
+    compareWithOpenSubdiv(name, cellGrid(9, 6, true, true, seed));
+  }
+}
+
+TEST_CASE("opensubdiv oracle: an open quad grid with boundaries and corners refines identically") {
+  compareWithOpenSubdiv("open grid 6x4", cellGrid(6, 4, false, false, 7));
+}
+
+TEST_CASE("opensubdiv oracle: an open mesh with triangles and n-gons refines identically") {
+  for (uint32_t seed : {4u, 5u}) {
+    const std::string name = "open mixed grid seed " + std::to_string(seed);
+    compareWithOpenSubdiv(name, cellGrid(7, 5, false, true, seed));
+  }
+}
+
+TEST_CASE("opensubdiv oracle: a valence-16 triangle-fan pole refines identically") {
+  compareWithOpenSubdiv("open cap, valence-16 pole", poleMesh(16, 3, false));
+  compareWithOpenSubdiv("globe, two valence-16 poles", poleMesh(16, 4, true));
+}
