@@ -209,11 +209,18 @@ void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
   app->state_.requests.load = true;
 }
 
-void ViewerApp::frameModel() {
+void ViewerApp::frameModel(double aspect) {
+  if (aspect <= 0.0) {
+    int width = options_.width, height = options_.height;
+    if (window_) glfwGetWindowSize(window_, &width, &height);
+    ScreenRect frame{0, 0, float(width), float(height)};
+    ScreenRect view = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f)).front();
+    aspect = double(view.w) / std::max(double(view.h), 1.0);
+  }
   if (state_.linkCameras) {
-    state_.sharedCamera.frame(modelMin_, modelMax_);
+    state_.sharedCamera.frame(modelMin_, modelMax_, aspect);
   } else {
-    for (ViewSettings& view : state_.views) view.camera.frame(modelMin_, modelMax_);
+    for (ViewSettings& view : state_.views) view.camera.frame(modelMin_, modelMax_, aspect);
   }
   framedOnce_ = true;
 }

@@ -73,8 +73,9 @@ class ViewerApp {
   // Writes the next free polarview_NNNN.png in the current directory; returns its path (empty and
   // a notice on failure).
   std::string saveScreenshot();
-  // Points every view's camera (or the shared one) at the model's bounding box.
-  void frameModel();
+  // Points every view's camera (or the shared one) at the model's bounding box, for views of
+  // `aspect` (width / height; 0: the aspect of the window's current views).
+  void frameModel(double aspect = 0.0);
 
   ViewerState& state() { return state_; }
   const ViewerState& state() const { return state_; }

@@ -238,7 +238,9 @@ int renderWithApp(const RenderRequest& r) {
   state.display.patchBoundaries = r.boundaries;
   state.display.wireframe = r.wireframe;
   state.display.poleMarkers = r.poles;
-  app.frameModel();
+  ScreenRect imageRect{0, 0, float(r.width), float(r.height)};
+  ScreenRect firstView = layoutViews(state.viewCount, imageRect, colourBarReserve(state, 1.0f)).front();
+  app.frameModel(double(firstView.w) / double(firstView.h));
   if (r.preset) state.sharedCamera.applyPreset(*r.preset);
   if (!r.cameraJson.empty()) {
     std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
@@ -326,6 +328,7 @@ int viewWithApp(const ViewRequest& r) {
   }
   if (!r.schemes.empty()) setViews(state, r.schemes, r.level.value_or(state.views[0].level));
   else if (r.level) requestLevel(state, *r.level);
+  app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
 
   if (r.frames == 0) {

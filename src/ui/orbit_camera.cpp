@@ -132,10 +132,12 @@ void OrbitCamera::setPivotKeepingEye(const glm::dvec3& point) {
   pitchDeg = std::clamp(degrees(std::asin(std::clamp(offset.z / length, -1.0, 1.0))), -kMaxPitchDeg, kMaxPitchDeg);
 }
 
-void OrbitCamera::frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax) {
+void OrbitCamera::frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, double aspect) {
   target = 0.5 * (boxMin + boxMax);
   double radius = std::max(0.5 * glm::length(boxMax - boxMin), 1e-6);
-  distance = 1.1 * radius / std::sin(radians(fovDeg) / 2.0);
+  double halfY = radians(fovDeg) / 2.0;
+  double halfX = std::atan(std::max(aspect, 1e-3) * std::tan(halfY));
+  distance = 1.05 * radius / std::sin(std::min(halfX, halfY));
 }
 
 void OrbitCamera::applyPreset(ViewPreset preset) {

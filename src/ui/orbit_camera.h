@@ -36,8 +36,9 @@ struct OrbitCamera {
   void zoom(double wheelNotches);
   // Double-click: the pivot becomes `point`; the eye stays where it is and turns to look at it.
   void setPivotKeepingEye(const glm::dvec3& point);
-  // F: centres the bounding box and backs off until its bounding sphere fits the view.
-  void frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax);
+  // F: centres the bounding box and backs off until its bounding sphere fits a view of `aspect`
+  // (width / height) both ways.
+  void frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, double aspect = 1.0);
   // Presets keep target and distance and set the direction.
   void applyPreset(ViewPreset preset);
 };

@@ -1,0 +1,131 @@
+// Orbit camera and view layout: properties over many random cameras, boxes and window sizes.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include "ui/orbit_camera.h"
+#include "ui/viewer_panels.h"
+
+using namespace polarview;
+
+namespace {
+
+OrbitCamera randomCamera(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  OrbitCamera c;
+  c.target = {10 * u(rng), 10 * u(rng), 10 * u(rng)};
+  c.distance = std::exp(3 * u(rng)) + 1e-3;
+  c.yawDeg = 180 * u(rng);
+  c.pitchDeg = 85 * u(rng);
+  c.fovDeg = 47.5 + 42.5 * u(rng);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("camera JSON: every camera survives a copy and paste exactly") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 500; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    std::string error;
+    std::optional<OrbitCamera> back = cameraFromJson(cameraToJson(c), OrbitCamera{}, &error);
+    REQUIRE_MESSAGE(back, error);
+    CHECK(back->target == c.target);
+    CHECK(back->distance == c.distance);
+    CHECK(back->yawDeg == c.yawDeg);
+    CHECK(back->pitchDeg == c.pitchDeg);
+    CHECK(back->fovDeg == c.fovDeg);
+  }
+}
+
+TEST_CASE("camera JSON: missing keys keep the base camera and malformed text is refused") {
+  OrbitCamera base;
+  base.distance = 7.0;
+  std::string error;
+  std::optional<OrbitCamera> partial = cameraFromJson(R"( { "yaw" : 12.5 } )", base, &error);
+  REQUIRE(partial);
+  CHECK(partial->yawDeg == 12.5);
+  CHECK(partial->distance == 7.0);
+  for (const char* bad : {"", "{", "{\"yaw\":}", "{\"yaw\":1,}", "{\"target\":[1,2]}", "{\"distance\":-1}",
+                          "{\"fov\":180}", "{\"zoom\":1}", "{\"yaw\":nan}", "{\"yaw\":1} trailing", "[1,2,3]"}) {
+    CAPTURE(bad);
+    error.clear();
+    CHECK_FALSE(cameraFromJson(bad, base, &error));
+    CHECK_FALSE(error.empty());
+  }
+}
+
+TEST_CASE("orbit camera: framing puts every corner of the box inside views of any aspect") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    glm::dvec3 lo{5 * u(rng), 5 * u(rng), 5 * u(rng)};
+    glm::dvec3 hi = lo + glm::dvec3{std::exp(2 * u(rng)), std::exp(2 * u(rng)), std::exp(2 * u(rng))};
+    double aspect = std::exp(1.5 * u(rng));
+    c.frame(lo, hi, aspect);
+    glm::mat4 clip = c.projectionMatrix(aspect, 0.5 * (lo + hi), 0.5 * glm::length(hi - lo)) * c.viewMatrix();
+    for (int corner = 0; corner < 8; ++corner) {
+      glm::dvec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+      glm::vec4 q = clip * glm::vec4(glm::vec3(p), 1.0f);
+      CAPTURE(trial);
+      CHECK(q.w > 0.0f);
+      CHECK(std::abs(q.x / q.w) <= 1.0f);
+      CHECK(std::abs(q.y / q.w) <= 1.0f);
+      CHECK(std::abs(q.z / q.w) <= 1.0f);  // neither near- nor far-clipped
+    }
+  }
+}
+
+TEST_CASE("orbit camera: setting the pivot keeps the eye and looks at the new point") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    glm::dvec3 eye = c.eye();
+    // A point in front of the camera, not too close to straight up or down.
+    glm::dvec3 point = eye + c.distance * (c.forward() + 0.3 * u(rng) * c.right() + 0.3 * u(rng) * c.up());
+    c.setPivotKeepingEye(point);
+    CHECK(glm::length(c.eye() - eye) < 1e-9 * (1.0 + glm::length(eye)));
+    CHECK(glm::length(c.target - point) < 1e-12 * (1.0 + glm::length(point)));
+  }
+}
+
+TEST_CASE("orbit camera: orbiting and panning keep the screen axes orthonormal and +z up") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    c.orbit(500 * u(rng), 500 * u(rng));
+    glm::dvec3 targetBefore = c.target;
+    double distanceBefore = c.distance;
+    c.pan(200 * u(rng), 200 * u(rng), 600);
+    CHECK(std::abs(glm::dot(c.target - targetBefore, c.forward())) < 1e-9 * (1 + distanceBefore));  // pans in the screen plane
+    CHECK(std::abs(glm::length(c.right()) - 1) < 1e-12);
+    CHECK(std::abs(glm::length(c.up()) - 1) < 1e-12);
+    CHECK(std::abs(glm::dot(c.right(), c.forward())) < 1e-12);
+    CHECK(c.up().z >= 0.0);
+    CHECK(std::abs(c.pitchDeg) <= 89.0);
+  }
+}
+
+TEST_CASE("view layout: the views tile the frame above the colour bar without gaps or overlaps") {
+  for (int count = 1; count <= kMaxViews; ++count) {
+    for (float width : {100.0f, 641.0f, 1600.0f, 1923.0f}) {
+      ScreenRect frame{0, 0, width, 900};
+      std::vector<ScreenRect> views = layoutViews(count, frame, 64);
+      REQUIRE(int(views.size()) == count);
+      CHECK(views.front().x == 0.0f);
+      CHECK(views.back().x + views.back().w == std::floor(width));
+      for (int v = 0; v < count; ++v) {
+        CHECK(views[size_t(v)].h == 900 - 64);
+        if (v > 0) CHECK(views[size_t(v)].x == views[size_t(v - 1)].x + views[size_t(v - 1)].w);
+        CHECK(std::abs(views[size_t(v)].w - width / float(count)) <= 1.0f);
+      }
+    }
+  }
+}
