@@ -1,6 +1,8 @@
 #version 410 core
 // Surface colouring: lit, Gaussian / mean curvature, highlight lines (Beier & Chen, view
 // independent), reflection lines (zebra, view dependent); optional tessellation wireframe.
+// SHADING_MODE (a #define from the renderer, one program per mode: no per-pixel branching on
+// llvmpipe) is ShadingParams::Mode: 0 shaded, 1 Gaussian, 2 mean, 3 highlight, 4 reflection.
 #include "common/colormap.glsl"
 #include "common/lighting.glsl"
 #include "common/surface_varyings.glsl"
@@ -16,13 +18,10 @@ in SurfaceData { SURFACE_DATA_MEMBERS } te_out;
 
 out vec4 o_color;
 
-const int kModeShaded = 0;
-const int kModeGaussian = 1;
-const int kModeMean = 2;
-const int kModeHighlight = 3;
-const int kModeReflection = 4;
+#ifndef SHADING_MODE
+#define SHADING_MODE 0
+#endif
 
-uniform int u_mode;
 uniform int u_colormap;
 uniform float u_range;
 uniform float u_curvatureLighting;
@@ -70,18 +69,18 @@ void main() {
   vec3 N = normalize(FRAG_IN.normal);
   vec3 n = facingNormal(N, toEye);
   vec2 light = lightSurface(n, toEye, u_keyLight);
-  vec3 shaded = u_surfaceColor * light.x + vec3(light.y);
 
-  vec3 color = shaded;
-  if (u_mode == kModeGaussian || u_mode == kModeMean) {
-    float value = u_mode == kModeGaussian ? FRAG_IN.curvature.x : FRAG_IN.curvature.y;
-    vec3 base = curvatureColor(u_colormap, value, u_range);
-    color = mix(base, base * light.x + vec3(light.y), u_curvatureLighting);
-  } else if (u_mode == kModeHighlight) {
-    color = mix(shaded, vec3(0.05), highlightStripe(P, N));
-  } else if (u_mode == kModeReflection) {
-    color = mix(shaded, vec3(0.05), reflectionStripe(toEye, n));
-  }
+#if SHADING_MODE == 1 || SHADING_MODE == 2
+  float value = SHADING_MODE == 1 ? FRAG_IN.curvature.x : FRAG_IN.curvature.y;
+  vec3 base = curvatureColor(u_colormap, value, u_range);
+  vec3 color = mix(base, base * light.x + vec3(light.y), u_curvatureLighting);
+#elif SHADING_MODE == 3
+  vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), highlightStripe(P, N));
+#elif SHADING_MODE == 4
+  vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), reflectionStripe(toEye, n));
+#else
+  vec3 color = u_surfaceColor * light.x + vec3(light.y);
+#endif
 
   float alpha = 1.0;
 #ifdef WIREFRAME

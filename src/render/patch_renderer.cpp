@@ -25,17 +25,25 @@ bool isPositionSlot(PatchKind kind, int slot) {
 }
 
 // Program specs: every shader file and variant the renderer uses.
-ProgramSpec surfaceSpec(bool wireframe) {
+// One surface program per shading mode (a #define, so llvmpipe runs no per-pixel mode branches),
+// with or without the wireframe geometry shader.
+ProgramSpec surfaceSpec(ShadingParams::Mode mode, bool wireframe) {
   ProgramSpec spec;
   spec.vertex = "patch.vert";
   spec.tessControl = "patch.tesc";
   spec.tessEval = "patch.tese";
   spec.fragment = "patch.frag";
+  spec.defines = {"SHADING_MODE " + std::to_string(static_cast<int>(mode))};
   if (wireframe) {
     spec.geometry = "patch_wire.geom";
-    spec.defines = {"WIREFRAME"};
+    spec.defines.push_back("WIREFRAME");
   }
   return spec;
+}
+
+std::string surfaceProgramName(ShadingParams::Mode mode, bool wireframe) {
+  return std::string("patch_mode") + std::to_string(static_cast<int>(mode)) +
+         (wireframe ? "_wire" : "");
 }
 
 ProgramSpec probeSpec() {
@@ -64,8 +72,6 @@ ProgramSpec overlaySpec() {
   return spec;
 }
 
-const char* const kSurfaceProgram = "patch";
-const char* const kWireProgram = "patch_wire";
 const char* const kProbeProgram = "patch_probe";
 const char* const kBoundaryProgram = "patch_boundary";
 const char* const kOverlayProgram = "overlay";
@@ -209,9 +215,12 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
   Impl& g = *impl_;
   g.shaders = shaders ? std::move(shaders) : std::make_shared<ShaderLibrary>();
   // Build each program once per library (renderers sharing a library share the programs).
-  const std::pair<const char*, ProgramSpec> programs[] = {
-      {kSurfaceProgram, surfaceSpec(false)}, {kWireProgram, surfaceSpec(true)},
-      {kProbeProgram, probeSpec()},          {kBoundaryProgram, boundarySpec()},
+  // Surface variants of other modes are built on first use (see surfaceProgram).
+  const std::pair<std::string, ProgramSpec> programs[] = {
+      {surfaceProgramName(ShadingParams::Mode::Shaded, false),
+       surfaceSpec(ShadingParams::Mode::Shaded, false)},
+      {kProbeProgram, probeSpec()},
+      {kBoundaryProgram, boundarySpec()},
       {kOverlayProgram, overlaySpec()}};
   bool ok = true;
   for (const auto& [name, spec] : programs)
@@ -232,6 +241,17 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
 }
 
 bool PatchRenderer::reloadShaders(std::string* error) { return impl_->shaders->reloadAll(error); }
+
+unsigned PatchRenderer::surfaceProgram(ShadingParams::Mode mode, bool wireframe) {
+  ShaderLibrary& library = *impl_->shaders;
+  const std::string name = surfaceProgramName(mode, wireframe);
+  if (const unsigned program = library.program(name)) return program;
+  std::string error;
+  if (library.build(name, surfaceSpec(mode, wireframe), &error)) return library.program(name);
+  // A broken variant: report once (lastError) and draw with the plain shaded program.
+  lastError_ = error;
+  return library.program(surfaceProgramName(ShadingParams::Mode::Shaded, false));
+}
 
 // [SECTION] Uploads
 
@@ -349,7 +369,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
 
   const GLsizei patchVertices = patchCount_ * kControlPointsPerPatch;
   if (patchCount_ > 0 && (flags.surface || flags.wireframe)) {
-    const GLuint program = g.shaders->program(flags.wireframe ? kWireProgram : kSurfaceProgram);
+    const GLuint program = surfaceProgram(shading.mode, flags.wireframe);
     // Light lines: direction B, across E = W x B, plane normal W = B x E (SCHEMES.md section 7).
     const glm::vec3 B = glm::normalize(shading.highlightDir);
     const glm::vec3 W = perpendicularTo(B, shading.highlightPlaneNormal);
@@ -360,7 +380,6 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     const glm::vec3 keyWorld = glm::normalize(glm::transpose(glm::mat3(view.view)) * keyView);
 
     setTessellationUniforms(program, view, shading);
-    setUniform(program, "u_mode", static_cast<int>(shading.mode));
     setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
     setUniform(program, "u_range", shading.range);
     setUniform(program, "u_curvatureLighting", shading.curvatureLighting);

@@ -127,10 +127,14 @@ class PatchRenderer {
   double boundingRadius() const { return radius_; }
   int patchCount() const { return patchCount_; }
   const DrawStats& lastDrawStats() const { return stats_; }
+  // Compile log of a shader variant that failed when draw() first needed it ("" if none); such a
+  // variant falls back to the plain shaded program.
+  const std::string& lastError() const { return lastError_; }
 
  private:
   struct Impl;
   glm::mat4 modelViewProjection(const ViewParams& view) const;
+  unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe);
   void setTessellationUniforms(unsigned program, const ViewParams& view,
                                const ShadingParams& shading) const;
   std::unique_ptr<Impl> impl_;
@@ -138,6 +142,7 @@ class PatchRenderer {
   double radius_ = 1.0;
   int patchCount_ = 0;
   DrawStats stats_;
+  std::string lastError_;
 };
 
 // Curvature samples of patches for the auto range (CPU, via evaluatePatch): samplesPerPatch^2
