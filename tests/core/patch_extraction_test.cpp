@@ -1,0 +1,393 @@
+// Feature-adaptive extraction: patch counts by kind, and seams checked geometrically: every sample
+// on every patch side must lie on another patch's side (watertight) unless it is on the mesh
+// boundary, where it must lie on Catmull-Clark's EDGE_ONLY limit curve (the cubic B-spline of the
+// boundary polygon). Matching by closest point makes the check independent of levels and
+// parametrisations (neighbours may come from different levels).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "core/mesh/shapes.h"
+#include "core/mesh/topology.h"
+#include "core/spline/patch.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/refiner.h"
+
+using namespace polarview;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Point of side s at t: s = 0: v = 0, u = t; 1: u = 1, v = t; 2: v = 1, u = 1-t; 3: u = 0, v = 1-t.
+void sideParameter(int s, double t, double& u, double& v) {
+  switch (s) {
+    case 0: u = t, v = 0.0; break;
+    case 1: u = 1.0, v = t; break;
+    case 2: u = 1.0 - t, v = 1.0; break;
+    default: u = 0.0, v = 1.0 - t; break;
+  }
+}
+
+bool sideIsPole(const Patch& patch, int s) { return patch.kind == PatchKind::PoleCap && s == 3; }
+
+struct Box {
+  Point lo{1e300}, hi{-1e300};
+  void add(const Point& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  bool contains(const Point& p, double margin) const {
+    return p.x >= lo.x - margin && p.y >= lo.y - margin && p.z >= lo.z - margin && p.x <= hi.x + margin &&
+           p.y <= hi.y + margin && p.z <= hi.z + margin;
+  }
+};
+
+struct SideMatch {
+  double distance = 1e300;
+  int patch = -1;
+  double u = 0, v = 0;
+};
+
+// Closest point to x on side s of a patch: the best of a few samples, then Newton steps on
+// |C(t) - x|^2 (C the side curve, derivatives from evaluatePatch).
+SideMatch closestOnSide(const Patch& patch, int s, const Point& x) {
+  static constexpr double kDu[4] = {1, 0, -1, 0}, kDv[4] = {0, 1, 0, -1};
+  auto at = [&](double t, Point* d1, Point* d2) {
+    double u, v;
+    sideParameter(s, t, u, v);
+    const SurfacePoint sp = evaluatePatch(patch, u, v);
+    if (d1) *d1 = kDu[s] * sp.du + kDv[s] * sp.dv;
+    if (d2) *d2 = kDu[s] * kDu[s] * sp.duu + 2 * kDu[s] * kDv[s] * sp.duv + kDv[s] * kDv[s] * sp.dvv;
+    return sp.position;
+  };
+  const int samples = 8;
+  double t = 0.0, best = 1e300;
+  for (int k = 0; k <= samples; ++k) {
+    const double d = glm::length(at(double(k) / samples, nullptr, nullptr) - x);
+    if (d < best) best = d, t = double(k) / samples;
+  }
+  for (int it = 0; it < 8; ++it) {
+    Point d1, d2;
+    const Point c = at(t, &d1, &d2);
+    const double g = glm::dot(d1, c - x), h = glm::dot(d1, d1) + glm::dot(d2, c - x);
+    if (!(h > 0.0)) break;
+    t = std::clamp(t - g / h, 0.0, 1.0);
+  }
+  SideMatch match;
+  match.distance = glm::length(at(t, nullptr, nullptr) - x);
+  sideParameter(s, t, match.u, match.v);
+  return match;
+}
+
+struct SeamReport {
+  double maxGap = 0.0;                  // largest distance of a matched sample to its neighbour
+  double maxAngleSmooth = 0.0;          // normal angle (rad) across seams without end caps / pole caps
+  double maxAngleEndCap = 0.0;          // across seams touching an end cap
+  double maxAngleCap = 0.0;             // across seams touching a pole cap
+  std::vector<Point> unmatched;         // samples with no neighbour (mesh boundary)
+  size_t samples = 0;
+};
+
+double meshSize(const PatchSet& set) {
+  Box box;
+  for (const Patch& p : set.patches) box.add(evaluatePatch(p, 0.5, 0.5).position);
+  return glm::length(box.hi - box.lo);
+}
+
+SeamReport checkSeams(const PatchSet& set, double tolerance) {
+  const std::vector<Patch>& patches = set.patches;
+  std::vector<Box> boxes(patches.size());
+  for (size_t i = 0; i < patches.size(); ++i) {
+    if (patches[i].kind != PatchKind::PoleCap) {
+      for (const Point& c : patches[i].cp) boxes[i].add(c);  // convex hull property
+      continue;
+    }
+    for (int a = 0; a <= 8; ++a)
+      for (int b = 0; b <= 8; ++b) boxes[i].add(evaluatePatch(patches[i], a / 8.0, b / 8.0).position);
+    const Point pad = 0.25 * (boxes[i].hi - boxes[i].lo);
+    boxes[i].lo -= pad, boxes[i].hi += pad;
+  }
+  SeamReport report;
+  const double margin = 1e-6 * meshSize(set);
+  for (size_t i = 0; i < patches.size(); ++i) {
+    for (int s = 0; s < 4; ++s) {
+      if (sideIsPole(patches[i], s)) continue;
+      for (double t : {0.13, 0.5, 0.81}) {
+        double u, v;
+        sideParameter(s, t, u, v);
+        const SurfacePoint here = evaluatePatch(patches[i], u, v);
+        SideMatch best;
+        for (size_t j = 0; j < patches.size(); ++j) {
+          if (j == i || !boxes[j].contains(here.position, margin)) continue;
+          for (int s2 = 0; s2 < 4; ++s2) {
+            if (sideIsPole(patches[j], s2)) continue;
+            SideMatch m = closestOnSide(patches[j], s2, here.position);
+            if (m.distance < best.distance) best = m, best.patch = int(j);
+          }
+        }
+        ++report.samples;
+        if (best.distance > tolerance) {
+          report.unmatched.push_back(here.position);
+          continue;
+        }
+        report.maxGap = std::max(report.maxGap, best.distance);
+        const Patch& other = patches[best.patch];
+        const Point otherNormal = evaluatePatch(other, best.u, best.v).normal;
+        const double angle = std::atan2(glm::length(glm::cross(here.normal, otherNormal)), glm::dot(here.normal, otherNormal));
+        auto involves = [&](PatchKind kind) { return patches[i].kind == kind || other.kind == kind; };
+        double& slot = involves(PatchKind::PoleCap) ? report.maxAngleCap
+                       : involves(PatchKind::EndCap) ? report.maxAngleEndCap
+                                                     : report.maxAngleSmooth;
+        slot = std::max(slot, angle);
+      }
+    }
+  }
+  return report;
+}
+
+PatchSet extract(const PolyMesh& mesh, Scheme scheme, int levels) {
+  RefineOptions options;
+  options.scheme = scheme;
+  options.levels = levels;
+  Refinement refinement(mesh, options);
+  return extractPatches(refinement);
+}
+
+std::string describe(const char* name, const PatchSet& set, const SeamReport& r) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu patches (regular %zu, boundary %zu, ring %zu, pole cap %zu, end cap %zu); %zu seam samples, "
+                "max gap %.2e, normal angle: smooth %.2e rad, end caps %.2e rad, pole caps %.2e rad",
+                name, set.patches.size(), set.count(PatchKind::Regular), set.count(PatchKind::Boundary),
+                set.count(PatchKind::PolarRing), set.count(PatchKind::PoleCap), set.count(PatchKind::EndCap), r.samples,
+                r.maxGap, r.maxAngleSmooth, r.maxAngleEndCap, r.maxAngleCap);
+  return buf;
+}
+
+// The boundary loops of a mesh as point sequences (walked along boundary edges).
+std::vector<std::vector<Point>> boundaryLoops(const PolyMesh& mesh) {
+  const MeshTopology topo = buildTopology(mesh);
+  std::vector<Index> next(mesh.vertexCount(), -1);
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+      if (topo.edgeOnBoundary(topo.cornerEdge[c])) {
+        const Index a = mesh.faceVerts[c];
+        const Index b = mesh.faceVerts[c + 1 < mesh.faceStart[f + 1] ? c + 1 : mesh.faceStart[f]];
+        next[a] = b;
+      }
+  std::vector<uint8_t> seen(mesh.vertexCount(), 0);
+  std::vector<std::vector<Point>> loops;
+  for (Index v = 0; v < mesh.vertexCount(); ++v) {
+    if (next[v] < 0 || seen[v]) continue;
+    loops.emplace_back();
+    for (Index w = v; !seen[w]; w = next[w]) {
+      seen[w] = 1;
+      loops.back().push_back(mesh.points[w]);
+    }
+  }
+  return loops;
+}
+
+// Distance from x to the closed uniform cubic B-spline curves of the loops.
+double distanceToBoundaryCurves(const std::vector<std::vector<Point>>& loops, const Point& x) {
+  double best = 1e300;
+  for (const auto& loop : loops) {
+    const int n = int(loop.size());
+    for (int k = 0; k < n; ++k) {
+      const Point& d0 = loop[(k + n - 1) % n];
+      const Point& d1 = loop[k];
+      const Point& d2 = loop[(k + 1) % n];
+      const Point& d3 = loop[(k + 2) % n];
+      auto curve = [&](double t) {
+        const double s = 1 - t;
+        return (s * s * s * d0 + (3 * t * t * t - 6 * t * t + 4) * d1 + (-3 * t * t * t + 3 * t * t + 3 * t + 1) * d2 +
+                t * t * t * d3) / 6.0;
+      };
+      double lo = 0, hi = 1;
+      for (int it = 0; it < 100; ++it) {
+        const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+        if (glm::length(curve(a) - x) < glm::length(curve(b) - x)) hi = b;
+        else lo = a;
+      }
+      for (double t : {0.0, 0.5 * (lo + hi), 1.0}) best = std::min(best, glm::length(curve(t) - x));
+    }
+  }
+  return best;
+}
+
+std::string formatNumber(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", x);
+  return buf;
+}
+
+PolyMesh octahedron() {
+  PolyMesh mesh;
+  mesh.points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  mesh.addFace({0, 2, 4});
+  mesh.addFace({2, 1, 4});
+  mesh.addFace({1, 3, 4});
+  mesh.addFace({3, 0, 4});
+  mesh.addFace({2, 0, 5});
+  mesh.addFace({1, 2, 5});
+  mesh.addFace({3, 1, 5});
+  mesh.addFace({0, 3, 5});
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("extraction: a regular torus is all Regular patches at level 0, none at level 1, seamless") {
+  for (int levels : {0, 1, 2}) {
+    const PolyMesh torus = shapes::torus(8, 6);
+    const PatchSet set = extract(torus, Scheme::CatmullClark, levels);
+    CHECK(set.count(PatchKind::Regular) == size_t(torus.faceCount()));
+    CHECK(set.patches.size() == size_t(torus.faceCount()));
+    for (const Patch& p : set.patches) CHECK(p.level == 0);
+    const SeamReport r = checkSeams(set, 1e-9 * meshSize(set));
+    CHECK(r.unmatched.empty());
+    CHECK(r.maxAngleSmooth < 1e-9);
+    if (levels == 1) MESSAGE(describe("torus 8x6, CC L=1", set, r));
+  }
+}
+
+TEST_CASE("extraction: a closed cube gets end caps exactly at its eight extraordinary vertices, watertight") {
+  for (int levels : {1, 2, 3}) {
+    const PatchSet set = extract(shapes::cube(), Scheme::CatmullClark, levels);
+    CHECK(set.count(PatchKind::EndCap) == 24);  // 3 faces around each of 8 valence-3 vertices
+    CHECK(set.count(PatchKind::Boundary) == 0);
+    CHECK(set.count(PatchKind::PoleCap) == 0);
+    // Regular patches: 6 faces -> 24 quads at level 1, each non-corner one regular from level 1 on.
+    CHECK(set.count(PatchKind::Regular) + set.count(PatchKind::EndCap) > 0);
+    for (const Patch& p : set.patches)
+      if (p.kind == PatchKind::EndCap) CHECK(p.level == levels);
+    const double size = meshSize(set);
+    const SeamReport r = checkSeams(set, 1e-9 * size);
+    CHECK(r.unmatched.empty());
+    CHECK(r.maxGap < 1e-9 * size);
+    CHECK(r.maxAngleSmooth < 1e-9);
+    CHECK(r.maxAngleEndCap < 0.35);  // bounded (G0 end caps); measured below
+    MESSAGE(describe(("cube, CC L=" + std::to_string(levels)).c_str(), set, r));
+  }
+}
+
+TEST_CASE("extraction: an open grid's Boundary patches follow Catmull-Clark's limit boundary curve") {
+  const PolyMesh grid = shapes::grid(6, 5, [](double x, double y) { return 0.3 * std::sin(3 * x) * std::cos(2 * y) + x * y; });
+  const auto loops = boundaryLoops(grid);
+  REQUIRE(loops.size() == 1);
+  for (int levels : {0, 2}) {
+    const PatchSet set = extract(grid, Scheme::CatmullClark, levels);
+    CHECK(set.count(PatchKind::Boundary) > 0);
+    CHECK(set.count(PatchKind::EndCap) == (levels == 0 ? 4 : 4));  // the four valence-2 corners
+    const double size = meshSize(set);
+    const SeamReport r = checkSeams(set, 1e-9 * size);
+    CHECK(!r.unmatched.empty());
+    double worst = 0.0;
+    for (const Point& x : r.unmatched) worst = std::max(worst, distanceToBoundaryCurves(loops, x));
+    CHECK(worst < 1e-9 * size);
+    CHECK(r.maxAngleSmooth < 1e-9);
+    const std::string report = describe(("open grid 6x5, CC L=" + std::to_string(levels)).c_str(), set, r) +
+                               "; boundary samples off the CC limit curve by at most " + formatNumber(worst);
+    MESSAGE(report);
+  }
+}
+
+TEST_CASE("extraction: c2ps globe has 2 n_m ring patches per pole at each level m and caps of n_L sectors") {
+  const int n = 6, links = 9;
+  const PolyMesh globe = shapes::globe(n, links);
+  for (int levels : {1, 2, 3}) {
+    RefineOptions options;
+    options.scheme = Scheme::C2PS;
+    options.levels = levels;
+    const Refinement refinement(globe, options);
+    const PatchSet set = extractPatches(refinement);
+    REQUIRE(refinement.finest().poles.size() == 2);
+    // Per pole: ring m for m = 1..L has 2 n 2^m patches; ring 0 is the level-0 ring of each pole.
+    for (int pole = 0; pole < 2; ++pole)
+      for (int m = 1; m <= levels; ++m) {
+        size_t ring = 0;
+        for (const Patch& p : set.patches)
+          if (p.kind == PatchKind::PolarRing && p.ring == m && p.pole == pole) ++ring;
+        CHECK(ring == size_t(2 * (n << m)));
+      }
+    CHECK(set.count(PatchKind::PoleCap) == size_t(2 * (n << levels)));
+    CHECK(set.count(PatchKind::EndCap) == 0);
+    const double size = meshSize(set);
+    const SeamReport r = checkSeams(set, 1e-9 * size);
+    CHECK(r.unmatched.empty());
+    CHECK(r.maxGap < 1e-9 * size);
+    CHECK(r.maxAngleSmooth < 1e-8);
+    CHECK(r.maxAngleCap < 0.2);
+    MESSAGE(describe(("globe n=6, C2PS L=" + std::to_string(levels)).c_str(), set, r));
+  }
+}
+
+TEST_CASE("extraction: the pole cap's boundary is ring L's inner boundary") {
+  for (Scheme scheme : {Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
+    const PolyMesh cap = shapes::polarCap(7, 6, 1.0, 1.5);
+    RefineOptions options;
+    options.scheme = scheme;
+    options.levels = 2;
+    const Refinement refinement(cap, options);
+    const PatchSet set = extractPatches(refinement);
+    const RefinedLevel& finest = refinement.finest();
+    REQUIRE(finest.poles.size() == 1);
+    const PolarConfig& config = finest.poles[0];
+    const int nL = config.valence;
+    // For every cap sector j: its u = 1 edge against the ring patch on face (q2j, q3j, q3j+1, q2j+1).
+    double worst = 0.0;
+    int checked = 0;
+    for (const Patch& capPatch : set.patches) {
+      if (capPatch.kind != PatchKind::PoleCap) continue;
+      const int j = int(std::lround(capPatch.cp[10].x * nL));
+      const Index a = config.links[size_t(nL) + j], b = config.links[size_t(nL) + (j + 1) % nL];
+      for (const Patch& ring : set.patches) {
+        if (ring.face < 0 || ring.level != refinement.levelCount() - 1 || ring.kind == PatchKind::PoleCap) continue;
+        const Index* loop = finest.mesh.face(ring.face);
+        int ca = -1, cb = -1;
+        for (int c = 0; c < finest.mesh.faceSize(ring.face); ++c) {
+          if (loop[c] == a) ca = c;
+          if (loop[c] == b) cb = c;
+        }
+        if (ca < 0 || cb < 0) continue;
+        const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (double t : {0.0, 0.25, 0.6, 1.0}) {
+          const double u = (1 - t) * corner[ca][0] + t * corner[cb][0], v = (1 - t) * corner[ca][1] + t * corner[cb][1];
+          worst = std::max(worst, glm::length(evaluatePatch(capPatch, 1.0, t).position - evaluatePatch(ring, u, v).position));
+        }
+        ++checked;
+      }
+    }
+    CHECK(checked == nL);
+    CHECK(worst < 1e-12);
+    const SeamReport r = checkSeams(set, 1e-9 * meshSize(set));
+    MESSAGE(describe((std::string("polar cap n=7, ") + schemeName(scheme) + " L=2").c_str(), set, r));
+    // Every unmatched sample lies on the open boundary ring (the mesh's last link).
+    const auto loops = boundaryLoops(cap);
+    for (const Point& x : r.unmatched) CHECK(distanceToBoundaryCurves(loops, x) < 1e-9);
+  }
+}
+
+TEST_CASE("extraction: a mushroom (pole, rings, CC stem with extraordinary vertices) is watertight") {
+  for (Scheme scheme : {Scheme::C2PS, Scheme::RTS, Scheme::CatmullClark}) {
+    const PatchSet set = extract(shapes::mushroom(12), scheme, 2);
+    CHECK(set.count(PatchKind::EndCap) > 0);
+    if (scheme != Scheme::CatmullClark) CHECK(set.count(PatchKind::PoleCap) == 48);
+    const double size = meshSize(set);
+    const SeamReport r = checkSeams(set, 1e-9 * size);
+    CHECK(r.unmatched.empty());
+    CHECK(r.maxAngleSmooth < 1e-8);
+    MESSAGE(describe((std::string("mushroom, ") + schemeName(scheme) + " L=2").c_str(), set, r));
+  }
+}
+
+TEST_CASE("extraction: triangles at level 0 become watertight split end caps") {
+  const PatchSet set = extract(octahedron(), Scheme::CatmullClark, 0);
+  CHECK(set.count(PatchKind::EndCap) == 8 * 3);
+  const SeamReport r = checkSeams(set, 1e-9 * meshSize(set));
+  CHECK(r.unmatched.empty());
+}
