@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Bad OBJ input end to end: for each broken file, `polarview info` and `polarview refine` exit 1
+# (no crash), print exactly one stderr line "polarview: FILE:LINE: msg" naming the file (and the
+# offending line where there is one), and `refine` leaves no output file behind.
+# Usage: bash bad_input.sh <polarview-exe> <repo>
+set -u
+exe="$1"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+checks=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# Runs one command on a bad file and checks the error contract.
+#   expect_error NAME LINE WORDS -- command args...
+# LINE is the expected OBJ line ("" when the error has no line); WORDS must appear in the message.
+expect_error() {
+  local name="$1" line="$2" words="$3"
+  shift 4
+  local file="$work/$name.obj"
+  "$@" > "$work/out.txt" 2> "$work/err.txt"
+  local rc=$?
+  checks=$((checks + 1))
+  local what="$name ($2)"
+  [ $rc -lt 128 ] || fail "$what: crashed with exit $rc"
+  [ $rc -eq 1 ] || fail "$what: exit $rc, expected 1; stderr: $(head -c 300 "$work/err.txt")"
+  local lines
+  lines="$(wc -l < "$work/err.txt")"
+  [ "$lines" -eq 1 ] || fail "$what: expected one stderr line, got $lines: $(head -c 300 "$work/err.txt")"
+  local msg
+  msg="$(head -n 1 "$work/err.txt")"
+  case "$msg" in
+    "polarview: "*) ;;
+    *) fail "$what: stderr does not start with 'polarview: ': $msg" ;;
+  esac
+  case "$msg" in
+    *"$file"*) ;;
+    *) fail "$what: message does not name $file: $msg" ;;
+  esac
+  if [ -n "$line" ]; then
+    case "$msg" in
+      *"$file:$line: "*) ;;
+      *) fail "$what: message does not point at line $line: $msg" ;;
+    esac
+  fi
+  case "$msg" in
+    *"$words"*) ;;
+    *) fail "$what: message lacks '$words': $msg" ;;
+  esac
+}
+
+# Checks `info` and `refine` on $work/NAME.obj (already written).
+check_file() {  # NAME LINE WORDS
+  local name="$1" file="$work/$1.obj" out="$work/$1.out.obj"
+  expect_error "$1" "$2" "$3" -- "$exe" info "$file"
+  expect_error "$1" "$2" "$3" -- "$exe" refine "$file" -o "$out" --scheme cc --levels 1
+  [ ! -e "$out" ] || fail "$name: refine wrote $out"
+  [ ! -e "$out.tmp" ] || fail "$name: refine left $out.tmp"
+}
+
+tri='v 0 0 0\nv 1 0 0\nv 0 1 0\n'
+
+# Empty file, and one holding only blank lines and a comment.
+: > "$work/empty.obj"
+check_file empty "" "empty file"
+printf '\n  \n# nothing\n' > "$work/blank.obj"
+check_file blank "" "empty file"
+
+# Binary garbage: an ELF-like header with NUL bytes on line 2, then random bytes.
+{ printf 'v 0 0 0\n\177ELF\002\001\001\000\000\000'; head -c 4096 /dev/urandom; } > "$work/binary.obj"
+check_file binary 2 "binary"
+head -c 8192 /dev/urandom > "$work/random.obj"
+check_file random "" ""
+
+# Non-finite and malformed coordinates.
+printf 'v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n' > "$work/nan.obj"
+check_file nan 2 "NaN"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n' > "$work/inf.obj"
+check_file inf 3 "infinite"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.0.1\nf 1 2 3\n' > "$work/malformed.obj"
+check_file malformed 3 "malformed number"
+printf 'v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n' > "$work/shortvertex.obj"
+check_file shortvertex 2 "coordinates"
+
+# Bad face indices.
+printf "${tri}f 1 2 9\n" > "$work/range.obj"
+check_file range 4 "face index 9 out of range (3 vertices)"
+printf "${tri}f -1 -2 -7\n" > "$work/negrange.obj"
+check_file negrange 4 "face index -7 out of range"
+printf "${tri}f 1 0 2\n" > "$work/zero.obj"
+check_file zero 4 "face index 0"
+printf "${tri}f 1 2 99999999999999999999\n" > "$work/huge.obj"
+check_file huge 4 "too large"
+printf "${tri}f 1 2\n" > "$work/twovertex.obj"
+check_file twovertex 4 "face has 2 vertices"
+printf "${tri}f 1 2 3 2\n" > "$work/repeat.obj"
+check_file repeat 4 "repeats vertex 2"
+
+# Non-manifold edge: three triangles on the edge 1-2 (the third on line 7).
+printf "${tri}v 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\n" > "$work/edge3.obj"
+check_file edge3 8 "non-manifold edge (v 1 - v 2) shared by 3 faces"
+
+# Non-manifold vertex: two closed cones (tetrahedra) touching at their common tip, vertex 1.
+printf 'v 0 0 0\nv 1 0 1\nv 0 1 1\nv -1 -1 1\nv 1 0 -1\nv 0 1 -1\nv -1 -1 -1\n' > "$work/cones.obj"
+printf 'f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\nf 1 6 5\nf 1 7 6\nf 1 5 7\nf 5 6 7\n' >> "$work/cones.obj"
+check_file cones 12 "non-manifold vertex v 1"
+
+# Duplicate face (same vertex set, the copy rotated) and inconsistent orientation.
+printf "${tri}v 1 1 0\nf 1 2 3\nf 2 4 3\nf 3 1 2\n" > "$work/duplicate.obj"
+check_file duplicate 7 "duplicate face"
+printf "${tri}v 1 1 0\nf 1 2 3\nf 2 3 4\n" > "$work/orientation.obj"
+check_file orientation 6 "inconsistent orientation"
+
+# A missing file fails the same way (no line).
+expect_error missing "" "" -- "$exe" info "$work/missing.obj"
+
+echo "bad_input: $checks commands checked, $failures failures"
+[ $failures -eq 0 ]
