@@ -86,6 +86,7 @@ class ViewerApp {
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
   const BuiltSurface* shownSurface(int v) const { return views_[size_t(v)].shown.get(); }
   uint64_t modelGeneration() const { return model_.generation; }
+  const Model& model() const { return model_; }
 
  private:
   struct ViewRuntime {

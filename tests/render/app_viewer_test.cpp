@@ -1,0 +1,241 @@
+// The viewer application driven frame by frame in a hidden window: it keeps its model through bad
+// files, ends on the last of many quick scheme/level changes, survives resizes and a valence-1024
+// pole, refuses levels over the budget, and writes screenshots with labels and the colour bar.
+//
+// The app's sources belong to the polarview executable (src/app/ is not a library), so this test
+// compiles them in.
+#include "app/viewer_app.cpp"
+#include "app/viewer_commands.cpp"
+#include "app/viewer_surface.cpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace polarview {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<ViewerApp> makeApp(int width = 640, int height = 400, size_t faceBudget = kDefaultFaceBudget) {
+  ViewerOptions options;
+  options.width = width;
+  options.height = height;
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  options.faceBudget = faceBudget;
+  auto app = std::make_unique<ViewerApp>(options);
+  std::string error;
+  REQUIRE_MESSAGE(app->init(&error), error);
+  return app;
+}
+
+void runFrames(ViewerApp& app, int frames) {
+  for (int f = 0; f < frames; ++f) app.runFrame();
+}
+
+// A shown surface equals what the settings ask for.
+bool showsWanted(const ViewerApp& app, int v) {
+  const BuiltSurface* shown = app.shownSurface(v);
+  const ViewSettings& wanted = app.state().views[size_t(v)];
+  return shown && shown->key.model == app.modelGeneration() && shown->key.scheme == wanted.scheme &&
+         shown->key.level == wanted.level;
+}
+
+// An open valence-n cap: pole, one link of n 4-valent vertices, a boundary link; z = r^2 / 2.
+PolyMesh fanWithOneRing(int n) {
+  PolyMesh mesh;
+  mesh.points.push_back({0, 0, 0});
+  for (int ring = 1; ring <= 2; ++ring) {
+    for (int j = 0; j < n; ++j) {
+      double a = 2.0 * 3.14159265358979 * j / n, r = ring;
+      mesh.points.push_back({r * std::cos(a), r * std::sin(a), 0.5 * r * r});
+    }
+  }
+  auto q = [n](int ring, int j) { return Index(1 + (ring - 1) * n + (j % n)); };
+  for (int j = 0; j < n; ++j) mesh.addFace({0, q(1, j), q(1, j + 1)});
+  for (int j = 0; j < n; ++j) mesh.addFace({q(1, j), q(2, j), q(2, j + 1), q(1, j + 1)});
+  return mesh;
+}
+
+bool near(const uint8_t* pixel, const glm::vec3& colour, int tolerance) {
+  for (int c = 0; c < 3; ++c) {
+    if (std::abs(int(pixel[c]) - int(std::lround(colour[c] * 255.0f))) > tolerance) return false;
+  }
+  return true;
+}
+
+std::pair<int, int> pngSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), 24);
+  auto be32 = [&](int at) { return int(header[at]) << 24 | int(header[at + 1]) << 16 | int(header[at + 2]) << 8 | int(header[at + 3]); };
+  return {be32(16), be32(20)};
+}
+
+}  // namespace
+
+TEST_CASE("viewer app: a file that fails to load leaves the model shown and the error in the state") {
+  auto app = makeApp();
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  REQUIRE(showsWanted(*app, 0));
+  const uint64_t generation = app->modelGeneration();
+  const BuiltSurface* before = app->shownSurface(0);
+
+  fs::path bad = fs::temp_directory_path() / "polarview_app_test_bad.obj";
+  std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+  CHECK_FALSE(app->loadFile(bad.string()));
+  CHECK(app->state().file.error.find("polarview_app_test_bad.obj:4:") != std::string::npos);
+
+  // The same through the file panel's request, with a file that does not exist.
+  app->state().file.pathField = (fs::temp_directory_path() / "polarview_no_such_file.obj").string();
+  app->state().requests.load = true;
+  runFrames(*app, 3);
+  CHECK(app->state().file.error.find("polarview_no_such_file.obj") != std::string::npos);
+  CHECK(app->modelGeneration() == generation);
+  CHECK(app->shownSurface(0) == before);
+  fs::remove(bad);
+}
+
+TEST_CASE("viewer app: after many quick scheme and level changes every view shows the last request") {
+  auto app = makeApp();
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 3;
+  state.linkLevels = false;
+  std::mt19937 rng(42);
+  for (int frame = 0; frame < 40; ++frame) {
+    int v = int(rng() % 3);
+    state.views[size_t(v)].scheme = static_cast<SchemeChoice>(rng() % kSchemeChoiceCount);
+    state.views[size_t(v)].level = int(rng() % 4);
+    if (frame % 7 == 0) state.viewCount = 1 + int(rng() % 3);
+    app->runFrame();
+  }
+  state.viewCount = 3;
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+  for (int v = 0; v < 3; ++v) {
+    CAPTURE(v);
+    REQUIRE(showsWanted(*app, v));
+    // What is shown is what a fresh build of the same key gives.
+    auto fresh = buildSurface(app->model(), app->shownSurface(v)->key, kDefaultFaceBudget);
+    CHECK(state.status[size_t(v)].patchCount == int(fresh->patches.size()));
+    int sum = 0;
+    for (int count : state.status[size_t(v)].patchesPerKind) sum += count;
+    CHECK(sum == state.status[size_t(v)].patchCount);
+  }
+}
+
+TEST_CASE("viewer app: resizing the window keeps every view drawn at the new size") {
+  auto app = makeApp(640, 400);
+  app->loadDefaultModel();
+  app->state().viewCount = 2;
+  app->waitUntilIdle();
+  for (auto [w, h] : {std::pair{800, 300}, std::pair{300, 500}, std::pair{1000, 700}, std::pair{200, 150}}) {
+    CAPTURE(w);
+    glfwSetWindowSize(app->window(), w, h);
+    runFrames(*app, 3);
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(app->window(), &fw, &fh);
+    CHECK(fw == w);
+    CHECK(fh == h);
+    CHECK(ImGui::GetIO().DisplaySize.x == float(w));
+    // Each view's centre shows the model, not the background.
+    RgbaImage image = app->renderImage(fw, fh, 1, false);
+    REQUIRE(image.width == fw);
+    std::vector<ScreenRect> views = layoutViews(2, ScreenRect{0, 0, float(fw), float(fh)}, colourBarReserve(app->state(), 1.0f));
+    for (const ScreenRect& r : views) {
+      const uint8_t* centre = image.at(int(r.x + r.w / 2), int(r.y + r.h / 2));
+      CHECK_FALSE(near(centre, glm::vec3(kBackground[0], kBackground[1], kBackground[2]), 2));
+    }
+  }
+}
+
+TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps running") {
+  auto app = makeApp();
+  REQUIRE(app->loadMesh(fanWithOneRing(1024), "fan-1024"));
+  ViewerState& state = app->state();
+  state.viewCount = 2;
+  state.views[1].scheme = SchemeChoice::CatmullClark;
+  for (int level = 0; level <= 2; ++level) {
+    CAPTURE(level);
+    requestLevel(state, level);
+    app->waitUntilIdle();
+    runFrames(*app, 2);
+    for (int v = 0; v < 2; ++v) {
+      // Either the level is shown, or it was refused / failed with a message and the app goes on.
+      CHECK((showsWanted(*app, v) || !state.status[size_t(v)].message.empty()));
+    }
+    CHECK(state.frameMs > 0.0);
+  }
+  CHECK(app->shownSurface(0) != nullptr);
+}
+
+TEST_CASE("viewer app: a level over the face budget is refused with a message and the view keeps its level") {
+  auto app = makeApp(640, 400, 20000);
+  app->loadDefaultModel();
+  requestLevel(app->state(), 1);
+  app->waitUntilIdle();
+  REQUIRE(showsWanted(*app, 0));
+  requestLevel(app->state(), 8);
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+  CHECK(app->state().status[0].message.find("refused") != std::string::npos);
+  CHECK(app->state().views[0].level == 1);
+  CHECK(app->shownSurface(0)->key.level == 1);
+}
+
+TEST_CASE("viewer app: screenshots are numbered PNGs of the window size with labels and the colour bar") {
+  auto app = makeApp(720, 360);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 2;
+  state.views[1].scheme = SchemeChoice::CatmullClark;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  state.colour.automatic = false;
+  state.colour.typedRange = 0.5f;
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+
+  fs::path previous = fs::current_path();
+  fs::path dir = fs::temp_directory_path() / "polarview_app_screens";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::current_path(dir);
+  state.screenshot.supersample = 2;
+  std::string first = app->saveScreenshot();
+  std::string second = app->saveScreenshot();
+  fs::current_path(previous);
+  CHECK(fs::path(first).filename() == "polarview_0001.png");
+  CHECK(fs::path(second).filename() == "polarview_0002.png");
+  CHECK(pngSize(first) == std::pair{720, 360});
+
+  // The colour bar: both ends of the map appear in the strip under the views.
+  RgbaImage image = app->renderImage(720, 360, 1, false);
+  const float reserve = colourBarReserve(state, 1.0f);
+  bool low = false, high = false;
+  for (int y = int(360 - reserve); y < 360; ++y) {
+    for (int x = 0; x < 720; ++x) {
+      low = low || near(image.at(x, y), colorMapCpu(state.shading.colormap, -0.5f, 0.5f), 6);
+      high = high || near(image.at(x, y), colorMapCpu(state.shading.colormap, 0.5f, 0.5f), 6);
+    }
+  }
+  CHECK(low);
+  CHECK(high);
+  // The labels: white text at the top of each view.
+  for (const ScreenRect& r : layoutViews(2, ScreenRect{0, 0, 720, 360}, reserve)) {
+    int white = 0;
+    for (int y = 4; y < 32; ++y) {
+      for (int x = int(r.x + r.w / 3); x < int(r.x + 2 * r.w / 3); ++x) white += near(image.at(x, y), glm::vec3(1.0f), 20);
+    }
+    CHECK(white > 15);
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace polarview
