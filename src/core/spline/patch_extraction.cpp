@@ -164,78 +164,83 @@ Point diagonalPoint(const PolyMesh& mesh, Index face, Index corner, const Point&
   return (4.0 / size) * sum - v - a - b;
 }
 
-// Limit point and tangents of the Catmull-Clark limit at one vertex (patch_extraction.h).
-class VertexLimit {
- public:
-  VertexLimit(const PolyMesh& mesh, const MeshTopology& topo, Index v) : mesh_(mesh), topo_(topo), v_(v) {
-    const Index edgeFirst = topo.vertexEdgeStart[v], faceFirst = topo.vertexFaceStart[v];
-    k_ = topo.valence(v);
-    faces_ = topo.faceValence(v);
-    boundary_ = topo.vertexOnBoundary[v] != 0;
-    // Edge neighbours e_j and diagonals f_j (face j lies between edges j and j+1).
-    e_.resize(k_);
-    for (Index j = 0; j < k_; ++j) e_[j] = mesh.points[topo.otherEnd(topo.vertexEdges[edgeFirst + j], v)];
-    f_.resize(faces_);
-    const Point& p = mesh.points[v];
-    for (Index j = 0; j < faces_; ++j)
-      f_[j] = diagonalPoint(mesh, topo.vertexFaces[faceFirst + j], topo.vertexCorners[faceFirst + j], p, e_[j], e_[(j + 1) % k_]);
-    if (boundary_) {
-      limit_ = (e_.front() + 4.0 * p + e_.back()) / 6.0;
-    } else {
-      Point edgeSum(0.0), faceSum(0.0);
-      for (Index j = 0; j < k_; ++j) {
-        edgeSum += e_[j];
-        faceSum += f_[j];
-      }
-      const double k = k_;
-      limit_ = (k / (k + 5.0)) * p + (4.0 / (k * (k + 5.0))) * edgeSum + (1.0 / (k * (k + 5.0))) * faceSum;
-    }
-  }
-
-  const Point& limit() const { return limit_; }
-  Index valence() const { return k_; }
-  bool onBoundary() const { return boundary_; }
-
-  // Limit tangent along `edge` (pointing from v to its other end), in the parameter scale of a
-  // regular B-spline patch (one unit per edge). [O(valence)]
-  Point tangent(Index edge) const {
-    const Index first = topo_.vertexEdgeStart[v_];
-    Index i = 0;
-    while (topo_.vertexEdges[first + i] != edge) ++i;
-    if (boundary_) {
-      if (i == 0) return 0.5 * (e_.front() - e_.back());
-      if (i == k_ - 1) return 0.5 * (e_.back() - e_.front());
-      return (f_[i - 1] + 4.0 * e_[i] + f_[i]) / 6.0 - limit_;
-    }
-    // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
-    // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12).
-    const double k = k_, step = 2.0 * kPi / k;
-    const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
-    const double scale = 1.0 / (k * (0.5 * A + 1.0 + std::cos(step)));
-    Point t(0.0);
-    for (Index j = 0; j < k_; ++j) {
-      const double a = step * double(j - i), b = step * double(j + 1 - i);
-      t += (A * std::cos(a)) * e_[j] + (std::cos(a) + std::cos(b)) * f_[j];
-    }
-    return scale * t;
-  }
-
- private:
-  const PolyMesh& mesh_;
-  const MeshTopology& topo_;
-  Index v_;
-  Index k_ = 0, faces_ = 0;
-  bool boundary_ = false;
-  std::vector<Point> e_, f_;
-  Point limit_{};
+// Reusable buffers for the 1-ring of a vertex (no allocation per end cap once grown).
+struct RingScratch {
+  std::vector<Point> e, f;  // edge neighbours e_j and diagonals f_j (face j between edges j, j+1)
 };
+
+// Catmull-Clark limit data at a face corner: limit point and the limit tangents along the face's
+// two edges there (patch_extraction.h), in the parameter scale of a regular B-spline patch.
+struct CornerFrame {
+  Point limit{}, towardNext{}, towardPrev{};
+  Point point{};        // the control point itself
+  double weight = 4.0;  // Loop-Schaefer interior-point weight: valence (4 at boundary vertices)
+};
+
+// Limit tangent along edge i of the 1-ring in `ring` (see patch_extraction.h). The same
+// arithmetic runs for both faces on an edge, so their boundary curves agree. [O(valence)]
+Point limitTangent(const RingScratch& ring, Index k, bool boundary, const Point& limit, Index i) {
+  if (boundary) {
+    if (i == 0) return 0.5 * (ring.e.front() - ring.e.back());
+    if (i == k - 1) return 0.5 * (ring.e.back() - ring.e.front());
+    return (ring.f[i - 1] + 4.0 * ring.e[i] + ring.f[i]) / 6.0 - limit;
+  }
+  // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
+  // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12).
+  const double kd = double(k), step = 2.0 * kPi / kd;
+  const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
+  const double scale = 1.0 / (kd * (0.5 * A + 1.0 + std::cos(step)));
+  Point t(0.0);
+  for (Index j = 0; j < k; ++j) {
+    const double a = step * double(j - i), b = step * double(j + 1 - i);
+    t += (A * std::cos(a)) * ring.e[j] + (std::cos(a) + std::cos(b)) * ring.f[j];
+  }
+  return scale * t;
+}
+
+// Limit point and tangents at corner `corner` (an index into faceVerts) of `face`. [O(valence)]
+CornerFrame cornerFrame(const PolyMesh& mesh, const MeshTopology& topo, Index face, Index corner, RingScratch& ring) {
+  const Index v = mesh.faceVerts[corner];
+  const Index edgeFirst = topo.vertexEdgeStart[v], faceFirst = topo.vertexFaceStart[v];
+  const Index k = topo.valence(v), faces = topo.faceValence(v);
+  const bool boundary = topo.vertexOnBoundary[v] != 0;
+  const Point& p = mesh.points[v];
+  ring.e.resize(k);
+  ring.f.resize(faces);
+  for (Index j = 0; j < k; ++j) ring.e[j] = mesh.points[topo.otherEnd(topo.vertexEdges[edgeFirst + j], v)];
+  for (Index j = 0; j < faces; ++j)
+    ring.f[j] = diagonalPoint(mesh, topo.vertexFaces[faceFirst + j], topo.vertexCorners[faceFirst + j], p, ring.e[j],
+                              ring.e[(j + 1) % k]);
+
+  CornerFrame frame;
+  frame.point = p;
+  if (boundary) {
+    frame.limit = (ring.e.front() + 4.0 * p + ring.e.back()) / 6.0;
+  } else {
+    Point edgeSum(0.0), faceSum(0.0);
+    for (Index j = 0; j < k; ++j) edgeSum += ring.e[j], faceSum += ring.f[j];
+    const double kd = double(k);
+    frame.limit = (kd / (kd + 5.0)) * p + (4.0 / (kd * (kd + 5.0))) * edgeSum + (1.0 / (kd * (kd + 5.0))) * faceSum;
+    frame.weight = kd;
+  }
+  // The face's outgoing and incoming edges at this corner, found in v's edge ring.
+  const Index start = mesh.faceStart[face], size = mesh.faceSize(face);
+  const Index previous = start + (corner - start + size - 1) % size;
+  const Index outgoing = topo.cornerEdge[corner], incoming = topo.cornerEdge[previous];
+  for (Index j = 0; j < k; ++j) {
+    const Index e = topo.vertexEdges[edgeFirst + j];
+    if (e == outgoing) frame.towardNext = limitTangent(ring, k, boundary, frame.limit, j);
+    if (e == incoming) frame.towardPrev = limitTangent(ring, k, boundary, frame.limit, j);
+  }
+  return frame;
+}
 
 using Bezier = std::array<Point, 4>;
 
-// The Hermite cubic of an edge from its end vertices' limit points and tangents: identical for
-// both faces on the edge (up to direction).
-Bezier edgeCurve(const VertexLimit& a, const VertexLimit& b, Index edge) {
-  return {a.limit(), a.limit() + a.tangent(edge) / 3.0, b.limit() + b.tangent(edge) / 3.0, b.limit()};
+// The Hermite cubic of the edge from corner a to the next corner b: depends only on the edge
+// (both faces on it compute the same curve, up to direction).
+Bezier edgeCurve(const CornerFrame& a, const CornerFrame& b) {
+  return {a.limit, a.limit + a.towardNext / 3.0, b.limit + b.towardPrev / 3.0, b.limit};
 }
 
 // Bezier net b[i][j] (i along u) -> B-spline control points cp[4*j + i] of the same surface.
@@ -252,19 +257,17 @@ std::array<Point, 16> bezierToBSpline(const std::array<Point, 16>& b) {
   return cp;
 }
 
-// Loop-Schaefer interior Bezier point at a corner v with neighbours a, b along the face and d
-// diagonal; valence 4 at boundary vertices.
-Point interiorPoint(const VertexLimit& limit, const Point& v, const Point& a, const Point& b, const Point& d) {
-  const double k = limit.onBoundary() ? 4.0 : double(limit.valence());
-  return (k * v + 2.0 * (a + b) + d) / (k + 5.0);
+// Loop-Schaefer interior Bezier point at corner `at` with neighbours a, b along the face and d
+// diagonal.
+Point interiorPoint(const CornerFrame& at, const Point& a, const Point& b, const Point& d) {
+  return (at.weight * at.point + 2.0 * (a + b) + d) / (at.weight + 5.0);
 }
 
 // End cap of a quad face (patch_extraction.h).
-Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f) {
-  const Index* loop = mesh.face(f);
+Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f, RingScratch& ring) {
   const Index start = mesh.faceStart[f];
-  const VertexLimit limits[4] = {VertexLimit(mesh, topo, loop[0]), VertexLimit(mesh, topo, loop[1]),
-                                 VertexLimit(mesh, topo, loop[2]), VertexLimit(mesh, topo, loop[3])};
+  CornerFrame frames[4];
+  for (int c = 0; c < 4; ++c) frames[c] = cornerFrame(mesh, topo, f, start + c, ring);
   std::array<Point, 16> b;
   auto B = [&](int i, int j) -> Point& { return b[4 * j + i]; };
   // Boundary curves, side s from corner s to s+1; grid positions of its 4 Bezier points.
@@ -273,30 +276,30 @@ Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f) {
                                          {{3, 3}, {2, 3}, {1, 3}, {0, 3}},
                                          {{0, 3}, {0, 2}, {0, 1}, {0, 0}}};
   for (int s = 0; s < 4; ++s) {
-    const Bezier curve = edgeCurve(limits[s], limits[(s + 1) % 4], topo.cornerEdge[start + s]);
+    const Bezier curve = edgeCurve(frames[s], frames[(s + 1) % 4]);
     for (int k = 0; k < 4; ++k) B(kSide[s][k][0], kSide[s][k][1]) = curve[k];
   }
-  const Point* p[4] = {&mesh.points[loop[0]], &mesh.points[loop[1]], &mesh.points[loop[2]], &mesh.points[loop[3]]};
-  B(1, 1) = interiorPoint(limits[0], *p[0], *p[1], *p[3], *p[2]);
-  B(2, 1) = interiorPoint(limits[1], *p[1], *p[2], *p[0], *p[3]);
-  B(2, 2) = interiorPoint(limits[2], *p[2], *p[3], *p[1], *p[0]);
-  B(1, 2) = interiorPoint(limits[3], *p[3], *p[0], *p[2], *p[1]);
+  const Point p[4] = {frames[0].point, frames[1].point, frames[2].point, frames[3].point};
+  B(1, 1) = interiorPoint(frames[0], p[1], p[3], p[2]);
+  B(2, 1) = interiorPoint(frames[1], p[2], p[0], p[3]);
+  B(2, 2) = interiorPoint(frames[2], p[3], p[1], p[0]);
+  B(1, 2) = interiorPoint(frames[3], p[0], p[2], p[1]);
   Patch patch;
   patch.cp = bezierToBSpline(b);
   return patch;
 }
 
 // End caps of a k-gon (k != 4): k quads (corner, edge midpoint, centre, previous edge midpoint).
-void polygonEndCaps(const PolyMesh& mesh, const MeshTopology& topo, Index f, std::vector<Patch>& out) {
+// Only at level 0 or at a pole left without a cap, so the per-face buffers do not matter.
+void polygonEndCaps(const PolyMesh& mesh, const MeshTopology& topo, Index f, RingScratch& ring, std::vector<Patch>& out) {
   const Index k = mesh.faceSize(f), start = mesh.faceStart[f];
-  std::vector<VertexLimit> limits;
-  limits.reserve(k);
-  for (Index c = 0; c < k; ++c) limits.emplace_back(mesh, topo, mesh.faceVerts[start + c]);
+  std::vector<CornerFrame> frames(k);
+  for (Index c = 0; c < k; ++c) frames[c] = cornerFrame(mesh, topo, f, start + c, ring);
   // Halves of each edge curve by de Casteljau at 1/2.
   std::vector<Bezier> firstHalf(k), secondHalf(k);
   Point centre(0.0);
   for (Index c = 0; c < k; ++c) {
-    const Bezier e = edgeCurve(limits[c], limits[(c + 1) % k], topo.cornerEdge[start + c]);
+    const Bezier e = edgeCurve(frames[c], frames[(c + 1) % k]);
     const Point m01 = 0.5 * (e[0] + e[1]), m12 = 0.5 * (e[1] + e[2]), m23 = 0.5 * (e[2] + e[3]);
     const Point m012 = 0.5 * (m01 + m12), m123 = 0.5 * (m12 + m23), mid = 0.5 * (m012 + m123);
     firstHalf[c] = {e[0], m01, m012, mid};
@@ -406,11 +409,12 @@ PatchSet extractPatches(const Refinement& refinement) {
         for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
       }
       // End caps for everything else not covered.
+      RingScratch ring;
       for (Index f = 0; f < mesh.faceCount(); ++f) {
         if (classes.faceRegular[f] || inHole[f]) continue;
         const size_t first = set.patches.size();
-        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, topo, f));
-        else polygonEndCaps(mesh, topo, f, set.patches);
+        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, topo, f, ring));
+        else polygonEndCaps(mesh, topo, f, ring, set.patches);
         for (size_t k = first; k < set.patches.size(); ++k) {
           set.patches[k].kind = PatchKind::EndCap;
           set.patches[k].level = uint8_t(std::min(m, 255));
