@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -257,7 +258,18 @@ TEST_CASE("extraction: a regular torus is all Regular patches at level 0, none a
 
 TEST_CASE("extraction: a closed cube gets end caps exactly at its eight extraordinary vertices, watertight") {
   for (int levels : {1, 2, 3}) {
-    const PatchSet set = extract(shapes::cube(), Scheme::CatmullClark, levels);
+    RefineOptions options;
+    options.scheme = Scheme::CatmullClark;
+    options.levels = levels;
+    const Refinement refinement(shapes::cube(), options);
+    const PatchSet set = extractPatches(refinement);
+    const RefinedLevel& finest = refinement.finest();
+    for (const Patch& p : set.patches) {
+      if (p.kind != PatchKind::EndCap) continue;
+      int extraordinary = 0;
+      for (int c = 0; c < 4; ++c) extraordinary += finest.topology.valence(finest.mesh.face(p.face)[c]) != 4;
+      CHECK(extraordinary == 1);
+    }
     CHECK(set.count(PatchKind::EndCap) == 24);  // 3 faces around each of 8 valence-3 vertices
     CHECK(set.count(PatchKind::Boundary) == 0);
     CHECK(set.count(PatchKind::PoleCap) == 0);
@@ -390,4 +402,55 @@ TEST_CASE("extraction: triangles at level 0 become watertight split end caps") {
   CHECK(set.count(PatchKind::EndCap) == 8 * 3);
   const SeamReport r = checkSeams(set, 1e-9 * meshSize(set));
   CHECK(r.unmatched.empty());
+}
+
+TEST_CASE("end caps: the limit point and normal at an extraordinary vertex do not change with the level") {
+  // Catmull-Clark limit points and the tangent mask's plane are exact, so end caps built at level 1
+  // and at level 4 must agree at the extraordinary vertices (a jittered cube: eight valence-3 EVs,
+  // and a mushroom's stem: four more).
+  PolyMesh cube = shapes::cube();
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  for (Point& p : cube.points) p += Point(jitter(rng), jitter(rng), jitter(rng));
+  struct EvSample {
+    Point position, normal;
+  };
+  auto evSamples = [&](int levels) {
+    RefineOptions options;
+    options.scheme = Scheme::CatmullClark;
+    options.levels = levels;
+    const Refinement refinement(cube, options);
+    const PatchSet set = extractPatches(refinement);
+    const RefinedLevel& finest = refinement.finest();
+    std::vector<EvSample> samples;
+    const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const Patch& p : set.patches) {
+      if (p.kind != PatchKind::EndCap) continue;
+      const Index* loop = finest.mesh.face(p.face);
+      for (int c = 0; c < 4; ++c)
+        if (finest.topology.valence(loop[c]) != 4) {
+          const SurfacePoint sp = evaluatePatch(p, corner[c][0], corner[c][1]);
+          samples.push_back({sp.position, sp.normal});
+        }
+    }
+    return samples;
+  };
+  const std::vector<EvSample> coarse = evSamples(1), fine = evSamples(4);
+  REQUIRE(coarse.size() == 24);
+  REQUIRE(fine.size() == 24);
+  double worstPosition = 0.0, worstAngle = 0.0;
+  for (const EvSample& a : coarse) {
+    const EvSample* match = &fine[0];
+    for (const EvSample& b : fine)
+      if (glm::length(b.position - a.position) < glm::length(match->position - a.position)) match = &b;
+    worstPosition = std::max(worstPosition, glm::length(match->position - a.position));
+    worstAngle = std::max(worstAngle, std::atan2(glm::length(glm::cross(a.normal, match->normal)), glm::dot(a.normal, match->normal)));
+  }
+  CHECK(worstPosition < 1e-12);
+  CHECK(worstAngle < 1e-10);
+  // Every end cap at one EV has the same normal there (the normal is continuous at the EV).
+  for (const EvSample& a : coarse)
+    for (const EvSample& b : coarse)
+      if (glm::length(a.position - b.position) < 1e-12) CHECK(glm::length(a.normal - b.normal) < 1e-12);
+  MESSAGE("EV limit point drift level 1 -> 4: " << worstPosition << ", normal drift " << worstAngle << " rad");
 }
