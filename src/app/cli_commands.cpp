@@ -106,8 +106,10 @@ const char* outerName(PolarConfig::Outer outer) {
 
 // What `scheme` does at a polar configuration, in words.
 std::string schemeAction(Scheme scheme, const PolarConfig& c, bool radialMesh) {
-  if (!c.refinable || scheme == Scheme::CatmullClark)
-    return "Catmull-Clark (valence " + std::to_string(c.valence) + " stays; extraordinary vertex)";
+  std::string why;
+  if (!schemeRefinesPole(scheme, c, &why))
+    return "Catmull-Clark (valence " + std::to_string(c.valence) + " stays; extraordinary vertex)" +
+           (scheme == Scheme::CatmullClark || !c.refinable ? "" : ": " + why);
   if (scheme == Scheme::C2PS) return "C2PS rules (1)-(5): valence doubles each level";
   std::string name = scheme == Scheme::RTS ? "RTS" : "BPS";
   return name + (radialMesh ? " radial refinement of the whole mesh (valence fixed)"

@@ -201,4 +201,16 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
   return configs;
 }
 
+bool schemeRefinesPole(Scheme scheme, const PolarConfig& config, std::string* reason) {
+  auto refuse = [&](const std::string& why) {
+    if (reason) *reason = why;
+    return false;
+  };
+  if (scheme == Scheme::CatmullClark) return refuse("Catmull-Clark has no polar rules");
+  if (!config.refinable) return refuse(config.reason);
+  if ((scheme == Scheme::RTS || scheme == Scheme::BPS) && config.valence < 5)
+    return refuse(std::string(schemeName(scheme)) + " needs valence >= 5 (its weights alias below)");
+  return true;
+}
+
 }  // namespace polarview

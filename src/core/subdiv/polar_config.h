@@ -8,6 +8,7 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/mesh/topology.h"
+#include "core/subdiv/scheme.h"
 
 namespace polarview {
 
@@ -29,5 +30,11 @@ struct PolarConfig {
 // Finds every vertex that looks polar (interior, all incident faces triangles, valence >= 3) and
 // decides whether it can be refined as a pole. [O(mesh)]
 std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopology& topo);
+
+// Whether `scheme` refines this refinable configuration as a pole; if not, why (Catmull-Clark then
+// treats it). RTS and BPS need n >= 5: their 1-link weights hold Fourier modes up to 2 (RTS) and 3
+// (BPS), which alias for smaller n (BPS at n = 3 is not even affine invariant); the paper's
+// analysis of RTS stipulates n >= 5 too. C2PS takes any n >= 3 (its valence doubles). [O(1)]
+bool schemeRefinesPole(Scheme scheme, const PolarConfig& config, std::string* reason = nullptr);
 
 }  // namespace polarview

@@ -344,9 +344,8 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   RefinedLevel level0;
   level0.mesh = base;
   level0.topology = buildTopology(base, sourceName);
-  if (options.scheme != Scheme::CatmullClark)
-    for (PolarConfig& config : findPolarConfigs(base, level0.topology))
-      if (config.refinable) level0.poles.push_back(std::move(config));
+  for (PolarConfig& config : findPolarConfigs(base, level0.topology))
+    if (schemeRefinesPole(options.scheme, config)) level0.poles.push_back(std::move(config));
   levels_.push_back(std::move(level0));
 
   // RTS/BPS on caps and globes: radial refinement of the whole mesh.
