@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The command-line contract: refine writes the level-L mesh, info/pole/bench print what the
+# README says, usage errors exit 2. Args: <polarview executable> <repository root>.
+set -euo pipefail
+exe=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+py() { python3 -c "$@"; }
+
+"$exe" shape globe --valence 8 --links 5 -o "$tmp/globe.obj"
+"$exe" shape mushroom --valence 12 -o "$tmp/mushroom.obj"
+
+# refine: C2PS on the globe: faces = 4 per quad corner... count faces and the pole valence 8 * 2^L.
+"$exe" refine "$tmp/globe.obj" -o "$tmp/g2.obj" --scheme c2ps --levels 2
+faces=$(grep -c '^f ' "$tmp/g2.obj")
+verts=$(grep -c '^v ' "$tmp/g2.obj")
+# level 0: 32 quads + 16 triangles. Level 1: 32*4 + 16*3 quads, 2*8 of them (at the poles) split in
+# two: 160 quads + 32 triangles. Level 2: 160*4 + 32*3, plus 2*16 splits.
+[ "$faces" -eq $((160*4 + 32*3 + 2*16)) ] || fail "c2ps level-2 globe has $faces faces"
+# coordinates round-trip doubles: 17 significant digits somewhere
+grep -qE '^v -?[0-9]\.[0-9]{15,}' "$tmp/g2.obj" || fail "coordinates are not written with full precision"
+# the refined mesh is itself a valid mesh whose poles have valence 32
+"$exe" info "$tmp/g2.obj" --json > "$tmp/info.json"
+py "import json; d=json.load(open('$tmp/info.json')); v=[p['valence'] for p in d['poles'] if p['refinable']]; assert v==[32,32], v; assert d['vertices']==$verts"
+
+# rts on a globe is radial: valence stays, faces double per level
+"$exe" refine "$tmp/globe.obj" -o "$tmp/r3.obj" --scheme rts --levels 3
+[ "$(grep -c '^f ' "$tmp/r3.obj")" -eq $(( (32+16) * 8 )) ] || fail "rts globe faces"
+"$exe" info "$tmp/r3.obj" --json | py "import json,sys; d=json.load(sys.stdin); assert [p['valence'] for p in d['poles']]==[8,8]"
+
+# cc equals plain Catmull-Clark counts: every face becomes 4^L quads... (triangles give 3 quads first)
+"$exe" refine "$tmp/mushroom.obj" -o "$tmp/cc1.obj" --scheme cc --levels 1
+[ "$(grep -c '^f ' "$tmp/cc1.obj")" -eq $((12*3 + 105*4)) ] || fail "cc level-1 face count"
+
+# info names the pole and the extraordinary vertices
+"$exe" info "$tmp/mushroom.obj" --json | py "
+import json,sys; d=json.load(sys.stdin)
+assert d['poles'][0]['vertex']==0 and d['poles'][0]['valence']==12 and d['poles'][0]['regular_links']==8
+assert sum(1 for x in d['extraordinary_vertices'] if x['valence']==3)==4
+assert d['boundary_loops']==0"
+
+# pole: paraboloid cap z = r^2/2 sampled at the links: K = 1 at the apex; JSON shape as documented
+"$exe" shape cap --valence 16 --links 4 -o "$tmp/cap.obj"
+"$exe" pole "$tmp/cap.obj" --json | py "
+import json,sys; d=json.load(sys.stdin); p=d['poles'][0]
+assert p['vertex']==0 and p['valence']==16 and len(p['p'])==6 and len(p['limit'])==3
+assert abs(p['normal'][2]-1)<1e-12, p['normal']
+# the sampled paraboloid has radial spacing 1/4: curvature 1 with an exact Greville shift (constant)
+assert abs(p['gaussian_curvature']-1)<1e-9, p['gaussian_curvature']
+assert abs(p['mean_curvature']-1)<1e-9, p['mean_curvature']"
+# BPS is C1 at the pole: no curvature there
+"$exe" pole "$tmp/cap.obj" --scheme bps --json | py "import json,sys; p=json.load(sys.stdin)['poles'][0]; assert p['gaussian_curvature'] is None"
+
+# bench prints one JSON line with the documented fields
+"$exe" bench "$tmp/mushroom.obj" --scheme c2ps --levels 2 --reps 1 --json | py "
+import json,sys; d=json.loads(sys.stdin.read())
+for k in ['topology_ms','positions_ms','patches_ms','out_vertices','out_faces','patches']: assert k in d, k
+assert d['patches']>0 and d['out_faces']>0"
+
+# usage errors exit 2 with the usage; an unknown scheme too
+set +e
+"$exe" refine "$tmp/globe.obj" --levels 1 >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing -o should exit 2"
+"$exe" refine "$tmp/globe.obj" -o "$tmp/x.obj" --scheme loop --levels 1 2>/dev/null; [ $? -eq 2 ] || fail "unknown scheme should exit 2"
+"$exe" frobnicate 2>/dev/null; [ $? -eq 2 ] || fail "unknown command should exit 2"
+# a level that would not fit in memory: exit 1, one line, no output file
+"$exe" refine "$tmp/mushroom.obj" -o "$tmp/huge.obj" --scheme c2ps --levels 30 2>"$tmp/err"; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "huge level exit $rc"
+[ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "huge level: not one line"
+grep -q "^polarview: .*mushroom.obj" "$tmp/err" || fail "huge level: no file name"
+[ ! -e "$tmp/huge.obj" ] || fail "huge level left an output file"
+echo "commands: ok"
