@@ -213,7 +213,8 @@ void ViewerApp::frameModel(double aspect) {
   if (aspect <= 0.0) {
     int width = options_.width, height = options_.height;
     if (window_) glfwGetWindowSize(window_, &width, &height);
-    ScreenRect frame{0, 0, float(width), float(height)};
+    float panel = panelColumnWidth(state_);
+    ScreenRect frame{panel, 0, std::max(float(width) - panel, 1.0f), float(height)};
     ScreenRect view = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f)).front();
     aspect = double(view.w) / std::max(double(view.h), 1.0);
   }
@@ -433,10 +434,15 @@ void ViewerApp::runFrame() {
   int fbWidth = 0, fbHeight = 0;
   glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
   float pixelScale = io.DisplaySize.x > 0 ? float(fbWidth) / io.DisplaySize.x : 1.0f;
-  ScreenRect frame{0, 0, io.DisplaySize.x, io.DisplaySize.y};
+  auto viewArea = [&] {
+    float panel = std::min(panelColumnWidth(state_), io.DisplaySize.x * 0.5f);
+    return ScreenRect{panel, 0, std::max(io.DisplaySize.x - panel, 1.0f), io.DisplaySize.y};
+  };
+  ScreenRect frame = viewArea();
   std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   std::optional<PivotPick> pick = input_.handle(state_, rects);
   drawViewerPanels(state_);
+  frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   processRequests();
   updateSurfaces();
@@ -455,6 +461,15 @@ void ViewerApp::runFrame() {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   glFinish();  // frame time includes the GPU work (not the swap's wait for vsync)
   state_.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+  if (!windowCapturePath_.empty()) {
+    try {
+      writePngAtomic(windowCapturePath_, readFramebuffer(0, 0, fbWidth, fbHeight));
+      std::printf("%s\n", windowCapturePath_.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "polarview: %s\n", e.what());
+    }
+    windowCapturePath_.clear();
+  }
   glfwSwapBuffers(window_);
   ++framesDrawn_;
 }

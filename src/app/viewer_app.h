@@ -73,6 +73,9 @@ class ViewerApp {
   // Writes the next free polarview_NNNN.png in the current directory; returns its path (empty and
   // a notice on failure).
   std::string saveScreenshot();
+  // The next frame also writes the whole window (panels included) to `path` as a PNG.
+  void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
+
   // Points every view's camera (or the shared one) at the model's bounding box, for views of
   // `aspect` (width / height; 0: the aspect of the window's current views).
   void frameModel(double aspect = 0.0);
@@ -119,6 +122,7 @@ class ViewerApp {
   Model model_;
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
+  std::string windowCapturePath_;
 };
 
 }  // namespace polarview

@@ -27,7 +27,7 @@ const char* kRenderUsage =
     "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats]] [--hidden]\n";
+    "[--frames N [--stats] [--capture WINDOW.png]] [--hidden]\n";
 
 // Walks the argument list; values of options are taken with value().
 class ArgCursor {
@@ -285,6 +285,7 @@ struct ViewRequest {
   int width = 1600, height = 900;
   int frames = 0;
   bool stats = false, hidden = false;
+  std::string capture;  // after the frames: the whole window, panels included, as a PNG
 };
 
 ViewRequest parseViewArgs(const std::vector<std::string>& args) {
@@ -299,6 +300,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (arg == "--frames") r.frames = parseInt(cursor.value(arg), arg, 1, 100000);
     else if (arg == "--stats") r.stats = true;
     else if (arg == "--hidden") r.hidden = true;
+    else if (arg == "--capture") r.capture = cursor.value(arg);
     else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "'");
     else if (r.input.empty()) r.input = arg;
     else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
@@ -343,6 +345,10 @@ int viewWithApp(const ViewRequest& r) {
   for (int f = 0; f < r.frames && !app.shouldClose(); ++f) {
     app.runFrame();
     frameMs.push_back(state.frameMs);
+  }
+  if (!r.capture.empty()) {
+    app.captureWindowNextFrame(r.capture);
+    app.runFrame();
   }
   if (r.stats) std::cout << frameStatsJson(app, frameMs, r.width, r.height) << "\n";
   return 0;

@@ -214,15 +214,17 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
     }
-    ImGui::Text("View %d: %s level %d, %d patches, %d control faces, refine %.1f ms", v + 1,
-                schemeChoiceLabel(s.shownScheme), s.shownLevel, s.patchCount, s.controlFaces, s.refineMs);
+    ImGui::Text("View %d: %s level %d, refine %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
+                s.refineMs);
     ImGui::Indent();
+    ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
+    std::string kinds;
     for (int k = 0; k < kPatchKindCount; ++k) {
       if (s.patchesPerKind[k] == 0) continue;
-      ImGui::SameLine(0.0f, k == 0 ? 0.0f : 10.0f);
-      ImGui::Text("%s %d", patchKindName(static_cast<PatchKind>(k)), s.patchesPerKind[k]);
+      kinds += std::string(kinds.empty() ? "" : ", ") + patchKindName(static_cast<PatchKind>(k)) + " " +
+               std::to_string(s.patchesPerKind[k]);
     }
-    ImGui::NewLine();
+    ImGui::TextWrapped("%s", kinds.c_str());
     ImGui::Unindent();
   }
   if (!state.glInfo.empty()) ImGui::TextDisabled("%s", state.glInfo.c_str());
@@ -318,17 +320,35 @@ const std::vector<HotkeyHelp>& hotkeyList() {
   return list;
 }
 
+float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
+
 float colourBarReserve(const ViewerState& state, float scale) { return state.showsColourBar() ? 64.0f * scale : 0.0f; }
 
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve) {
   count = std::clamp(count, 1, kMaxViews);
+  const float height = std::max(frame.h - bottomReserve, 1.0f);
+  // Side by side in a row, or a full grid when that gives each view a clearly larger square (4 views
+  // in a 16:9 window: 2 x 2).
+  int columns = count;
+  float best = 0.0f;
+  for (int c = count; c >= 1; --c) {  // full grids only; from one row down so ties keep the row
+    if (count % c != 0) continue;
+    float side = std::min(frame.w / float(c), height / float(count / c));
+    if (side > best * 1.15f) {  // a grid must be clearly better than the row
+      best = side;
+      columns = c;
+    }
+  }
+  const int rows = (count + columns - 1) / columns;
   std::vector<ScreenRect> rects(static_cast<size_t>(count));
-  float height = std::max(frame.h - bottomReserve, 1.0f);
   for (int v = 0; v < count; ++v) {
+    int column = v % columns, row = v / columns;
     // Integer edges so neighbouring views share a pixel boundary exactly.
-    float left = std::floor(frame.x + frame.w * float(v) / float(count));
-    float right = std::floor(frame.x + frame.w * float(v + 1) / float(count));
-    rects[size_t(v)] = {left, frame.y, right - left, height};
+    float left = std::floor(frame.x + frame.w * float(column) / float(columns));
+    float right = std::floor(frame.x + frame.w * float(column + 1) / float(columns));
+    float top = std::floor(frame.y + height * float(row) / float(rows));
+    float bottom = std::floor(frame.y + height * float(row + 1) / float(rows));
+    rects[size_t(v)] = {left, top, right - left, bottom - top};
   }
   return rects;
 }
@@ -348,10 +368,11 @@ void requestLevel(ViewerState& state, int level) {
 void drawViewerPanels(ViewerState& state) {
   drawHelpWindow(state);
   if (!state.showPanels) return;
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (ImGui::Begin("polarview (Tab hides, ? for help)")) {
+  // A fixed column on the left; the views share the rest of the window.
+  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(panelColumnWidth(state), ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+  if (ImGui::Begin("polarview (Tab hides, ? for help)", nullptr, flags)) {
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(state);
     if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(state);
     if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(state);
@@ -388,7 +409,8 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
     list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
                         box, 4.0f * scale);
     list->AddText(font, fontSize, at, text, label.c_str());
-    if (v > 0) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
+    if (r.x > frame.x) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
+    if (r.y > frame.y) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y), IM_COL32(128, 128, 128, 160), scale);
   }
 
   if (!state.showsColourBar()) return;

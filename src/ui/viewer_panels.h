@@ -25,9 +25,12 @@ struct HotkeyHelp {
 };
 const std::vector<HotkeyHelp>& hotkeyList();
 
+// Width of the panel column on the left of the window (0 when the panels are hidden).
+float panelColumnWidth(const ViewerState& state);
 // Height kept free under the views for the colour bar (0 when the shading has none).
 float colourBarReserve(const ViewerState& state, float scale);
-// `count` views side by side in `frame`, above a strip of `bottomReserve`. [O(count)]
+// `count` views side by side in `frame` (a full grid such as 2 x 2 when that makes each view clearly
+// larger), above a strip of `bottomReserve`. [O(count)]
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve);
 
 // All panels (file, views, display, shading, colour, camera, screenshot, stats) and the help

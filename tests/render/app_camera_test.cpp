@@ -115,17 +115,46 @@ TEST_CASE("orbit camera: orbiting and panning keep the screen axes orthonormal a
 
 TEST_CASE("view layout: the views tile the frame above the colour bar without gaps or overlaps") {
   for (int count = 1; count <= kMaxViews; ++count) {
-    for (float width : {100.0f, 641.0f, 1600.0f, 1923.0f}) {
-      ScreenRect frame{0, 0, width, 900};
-      std::vector<ScreenRect> views = layoutViews(count, frame, 64);
-      REQUIRE(int(views.size()) == count);
-      CHECK(views.front().x == 0.0f);
-      CHECK(views.back().x + views.back().w == std::floor(width));
-      for (int v = 0; v < count; ++v) {
-        CHECK(views[size_t(v)].h == 900 - 64);
-        if (v > 0) CHECK(views[size_t(v)].x == views[size_t(v - 1)].x + views[size_t(v - 1)].w);
-        CHECK(std::abs(views[size_t(v)].w - width / float(count)) <= 1.0f);
+    for (float width : {100.0f, 641.0f, 1230.0f, 1600.0f, 3000.0f}) {
+      for (float height : {90.0f, 500.0f, 900.0f, 2000.0f}) {
+        CAPTURE(count);
+        CAPTURE(width);
+        CAPTURE(height);
+        ScreenRect frame{370, 0, width, height};
+        std::vector<ScreenRect> views = layoutViews(count, frame, 64);
+        REQUIRE(int(views.size()) == count);
+        // Areas add up to the frame above the strip (integer edges) and no two views overlap.
+        double area = 0.0;
+        for (const ScreenRect& r : views) {
+          area += double(r.w) * r.h;
+          CHECK(r.x >= frame.x);
+          CHECK(r.x + r.w <= frame.x + width);
+          CHECK(r.y >= 0.0f);
+          CHECK(r.y + r.h <= std::max(height - 64, 1.0f));
+        }
+        CHECK(std::abs(area - double(std::floor(frame.x + width) - frame.x) * std::floor(std::max(height - 64, 1.0f))) < 1.0);
+        for (size_t a = 0; a < views.size(); ++a) {
+          for (size_t b = a + 1; b < views.size(); ++b) {
+            float overlapX = std::min(views[a].x + views[a].w, views[b].x + views[b].w) - std::max(views[a].x, views[b].x);
+            float overlapY = std::min(views[a].y + views[a].h, views[b].y + views[b].h) - std::max(views[a].y, views[b].y);
+            CHECK_FALSE((overlapX > 0 && overlapY > 0));
+          }
+        }
+        // All views are the same size to within a pixel.
+        for (const ScreenRect& r : views) {
+          CHECK(std::abs(r.w - views[0].w) <= 1.0f);
+          CHECK(std::abs(r.h - views[0].h) <= 1.0f);
+        }
       }
     }
   }
+}
+
+TEST_CASE("view layout: views stay side by side in a wide frame and form a 2 x 2 grid in a 16:9 one") {
+  std::vector<ScreenRect> wide = layoutViews(4, ScreenRect{0, 0, 1600, 400}, 0);
+  for (const ScreenRect& r : wide) CHECK(r.y == 0.0f);
+  std::vector<ScreenRect> grid = layoutViews(4, ScreenRect{0, 0, 1230, 900}, 64);
+  CHECK(grid[1].y == 0.0f);
+  CHECK(grid[2].y > 0.0f);
+  CHECK(grid[2].x == grid[0].x);
 }
