@@ -168,5 +168,100 @@ TEST_CASE("renderer: overlays draw boundary curves in kind colours and pole mark
   CHECK(others == 0);
 }
 
+TEST_CASE("renderer: highlight lines on a plane parallel to the light plane have the set spacing") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // z = 0 under light lines along x in a plane z = const: the normal lines hit the light plane
+  // right above P, so s = (P . E) / spacing with E = W x B = e_y: straight stripes, one per
+  // spacing * boundingRadius in y.
+  renderer->setPatches(test::graphPatches([](double, double) { return 0.0; }, 3, 3, -1.5, -1.5, 1.0));
+  const int size = 160;
+  const double half = 1.2;
+  const ViewParams view = test::topView(Point(0.0), half, {0, 0, size, size});
+  for (float spacing : {0.04f, 0.07f}) {
+    CAPTURE(spacing);
+    ShadingParams shading;
+    shading.mode = ShadingParams::Mode::Highlight;
+    shading.highlightDir = {1, 0, 0};
+    shading.highlightPlaneNormal = {0, 0, 1};
+    shading.highlightSpacing = spacing;
+    shading.highlightWidth = 0.3f;
+    const RgbaImage image = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+    auto dark = [&](int x, int y) { return image.at(x, y)[0] < 100; };
+    // Centres of the dark runs down the middle column; rows must agree with the middle pixel.
+    std::vector<double> centres;
+    int runStart = -1, mismatches = 0;
+    for (int y = 0; y < size; ++y) {
+      for (int x = 8; x < size - 8; ++x) mismatches += dark(x, y) != dark(size / 2, y);
+      const bool d = dark(size / 2, y);
+      if (d && runStart < 0) runStart = y;
+      if (!d && runStart >= 0) {
+        if (runStart > 0) centres.push_back(0.5 * (runStart + y - 1));  // skip a cut-off first run
+        runStart = -1;
+      }
+    }
+    REQUIRE(centres.size() >= 4);
+    const double measured = (centres.back() - centres.front()) / double(centres.size() - 1);
+    const double expected = spacing * renderer->boundingRadius() / (2.0 * half) * size;  // pixels
+    CHECK(measured == doctest::Approx(expected).epsilon(0.02));
+    // Rows agree except for a few anti-aliased pixels sitting right at the dark/light threshold.
+    CHECK(mismatches <= size * (size - 16) / 200);
+  }
+}
+
+TEST_CASE("renderer: wireframe-only draws more edge pixels as the tessellation gets finer") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  renderer->setPatches(test::graphPatches([](double, double) { return 0.0; }, 2, 2, -1.0, -1.0, 1.0));
+  const int size = 200;
+  const ViewParams view = test::topView(Point(0.0), 1.1, {0, 0, size, size});
+  DisplayFlags flags = test::surfaceOnly();
+  flags.surface = false;
+  flags.wireframe = true;
+  int previous = 0;
+  for (int level : {1, 2, 4}) {
+    CAPTURE(level);
+    ShadingParams shading;
+    shading.fixedTessLevel = level;
+    const RgbaImage image = renderOffscreen(*renderer, view, shading, flags, size, size);
+    int wirePixels = 0, holes = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) (covered(image.at(x, y)) ? wirePixels : holes)++;
+    CHECK(wirePixels > previous * 3 / 2);
+    CHECK(holes > size * size / 3);  // the inside of the triangles stays empty
+    previous = wirePixels;
+  }
+}
+
+TEST_CASE("renderer: the control net is drawn along the mesh edges") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  renderer->setPatches(test::graphPatches([](double, double) { return 0.0; }, 2, 2, -1.0, -1.0, 1.0));
+  // A 2 x 2 quad grid over [-1, 1]^2: its edges are the lines x, y in {-1, 0, 1}.
+  PolyMesh net;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) net.points.push_back(Point(i - 1.0, j - 1.0, 0.0));
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i)
+      net.addFace({3 * j + i, 3 * j + i + 1, 3 * (j + 1) + i + 1, 3 * (j + 1) + i});
+  renderer->setControlMesh(net);
+  const int size = 101;  // pixel 50 is the centre, the lines x = +-1 fall on pixels 10 and 90
+  const ViewParams view = test::topView(Point(0.0), 1.25, {0, 0, size, size});
+  DisplayFlags flags = test::surfaceOnly();
+  flags.surface = false;
+  flags.controlNet = true;
+  const RgbaImage image = renderOffscreen(*renderer, view, ShadingParams{}, flags, size, size);
+  int onLines = 0, offLines = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (!covered(image.at(x, y))) continue;
+      const bool nearLine = std::min({std::abs(x - 10), std::abs(x - 50), std::abs(x - 90)}) <= 1 ||
+                            std::min({std::abs(y - 10), std::abs(y - 50), std::abs(y - 90)}) <= 1;
+      (nearLine ? onLines : offLines)++;
+    }
+  CHECK(onLines >= 6 * 75);  // six lines of ~80 pixels each
+  CHECK(offLines == 0);
+}
+
 }  // namespace
 }  // namespace polarview
