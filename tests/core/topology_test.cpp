@@ -300,6 +300,31 @@ TEST_CASE("topology: each non-manifold or malformed mesh is rejected at its face
   }
 }
 
+TEST_CASE("topology: random face soups are either rejected cleanly or give consistent tables") {
+  std::mt19937 rng(99);
+  int accepted = 0, rejected = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int vertices = 3 + int(rng() % 6), faces = 1 + int(rng() % 8);
+    PolyMesh m = withPoints(vertices);
+    for (int f = 0; f < faces; ++f) {
+      // Mostly triangles and quads; rarely a 2-gon or an index out of range.
+      std::vector<Index> loop(rng() % 50 == 0 ? 2 : 3 + rng() % 2);
+      for (Index& v : loop) v = Index(rng() % 100 == 0 ? vertices : rng() % vertices);
+      m.addFace(loop.data(), loop.size());
+    }
+    try {
+      const MeshTopology t = buildTopology(m);
+      checkTablesConsistent(m, t);
+      ++accepted;
+    } catch (const InputError&) {
+      ++rejected;
+    }
+  }
+  MESSAGE("random face soups: ", accepted, " accepted, ", rejected, " rejected");
+  CHECK(accepted > 50);
+  CHECK(rejected > 50);
+}
+
 TEST_CASE("topology: without OBJ lines the error names the face") {
   PolyMesh m = withPoints(4);
   m.addFace({0, 1, 2});
