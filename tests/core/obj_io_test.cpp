@@ -83,14 +83,14 @@ TEST_CASE("obj: faces record their line, texture and normal parts are ignored") 
   std::vector<std::string> warnings;
   PolyMesh m = parseObjText(
       "mtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0 1.0\nv 0 1 0 0.5 0.5 0.5\nvt 0 0\nvn 0 0 1\n"
-      "g grp\ns off\nusemtl red\n\nf 1/1/1 2/1/1 3//1\n\t f 1 3/1 4 # comment\nl 1 2\np 3\n",
+      "g grp\ns off\nusemtl red\n\nf 1/1/1 2/1/1 3//1\n\t f 1 3/1 4 # comment\nl 1 2\np 3\nt crease 2/1/0 1 2 3.0\n",
       "ok.obj", &warnings);
   CHECK(m.vertexCount() == 4);
   CHECK(m.faceCount() == 2);
   CHECK(m.faceLine == std::vector<int>{13, 14});
   CHECK(m.faceVerts == std::vector<Index>{0, 1, 2, 0, 2, 3});
   CHECK(m.points[3] == Point(0, 1, 0));
-  CHECK(warnings.size() == 2);  // one for 'l', one for 'p'
+  CHECK(warnings.size() == 3);  // one each for 'l', 'p' and 't'
 }
 
 TEST_CASE("obj: negative indices are relative to the vertices read so far") {

@@ -92,6 +92,8 @@ class ObjParser {
         ++polylines_;
       } else if (keyword == "p") {
         ++pointStatements_;
+      } else if (keyword == "t") {
+        ++tags_;
       } else if (!isIgnoredStatement(keyword)) {
         fail(lineNumber, "unknown statement " + quoted(keyword));
       }
@@ -216,6 +218,7 @@ class ObjParser {
     if (unused > 0) warnings_->push_back(std::to_string(unused) + " unreferenced vertices ignored");
     if (polylines_ > 0) warnings_->push_back(std::to_string(polylines_) + " 'l' (polyline) statements ignored");
     if (pointStatements_ > 0) warnings_->push_back(std::to_string(pointStatements_) + " 'p' (point) statements ignored");
+    if (tags_ > 0) warnings_->push_back(std::to_string(tags_) + " 't' (OpenSubdiv crease/corner tag) statements ignored");
   }
 
   const std::string& source_;
@@ -223,7 +226,7 @@ class ObjParser {
   PolyMesh mesh_;
   std::vector<Index> scratch_;
   std::vector<uint8_t> referenced_;
-  size_t polylines_ = 0, pointStatements_ = 0;
+  size_t polylines_ = 0, pointStatements_ = 0, tags_ = 0;
 };
 
 }  // namespace
