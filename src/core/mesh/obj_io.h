@@ -16,7 +16,7 @@ namespace polarview {
 // indices resolved relative to the vertices read so far). Fills PolyMesh::faceLine. Throws
 // InputError(path, line, msg) for unreadable, empty, binary or malformed input, non-finite
 // coordinates, bad indices, faces with < 3 vertices or a repeated vertex. Non-fatal findings
-// (unreferenced vertices, ignored `l`/`p` statements) go to `warnings`. [O(file size)]
+// (unreferenced vertices, ignored `l`/`p`/`t` statements) go to `warnings`. [O(file size)]
 PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 // Same as loadObj on an already opened stream; `sourceName` is the file name used in errors.

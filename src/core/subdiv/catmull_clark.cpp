@@ -69,9 +69,15 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
   const Index* faceStart = parent.faceStart.data();
   const Index* faceVerts = parent.faceVerts.data();
   for (Index f = 0; f < topo.faceCount; ++f) {
+    const Index* loop = faceVerts + faceStart[f];
+    const Index k = faceStart[f + 1] - faceStart[f];
+    if (k == 4) {  // the common case after one level: no loop, no division
+      facePoints[f] = 0.25 * ((p[loop[0]] + p[loop[1]]) + (p[loop[2]] + p[loop[3]]));
+      continue;
+    }
     Point sum(0.0);
-    for (Index c = faceStart[f]; c < faceStart[f + 1]; ++c) sum += p[faceVerts[c]];
-    facePoints[f] = sum * (1.0 / double(faceStart[f + 1] - faceStart[f]));
+    for (Index i = 0; i < k; ++i) sum += p[loop[i]];
+    facePoints[f] = sum * (1.0 / double(k));
   }
 
   // Edge points: midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside.
@@ -86,6 +92,10 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
   }
 
   // Vertex points: crease rule on the boundary, smooth rule inside, unused vertices copied.
+  const Index* vertexEdgeStart = topo.vertexEdgeStart.data();
+  const Index* vertexEdges = topo.vertexEdges.data();
+  const Index* vertexFaceStart = topo.vertexFaceStart.data();
+  const Index* vertexFaces = topo.vertexFaces.data();
   for (Index v = 0; v < topo.vertexCount; ++v) {
     if (!topo.vertexUsed[v]) {
       vertexPoints[v] = p[v];
@@ -95,9 +105,12 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
       vertexPoints[v] = kBoundaryVertexWeight * p[v] + kBoundaryNeighbourWeight * (p[a] + p[b]);
     } else {
       Point sum(0.0);
-      for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) sum += p[topo.otherEnd(topo.vertexEdges[i], v)];
-      for (Index i = topo.vertexFaceStart[v]; i < topo.vertexFaceStart[v + 1]; ++i) sum += facePoints[topo.vertexFaces[i]];
-      const double k = double(topo.valence(v));
+      for (Index i = vertexEdgeStart[v]; i < vertexEdgeStart[v + 1]; ++i) {
+        const Index e = vertexEdges[i];
+        sum += p[edgeVerts[2 * e] ^ edgeVerts[2 * e + 1] ^ v];  // the end that is not v, branch-free
+      }
+      for (Index i = vertexFaceStart[v]; i < vertexFaceStart[v + 1]; ++i) sum += facePoints[vertexFaces[i]];
+      const double k = double(vertexEdgeStart[v + 1] - vertexEdgeStart[v]);
       vertexPoints[v] = smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
     }
   }
