@@ -42,7 +42,9 @@ uniform vec3 u_wireColor;
 float stripeMask(float s, float w) {
   float distanceToLine = abs(fract(s + 0.5) - 0.5);  // 0 on a line, 0.5 midway
   float aa = max(fwidth(s), 1e-5);
-  return 1.0 - smoothstep(0.5 * w - aa, 0.5 * w + aa, distanceToLine);
+  float mask = 1.0 - smoothstep(0.5 * w - aa, 0.5 * w + aa, distanceToLine);
+  // Lines closer than ~3 pixels would alias into moire: fade to their average darkness instead.
+  return mix(mask, w, smoothstep(0.2, 0.45, aa));
 }
 
 // Beier & Chen highlight lines (SCHEMES.md section 7): intersect the normal line P + mu N with the
