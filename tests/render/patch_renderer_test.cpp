@@ -115,9 +115,10 @@ TEST_CASE("renderer: highlight lines on a cylinder are stripes parallel to its r
   // Parabolic cylinder z = -0.4 y^2: rulings along x; light lines along x as well.
   renderer->setPatches(test::graphPatches([](double, double y) { return -0.4 * y * y; }, 4, 4,
                                           -2.0, -2.0, 1.0));
-  const int size = 128;
+  // Big enough that the stripes are wider than the anti-moire fade-out (~3 px per period).
+  const int size = 256;
   const ViewParams view = test::topView(Point(0.0, 0.0, -1.0), 2.0, {0, 0, size, size});
-  for (float spacing : {0.1f, 0.2f}) {
+  for (float spacing : {0.2f, 0.3f}) {
     CAPTURE(spacing);
     ShadingParams shading;
     shading.mode = ShadingParams::Mode::Highlight;
