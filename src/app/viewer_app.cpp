@@ -441,6 +441,8 @@ void ViewerApp::runFrame() {
   ScreenRect frame = viewArea();
   std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   std::optional<PivotPick> pick = input_.handle(state_, rects);
+  if (!pick && pendingPivot_) pick = pendingPivot_;
+  pendingPivot_.reset();
   drawViewerPanels(state_);
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));

@@ -73,6 +73,9 @@ class ViewerApp {
   // Writes the next free polarview_NNNN.png in the current directory; returns its path (empty and
   // a notice on failure).
   std::string saveScreenshot();
+  // The next frame sets the pivot of `pick.view` to the surface point under (pick.x, pick.y), as a
+  // double-click does.
+  void requestPivot(const PivotPick& pick) { pendingPivot_ = pick; }
   // The next frame also writes the whole window (panels included) to `path` as a PNG.
   void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
 
@@ -123,6 +126,7 @@ class ViewerApp {
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
   std::string windowCapturePath_;
+  std::optional<PivotPick> pendingPivot_;
 };
 
 }  // namespace polarview

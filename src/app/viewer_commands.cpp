@@ -27,7 +27,7 @@ const char* kRenderUsage =
     "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats] [--capture WINDOW.png]] [--hidden]\n";
+    "[--frames N [--stats] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
 
 // Walks the argument list; values of options are taken with value().
 class ArgCursor {
@@ -284,7 +284,7 @@ struct ViewRequest {
   std::optional<ShadingParams::Mode> shade;
   int width = 1600, height = 900;
   int frames = 0;
-  bool stats = false, hidden = false;
+  bool stats = false, hidden = false, showHelp = false;
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
 };
 
@@ -301,6 +301,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (arg == "--stats") r.stats = true;
     else if (arg == "--hidden") r.hidden = true;
     else if (arg == "--capture") r.capture = cursor.value(arg);
+    else if (arg == "--show-help") r.showHelp = true;
     else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "'");
     else if (r.input.empty()) r.input = arg;
     else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");

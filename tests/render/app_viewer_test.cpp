@@ -238,4 +238,51 @@ TEST_CASE("viewer app: screenshots are numbered PNGs of the window size with lab
   fs::remove_all(dir);
 }
 
+TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
+  auto app = makeApp();
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  ViewerState& state = app->state();
+  state.sharedCamera.yawDeg = 33.25;
+  state.sharedCamera.pitchDeg = -12.5;
+  const OrbitCamera copied = state.sharedCamera;
+  state.requests.copyCamera = true;
+  runFrames(*app, 1);
+  const char* clipboard = glfwGetClipboardString(app->window());
+  REQUIRE(clipboard != nullptr);
+  CHECK(std::string(clipboard) == cameraToJson(copied));
+  state.sharedCamera.orbit(200, 100);
+  state.sharedCamera.zoom(3);
+  state.requests.pasteCamera = true;
+  runFrames(*app, 1);
+  CHECK(cameraToJson(state.sharedCamera) == cameraToJson(copied));
+}
+
+TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and keeps the eye") {
+  auto app = makeApp(600, 600);
+  app->state().showPanels = false;
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+  const glm::dvec3 eye = app->state().sharedCamera.eye();
+  const glm::dvec3 oldTarget = app->state().sharedCamera.target;
+  // A point a little off the centre of the only view, on the mushroom's cap.
+  app->requestPivot(PivotPick{0, 300.0f, 230.0f});
+  runFrames(*app, 1);
+  const OrbitCamera& camera = app->state().sharedCamera;
+  CAPTURE(app->state().notice);
+  CHECK(glm::length(camera.eye() - eye) < 1e-4 * glm::length(eye));
+  CHECK(glm::length(camera.target - oldTarget) > 1e-3);
+  // The new pivot is a surface point: inside the model's box (up to the limit surface's shrinkage).
+  for (int axis = 0; axis < 3; ++axis) {
+    CHECK(camera.target[axis] >= app->modelMin()[axis] - 1e-3);
+    CHECK(camera.target[axis] <= app->modelMax()[axis] + 1e-3);
+  }
+  // Background under the cursor leaves the camera alone.
+  const OrbitCamera before = camera;
+  app->requestPivot(PivotPick{0, 5.0f, 5.0f});
+  runFrames(*app, 1);
+  CHECK(cameraToJson(app->state().sharedCamera) == cameraToJson(before));
+}
+
 }  // namespace polarview
