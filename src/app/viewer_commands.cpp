@@ -333,6 +333,7 @@ int viewWithApp(const ViewRequest& r) {
   else if (r.level) requestLevel(state, *r.level);
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
+  state.showHelp = r.showHelp;
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();
