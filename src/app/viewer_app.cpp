@@ -30,7 +30,6 @@ namespace {
 // [SECTION] Constants and helpers
 
 constexpr size_t kMaxRecentFiles = 10;
-constexpr float kBackground[3] = {0.17f, 0.18f, 0.20f};
 constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 std::string recentFilePath() {

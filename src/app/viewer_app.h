@@ -22,6 +22,9 @@ struct GLFWwindow;
 
 namespace polarview {
 
+// The viewer's background colour (linear RGB); screenshots use it unless transparent.
+constexpr float kBackground[3] = {0.17f, 0.18f, 0.20f};
+
 class PatchRenderer;
 class ShaderLibrary;
 

@@ -2,11 +2,12 @@
 // files, ends on the last of many quick scheme/level changes, survives resizes and a valence-1024
 // pole, refuses levels over the budget, and writes screenshots with labels and the colour bar.
 //
-// The app's sources belong to the polarview executable (src/app/ is not a library), so this test
-// compiles them in.
-#include "app/viewer_app.cpp"
-#include "app/viewer_commands.cpp"
-#include "app/viewer_surface.cpp"
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "app/viewer_app.h"
+#include "app/viewer_surface.h"
 
 #include <doctest/doctest.h>
 
