@@ -14,6 +14,7 @@
 #include "core/subdiv/c2ps.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_rules.h"
+#include "core/subdiv/refine_topology.h"
 #include "core/subdiv/rts.h"
 
 namespace polarview {
@@ -111,42 +112,25 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
   return child;
 }
 
-// One Catmull-Clark step of the connectivity; with `splitPoleQuads` each quad at a pole's corner is
-// split along its diagonal (pole - face point) into two triangles, doubling the polar valence.
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, const std::string& source) {
-  RefinedLevel child;
-  PolyMesh quads = refineCatmullClarkTopology(parent.mesh, parent.topology, &child.faceParent);
-  if (!splitPoleQuads || parent.poles.empty()) {
-    child.mesh = std::move(quads);
-  } else {
-    // Child face c is the child of parent corner c: mark the corners at each pole.
-    std::vector<uint8_t> split(quads.faceCount(), 0);
-    size_t extra = 0;
+// One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
+// with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
+// into two triangles, doubling the polar valence. `twins` holds the parent's corner twins on entry
+// and the child's on return.
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, std::vector<Index>& twins) {
+  std::vector<uint8_t> split;
+  if (splitPoleQuads && !parent.poles.empty()) {
+    split.assign(parent.mesh.faceVerts.size(), 0);
     for (const PolarConfig& pole : parent.poles)
-      for (Index k = parent.topology.vertexFaceStart[pole.pole]; k < parent.topology.vertexFaceStart[pole.pole + 1]; ++k) {
+      for (Index k = parent.topology.vertexFaceStart[pole.pole]; k < parent.topology.vertexFaceStart[pole.pole + 1]; ++k)
         split[parent.topology.vertexCorners[k]] = 1;
-        ++extra;
-      }
-    PolyMesh& mesh = child.mesh;
-    mesh.points.resize(quads.points.size());
-    mesh.faceStart.reserve(quads.faceStart.size() + extra);
-    mesh.faceVerts.reserve(quads.faceVerts.size() + 2 * extra);
-    std::vector<Index> faceParent;
-    faceParent.reserve(child.faceParent.size() + extra);
-    for (Index f = 0; f < quads.faceCount(); ++f) {
-      const Index* v = quads.face(f);  // (pole', E_a, F, E_b)
-      if (split[f]) {
-        mesh.addFace({v[0], v[1], v[2]});
-        mesh.addFace({v[0], v[2], v[3]});
-        faceParent.push_back(child.faceParent[f]);
-      } else {
-        mesh.addFace(v, 4);
-      }
-      faceParent.push_back(child.faceParent[f]);
-    }
-    child.faceParent.swap(faceParent);
   }
-  child.topology = buildTopology(child.mesh, source);
+  RefinedConnectivity connectivity;
+  refineCatmullClarkConnectivity(parent.mesh, parent.topology, twins, split.empty() ? nullptr : &split, connectivity);
+  RefinedLevel child;
+  child.mesh = std::move(connectivity.mesh);
+  child.topology = std::move(connectivity.topology);
+  child.faceParent = std::move(connectivity.faceParent);
+  twins.swap(connectivity.twins);
   for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
   return child;
 }
@@ -354,13 +338,15 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
     plan_->radial = !regions.empty();
     if (plan_->radial) plan_->regions.push_back(std::move(regions));
   }
+  std::vector<Index> twins;  // generic levels: the current finest level's corner twins
+  if (!plan_->radial && options.levels > 0) twins = cornerTwins(levels_[0].mesh, levels_[0].topology);
   for (int m = 1; m <= options.levels; ++m) {
     if (plan_->radial) {
       std::vector<RadialRegion> childRegions;
       levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
       plan_->regions.push_back(std::move(childRegions));
     } else {
-      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, sourceName));
+      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, twins));
     }
   }
   updatePositions(base.points);

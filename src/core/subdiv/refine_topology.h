@@ -1,0 +1,37 @@
+// Catmull-Clark connectivity derived from the parent's tables (as OpenSubdiv's Vtr does): the child
+// mesh and its MeshTopology in O(corners), with no sorting and no validation (the child of a valid
+// manifold mesh is a valid manifold mesh). The tables equal buildTopology(child mesh) entry for
+// entry: edges numbered by first use, rings in the same rotational order from the same start.
+//
+// Child faces follow catmull_clark.h: parent corner c gives the quad (V(v_c), E(edge c), F(f),
+// E(edge of the previous corner)). A corner marked for splitting (C2PS's pole corners) gives two
+// triangles instead, (V, E_a, F) then (V, F, E_b): one extra face and one extra edge (V - F).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/poly_mesh.h"
+#include "core/mesh/topology.h"
+
+namespace polarview {
+
+// Per corner: the corner starting the opposite half-edge of its edge (the neighbouring face's
+// corner at this corner's next vertex), -1 on a boundary edge. Read from the vertex rings. [O(corners)]
+std::vector<Index> cornerTwins(const PolyMesh& mesh, const MeshTopology& topo);
+
+// One level of refined connectivity.
+struct RefinedConnectivity {
+  PolyMesh mesh;                 // faces; points sized F + E + V, values left for the point rules
+  MeshTopology topology;         // equal to buildTopology(mesh)
+  std::vector<Index> faceParent; // per child face: its parent face
+  std::vector<Index> twins;      // cornerTwins of the child, for the next level
+};
+
+// One Catmull-Clark step of the connectivity of `parent` (tables `topo`, twins from cornerTwins or
+// the previous step). `splitCorner` (nullptr, or one flag per parent corner) marks the corners whose
+// quads are split along the diagonal V - F. `out`'s buffers are reused. [O(corners)]
+void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
+                                    const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out);
+
+}  // namespace polarview

@@ -1,0 +1,212 @@
+// Derived child connectivity (refine_topology.h) equals the connectivity rebuilt from scratch:
+// refineCatmullClarkTopology (+ the diagonal splits C2PS makes) followed by buildTopology, table by
+// table, over closed, open, mixed n-gon and polar meshes, levels 1-3, with and without splits.
+#include <doctest/doctest.h>
+
+#include <random>
+#include <string>
+
+#include "core/mesh/shapes.h"
+#include "core/mesh/topology.h"
+#include "core/subdiv/catmull_clark.h"
+#include "core/subdiv/polar_config.h"
+#include "core/subdiv/refine_topology.h"
+
+using namespace polarview;
+
+namespace {
+
+// Which parent corners to split: none, those at refinable poles (as C2PS does), or those at
+// random vertices (any child quad may be split, so this stresses every ring shape).
+enum class Splits { None, Poles, RandomVertices };
+
+std::vector<uint8_t> chooseSplits(const PolyMesh& mesh, const MeshTopology& topo, Splits splits, unsigned seed) {
+  std::vector<uint8_t> split(mesh.faceVerts.size(), 0);
+  std::vector<uint8_t> vertexSplits(topo.vertexCount, 0);
+  if (splits == Splits::Poles) {
+    for (const PolarConfig& config : findPolarConfigs(mesh, topo))
+      if (config.refinable) vertexSplits[config.pole] = 1;
+  } else if (splits == Splits::RandomVertices) {
+    std::mt19937 rng(seed);
+    for (Index v = 0; v < topo.vertexCount; ++v) vertexSplits[v] = rng() % 3 == 0;
+  }
+  for (size_t c = 0; c < split.size(); ++c) split[c] = vertexSplits[mesh.faceVerts[c]];
+  return split;
+}
+
+// The reference child: Catmull-Clark quads, marked quads split into (V, E_a, F), (V, F, E_b).
+PolyMesh referenceChild(const PolyMesh& parent, const MeshTopology& topo, const std::vector<uint8_t>& split,
+                        std::vector<Index>& faceParent) {
+  std::vector<Index> quadParent;
+  PolyMesh quads = refineCatmullClarkTopology(parent, topo, &quadParent);
+  PolyMesh child;
+  child.points.resize(quads.points.size());
+  faceParent.clear();
+  for (Index f = 0; f < quads.faceCount(); ++f) {
+    const Index* v = quads.face(f);
+    if (split[f]) {
+      child.addFace({v[0], v[1], v[2]});
+      child.addFace({v[0], v[2], v[3]});
+      faceParent.push_back(quadParent[f]);
+    } else {
+      child.addFace(v, 4);
+    }
+    faceParent.push_back(quadParent[f]);
+  }
+  return child;
+}
+
+void requireSameTopology(const MeshTopology& derived, const MeshTopology& rebuilt) {
+  REQUIRE(derived.vertexCount == rebuilt.vertexCount);
+  REQUIRE(derived.edgeCount == rebuilt.edgeCount);
+  REQUIRE(derived.faceCount == rebuilt.faceCount);
+  CHECK(derived.cornerEdge == rebuilt.cornerEdge);
+  CHECK(derived.cornerFace == rebuilt.cornerFace);
+  CHECK(derived.edgeVerts == rebuilt.edgeVerts);
+  CHECK(derived.edgeFaces == rebuilt.edgeFaces);
+  CHECK(derived.vertexFaceStart == rebuilt.vertexFaceStart);
+  CHECK(derived.vertexFaces == rebuilt.vertexFaces);
+  CHECK(derived.vertexEdgeStart == rebuilt.vertexEdgeStart);
+  CHECK(derived.vertexEdges == rebuilt.vertexEdges);
+  CHECK(derived.vertexCorners == rebuilt.vertexCorners);
+  CHECK(derived.vertexOnBoundary == rebuilt.vertexOnBoundary);
+  CHECK(derived.vertexUsed == rebuilt.vertexUsed);
+}
+
+// Refines `base` three times both ways and compares every level's mesh, parents, tables and twins.
+void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Splits splits) {
+  PolyMesh mesh = base;
+  MeshTopology topo = buildTopology(mesh);
+  std::vector<Index> twins = cornerTwins(mesh, topo);
+  RefinedConnectivity out;
+  for (int level = 1; level <= 3; ++level) {
+    CAPTURE(name);
+    CAPTURE(level);
+    CAPTURE(int(splits));
+    const std::vector<uint8_t> split = chooseSplits(mesh, topo, splits, unsigned(level * 7919 + mesh.faceCount()));
+    std::vector<Index> faceParent;
+    PolyMesh reference = referenceChild(mesh, topo, split, faceParent);
+    refineCatmullClarkConnectivity(mesh, topo, twins, splits == Splits::None ? nullptr : &split, out);
+
+    REQUIRE(out.mesh.points.size() == reference.points.size());
+    CHECK(out.mesh.faceStart == reference.faceStart);
+    CHECK(out.mesh.faceVerts == reference.faceVerts);
+    CHECK(out.faceParent == faceParent);
+    const MeshTopology rebuilt = buildTopology(reference);
+    requireSameTopology(out.topology, rebuilt);
+    CHECK(out.twins == cornerTwins(reference, rebuilt));
+
+    mesh = out.mesh;
+    topo = out.topology;
+    twins = out.twins;
+  }
+}
+
+// Opposite half-edges join the same two vertices in opposite directions, on the edge's two faces.
+void checkTwinsAreOppositeHalfEdges(const PolyMesh& mesh, const MeshTopology& topo, const std::vector<Index>& twins) {
+  auto next = [&](Index c) { Index f = topo.cornerFace[c]; return c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1; };
+  for (Index c = 0; c < Index(twins.size()); ++c) {
+    const Index t = twins[c], e = topo.cornerEdge[c];
+    if (t < 0) {
+      CHECK(topo.edgeOnBoundary(e));
+      continue;
+    }
+    CHECK(twins[t] == c);
+    CHECK(topo.cornerEdge[t] == e);
+    CHECK(mesh.faceVerts[t] == mesh.faceVerts[next(c)]);
+    CHECK(mesh.faceVerts[next(t)] == mesh.faceVerts[c]);
+  }
+}
+
+// A closed n-gonal prism: two n-gon caps and n quads.
+PolyMesh prism(int n) {
+  PolyMesh m;
+  for (int j = 0; j < n; ++j) m.points.emplace_back(std::cos(6.283185307179586 * j / n), std::sin(6.283185307179586 * j / n), 0.0);
+  for (int j = 0; j < n; ++j) m.points.emplace_back(m.points[j].x, m.points[j].y, 1.0);
+  std::vector<Index> bottom, top;
+  for (int j = 0; j < n; ++j) {
+    bottom.push_back(Index(n - 1 - j));
+    top.push_back(Index(n + j));
+    m.addFace({Index(j), Index((j + 1) % n), Index(n + (j + 1) % n), Index(n + j)});
+  }
+  m.addFace(bottom.data(), bottom.size());
+  m.addFace(top.data(), top.size());
+  return m;
+}
+
+// An open disc of mixed faces: a hexagon in the middle, a ring of alternating triangles and
+// pentagon-like quads+triangles, plus a vertex no face uses.
+PolyMesh mixedDisc() {
+  PolyMesh m;
+  const int n = 6;
+  for (int j = 0; j < n; ++j) m.points.emplace_back(std::cos(6.283185307179586 * j / n), std::sin(6.283185307179586 * j / n), 0.0);
+  for (int j = 0; j < 2 * n; ++j)
+    m.points.emplace_back(2 * std::cos(3.141592653589793 * j / n), 2 * std::sin(3.141592653589793 * j / n), 0.1 * j);
+  m.points.emplace_back(9.0, 9.0, 9.0);  // unused
+  std::vector<Index> hexagon;
+  for (int j = 0; j < n; ++j) hexagon.push_back(Index(j));
+  m.addFace(hexagon.data(), hexagon.size());
+  auto outer = [&](int k) { return Index(n + (k % (2 * n))); };
+  for (int j = 0; j < n; ++j) {
+    const Index a = Index(j), b = Index((j + 1) % n);
+    if (j % 2 == 0) {
+      m.addFace({a, outer(2 * j), outer(2 * j + 1), outer(2 * j + 2), b});  // pentagon
+    } else {
+      m.addFace({a, outer(2 * j), outer(2 * j + 1)});
+      m.addFace({a, outer(2 * j + 1), outer(2 * j + 2), b});
+    }
+  }
+  return m;
+}
+
+// A regular grid whose quads are randomly cut into triangles (either diagonal).
+PolyMesh randomlyTriangulatedGrid(int nu, int nv, unsigned seed) {
+  PolyMesh grid = shapes::grid(nu, nv);
+  PolyMesh m;
+  m.points = grid.points;
+  std::mt19937 rng(seed);
+  for (Index f = 0; f < grid.faceCount(); ++f) {
+    const Index* q = grid.face(f);
+    switch (rng() % 3) {
+      case 0: m.addFace(q, 4); break;
+      case 1: m.addFace({q[0], q[1], q[2]}); m.addFace({q[0], q[2], q[3]}); break;
+      default: m.addFace({q[0], q[1], q[3]}); m.addFace({q[1], q[2], q[3]}); break;
+    }
+  }
+  return m;
+}
+
+std::vector<std::pair<std::string, PolyMesh>> testMeshes() {
+  return {{"cube", shapes::cube()},
+          {"mushroom", shapes::mushroom(12)},
+          {"mushroom-8", shapes::mushroom(8)},
+          {"globe", shapes::globe(7, 4)},
+          {"cap", shapes::polarCap(5, 3)},
+          {"torus", shapes::torus(6, 5)},
+          {"open grid", shapes::grid(4, 3)},
+          {"prism", prism(5)},
+          {"mixed disc", mixedDisc()},
+          {"triangulated grid", randomlyTriangulatedGrid(5, 4, 11)}};
+}
+
+}  // namespace
+
+TEST_CASE("derived Catmull-Clark connectivity equals buildTopology's tables at levels 1-3") {
+  for (const auto& [name, mesh] : testMeshes()) checkDerivedEqualsRebuilt(name, mesh, Splits::None);
+}
+
+TEST_CASE("derived connectivity with C2PS's pole splits equals the rebuilt one") {
+  for (const auto& [name, mesh] : testMeshes()) checkDerivedEqualsRebuilt(name, mesh, Splits::Poles);
+}
+
+TEST_CASE("derived connectivity with splits at random vertices (boundary ones too) equals the rebuilt one") {
+  for (const auto& [name, mesh] : testMeshes()) checkDerivedEqualsRebuilt(name, mesh, Splits::RandomVertices);
+}
+
+TEST_CASE("corner twins start the opposite half-edge of each interior edge, -1 on the boundary") {
+  for (const auto& [name, mesh] : testMeshes()) {
+    CAPTURE(name);
+    const MeshTopology topo = buildTopology(mesh);
+    checkTwinsAreOppositeHalfEdges(mesh, topo, cornerTwins(mesh, topo));
+  }
+}
