@@ -217,10 +217,14 @@ void ViewerApp::frameModel(double aspect) {
     ScreenRect view = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f)).front();
     aspect = double(view.w) / std::max(double(view.h), 1.0);
   }
+  auto frameCamera = [&](OrbitCamera& camera) {
+    if (model_.mesh) camera.framePoints(model_.mesh->points.data(), model_.mesh->points.size(), aspect);
+    else camera.frame(modelMin_, modelMax_, aspect);
+  };
   if (state_.linkCameras) {
-    state_.sharedCamera.frame(modelMin_, modelMax_, aspect);
+    frameCamera(state_.sharedCamera);
   } else {
-    for (ViewSettings& view : state_.views) view.camera.frame(modelMin_, modelMax_, aspect);
+    for (ViewSettings& view : state_.views) frameCamera(view.camera);
   }
   framedOnce_ = true;
 }
@@ -356,7 +360,7 @@ void ViewerApp::updateColourRange() {
     values.insert(values.end(), samples.begin(), samples.end());
     for (float a : s.sampleAreas) weights.push_back(float(a / area));
   }
-  if (!values.empty()) state_.colour.autoRange = weightedAbsQuantile(values, weights, state_.colour.quantile);
+  if (!values.empty()) state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
 }
 
 bool ViewerApp::busy() const {

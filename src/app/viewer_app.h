@@ -82,8 +82,9 @@ class ViewerApp {
   // The next frame also writes the whole window (panels included) to `path` as a PNG.
   void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
 
-  // Points every view's camera (or the shared one) at the model's bounding box, for views of
-  // `aspect` (width / height; 0: the aspect of the window's current views).
+  // Points every view's camera (or the shared one) at the model so that all its control points
+  // (and with them the limit surface) fit views of `aspect` (width / height; 0: the aspect of the
+  // window's current views), keeping the viewing direction.
   void frameModel(double aspect = 0.0);
 
   ViewerState& state() { return state_; }

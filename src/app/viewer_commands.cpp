@@ -22,7 +22,7 @@ struct UsageError : std::runtime_error {
 
 const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u]] [--level L] "
-    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R] [--camera JSON] "
+    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --percentile P] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis] [--supersample 1|2|4] [--transparent] "
     "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
@@ -126,7 +126,7 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(state.views[size_t(v)].scheme) << '"';
   json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "],\"patches\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].patchCount;
-  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\"";
+  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << state.colourRange();
   char numbers[160];
   std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", median(frameMs),
                 frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end()),
@@ -145,6 +145,7 @@ struct RenderRequest {
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
   std::optional<float> range;
+  std::optional<float> percentile;  // automatic range: +-max(-P(100 - p), P(p)) of K or H by area
   std::string cameraJson;
   std::optional<ViewPreset> preset;
   bool transparent = false, controlNet = false, boundaries = false, wireframe = false, poles = true;
@@ -169,6 +170,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     else if (arg == "--wireframe") r.wireframe = true;
     else if (arg == "--no-poles") r.poles = false;
     else if (arg == "--time") r.timeFrames = parseInt(cursor.value(arg), arg, 1, 10000);
+    else if (arg == "--percentile") r.percentile = float(parseInt(cursor.value(arg), arg, 50, 100));
     else if (arg == "--range") {
       const std::string& text = cursor.value(arg);
       char* end = nullptr;
@@ -230,6 +232,7 @@ int renderWithApp(const RenderRequest& r) {
   state.showPanels = false;
   state.shading.mode = r.shade;
   if (r.colormap) state.shading.colormap = *r.colormap;
+  if (r.percentile) state.colour.quantile = *r.percentile / 100.0f;
   if (r.range) {
     state.colour.automatic = false;
     state.colour.typedRange = *r.range;

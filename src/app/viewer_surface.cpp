@@ -37,12 +37,19 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
 }
 
 // K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
+// End caps are skipped when other patches exist: at a Catmull-Clark extraordinary vertex K is
+// unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
+// shape's curvature scale and, at a valence-3 corner, would stretch the range until the rest of the
+// model is one colour. They still saturate visibly in the picture.
 void sampleCurvatures(BuiltSurface& surface, int s) {
+  const bool onlyEndCaps = std::all_of(surface.patches.begin(), surface.patches.end(),
+                                       [](const Patch& p) { return p.kind == PatchKind::EndCap; });
   size_t count = surface.patches.size() * size_t(s) * size_t(s);
   surface.gaussianSamples.reserve(count);
   surface.meanSamples.reserve(count);
   surface.sampleAreas.reserve(count);
   for (const Patch& patch : surface.patches) {
+    if (patch.kind == PatchKind::EndCap && !onlyEndCaps) continue;
     for (int j = 0; j < s; ++j) {
       for (int i = 0; i < s; ++i) {
         SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
@@ -58,23 +65,29 @@ void sampleCurvatures(BuiltSurface& surface, int s) {
 
 }  // namespace
 
-float weightedAbsQuantile(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
-  std::vector<std::pair<float, float>> byMagnitude;
-  byMagnitude.reserve(values.size());
+float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
+  std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
+  sorted.reserve(values.size());
   double total = 0.0;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0f)) continue;
-    byMagnitude.emplace_back(std::abs(values[i]), weights[i]);
+    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
+    sorted.emplace_back(values[i], weights[i]);
     total += weights[i];
   }
   if (!(total > 0.0)) return 1.0f;
-  std::sort(byMagnitude.begin(), byMagnitude.end());
-  double needed = std::clamp(double(quantile), 0.0, 1.0) * total, sum = 0.0;
-  for (const auto& [magnitude, weight] : byMagnitude) {
-    sum += weight;
-    if (sum >= needed) return magnitude > 0.0f ? magnitude : 1.0f;
-  }
-  return byMagnitude.back().first > 0.0f ? byMagnitude.back().first : 1.0f;
+  std::sort(sorted.begin(), sorted.end());
+  const double upper = std::clamp(double(quantile), 0.5, 1.0);
+  // The first value where the running weight reaches `fraction` of the total.
+  auto percentile = [&](double fraction) {
+    double needed = fraction * total, sum = 0.0;
+    for (const auto& [value, weight] : sorted) {
+      sum += weight;
+      if (sum >= needed) return value;
+    }
+    return sorted.back().first;
+  };
+  const float range = std::max(-percentile(1.0 - upper), percentile(upper));
+  return range > 0.0f && std::isfinite(range) ? range : 1.0f;
 }
 
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {

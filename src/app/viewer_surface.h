@@ -39,6 +39,8 @@ struct BuiltSurface {
   std::array<int, kPatchKindCount> patchesPerKind{};
   // Curvature samples for the automatic colour range, each with the surface area it stands for
   // (small patches crowd around extraordinary points; unweighted they would dominate the range).
+  // End-cap patches (Catmull-Clark extraordinary vertices, where K is unbounded or forced to 0
+  // except at valence 4) are left out unless there is nothing else.
   std::vector<float> gaussianSamples, meanSamples, sampleAreas;
   double refineMs = 0.0;             // refinement + patch extraction
 };
@@ -54,9 +56,10 @@ struct Model {
 // level is over `faceBudget` or the mesh cannot be refined. [O(output)]
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);
 
-// The smallest r with |value| <= r on at least `quantile` of the total weight (a weighted
-// percentile of |value|); 1 when there is no weight. [O(n log n)]
-float weightedAbsQuantile(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
+// The symmetric colour range max(-P(1 - quantile), P(quantile)) of the weighted percentiles P of
+// the signed values (quantile 0.95: the 5th and 95th percentiles), so each tail may saturate on at
+// most 1 - quantile of the weight; 1 when there is no weight or the range would be 0. [O(n log n)]
+float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
 
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);

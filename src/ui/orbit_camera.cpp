@@ -133,11 +133,40 @@ void OrbitCamera::setPivotKeepingEye(const glm::dvec3& point) {
 }
 
 void OrbitCamera::frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, double aspect) {
-  target = 0.5 * (boxMin + boxMax);
-  double radius = std::max(0.5 * glm::length(boxMax - boxMin), 1e-6);
-  double halfY = radians(fovDeg) / 2.0;
-  double halfX = std::atan(std::max(aspect, 1e-3) * std::tan(halfY));
-  distance = 1.05 * radius / std::sin(std::min(halfX, halfY));
+  std::vector<glm::dvec3> corners;
+  corners.reserve(8);
+  for (int corner = 0; corner < 8; ++corner) {
+    corners.emplace_back((corner & 1) ? boxMax.x : boxMin.x, (corner & 2) ? boxMax.y : boxMin.y,
+                         (corner & 4) ? boxMax.z : boxMin.z);
+  }
+  framePoints(corners.data(), corners.size(), aspect);
+}
+
+void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double aspect) {
+  if (count == 0) return;
+  // Fits the points in the current viewing direction rather than a bounding sphere: the sphere of
+  // a flat cap or of a wide mushroom seen from above filled only a third of the view.
+  glm::dvec3 lo = points[0], hi = points[0];
+  for (size_t i = 1; i < count; ++i) {
+    lo = glm::min(lo, points[i]);
+    hi = glm::max(hi, points[i]);
+  }
+  target = 0.5 * (lo + hi);
+  constexpr double kMargin = 1.08;  // the outermost point lands at 1 / 1.08 of the half-width
+  const double tanY = std::tan(radians(fovDeg) / 2.0) / kMargin;
+  const double tanX = std::max(aspect, 1e-3) * tanY;
+  const glm::dvec3 r = right(), u = up(), f = forward();
+  const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+  double needed = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    // A point at depth z behind the target and offset x, y is inside when |x| <= tanX (D + z);
+    // the eye stays in front of every point.
+    glm::dvec3 d = points[i] - target;
+    double depth = glm::dot(d, f);
+    needed = std::max({needed, std::abs(glm::dot(d, r)) / tanX - depth, std::abs(glm::dot(d, u)) / tanY - depth,
+                       0.05 * radius - depth});
+  }
+  distance = needed;
 }
 
 void OrbitCamera::applyPreset(ViewPreset preset) {

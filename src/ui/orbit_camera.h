@@ -2,6 +2,7 @@
 // `render` command share. Plain data plus GLM math: no GL, no ImGui.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -16,7 +17,9 @@ struct OrbitCamera {
   glm::dvec3 target{0.0};  // pivot the camera orbits and looks at
   double distance = 3.0;   // eye to target
   double yawDeg = -60.0;   // azimuth of the eye around +z, 0 = on +x
-  double pitchDeg = 25.0;  // elevation of the eye, clamped to (-89, 89) so +z stays up
+  // Default: a raised three-quarter view (40 deg up) so a pole on top of the model (the polar cap
+  // the tool is about) faces the viewer instead of sitting on the silhouette.
+  double pitchDeg = 40.0;  // elevation of the eye, clamped to (-89, 89) so +z stays up
   double fovDeg = 35.0;    // vertical field of view
 
   glm::dvec3 eye() const;
@@ -36,9 +39,12 @@ struct OrbitCamera {
   void zoom(double wheelNotches);
   // Double-click: the pivot becomes `point`; the eye stays where it is and turns to look at it.
   void setPivotKeepingEye(const glm::dvec3& point);
-  // F: centres the bounding box and backs off until its bounding sphere fits a view of `aspect`
-  // (width / height) both ways.
+  // F: centres the bounding box and, keeping the direction, backs off until its eight corners fit
+  // a view of `aspect` (width / height) both ways with an 8% margin.
   void frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, double aspect = 1.0);
+  // The same for `count` points (a model's control points, whose hull holds its limit surface):
+  // target at the centre of their box, distance so that every point fits. [O(count)]
+  void framePoints(const glm::dvec3* points, size_t count, double aspect = 1.0);
   // Presets keep target and distance and set the direction.
   void applyPreset(ViewPreset preset);
 };

@@ -164,10 +164,12 @@ void drawColourPanel(ViewerState& state) {
   ImGui::Checkbox("Automatic range (A)", &state.colour.automatic);
   if (state.colour.automatic) {
     float percent = state.colour.quantile * 100.0f;
-    if (ImGui::SliderFloat("Percentile of |value|", &percent, 50.0f, 100.0f, "%.1f")) {
+    if (ImGui::SliderFloat("Percentile (of K by area)", &percent, 50.0f, 100.0f, "%.1f")) {
       state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
     }
     ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
+    ImGui::TextDisabled("+-max(-P%.0f, P%.0f); end caps at extraordinary\nvertices are not counted.",
+                        100.0f - percent, percent);
   } else {
     if (ImGui::InputFloat("Range +-", &state.colour.typedRange, 0.0f, 0.0f, "%.6g")) {
       state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);

@@ -57,8 +57,15 @@ struct ViewStatus {
 
 // The colour range shared by all views.
 struct ColourRangeSettings {
-  bool automatic = true;     // robust percentile of |K| or |H| over the shown patches
-  float quantile = 0.98f;    // which percentile of |value| the range covers
+  // Automatic: +-max(-P10, P90) of K or H by area over the shown patches without end caps (see
+  // weightedSymmetricRange), percentiles of the signed value rather than of |value|, and low ones.
+  // Why: a tight corner (the default mushroom's cap rim and stem bottom, with its valence-3
+  // extraordinary vertices) covers a few percent of the area with |K| ten times the cap's; the
+  // former 98th percentile of |K| (6.6 there) put the whole cap in the one green of "about zero".
+  // With P10/P90 (2.5) the cap reads green to yellow and such tails saturate red or blue, as in
+  // the paper's Fig. 13 ("larger blue or red areas result from saturation in normalization").
+  bool automatic = true;
+  float quantile = 0.90f;    // upper percentile P (the lower one is 1 - P)
   float typedRange = 1.0f;   // used when not automatic
   float autoRange = 1.0f;    // last automatic value (written by the app)
 };

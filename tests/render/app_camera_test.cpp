@@ -1,6 +1,7 @@
 // Orbit camera and view layout: properties over many random cameras, boxes and window sizes.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -78,6 +79,27 @@ TEST_CASE("orbit camera: framing puts every corner of the box inside views of an
       CHECK(std::abs(q.y / q.w) <= 1.0f);
       CHECK(std::abs(q.z / q.w) <= 1.0f);  // neither near- nor far-clipped
     }
+  }
+}
+
+TEST_CASE("orbit camera: framing is tight: some corner of the box reaches the edge of the view") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    glm::dvec3 lo{5 * u(rng), 5 * u(rng), 5 * u(rng)};
+    glm::dvec3 hi = lo + glm::dvec3{std::exp(2 * u(rng)), std::exp(2 * u(rng)), std::exp(2 * u(rng))};
+    double aspect = std::exp(1.5 * u(rng));
+    c.frame(lo, hi, aspect);
+    glm::mat4 clip = c.projectionMatrix(aspect, 0.5 * (lo + hi), 0.5 * glm::length(hi - lo)) * c.viewMatrix();
+    float widest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+      glm::dvec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+      glm::vec4 q = clip * glm::vec4(glm::vec3(p), 1.0f);
+      widest = std::max({widest, std::abs(q.x / q.w), std::abs(q.y / q.w)});
+    }
+    CAPTURE(trial);
+    CHECK(widest > 0.9f);  // 1 / 1.08 = 0.926 unless the eye-distance floor applies
   }
 }
 
