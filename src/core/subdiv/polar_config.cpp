@@ -36,32 +36,34 @@ bool allFacesHaveSize(const PolyMesh& mesh, const MeshTopology& topo, Index v, i
 
 std::string vertexName(Index v) { return "vertex " + std::to_string(v); }
 
-// Orders the fan around `pole` so that triangles (pole, q_{1j}, q_{1,j+1}) follow the face winding.
-// Returns false (with a reason) when the fan is not a simple cycle.
+// Orders the fan around `pole` so that triangles (pole, q_{1j}, q_{1,j+1}) follow the face winding,
+// from the topology's rotational face order (walked forwards or backwards). Returns false (with a
+// reason) when the fan is not a simple cycle. [O(n)]
 bool orderFan(const PolyMesh& mesh, const MeshTopology& topo, Index pole, std::vector<Index>& link1,
               std::vector<Index>& fanFaces, std::string& reason) {
   const Index n = topo.faceValence(pole);
+  const Index first = topo.vertexFaceStart[pole];
+  // (a, b): the corners after the pole in face k's winding.
+  auto corner = [&](Index k, int step) {
+    Index f = topo.vertexFaces[first + k];
+    int c = cornerOf(mesh, f, pole);
+    return mesh.face(f)[(c + step) % 3];
+  };
+  bool forward = corner(0, 2) == corner(1 % n, 1);
   link1.assign(n, -1);
   fanFaces.assign(n, -1);
-  // Successor of each link-1 vertex along the fan, from each triangle's winding.
-  Index f = topo.vertexFaces[topo.vertexFaceStart[pole]];
-  int c = cornerOf(mesh, f, pole);
-  Index start = mesh.face(f)[(c + 1) % 3];
-  Index current = start;
   for (Index j = 0; j < n; ++j) {
-    // The fan triangle whose corner after the pole is `current`.
-    Index found = -1;
-    for (Index k = topo.vertexFaceStart[pole]; k < topo.vertexFaceStart[pole + 1]; ++k) {
-      Index g = topo.vertexFaces[k];
-      int cg = cornerOf(mesh, g, pole);
-      if (mesh.face(g)[(cg + 1) % 3] == current) { found = g; break; }
-    }
-    if (found < 0) { reason = "its fan is not a closed cycle of triangles"; return false; }
-    link1[j] = current;
-    fanFaces[j] = found;
-    current = mesh.face(found)[(cornerOf(mesh, found, pole) + 2) % 3];
+    Index k = forward ? j : (n - j) % n;
+    link1[j] = corner(k, 1);
+    fanFaces[j] = topo.vertexFaces[first + k];
   }
-  if (current != start) { reason = "its fan is not a closed cycle of triangles"; return false; }
+  for (Index j = 0; j < n; ++j) {
+    Index k = forward ? j : (n - j) % n;
+    if (corner(k, 2) != link1[(j + 1) % n]) {
+      reason = "its fan is not a closed cycle of triangles";
+      return false;
+    }
+  }
   std::vector<Index> sorted = link1;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
@@ -76,6 +78,7 @@ bool orderFan(const PolyMesh& mesh, const MeshTopology& topo, Index pole, std::v
 std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopology& topo) {
   std::vector<PolarConfig> configs;
   std::vector<int> linkMark(topo.vertexCount, -1);  // which config's links claimed a vertex
+  std::vector<Index> visitedBy(topo.vertexCount, -1);  // the pole whose walk reached a vertex: O(1) checks
   std::vector<Index> link1, fanFaces, inner, outer, innerFaces, outerFaces;
 
   for (Index v = 0; v < topo.vertexCount; ++v) {
@@ -111,9 +114,9 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     // next ring, the fan of an opposite pole, a boundary, or irregular mesh.
     inner = link1;
     innerFaces = fanFaces;
-    std::vector<Index> visited(link1.begin(), link1.end());
-    visited.push_back(v);
-    auto isVisited = [&](Index q) { return std::find(visited.begin(), visited.end(), q) != visited.end(); };
+    auto isVisited = [&](Index q) { return visitedBy[q] == v; };
+    visitedBy[v] = v;
+    for (Index q : link1) visitedBy[q] = v;
     while (true) {
       outer.assign(n, -1);
       outerFaces.assign(n, -1);
@@ -158,7 +161,7 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
       if (!fresh) break;
       config.links.insert(config.links.end(), outer.begin(), outer.end());
       ++config.linkCount;
-      visited.insert(visited.end(), outer.begin(), outer.end());
+      for (Index q : outer) visitedBy[q] = v;
       // Keep walking only through regular links (4-valent interior vertices among quads); an
       // irregular link is the last one the configuration owns.
       bool regular = true;
@@ -188,11 +191,11 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
   for (size_t k = 0; k < configs.size(); ++k) {
     PolarConfig& config = configs[k];
     if (!config.refinable) continue;
-    bool clash = linkMark[config.pole] >= 0;
-    for (int j = 0; j < config.valence && !clash; ++j) clash = linkMark[config.links[j]] >= 0;
-    if (clash) {
+    int clash = linkMark[config.pole];
+    for (int j = 0; j < config.valence && clash < 0; ++j) clash = linkMark[config.links[j]];
+    if (clash >= 0) {
       config.refinable = false;
-      config.reason = "its stencil overlaps the pole at vertex " + std::to_string(configs[std::max(0, linkMark[config.pole])].pole);
+      config.reason = "its stencil overlaps the pole at vertex " + std::to_string(configs[size_t(clash)].pole);
       continue;
     }
     linkMark[config.pole] = int(k);
