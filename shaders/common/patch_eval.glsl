@@ -1,8 +1,9 @@
 // Bicubic patch evaluation: the GPU mirror of polarview::evaluatePatch
 // (src/core/spline/bicubic_patch.cpp). Control-point order and the PoleCap layout are documented
 // once, in src/core/spline/patch.h: cp[4*j + i], i along u, j along v; PoleCap cp[0..5] = p0..p5,
-// cp[6..9] = boundary B-spline b_{j-1..j+2}, cp[10] = (tau0, dtau, R), cp[11] = (taylorOrder,0,0).
-// Positions arrive relative to the model centre; p1..p5 and cp[10], cp[11] are not shifted.
+// cp[6..9] = boundary B-spline b_{j-1..j+2}, cp[10] = (tau0, dtau, R), cp[11] = (taylorOrder,0,0),
+// cp[12..15] = cross-boundary derivative B-spline e_{j-1..j+2}.
+// Positions arrive relative to the model centre; p1..p5, cp[10..15] are vectors and not shifted.
 
 const int kPatchRegular = 0;
 const int kPatchBoundary = 1;
@@ -76,9 +77,21 @@ vec3 taylorValue(vec3 cp[16], float x, float y) {
          cp[5] * (2.0 * x * y);
 }
 
-// PoleCap (patch.h): X = T(x,y) + u^3 (C(v) - T(R cos, R sin)), u = r/R, tau = tau0 + dtau v.
-// The blend D = (r/R)^3 g(theta) is homogeneous of degree 3 in r, so its Cartesian derivatives are
-// r^2 (...) and r (...) with no division by r: exact at the pole.
+// Adds the Cartesian derivatives of a blend term r^k F(theta), (x,y) = r (cos, sin), k >= 3 (as
+// addHomogeneousTerm in bicubic_patch.cpp): every term carries r^(k-1) or r^(k-2), no division.
+void addHomogeneousTerm(float k, float r, float c, float s, vec3 F, vec3 Ft, vec3 Ftt,
+                        inout SurfacePoint sp) {
+  float r2 = k > 3.5 ? r * r : r, r1 = r2 * r;
+  sp.du += r1 * (k * c * F - s * Ft);
+  sp.dv += r1 * (k * s * F + c * Ft);
+  sp.duu += r2 * ((k * (k - 1.0) * c * c + k * s * s) * F - 2.0 * (k - 1.0) * c * s * Ft + s * s * Ftt);
+  sp.dvv += r2 * ((k * (k - 1.0) * s * s + k * c * c) * F + 2.0 * (k - 1.0) * c * s * Ft + c * c * Ftt);
+  sp.duv += r2 * (k * (k - 2.0) * c * s * F + (k - 1.0) * (c * c - s * s) * Ft - c * s * Ftt);
+}
+
+// PoleCap (patch.h): X = T(x,y) + h(u) D0(v) + R g(u) D1(v), u = r/R, tau = tau0 + dtau v, with
+// h = u^3 (4 - 3u), g = u^3 (u - 1). The blend is r^3 A(theta) + r^4 B(theta), homogeneous in r,
+// so its Cartesian derivatives need no division by r: exact at the pole.
 SurfacePoint evaluatePoleCap(vec3 cp[16], float u, float v) {
   float tau0 = cp[10].x, dtau = cp[10].y, R = cp[10].z;
   // BPS caps keep only the tangent plane (taylorOrder 1).
@@ -87,32 +100,45 @@ SurfacePoint evaluatePoleCap(vec3 cp[16], float u, float v) {
   float c = cos(theta), s = sin(theta), r = u * R;
   float x = r * c, y = r * s;
 
-  // Boundary curve C(v) and its theta-derivatives (dv/dtheta = 1 / (2 pi dtau)).
+  // Boundary curve C(v), cross-boundary derivative E(v) and their theta-derivatives
+  // (dv/dtheta = 1 / (2 pi dtau)).
   vec4 bv, dbv, ddbv;
   bsplineBasis(v, bv, dbv, ddbv);
-  float dvdtheta = 1.0 / (kTwoPi * dtau);
+  float dvdtheta = 1.0 / (kTwoPi * dtau), dvdtheta2 = dvdtheta * dvdtheta;
   vec3 C = bv[0] * cp[6] + bv[1] * cp[7] + bv[2] * cp[8] + bv[3] * cp[9];
   vec3 Ct = (dbv[0] * cp[6] + dbv[1] * cp[7] + dbv[2] * cp[8] + dbv[3] * cp[9]) * dvdtheta;
-  vec3 Ctt = (ddbv[0] * cp[6] + ddbv[1] * cp[7] + ddbv[2] * cp[8] + ddbv[3] * cp[9]) *
-             (dvdtheta * dvdtheta);
+  vec3 Ctt = (ddbv[0] * cp[6] + ddbv[1] * cp[7] + ddbv[2] * cp[8] + ddbv[3] * cp[9]) * dvdtheta2;
+  vec3 E = bv[0] * cp[12] + bv[1] * cp[13] + bv[2] * cp[14] + bv[3] * cp[15];
+  vec3 Et = (dbv[0] * cp[12] + dbv[1] * cp[13] + dbv[2] * cp[14] + dbv[3] * cp[15]) * dvdtheta;
+  vec3 Ett = (ddbv[0] * cp[12] + ddbv[1] * cp[13] + ddbv[2] * cp[14] + ddbv[3] * cp[15]) * dvdtheta2;
 
-  // Taylor polynomial on the circle r = R and its theta-derivatives.
+  // Taylor polynomial on the circle r = R, its radial derivative there, and theta-derivatives.
   float c2 = c * c - s * s, s2 = 2.0 * s * c;
   vec3 Tb = cp[0] + R * (c * cp[1] + s * cp[2]) + R * R * (cp[3] + c2 * cp[4] + s2 * cp[5]);
   vec3 Tbt = R * (-s * cp[1] + c * cp[2]) + 2.0 * R * R * (-s2 * cp[4] + c2 * cp[5]);
   vec3 Tbtt = -R * (c * cp[1] + s * cp[2]) - 4.0 * R * R * (c2 * cp[4] + s2 * cp[5]);
+  vec3 Tr = c * cp[1] + s * cp[2] + 2.0 * R * (cp[3] + c2 * cp[4] + s2 * cp[5]);
+  vec3 Trt = -s * cp[1] + c * cp[2] + 4.0 * R * (-s2 * cp[4] + c2 * cp[5]);
+  vec3 Trtt = -(c * cp[1] + s * cp[2]) - 8.0 * R * (c2 * cp[4] + s2 * cp[5]);
 
-  // h(theta) = (C - Tb) / R^3, D = r^3 h.
-  float invR3 = 1.0 / (R * R * R);
-  vec3 h = (C - Tb) * invR3, ht = (Ct - Tbt) * invR3, htt = (Ctt - Tbtt) * invR3;
+  // Mismatches D0 (position) and D1 (radial derivative); A = 4 D0/R^3 - D1/R^2 and
+  // B = -3 D0/R^4 + D1/R^3 are the r^3 and r^4 coefficients of the blend.
+  vec3 D0 = C - Tb, D0t = Ct - Tbt, D0tt = Ctt - Tbtt;
+  vec3 D1 = E - Tr, D1t = Et - Trt, D1tt = Ett - Trtt;
+  float iR = 1.0 / R, iR2 = iR * iR, iR3 = iR2 * iR, iR4 = iR3 * iR;
 
   SurfacePoint sp;
-  sp.position = taylorValue(cp, x, y) + r * r * r * h;
-  sp.du = cp[1] + 2.0 * x * (cp[3] + cp[4]) + 2.0 * y * cp[5] + r * r * (3.0 * c * h - s * ht);
-  sp.dv = cp[2] + 2.0 * y * (cp[3] - cp[4]) + 2.0 * x * cp[5] + r * r * (3.0 * s * h + c * ht);
-  sp.duu = 2.0 * (cp[3] + cp[4]) + r * ((6.0 * c * c + 3.0 * s * s) * h - 4.0 * s * c * ht + s * s * htt);
-  sp.dvv = 2.0 * (cp[3] - cp[4]) + r * ((6.0 * s * s + 3.0 * c * c) * h + 4.0 * s * c * ht + c * c * htt);
-  sp.duv = 2.0 * cp[5] + r * (3.0 * s * c * h + 2.0 * (c * c - s * s) * ht - s * c * htt);
+  float h = u * u * u * (4.0 - 3.0 * u), g = u * u * u * (u - 1.0);
+  sp.position = taylorValue(cp, x, y) + h * D0 + (R * g) * D1;
+  sp.du = cp[1] + 2.0 * x * (cp[3] + cp[4]) + 2.0 * y * cp[5];
+  sp.dv = cp[2] + 2.0 * y * (cp[3] - cp[4]) + 2.0 * x * cp[5];
+  sp.duu = 2.0 * (cp[3] + cp[4]);
+  sp.dvv = 2.0 * (cp[3] - cp[4]);
+  sp.duv = 2.0 * cp[5];
+  addHomogeneousTerm(3.0, r, c, s, 4.0 * iR3 * D0 - iR2 * D1, 4.0 * iR3 * D0t - iR2 * D1t,
+                     4.0 * iR3 * D0tt - iR2 * D1tt, sp);
+  addHomogeneousTerm(4.0, r, c, s, -3.0 * iR4 * D0 + iR3 * D1, -3.0 * iR4 * D0t + iR3 * D1t,
+                     -3.0 * iR4 * D0tt + iR3 * D1tt, sp);
   computeCurvature(sp);  // x_x x x_y has the orientation of x_u x x_v (dtau > 0)
   return sp;
 }

@@ -70,6 +70,8 @@ Patch randomPoleCap(std::mt19937& rng, int n, int j, int order) {
   for (int k = 0; k < 4; ++k) {  // boundary control points near the circle r = R
     const double a = 2.0 * kPi * (j - 1 + k) / n;
     cap.cp[6 + k] = cap.cp[0] + R * std::cos(a) * cap.cp[1] + R * std::sin(a) * cap.cp[2] + randomPoint(rng, 0.1);
+    // Cross-boundary derivative points near the expansion's radial derivative.
+    cap.cp[12 + k] = std::cos(a) * cap.cp[1] + std::sin(a) * cap.cp[2] + randomPoint(rng, 0.2);
   }
   cap.cp[10] = Point(double(j) / n, 1.0 / n, R);
   cap.cp[11] = Point(order, 0.0, 0.0);
@@ -213,8 +215,8 @@ TEST_CASE("pole cap: curvature is continuous into the pole (K(u) -> K(0) linearl
   for (int trial = 0; trial < 10; ++trial) {
     const Patch cap = randomPoleCap(rng, 6, trial % 6, 2);
     const SurfacePoint pole = evaluatePatch(cap, 0.0, 0.3);
-    const double e1 = std::abs(evaluatePatch(cap, 1e-2, 0.3).gaussian - pole.gaussian);
-    const double e2 = std::abs(evaluatePatch(cap, 1e-3, 0.3).gaussian - pole.gaussian);
+    const double e1 = std::abs(evaluatePatch(cap, 1e-3, 0.3).gaussian - pole.gaussian);
+    const double e2 = std::abs(evaluatePatch(cap, 1e-4, 0.3).gaussian - pole.gaussian);
     CHECK(e2 < 0.2 * e1 + 1e-12);  // O(u): a tenth of u gives about a tenth of the error
   }
 }
@@ -226,8 +228,9 @@ TEST_CASE("pole cap: it meets its boundary curve at u = 1 and its neighbour sect
     Patch a = randomPoleCap(rng, n, 2, order);
     Patch b = a;  // sector 3 shares p0..p5; its boundary points are shifted by one column
     b.cp[10].x = 3.0 / n;
-    for (int k = 0; k < 3; ++k) b.cp[6 + k] = a.cp[7 + k];
+    for (int k = 0; k < 3; ++k) b.cp[6 + k] = a.cp[7 + k], b.cp[12 + k] = a.cp[13 + k];
     b.cp[9] = randomPoint(rng);
+    b.cp[15] = randomPoint(rng);
     for (double t : {0.0, 0.3, 0.8, 1.0}) {
       // u = 1: the B-spline boundary curve (b_{j-1} + 4 b_j + b_{j+1}) / 6 at v = 0.
       const SurfacePoint edge = evaluatePatch(a, 1.0, 0.0);
@@ -237,6 +240,27 @@ TEST_CASE("pole cap: it meets its boundary curve at u = 1 and its neighbour sect
       if (t > 0.0) CHECK(glm::length(sa.normal - sb.normal) < 1e-12);
     }
   }
+}
+
+TEST_CASE("pole cap: at u = 1 its radial derivative is the cross-boundary B-spline (C1 with the ring)") {
+  std::mt19937 rng(29);
+  for (int order : {1, 2})
+    for (int trial = 0; trial < 10; ++trial) {
+      const int n = 5 + trial;
+      const Patch cap = randomPoleCap(rng, n, trial % n, order);
+      const double R = cap.cp[10].z;
+      for (double v : {0.0, 0.35, 0.7, 1.0}) {
+        // The uniform cubic B-spline of cp[12..15] at v, and of the boundary points cp[6..9].
+        const double s = 1.0 - v;
+        const double b[4] = {s * s * s / 6.0, (3 * v * v * v - 6 * v * v + 4) / 6.0,
+                             (-3 * v * v * v + 3 * v * v + 3 * v + 1) / 6.0, v * v * v / 6.0};
+        Point E(0.0), C(0.0);
+        for (int k = 0; k < 4; ++k) E += b[k] * cap.cp[12 + k], C += b[k] * cap.cp[6 + k];
+        const SurfacePoint edge = evaluatePatch(cap, 1.0, v);
+        CHECK(glm::length(edge.position - C) < 1e-13);
+        CHECK(glm::length(edge.du - R * E) < 1e-12 * (1.0 + glm::length(R * E)));
+      }
+    }
 }
 
 TEST_CASE("pole cap: analytic (u,v) derivatives match finite differences away from the pole") {

@@ -41,12 +41,20 @@ std::vector<Patch> randomPoleCaps(std::mt19937& rng, int n, int order) {
     b[j] = p[0] + p[1] * x + p[2] * y + p[3] * (x * x + y * y) + p[4] * (x * x - y * y) +
            p[5] * (2 * x * y) + Point(noise(rng), noise(rng), noise(rng));
   }
+  // Cross-boundary derivative points (patch.h cp[12..15]): near the expansion's d/dr at r = R.
+  std::vector<Point> e(n);
+  for (int j = 0; j < n; ++j) {
+    const double t = 6.283185307179586 * j / n, c = std::cos(t), s = std::sin(t);
+    e[j] = p[1] * c + p[2] * s + 2.0 * R * (p[3] + p[4] * (c * c - s * s) + p[5] * (2 * c * s)) +
+           Point(noise(rng), noise(rng), noise(rng));
+  }
   std::vector<Patch> caps;
   for (int j = 0; j < n; ++j) {
     Patch patch;
     patch.kind = PatchKind::PoleCap;
     for (int k = 0; k < 6; ++k) patch.cp[k] = p[k];
     for (int k = 0; k < 4; ++k) patch.cp[6 + k] = b[(j - 1 + k + n) % n];
+    for (int k = 0; k < 4; ++k) patch.cp[12 + k] = e[(j - 1 + k + n) % n];
     patch.cp[10] = Point(double(j) / n, 1.0 / n, R);
     patch.cp[11] = Point(order, 0, 0);
     caps.push_back(patch);

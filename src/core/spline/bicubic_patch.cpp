@@ -82,7 +82,24 @@ SurfacePoint evaluateBSplinePatch(const Patch& patch, double u, double v) {
   return sp;
 }
 
-// PoleCap (patch.h): T(x,y) + u^3 (C(v) - T(R c, R s)), differentiated exactly in the Cartesian
+// Cartesian derivatives of a blend term r^k F(theta) ((x,y) = r (cos, sin)), added to the sums.
+// Homogeneous of degree k >= 3, so every term carries r^(k-1) or r^(k-2): no division by r.
+struct CartesianDerivatives {
+  Point x{}, y{}, xx{}, xy{}, yy{};
+};
+void addHomogeneousTerm(int k, double r, double c, double s, const Point& F, const Point& Ft, const Point& Ftt,
+                        CartesianDerivatives& d) {
+  double r2 = 1.0;
+  for (int e = 0; e < k - 2; ++e) r2 *= r;
+  const double kd = double(k), r1 = r2 * r;
+  d.x += r1 * (kd * c * F - s * Ft);
+  d.y += r1 * (kd * s * F + c * Ft);
+  d.xx += r2 * ((kd * (kd - 1.0) * c * c + kd * s * s) * F - 2.0 * (kd - 1.0) * c * s * Ft + s * s * Ftt);
+  d.yy += r2 * ((kd * (kd - 1.0) * s * s + kd * c * c) * F + 2.0 * (kd - 1.0) * c * s * Ft + c * c * Ftt);
+  d.xy += r2 * (kd * (kd - 2.0) * c * s * F + (kd - 1.0) * (c * c - s * s) * Ft - c * s * Ftt);
+}
+
+// PoleCap (patch.h): T(x,y) + h(u) D0(v) + R g(u) D1(v), differentiated exactly in the Cartesian
 // parameters (x,y) = r (cos 2 pi tau, sin 2 pi tau), which are regular at the pole (u = 0) where
 // (u,v) is not. Normal, K, H come from the (x,y) derivatives; du..dvv are converted to (u,v).
 SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
@@ -100,46 +117,53 @@ SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
   const double c = std::cos(theta), s = std::sin(theta);
   const double r = R * u, x = r * c, y = r * s;
 
-  // Boundary B-spline C(v) and its theta-derivatives (d theta / d v = 2 pi dtau).
+  // Boundary curve C(v) and cross-boundary derivative E(v), with theta-derivatives
+  // (d theta / d v = 2 pi dtau).
   double bv[4], dbv[4], ddbv[4];
   bsplineBasis(v, bv, dbv, ddbv);
-  Point C(0.0), Cv(0.0), Cvv(0.0);
+  Point C(0.0), Cv(0.0), Cvv(0.0), E(0.0), Ev(0.0), Evv(0.0);
   for (int k = 0; k < 4; ++k) {
     C += bv[k] * patch.cp[6 + k];
     Cv += dbv[k] * patch.cp[6 + k];
     Cvv += ddbv[k] * patch.cp[6 + k];
+    E += bv[k] * patch.cp[12 + k];
+    Ev += dbv[k] * patch.cp[12 + k];
+    Evv += ddbv[k] * patch.cp[12 + k];
   }
-  const double vPerTheta = 1.0 / (kTwoPi * dtau);
+  const double vPerTheta = 1.0 / (kTwoPi * dtau), vPerTheta2 = vPerTheta * vPerTheta;
 
-  // Taylor expansion on the circle r = R: T(Rc, Rs) = p0 + R (p1 c + p2 s) + R^2 (p3 + p4 c2 + p5 s2).
+  // Taylor expansion on the circle r = R and its radial derivative there, with theta-derivatives:
+  // T(Rc, Rs) = p0 + R (p1 c + p2 s) + R^2 (p3 + p4 c2 + p5 s2), dT/dr = p1 c + p2 s + 2R (...).
   const double c2 = std::cos(2.0 * theta), s2 = std::sin(2.0 * theta);
   const Point Tcircle = p0 + R * (p1 * c + p2 * s) + R * R * (p3 + p4 * c2 + p5 * s2);
   const Point TcircleT = R * (p2 * c - p1 * s) + 2.0 * R * R * (p5 * c2 - p4 * s2);
   const Point TcircleTT = -R * (p1 * c + p2 * s) - 4.0 * R * R * (p4 * c2 + p5 * s2);
+  const Point Tr = p1 * c + p2 * s + 2.0 * R * (p3 + p4 * c2 + p5 * s2);
+  const Point TrT = p2 * c - p1 * s + 4.0 * R * (p5 * c2 - p4 * s2);
+  const Point TrTT = -(p1 * c + p2 * s) - 8.0 * R * (p4 * c2 + p5 * s2);
 
-  // h(theta) = C - T on the circle; the blend is f = (r/R)^3 h(theta).
-  const Point h = C - Tcircle;
-  const Point hT = Cv * vPerTheta - TcircleT;
-  const Point hTT = Cvv * (vPerTheta * vPerTheta) - TcircleTT;
+  // Mismatches on the circle: D0 of position, D1 of the radial derivative.
+  const Point D0 = C - Tcircle, D0t = Cv * vPerTheta - TcircleT, D0tt = Cvv * vPerTheta2 - TcircleTT;
+  const Point D1 = E - Tr, D1t = Ev * vPerTheta - TrT, D1tt = Evv * vPerTheta2 - TrTT;
 
-  // Cartesian derivatives of f (polar chain rule with g(r) = r^3 / R^3, divisions by r cancelled).
-  const double k = 1.0 / (R * R * R);
-  const Point fx = (k * r * r) * (3.0 * c * h - s * hT);
-  const Point fy = (k * r * r) * (3.0 * s * h + c * hT);
-  const Point fxx = (k * r) * ((6.0 * c * c + 3.0 * s * s) * h - 4.0 * c * s * hT + s * s * hTT);
-  const Point fyy = (k * r) * ((6.0 * s * s + 3.0 * c * c) * h + 4.0 * c * s * hT + c * c * hTT);
-  const Point fxy = (k * r) * (c * s * (3.0 * h - hTT) + 2.0 * (c * c - s * s) * hT);
+  // h(r/R) D0 + R g(r/R) D1 = r^3 A + r^4 B: A = 4 D0 / R^3 - D1 / R^2, B = -3 D0 / R^4 + D1 / R^3.
+  const double iR = 1.0 / R, iR2 = iR * iR, iR3 = iR2 * iR, iR4 = iR3 * iR;
+  CartesianDerivatives f;
+  addHomogeneousTerm(3, r, c, s, 4.0 * iR3 * D0 - iR2 * D1, 4.0 * iR3 * D0t - iR2 * D1t, 4.0 * iR3 * D0tt - iR2 * D1tt, f);
+  addHomogeneousTerm(4, r, c, s, -3.0 * iR4 * D0 + iR3 * D1, -3.0 * iR4 * D0t + iR3 * D1t,
+                     -3.0 * iR4 * D0tt + iR3 * D1tt, f);
 
   // Taylor part (32) and its derivatives.
   const Point T = p0 + p1 * x + p2 * y + p3 * (x * x + y * y) + p4 * (x * x - y * y) + p5 * (2.0 * x * y);
-  const Point Px = p1 + 2.0 * x * (p3 + p4) + 2.0 * y * p5 + fx;
-  const Point Py = p2 + 2.0 * y * (p3 - p4) + 2.0 * x * p5 + fy;
-  const Point Pxx = 2.0 * (p3 + p4) + fxx;
-  const Point Pyy = 2.0 * (p3 - p4) + fyy;
-  const Point Pxy = 2.0 * p5 + fxy;
+  const Point Px = p1 + 2.0 * x * (p3 + p4) + 2.0 * y * p5 + f.x;
+  const Point Py = p2 + 2.0 * y * (p3 - p4) + 2.0 * x * p5 + f.y;
+  const Point Pxx = 2.0 * (p3 + p4) + f.xx;
+  const Point Pyy = 2.0 * (p3 - p4) + f.yy;
+  const Point Pxy = 2.0 * p5 + f.xy;
 
   SurfacePoint sp;
-  sp.position = T + (u * u * u) * h;
+  const double h = u * u * u * (4.0 - 3.0 * u), g = u * u * u * (u - 1.0);
+  sp.position = T + h * D0 + (R * g) * D1;
   computeCurvature(Px, Py, Pxx, Pxy, Pyy, sp);
 
   // (u,v) derivatives: u = r/R, theta = 2 pi (tau0 + dtau v).

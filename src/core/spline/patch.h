@@ -13,11 +13,25 @@
 //   cp[6..9]  = B-spline control points b_{j-1..j+2} of the ring's inner boundary curve at r = R
 //   cp[10]    = (tau0, dtau, R): the sector covers tau in [tau0, tau0 + dtau] (tau in turns, [0,1))
 //   cp[11]    = (taylorOrder, 0, 0): 2 = full quadratic Taylor (C2PS, RTS), 1 = tangent plane (BPS)
-//   cp[12..15]= unused (zero)
+//   cp[12..15]= B-spline control points e_{j-1..j+2} of the ring's cross-boundary derivative at
+//               r = R, per unit r: e_j = (q3j - q1j) / 2 (the radial derivative of the ring patch
+//               between links 2-3 at link 2; vectors, not positions)
 //   Parameter: u = r / R in [0,1] (u = 0 is the pole), v in [0,1] along the sector.
-//   Position: T(x,y) + u^3 (C(v) - T(R c, R s)), T = p0 + p1 x + p2 y + p3(x^2+y^2) + p4(x^2-y^2)
-//   + 2 p5 x y, (x,y) = r (cos 2 pi tau, sin 2 pi tau), C the boundary B-spline. The u^3 blend keeps
-//   the value, normal and curvature at the pole exactly those of the Taylor expansion.
+//   Position: T(x,y) + h(u) D0(v) + R g(u) D1(v), T = p0 + p1 x + p2 y + p3(x^2+y^2) + p4(x^2-y^2)
+//   + 2 p5 x y, (x,y) = r (cos 2 pi tau, sin 2 pi tau); D0 = C(v) - T(R c, R s) with C the boundary
+//   B-spline of cp[6..9]; D1 = E(v) - dT/dr(R c, R s) with E the derivative B-spline of cp[12..15];
+//   h(u) = u^3 (4 - 3u), g(u) = u^3 (u - 1). h(1) = 1, h'(1) = 0, g(1) = 0, g'(1) = 1, so position
+//   and radial derivative at u = 1 are the ring's (C1 across the seam); h, g and their first and
+//   second derivatives vanish at u = 0, so the value, normal and curvature at the pole are exactly
+//   those of the Taylor expansion.
+//
+// EDGES (edgeLevelDelta): edge s runs from corner s to corner s+1 of the parameter square, i.e.
+//   s = 0: v = 0, s = 1: u = 1, s = 2: v = 1, s = 3: u = 0 (for a face-based patch: the face's side
+//   from vertex s to vertex s+1; for a PoleCap: 0 and 2 radial, 1 the boundary with the ring, 3 the
+//   pole). edgeLevelDelta[s] = d > 0: the surface across the edge is made of patches d levels finer
+//   (this patch is the coarse side of a T-junction; where the finer side mixes levels, the largest
+//   difference); d < 0: the patch across is |d| levels coarser (this is a fine side); 0: same level,
+//   a mesh boundary, or no level jump in parameter (RTS/BPS radial levels keep the columns).
 #pragma once
 
 #include <array>
@@ -44,6 +58,7 @@ struct Patch {
   int32_t ring = -1;   // polar ring index m (PolarRing, PoleCap); -1 otherwise
   int32_t pole = -1;   // index of the pole (in the scheme's pole list) it belongs to; -1 otherwise
   int32_t face = -1;   // face index at `level` it was made from (-1 for caps)
+  std::array<int8_t, 4> edgeLevelDelta{};  // per edge (order above): level jump to the neighbour
 };
 
 // Differential quantities of a patch at one parameter (u,v).

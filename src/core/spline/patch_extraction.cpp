@@ -339,11 +339,14 @@ void polygonEndCaps(const PolyMesh& mesh, const MeshTopology& topo, Index f, Rin
 void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vector<Patch>& out, int level, int pole) {
   const int n = grid.n;
   auto boundaryPoint = [&](int j) { return (grid.q(1, j) + 4.0 * grid.q(2, j) + grid.q(3, j)) / 6.0; };
+  // Radial derivative of the ring patch between links 2-3 at link 2 (per unit r: link i at r = i).
+  auto crossDerivative = [&](int j) { return 0.5 * (grid.q(3, j) - grid.q(1, j)); };
   for (int j = 0; j < n; ++j) {
     Patch cap;
     cap.kind = PatchKind::PoleCap;
     for (int k = 0; k < 6; ++k) cap.cp[k] = taylor.p[k];
     for (int k = 0; k < 4; ++k) cap.cp[6 + k] = boundaryPoint(j - 1 + k);
+    for (int k = 0; k < 4; ++k) cap.cp[12 + k] = crossDerivative(j - 1 + k);
     cap.cp[10] = Point(double(j) / n, 1.0 / n, 2.0);
     cap.cp[11] = Point(double(taylor.order), 0.0, 0.0);
     cap.level = uint8_t(std::clamp(level, 0, 255));
