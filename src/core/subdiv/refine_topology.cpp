@@ -13,7 +13,10 @@
 // at the smallest corner (interior) or at the corner leaving along the boundary.
 #include "core/subdiv/refine_topology.h"
 
+#include <algorithm>
 #include <cassert>
+
+#include "core/subdiv/parallel_for.h"
 
 namespace polarview {
 
@@ -35,15 +38,34 @@ std::vector<Index> cornerTwins(const PolyMesh& mesh, const MeshTopology& topo) {
 
 namespace {
 
+// Per part of the parent (a range of faces and a range of vertices): what it adds to the child, so
+// every part knows where its output starts before any part writes.
+struct PartCounts {
+  Index newEdges = 0;          // child edges led by the part's child corners
+  Index interiorLeaders = 0;   // parent edges led by the part's corners (interior / boundary)
+  Index boundaryLeaders = 0;
+  Index splitRingCorners = 0;  // split corners in the rings of the part's vertices
+  Index boundaryVertices = 0;
+};
+
+// Where a ring-writing pass stands: the child vertex, its ring's first entry, the next entries.
+struct RingCursor {
+  Index vertex = 0, ringStart = 0, facePos = 0, edgePos = 0;
+};
+
 template <bool kSplit>
 class ConnectivityBuilder {
  public:
   ConnectivityBuilder(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
-                      const uint8_t* splitCorner, RefinedConnectivity& out)
-      : parent_(parent), topo_(topo), parentTwins_(twins.data()), split_(splitCorner), out_(out) {}
+                      const uint8_t* splitCorner, RefinedConnectivity& out, const ConnectivityOptions& options)
+      : parent_(parent), topo_(topo), parentTwins_(twins.data()), split_(splitCorner), out_(out), options_(options) {}
 
   void build() {
-    countAndSize();
+    parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
+    parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
+    countSplits();
+    countParts();
+    sizeTables();
     buildFacesAndEdges();
     buildVertexRings();
   }
@@ -58,6 +80,8 @@ class ConnectivityBuilder {
   // The child face (the first of two when split) and first child corner of parent corner c.
   Index childFace(Index c) const { return kSplit ? firstChildFace_[c] : c; }
   Index base(Index c) const { return kSplit ? 2 * (c + firstChildFace_[c]) : 4 * c; }
+  // Child faces of the parent corners before c (c may be the corner count).
+  Index childFacesBefore(Index c) const { return c == parentCorners_ ? parentCorners_ + splitCount_ : childFace(c); }
   // Child corners of parent corner c by the half-edge they start, and the face holding the last two.
   Index vertexToEdge(Index c) const { return base(c); }
   Index edgeToFace(Index c) const { return base(c) + 1; }
@@ -65,51 +89,122 @@ class ConnectivityBuilder {
   Index edgeToVertex(Index c) const { return base(c) + (isSplit(c) ? 5 : 3); }
   Index secondChildFace(Index c) const { return childFace(c) + (isSplit(c) ? 1 : 0); }
 
-  // Child counts: F + E + V vertices, one face per corner (+1 per split), 2 edges per parent edge
-  // and 1 per corner (+1 per split).
-  void countAndSize() {
-    const Index C = static_cast<Index>(parent_.faceVerts.size());
+  Index faceBound(unsigned k) const { return partBound(topo_.faceCount, parts_, k); }
+  Index vertexBound(unsigned k) const { return partBound(topo_.vertexCount, parts_, k); }
+
+  void countSplits() {
     splitCount_ = 0;
-    if (kSplit) {
-      firstChildFace_.resize(C);
-      for (Index c = 0; c < C; ++c) {
-        firstChildFace_[c] = c + splitCount_;
-        splitCount_ += split_[c] ? 1 : 0;
-      }
+    if (!kSplit) return;
+    firstChildFace_.resize(parentCorners_);
+    for (Index c = 0; c < parentCorners_; ++c) {
+      firstChildFace_[c] = c + splitCount_;
+      splitCount_ += split_[c] ? 1 : 0;
     }
+  }
+
+  // Each part counts what it will write; prefix sums turn the counts into start positions.
+  // A child corner opens an edge when its twin is later or missing (numbering by first use).
+  void countParts() {
+    counts_.assign(parts_ + 1, PartCounts());
+    runParts(parts_, [&](unsigned k) {
+      PartCounts count;
+      for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
+        const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
+        for (Index c = begin; c < end; ++c) {
+          const Index twin = parentTwins_[c], twinPrev = parentTwins_[c == begin ? end - 1 : c - 1];
+          count.newEdges += (twin < 0 || parentNext(twin) > c) + (c + 1 != end) + (c == begin) +
+                            (twinPrev < 0 || twinPrev > c) + (isSplit(c) ? 1 : 0);
+          count.boundaryLeaders += twin < 0;
+          count.interiorLeaders += twin > c;
+        }
+      }
+      for (Index v = vertexBound(k); v < vertexBound(k + 1); ++v) {
+        count.boundaryVertices += topo_.vertexOnBoundary[v];
+        if (kSplit)
+          for (Index i = topo_.vertexFaceStart[v]; i < topo_.vertexFaceStart[v + 1]; ++i)
+            count.splitRingCorners += split_[topo_.vertexCorners[i]];
+      }
+      counts_[k + 1] = count;
+    });
+    for (unsigned k = 1; k <= parts_; ++k) {  // counts_[k]: everything before part k
+      counts_[k].newEdges += counts_[k - 1].newEdges;
+      counts_[k].interiorLeaders += counts_[k - 1].interiorLeaders;
+      counts_[k].boundaryLeaders += counts_[k - 1].boundaryLeaders;
+      counts_[k].splitRingCorners += counts_[k - 1].splitRingCorners;
+      counts_[k].boundaryVertices += counts_[k - 1].boundaryVertices;
+    }
+  }
+
+  // Child counts: F + E + V vertices, one face per corner (+1 per split), 2 edges per parent edge
+  // and 1 per corner (+1 per split). The tables are sized on all threads at once, so the first
+  // touch of fresh memory (the kernel's page faults) is shared out too.
+  void sizeTables() {
+    const Index C = parentCorners_;
     vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
     childCorners_ = 4 * C + 2 * splitCount_;
-
     MeshTopology& t = out_.topology;
     t.vertexCount = topo_.faceCount + topo_.edgeCount + topo_.vertexCount;
     t.faceCount = C + splitCount_;
     t.edgeCount = 2 * topo_.edgeCount + C + splitCount_;
+    assert(counts_[parts_].newEdges == t.edgeCount);
+    const size_t corners = size_t(childCorners_), faces = size_t(t.faceCount) + 1, vertices = size_t(t.vertexCount);
+    const size_t ringEdges = corners + size_t(counts_[parts_].boundaryLeaders + counts_[parts_].boundaryVertices);
     PolyMesh& mesh = out_.mesh;
-    mesh.points.resize(t.vertexCount);
-    mesh.faceStart.resize(size_t(t.faceCount) + 1);
-    mesh.faceVerts.resize(childCorners_);
     mesh.faceLine.clear();
-    out_.faceParent.resize(t.faceCount);
-    out_.twins.resize(childCorners_);
-    t.cornerEdge.resize(childCorners_);
-    t.cornerFace.resize(childCorners_);
-    t.edgeVerts.resize(2 * size_t(t.edgeCount));
-    t.edgeFaces.resize(2 * size_t(t.edgeCount));
+    if (!options_.childTwins) out_.twins.clear();
+
+    struct Job {
+      size_t bytes;
+      void (*resize)(void* table, size_t size);
+      void* table;
+      size_t size;
+    };
+    auto indexJob = [](std::vector<Index>& table, size_t size) {
+      return Job{size * sizeof(Index), [](void* v, size_t n) { static_cast<std::vector<Index>*>(v)->resize(n); }, &table, size};
+    };
+    auto flagJob = [](std::vector<uint8_t>& table, size_t size) {
+      return Job{size, [](void* v, size_t n) { static_cast<std::vector<uint8_t>*>(v)->resize(n); }, &table, size};
+    };
+    std::vector<Job> jobs = {
+        {vertices * sizeof(Point), [](void* v, size_t n) { static_cast<std::vector<Point>*>(v)->resize(n); }, &mesh.points, vertices},
+        indexJob(mesh.faceVerts, corners), indexJob(t.cornerEdge, corners), indexJob(t.cornerFace, corners),
+        indexJob(t.edgeVerts, 2 * size_t(t.edgeCount)), indexJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
+        indexJob(t.vertexFaces, corners), indexJob(t.vertexCorners, corners), indexJob(t.vertexEdges, ringEdges),
+        indexJob(mesh.faceStart, faces), indexJob(out_.faceParent, faces - 1),
+        indexJob(t.vertexFaceStart, vertices + 1), indexJob(t.vertexEdgeStart, vertices + 1),
+        flagJob(t.vertexOnBoundary, vertices), flagJob(t.vertexUsed, vertices)};
+    if (options_.childTwins) jobs.push_back(indexJob(out_.twins, corners));
+    // Largest first, each to the least loaded part.
+    std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.bytes > b.bytes; });
+    std::vector<size_t> load(parts_, 0);
+    std::vector<unsigned> owner(jobs.size());
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      owner[j] = unsigned(std::min_element(load.begin(), load.end()) - load.begin());
+      load[owner[j]] += jobs[j].bytes;
+    }
+    runParts(parts_, [&](unsigned k) {
+      for (size_t j = 0; j < jobs.size(); ++j)
+        if (owner[j] == k) jobs[j].resize(jobs[j].table, jobs[j].size);
+    });
   }
 
   // Writes child corner x (vertex -> nextVertex in `face`, opposite half-edge `twin`) and numbers
-  // its edge by first use: the smaller corner of a twin pair opens the edge.
-  void emitCorner(Index x, Index vertex, Index nextVertex, Index face, Index twin) {
+  // its edge by first use: the smaller corner of a twin pair opens the edge. A twin in an earlier
+  // part may not be numbered yet: such corners wait in `deferred`.
+  void emitCorner(Index x, Index vertex, Index nextVertex, Index face, Index twin, Index partFirstCorner,
+                  Index& nextEdge, std::vector<std::pair<Index, Index>>& deferred) {
     faceVerts_[x] = vertex;
     cornerFace_[x] = face;
-    twinsOut_[x] = twin;
+    if (twinsOut_) twinsOut_[x] = twin;
     if (twin < 0 || twin > x) {
-      const Index e = nextEdge_++;
+      const Index e = nextEdge++;
       cornerEdge_[x] = e;
       edgeVerts_[2 * e] = vertex;
       edgeVerts_[2 * e + 1] = nextVertex;
       edgeFaces_[2 * e] = face;
       edgeFaces_[2 * e + 1] = -1;
+    } else if (twin < partFirstCorner) {
+      deferred.emplace_back(x, twin);
     } else {
       const Index e = cornerEdge_[twin];
       cornerEdge_[x] = e;
@@ -117,7 +212,7 @@ class ConnectivityBuilder {
     }
   }
 
-  // Faces, twins and edges in one pass over the parent corners (child corners in increasing order).
+  // Faces, twins and edges, each part over its parent faces (child corners in increasing order).
   void buildFacesAndEdges() {
     MeshTopology& t = out_.topology;
     faceVerts_ = out_.mesh.faceVerts.data();
@@ -125,16 +220,31 @@ class ConnectivityBuilder {
     cornerEdge_ = t.cornerEdge.data();
     edgeVerts_ = t.edgeVerts.data();
     edgeFaces_ = t.edgeFaces.data();
-    twinsOut_ = out_.twins.data();
+    twinsOut_ = options_.childTwins ? out_.twins.data() : nullptr;
+    out_.mesh.faceStart[0] = 0;
+    std::vector<std::vector<std::pair<Index, Index>>> deferred(parts_);
+    runParts(parts_, [&](unsigned k) { buildFacesAndEdgesOfPart(k, deferred[k]); });
+    for (const auto& list : deferred)
+      for (const auto& [x, twin] : list) {
+        const Index e = cornerEdge_[twin];
+        cornerEdge_[x] = e;
+        edgeFaces_[2 * e + 1] = cornerFace_[x];
+      }
+  }
+
+  void buildFacesAndEdgesOfPart(unsigned k, std::vector<std::pair<Index, Index>>& deferred) {
     Index* faceStart = out_.mesh.faceStart.data();
     Index* faceParent = out_.faceParent.data();
-    nextEdge_ = 0;
-    faceStart[0] = 0;
-
     const Index* parentVerts = parent_.faceVerts.data();
     const Index* parentEdge = topo_.cornerEdge.data();
     const Index edgePointBase = topo_.faceCount;
-    for (Index f = 0; f < topo_.faceCount; ++f) {
+    const Index fBegin = faceBound(k), fEnd = faceBound(k + 1);
+    const Index partFirstCorner = fBegin < fEnd ? base(parent_.faceStart[fBegin]) : 0;
+    Index nextEdge = counts_[k].newEdges;
+    auto emit = [&](Index x, Index vertex, Index nextVertex, Index face, Index twin) {
+      emitCorner(x, vertex, nextVertex, face, twin, partFirstCorner, nextEdge, deferred);
+    };
+    for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
       for (Index c = begin; c < end; ++c) {
         const Index prev = c == begin ? end - 1 : c - 1, next = c + 1 == end ? begin : c + 1;
@@ -146,96 +256,101 @@ class ConnectivityBuilder {
         const Index twinFE = edgeToFace(prev);
         const Index twinEV = twinPrev < 0 ? -1 : vertexToEdge(twinPrev);
         const Index x = base(c), face = childFace(c);
-        emitCorner(x, V, Ea, face, twinVE);
-        emitCorner(x + 1, Ea, F, face, twinEF);
+        emit(x, V, Ea, face, twinVE);
+        emit(x + 1, Ea, F, face, twinEF);
         faceParent[face] = f;
         if (!isSplit(c)) {
-          emitCorner(x + 2, F, Eb, face, twinFE);
-          emitCorner(x + 3, Eb, V, face, twinEV);
+          emit(x + 2, F, Eb, face, twinFE);
+          emit(x + 3, Eb, V, face, twinEV);
           faceStart[face + 1] = x + 4;
         } else {  // the diagonal V - F closes the first triangle and opens the second
-          emitCorner(x + 2, F, V, face, x + 3);
+          emit(x + 2, F, V, face, x + 3);
           faceStart[face + 1] = x + 3;
-          emitCorner(x + 3, V, F, face + 1, x + 2);
-          emitCorner(x + 4, F, Eb, face + 1, twinFE);
-          emitCorner(x + 5, Eb, V, face + 1, twinEV);
+          emit(x + 3, V, F, face + 1, x + 2);
+          emit(x + 4, F, Eb, face + 1, twinFE);
+          emit(x + 5, Eb, V, face + 1, twinEV);
           faceStart[face + 2] = x + 6;
           faceParent[face + 1] = f;
         }
       }
     }
-    assert(nextEdge_ == t.edgeCount);
+    assert(nextEdge == counts_[k + 1].newEdges);
   }
 
-  // Appends (face, corner) to the ring of the current child vertex.
-  void put(Index face, Index corner) {
-    vertexFaces_[facePos_] = face;
-    vertexCorners_[facePos_++] = corner;
-    vertexEdges_[edgePos_++] = cornerEdge_[corner];
+  // Appends (face, corner) to the ring of the cursor's child vertex.
+  void put(RingCursor& at, Index face, Index corner) {
+    vertexFaces_[at.facePos] = face;
+    vertexCorners_[at.facePos++] = corner;
+    vertexEdges_[at.edgePos++] = cornerEdge_[corner];
   }
-  // Ends the current child vertex's ring (a boundary ring ends with its incoming boundary edge).
-  void closeRing(bool onBoundary, Index boundaryEdge) {
+  // Ends the cursor's ring (a boundary ring ends with its incoming boundary edge).
+  void closeRing(RingCursor& at, bool onBoundary, Index boundaryEdge) {
     MeshTopology& t = out_.topology;
-    if (onBoundary) vertexEdges_[edgePos_++] = boundaryEdge;
-    t.vertexOnBoundary[vertex_] = onBoundary;
-    t.vertexUsed[vertex_] = facePos_ > t.vertexFaceStart[vertex_];
-    ++vertex_;
-    t.vertexFaceStart[vertex_] = facePos_;
-    t.vertexEdgeStart[vertex_] = edgePos_;
+    if (onBoundary) vertexEdges_[at.edgePos++] = boundaryEdge;
+    t.vertexOnBoundary[at.vertex] = onBoundary;
+    t.vertexUsed[at.vertex] = at.facePos > at.ringStart;
+    ++at.vertex;
+    t.vertexFaceStart[at.vertex] = at.ringStart = at.facePos;
+    t.vertexEdgeStart[at.vertex] = at.edgePos;
   }
 
+  // Rings in three blocks (face points, edge points, vertex points); each part writes its own
+  // stretch of each block, starting where the counts put it.
   void buildVertexRings() {
     MeshTopology& t = out_.topology;
-    // One edge more than faces per boundary vertex: edge points of boundary edges, boundary vertex points.
-    Index boundaryEdges = 0, boundaryVertices = 0;
-    for (Index e = 0; e < topo_.edgeCount; ++e) boundaryEdges += topo_.edgeFaces[2 * e + 1] < 0 ? 1 : 0;
-    for (Index v = 0; v < topo_.vertexCount; ++v) boundaryVertices += topo_.vertexOnBoundary[v];
-    t.vertexFaceStart.resize(size_t(t.vertexCount) + 1);
-    t.vertexEdgeStart.resize(size_t(t.vertexCount) + 1);
-    t.vertexFaces.resize(childCorners_);
-    t.vertexCorners.resize(childCorners_);
-    t.vertexEdges.resize(size_t(childCorners_) + boundaryEdges + boundaryVertices);
-    t.vertexOnBoundary.resize(t.vertexCount);
-    t.vertexUsed.resize(t.vertexCount);
     vertexFaces_ = t.vertexFaces.data();
     vertexCorners_ = t.vertexCorners.data();
     vertexEdges_ = t.vertexEdges.data();
-    vertex_ = facePos_ = edgePos_ = 0;
     t.vertexFaceStart[0] = t.vertexEdgeStart[0] = 0;
-    buildFacePointRings();
-    buildEdgePointRings();
-    buildVertexPointRings();
-    assert(vertex_ == t.vertexCount && facePos_ == childCorners_);
+    const Index facePointEntries = parentCorners_ + splitCount_;  // also the edge-point block's first entry
+    const Index boundaryEdges = counts_[parts_].boundaryLeaders;
+    const Index vertexBlockFaces = facePointEntries + 2 * parentCorners_;
+    const Index vertexBlockEdges = vertexBlockFaces + boundaryEdges;
+    runParts(parts_, [&](unsigned k) {
+      const PartCounts& before = counts_[k];
+      const Index fBegin = faceBound(k), fEnd = faceBound(k + 1), vBegin = vertexBound(k), vEnd = vertexBound(k + 1);
+      const Index firstFaceEntry = childFacesBefore(parent_.faceStart[fBegin]);
+      RingCursor facePoints{fBegin, firstFaceEntry, firstFaceEntry, firstFaceEntry};
+      buildFacePointRings(facePoints, fBegin, fEnd);
+      const Index edgeEntries = 4 * before.interiorLeaders + 2 * before.boundaryLeaders;
+      RingCursor edgePoints{topo_.faceCount + before.interiorLeaders + before.boundaryLeaders, facePointEntries + edgeEntries,
+                            facePointEntries + edgeEntries, facePointEntries + edgeEntries + before.boundaryLeaders};
+      buildEdgePointRings(edgePoints, fBegin, fEnd);
+      const Index vertexEntries = vertexBlockFaces + topo_.vertexFaceStart[vBegin] + before.splitRingCorners;
+      RingCursor vertexPoints{vertexPointBase_ + vBegin, vertexEntries, vertexEntries,
+                              vertexBlockEdges + topo_.vertexEdgeStart[vBegin] + before.splitRingCorners};
+      buildVertexPointRings(vertexPoints, vBegin, vEnd);
+    });
   }
 
   // Face point of f: the corners of f in order; a split corner contributes its second triangle,
   // then its first (the walk crosses the diagonal). Starts at the first corner's first face.
-  void buildFacePointRings() {
-    for (Index f = 0; f < topo_.faceCount; ++f) {
+  void buildFacePointRings(RingCursor& at, Index fBegin, Index fEnd) {
+    for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
       for (Index c = begin; c < end; ++c) {
-        if (isSplit(c) && c != begin) put(childFace(c) + 1, base(c) + 4);
-        put(childFace(c), base(c) + 2);
+        if (isSplit(c) && c != begin) put(at, childFace(c) + 1, base(c) + 4);
+        put(at, childFace(c), base(c) + 2);
       }
-      if (isSplit(begin)) put(childFace(begin) + 1, base(begin) + 4);
-      closeRing(false, -1);
+      if (isSplit(begin)) put(at, childFace(begin) + 1, base(begin) + 4);
+      closeRing(at, false, -1);
     }
   }
 
   // Edge point of e, led by corner c (twin d): E->F(c), E->V(next d), E->F(d), E->V(next c),
   // rotated to start at the smallest; on a boundary E->V(next c), E->F(c), then the edge to V(c).
   // Edges are numbered by their leading corner, so leaders in corner order visit them in order.
-  void buildEdgePointRings() {
-    for (Index f = 0; f < topo_.faceCount; ++f) {
+  void buildEdgePointRings(RingCursor& at, Index fBegin, Index fEnd) {
+    for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
       for (Index c = begin; c < end; ++c) {
         const Index d = parentTwins_[c];
         if (d >= 0 && d < c) continue;  // not the edge's leading corner
         const Index next = c + 1 == end ? begin : c + 1;
         if (d < 0) {
-          put(secondChildFace(next), edgeToVertex(next));
-          put(childFace(c), edgeToFace(c));
-          closeRing(true, cornerEdge_[vertexToEdge(c)]);
+          put(at, secondChildFace(next), edgeToVertex(next));
+          put(at, childFace(c), edgeToFace(c));
+          closeRing(at, true, cornerEdge_[vertexToEdge(c)]);
           continue;
         }
         const Index nextD = parentNext(d);
@@ -244,24 +359,24 @@ class ConnectivityBuilder {
         int start = 0;
         for (int i = 1; i < 4; ++i)
           if (corners[i] < corners[start]) start = i;
-        for (int i = 0; i < 4; ++i) put(faces[(start + i) & 3], corners[(start + i) & 3]);
-        closeRing(false, -1);
+        for (int i = 0; i < 4; ++i) put(at, faces[(start + i) & 3], corners[(start + i) & 3]);
+        closeRing(at, false, -1);
       }
     }
   }
 
   // Vertex point of v: the parent ring's corners in the parent's order (a split corner gives both
   // triangles); a boundary ring ends with the edge into the last corner.
-  void buildVertexPointRings() {
-    for (Index v = 0; v < topo_.vertexCount; ++v) {
+  void buildVertexPointRings(RingCursor& at, Index vBegin, Index vEnd) {
+    for (Index v = vBegin; v < vEnd; ++v) {
       const Index first = topo_.vertexFaceStart[v], last = topo_.vertexFaceStart[v + 1];
       for (Index i = first; i < last; ++i) {
         const Index c = topo_.vertexCorners[i];
-        put(childFace(c), base(c));
-        if (isSplit(c)) put(childFace(c) + 1, base(c) + 3);
+        put(at, childFace(c), base(c));
+        if (isSplit(c)) put(at, childFace(c) + 1, base(c) + 3);
       }
       const bool onBoundary = topo_.vertexOnBoundary[v];
-      closeRing(onBoundary, onBoundary ? cornerEdge_[edgeToVertex(topo_.vertexCorners[last - 1])] : -1);
+      closeRing(at, onBoundary, onBoundary ? cornerEdge_[edgeToVertex(topo_.vertexCorners[last - 1])] : -1);
     }
   }
 
@@ -270,12 +385,13 @@ class ConnectivityBuilder {
   const Index* parentTwins_;
   const uint8_t* split_;
   RefinedConnectivity& out_;
+  const ConnectivityOptions& options_;
 
+  unsigned parts_ = 1;
+  std::vector<PartCounts> counts_;     // counts_[k]: totals of parts before k (counts_[parts_]: all)
   std::vector<Index> firstChildFace_;  // split mode: per parent corner, its first child face
-  Index splitCount_ = 0, vertexPointBase_ = 0, childCorners_ = 0;
+  Index parentCorners_ = 0, splitCount_ = 0, vertexPointBase_ = 0, childCorners_ = 0;
 
-  // Output cursors and table pointers.
-  Index nextEdge_ = 0, vertex_ = 0, facePos_ = 0, edgePos_ = 0;
   Index *faceVerts_ = nullptr, *cornerFace_ = nullptr, *cornerEdge_ = nullptr, *edgeVerts_ = nullptr,
         *edgeFaces_ = nullptr, *twinsOut_ = nullptr;
   Index *vertexFaces_ = nullptr, *vertexCorners_ = nullptr, *vertexEdges_ = nullptr;
@@ -284,11 +400,12 @@ class ConnectivityBuilder {
 }  // namespace
 
 void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
-                                    const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out) {
+                                    const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
+                                    const ConnectivityOptions& options) {
   if (splitCorner)
-    ConnectivityBuilder<true>(parent, topo, twins, splitCorner->data(), out).build();
+    ConnectivityBuilder<true>(parent, topo, twins, splitCorner->data(), out, options).build();
   else
-    ConnectivityBuilder<false>(parent, topo, twins, nullptr, out).build();
+    ConnectivityBuilder<false>(parent, topo, twins, nullptr, out, options).build();
 }
 
 }  // namespace polarview

@@ -25,13 +25,19 @@ struct RefinedConnectivity {
   PolyMesh mesh;                 // faces; points sized F + E + V, values left for the point rules
   MeshTopology topology;         // equal to buildTopology(mesh)
   std::vector<Index> faceParent; // per child face: its parent face
-  std::vector<Index> twins;      // cornerTwins of the child, for the next level
+  std::vector<Index> twins;      // cornerTwins of the child, for the next level (if asked for)
+};
+
+struct ConnectivityOptions {
+  bool childTwins = true;  // fill RefinedConnectivity::twins (not needed at the finest level)
+  unsigned threads = 0;    // 0: as many as pay for the mesh size (parallel_for.h); results never depend on it
 };
 
 // One Catmull-Clark step of the connectivity of `parent` (tables `topo`, twins from cornerTwins or
 // the previous step). `splitCorner` (nullptr, or one flag per parent corner) marks the corners whose
-// quads are split along the diagonal V - F. `out`'s buffers are reused. [O(corners)]
+// quads are split along the diagonal V - F. [O(corners)]
 void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
-                                    const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out);
+                                    const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
+                                    const ConnectivityOptions& options = {});
 
 }  // namespace polarview

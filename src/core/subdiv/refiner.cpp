@@ -115,8 +115,8 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence. `twins` holds the parent's corner twins on entry
-// and the child's on return.
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, std::vector<Index>& twins) {
+// and the child's on return (none after the `finest` level).
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& twins) {
   std::vector<uint8_t> split;
   if (splitPoleQuads && !parent.poles.empty()) {
     split.assign(parent.mesh.faceVerts.size(), 0);
@@ -125,7 +125,9 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
         split[parent.topology.vertexCorners[k]] = 1;
   }
   RefinedConnectivity connectivity;
-  refineCatmullClarkConnectivity(parent.mesh, parent.topology, twins, split.empty() ? nullptr : &split, connectivity);
+  ConnectivityOptions options;
+  options.childTwins = !finest;
+  refineCatmullClarkConnectivity(parent.mesh, parent.topology, twins, split.empty() ? nullptr : &split, connectivity, options);
   RefinedLevel child;
   child.mesh = std::move(connectivity.mesh);
   child.topology = std::move(connectivity.topology);
@@ -346,7 +348,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
       levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
       plan_->regions.push_back(std::move(childRegions));
     } else {
-      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, twins));
+      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, m == options.levels, twins));
     }
   }
   updatePositions(base.points);
