@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -16,10 +17,7 @@
 #include <thread>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/mesh/input_error.h"
-#include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
-#include "core/mesh/topology.h"
 #include "render/gl_context.h"
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
@@ -38,6 +36,30 @@ std::string recentFilePath() {
   return std::string(home) + "/.config/polarview/recent.txt";
 }
 
+// Appends the poles the surface does not hide to `out`: each is projected into `view`, and kept when
+// the depth buffer there (the surface just drawn) is not nearer the eye than the pole by more than
+// `tolerance` (world units). A few poles per view, so one 1-pixel read each.
+void visiblePoles(const std::vector<Point>& poles, const ViewParams& view, const glm::dvec3& eye, double tolerance,
+                  float pixelScale, int framebufferHeight, std::vector<PoleMarker>* out) {
+  constexpr size_t kMaxMarkers = 64;
+  const glm::vec4 viewport(view.viewport);
+  for (size_t i = 0; i < poles.size() && i < kMaxMarkers; ++i) {
+    glm::vec3 window = glm::project(glm::vec3(poles[i]), view.view, view.proj, viewport);
+    int px = int(std::floor(window.x)), py = int(std::floor(window.y));
+    if (window.z <= 0.0f || window.z >= 1.0f || px < view.viewport.x || py < view.viewport.y ||
+        px >= view.viewport.x + view.viewport.z || py >= view.viewport.y + view.viewport.w) {
+      continue;
+    }
+    float depth = 1.0f;
+    glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    if (depth < 1.0f) {
+      glm::vec3 surface = glm::unProject(glm::vec3(float(px) + 0.5f, float(py) + 0.5f, depth), view.view, view.proj, viewport);
+      if (glm::length(glm::dvec3(surface) - eye) < glm::length(poles[i] - eye) - tolerance) continue;  // hidden
+    }
+    out->push_back({window.x / pixelScale, (float(framebufferHeight) - window.y) / pixelScale});
+  }
+}
+
 // Mixes a value into a running hash (to notice when the colour range inputs changed).
 void hashMix(uint64_t& h, uint64_t value) { h = (h ^ value) * 1099511628211ull; }
 
@@ -49,6 +71,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {}
 
 ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
+  if (loadJob_.valid()) loadJob_.wait();
   for (ViewRuntime& view : views_) view.job.wait();
   if (window_) {
     glfwMakeContextCurrent(window_);
@@ -98,7 +121,9 @@ bool ViewerApp::init(std::string* error) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
-  if (options_.hidden) io.IniFilename = nullptr;
+  // Window layout lives beside the recent files, not in whatever directory the viewer started in.
+  if (!recentFilePath().empty()) imguiIniPath_ = std::filesystem::path(recentFilePath()).replace_filename("imgui.ini").string();
+  io.IniFilename = options_.hidden || !options_.persistRecent || imguiIniPath_.empty() ? nullptr : imguiIniPath_.c_str();
   if (std::filesystem::exists(kFontPath)) io.Fonts->AddFontFromFileTTF(kFontPath, 15.0f);
   else io.Fonts->AddFontDefault();
   ImGui::StyleColorsDark();
@@ -126,30 +151,68 @@ bool ViewerApp::init(std::string* error) {
 
 bool ViewerApp::loadFile(const std::string& path) {
   state_.file.pathField = path;
-  try {
-    std::vector<std::string> warnings;
-    PolyMesh mesh = loadObj(path, &warnings);
-    if (!loadMesh(std::move(mesh), path, path)) return false;
-    state_.file.warnings = std::move(warnings);
-    return true;
-  } catch (const std::exception& e) {
-    state_.file.error = e.what();
-    state_.notice = "could not open " + path + " (the current model stays)";
+  LoadedModel loaded = readModelFile(path);
+  if (!loaded.error.empty()) {
+    loadFailed(path, loaded.error);
     return false;
   }
+  adoptMesh(std::move(loaded.mesh), path, path);
+  state_.file.warnings = std::move(loaded.warnings);
+  return true;
+}
+
+void ViewerApp::requestLoad(const std::string& path) {
+  state_.file.pathField = path;
+  if (loadJob_.valid()) {
+    queuedLoad_ = path;  // started when the running one is done; its result is then dropped
+    return;
+  }
+  state_.file.loading = true;
+  state_.file.loadingPath = path;
+  loadJob_ = std::async(std::launch::async, [path] { return readModelFile(path); });
+}
+
+void ViewerApp::pollLoad() {
+  if (!loadJob_.valid() || loadJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  LoadedModel loaded = loadJob_.get();
+  state_.file.loading = false;
+  state_.file.loadingPath.clear();
+  if (queuedLoad_) {
+    std::string next = std::move(*queuedLoad_);
+    queuedLoad_.reset();
+    requestLoad(next);
+    return;
+  }
+  if (!loaded.error.empty()) {
+    loadFailed(loaded.path, loaded.error);
+    return;
+  }
+  adoptMesh(std::move(loaded.mesh), loaded.path, loaded.path);
+  state_.file.warnings = std::move(loaded.warnings);
+  state_.notice = "opened " + loaded.path;
+}
+
+void ViewerApp::loadFailed(const std::string& path, const std::string& error) {
+  state_.file.error = error;
+  state_.notice = "could not open " + path + " (the current model stays)";
+}
+
+void ViewerApp::dropFiles(int count, const char* const* paths) {
+  if (count < 1 || !paths || !paths[0]) return;
+  if (count > 1) state_.notice = "opening the first of " + std::to_string(count) + " dropped files";
+  requestLoad(paths[0]);
 }
 
 bool ViewerApp::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
-  try {
-    buildTopology(mesh, name);  // throws InputError for non-manifold or unsupported meshes
-  } catch (const std::exception& e) {
-    state_.file.error = e.what();
+  if (std::string error = checkModelMesh(mesh, name); !error.empty()) {
+    state_.file.error = error;
     return false;
   }
-  if (mesh.points.empty() || mesh.faceCount() == 0) {
-    state_.file.error = name + ": no faces";
-    return false;
-  }
+  adoptMesh(std::move(mesh), name, path);
+  return true;
+}
+
+void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
   modelMin_ = modelMax_ = mesh.points.front();
   for (const Point& p : mesh.points) {
     modelMin_ = glm::min(modelMin_, p);
@@ -166,7 +229,6 @@ bool ViewerApp::loadMesh(PolyMesh mesh, const std::string& name, const std::stri
   for (ViewStatus& status : state_.status) status.message.clear();
   if (!path.empty()) rememberRecent(path);
   frameModel();
-  return true;
 }
 
 void ViewerApp::loadDefaultModel() {
@@ -203,9 +265,7 @@ void ViewerApp::loadRecent() {
 
 void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
   auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(window));
-  if (!app || count < 1) return;
-  app->state_.file.pathField = paths[0];
-  app->state_.requests.load = true;
+  if (app) app->dropFiles(count, paths);
 }
 
 void ViewerApp::frameModel(double aspect) {
@@ -233,10 +293,10 @@ void ViewerApp::frameModel(double aspect) {
 
 void ViewerApp::processRequests() {
   ViewerRequests& r = state_.requests;
-  if (r.load) loadFile(state_.file.pathField);
+  if (r.load) requestLoad(state_.file.pathField);
   if (r.reload) {
     if (state_.file.loadedPath.empty()) loadDefaultModel();
-    else loadFile(state_.file.loadedPath);
+    else requestLoad(state_.file.loadedPath);
   }
   if (r.loadDefault) loadDefaultModel();
   if (r.frame) frameModel();
@@ -364,6 +424,7 @@ void ViewerApp::updateColourRange() {
 }
 
 bool ViewerApp::busy() const {
+  if (loadJob_.valid()) return true;
   for (int v = 0; v < state_.viewCount; ++v) {
     const ViewRuntime& view = views_[size_t(v)];
     if (view.job.running()) return true;
@@ -375,6 +436,8 @@ bool ViewerApp::busy() const {
 
 void ViewerApp::waitUntilIdle() {
   while (busy()) {
+    if (loadJob_.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    pollLoad();
     for (ViewRuntime& view : views_) {
       if (view.job.running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
@@ -385,11 +448,17 @@ void ViewerApp::waitUntilIdle() {
 
 // [SECTION] Drawing
 
-void ViewerApp::drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight) {
+std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rects, float pixelScale,
+                                             int framebufferHeight) {
   glm::dvec3 centre = 0.5 * (modelMin_ + modelMax_);
   double radius = 0.5 * glm::length(modelMax_ - modelMin_);
   ShadingParams shading = state_.shading;
   shading.range = state_.colourRange();
+  // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read like
+  // a curvature feature right at the pole).
+  DisplayFlags display = state_.display;
+  display.poleMarkers = false;
+  std::vector<PoleMarker> markers;
   for (size_t v = 0; v < rects.size(); ++v) {
     if (!views_[v].shown) continue;
     const ScreenRect& r = rects[v];
@@ -400,8 +469,12 @@ void ViewerApp::drawViews(const std::vector<ScreenRect>& rects, float pixelScale
     params.view = camera.viewMatrix();
     params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
     params.eye = glm::vec3(camera.eye());
-    views_[v].renderer->draw(params, shading, state_.display);
+    views_[v].renderer->draw(params, shading, display);
+    if (state_.display.poleMarkers) {
+      visiblePoles(views_[v].shown->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
+    }
   }
+  return markers;
 }
 
 void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale,
@@ -450,6 +523,7 @@ void ViewerApp::runFrame() {
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   processRequests();
+  pollLoad();
   updateSurfaces();
   updateColourRange();
 
@@ -457,11 +531,12 @@ void ViewerApp::runFrame() {
   glViewport(0, 0, fbWidth, fbHeight);
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  std::vector<PoleMarker> poles;
   if (fbWidth > 0 && fbHeight > 0) {
-    drawViews(rects, pixelScale, fbHeight);
+    poles = drawViews(rects, pixelScale, fbHeight);
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
-  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f);
+  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   glFinish();  // frame time includes the GPU work (not the swap's wait for vsync)
@@ -494,14 +569,14 @@ RgbaImage ViewerApp::renderImage(int width, int height, int supersample, bool tr
   const float scale = float(target.supersample());
   ScreenRect frame{0, 0, float(target.renderWidth()), float(target.renderHeight())};
   std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, scale));
-  drawViews(rects, 1.0f, target.renderHeight());
+  std::vector<PoleMarker> poles = drawViews(rects, 1.0f, target.renderHeight());
 
   // Labels and colour bar: a private ImGui draw list rendered by the OpenGL3 backend.
   ImDrawList list(ImGui::GetDrawListSharedData());
   list._ResetForNewFrame();
   list.PushTextureID(ImGui::GetIO().Fonts->TexID);
   list.PushClipRect(ImVec2(0, 0), ImVec2(frame.w, frame.h));
-  drawViewOverlay(&list, ImGui::GetIO().Fonts->Fonts[0], state_, rects, frame, scale);
+  drawViewOverlay(&list, ImGui::GetIO().Fonts->Fonts[0], state_, rects, frame, scale, poles);
   ImDrawList* lists[] = {&list};
   ImDrawData data;
   data.Valid = true;

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <array>
+#include <future>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,8 +57,17 @@ class ViewerApp {
   // Creates the window and GL context, loads glad, starts ImGui and the renderers.
   bool init(std::string* error);
 
-  // Loads an OBJ; on failure the message goes to state().file.error, the model stays, false.
+  // Loads an OBJ now (blocks; the command line uses it); on failure the message goes to
+  // state().file.error, the model stays, false.
   bool loadFile(const std::string& path);
+  // Starts reading and checking an OBJ on a worker thread; the window keeps running and the current
+  // model stays until the new one is ready (a failure leaves it and shows the error). A request
+  // while one runs replaces any queued one: the last request wins.
+  void requestLoad(const std::string& path);
+  // What a drop of files on the window does (the GLFW drop callback calls it): loads the first.
+  void dropFiles(int count, const char* const* paths);
+  // True while a requested file is being read.
+  bool loading() const { return loadJob_.valid(); }
   // Shows `mesh` (validated here; false with the error in the state when it is not usable).
   bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "");
   // assets/default.obj, or the generated mushroom when the asset is missing.
@@ -65,7 +76,7 @@ class ViewerApp {
   // One iteration of the main loop.
   void runFrame();
   bool shouldClose() const;
-  // True while a refinement runs or a view waits for one.
+  // True while a file loads, a refinement runs or a view waits for one.
   bool busy() const;
   // Runs frames until every view shows what its settings ask for (or failed). [blocks]
   void waitUntilIdle();
@@ -107,11 +118,18 @@ class ViewerApp {
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
+  // Shows an already checked mesh (bumps the model generation, frames it).
+  void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
+  void loadFailed(const std::string& path, const std::string& error);
+  // Takes a finished background load (if any) and starts the queued one.
+  void pollLoad();
   void processRequests();
   void updateSurfaces();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
   void updateColourRange();
-  void drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
+  // Draws the views into the bound framebuffer; returns the pole markers the surfaces leave visible
+  // (overlay coordinates: framebuffer pixels / pixelScale, y down).
+  std::vector<PoleMarker> drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
   void resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
   void rememberRecent(const std::string& path);
   void loadRecent();
@@ -129,7 +147,10 @@ class ViewerApp {
   Model model_;
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
+  std::future<LoadedModel> loadJob_;
+  std::optional<std::string> queuedLoad_;
   std::string windowCapturePath_;
+  std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
 };
 

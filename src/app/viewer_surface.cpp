@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/mesh/input_error.h"
+#include "core/mesh/obj_io.h"
+#include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/refiner.h"
 
@@ -88,6 +90,29 @@ float weightedSymmetricRange(const std::vector<float>& values, const std::vector
   };
   const float range = std::max(-percentile(1.0 - upper), percentile(upper));
   return range > 0.0f && std::isfinite(range) ? range : 1.0f;
+}
+
+std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
+  try {
+    buildTopology(mesh, name);  // throws InputError for non-manifold or unsupported meshes
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  if (mesh.points.empty() || mesh.faceCount() == 0) return name + ": no faces";
+  return {};
+}
+
+LoadedModel readModelFile(const std::string& path) {
+  LoadedModel loaded;
+  loaded.path = path;
+  try {
+    loaded.mesh = loadObj(path, &loaded.warnings);
+    loaded.error = checkModelMesh(loaded.mesh, path);
+  } catch (const std::exception& e) {
+    // InputError (FILE:LINE: ...), a missing file, bad_alloc on a huge one: the model stays.
+    loaded.error = e.what();
+  }
+  return loaded;
 }
 
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {

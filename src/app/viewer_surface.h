@@ -52,6 +52,21 @@ struct Model {
   uint64_t generation = 0;
 };
 
+// A model file read and checked off the UI thread: the mesh, or the error of the first problem.
+struct LoadedModel {
+  std::string path;
+  PolyMesh mesh;
+  std::vector<std::string> warnings;  // non-fatal findings of the OBJ reader
+  std::string error;                  // empty when the mesh is usable
+};
+
+// Reads an OBJ and checks it the way the viewer needs (manifold, supported, has faces); worker-
+// thread safe. Never throws: failures come back in LoadedModel::error. [O(file)]
+LoadedModel readModelFile(const std::string& path);
+// Checks a mesh for the viewer (the topology the refiners need, at least one face); returns the
+// error message, empty when usable. [O(mesh)]
+std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
+
 // Refines and extracts (worker-thread safe: touches no shared state). Throws InputError when the
 // level is over `faceBudget` or the mesh cannot be refined. [O(output)]
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);

@@ -324,7 +324,25 @@ const std::vector<HotkeyHelp>& hotkeyList() {
 
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
 
-float colourBarReserve(const ViewerState& state, float scale) { return state.showsColourBar() ? 64.0f * scale : 0.0f; }
+float colourBarReserve(const ViewerState& state, float scale) {
+  if (state.showsColourBar()) return 64.0f * scale;
+  return lineLegend(state.shading).empty() ? 0.0f : 30.0f * scale;
+}
+
+std::string lineLegend(const ShadingParams& shading) {
+  const glm::vec3& d = shading.highlightDir;
+  char text[200];
+  if (shading.mode == ShadingParams::Mode::Highlight) {
+    std::snprintf(text, sizeof text, "highlight lines: light direction (%.2f, %.2f, %.2f), spacing %.3g x model radius, dark %.0f%%",
+                  d.x, d.y, d.z, shading.highlightSpacing, 100.0f * shading.highlightWidth);
+  } else if (shading.mode == ShadingParams::Mode::Reflection) {
+    std::snprintf(text, sizeof text, "reflection lines (zebra): stripe direction (%.2f, %.2f, %.2f), spacing %.3g, dark %.0f%%",
+                  d.x, d.y, d.z, shading.highlightSpacing, 100.0f * shading.highlightWidth);
+  } else {
+    return {};
+  }
+  return text;
+}
 
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve) {
   count = std::clamp(count, 1, kMaxViews);
@@ -389,7 +407,7 @@ void drawViewerPanels(ViewerState& state) {
 }
 
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
-                     const ScreenRect& frame, float scale) {
+                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles) {
   const float fontSize = 15.0f * scale;
   const ImU32 text = IM_COL32(255, 255, 255, 255);
   const ImU32 box = IM_COL32(20, 20, 24, 190);
@@ -406,6 +424,7 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
       label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
                std::to_string(wanted.level) + "...";
     }
+    if (v == 0 && state.file.loading) label += "   loading " + state.file.loadingPath + "...";
     ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, label.c_str());
     ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f * scale);
     list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
@@ -413,6 +432,25 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
     list->AddText(font, fontSize, at, text, label.c_str());
     if (r.x > frame.x) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
     if (r.y > frame.y) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y), IM_COL32(128, 128, 128, 160), scale);
+  }
+
+  // Pole rings: an outline only (white over a dark rim, readable on every colour map) so the
+  // colour at the pole itself, the value the paper's Taylor expansion gives, stays visible.
+  for (const PoleMarker& pole : poles) {
+    const ImVec2 centre(pole.x, pole.y);
+    list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
+    list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
+  }
+
+  // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
+  // still say what they show.
+  if (std::string legend = lineLegend(state.shading); !legend.empty()) {
+    const float legendSize = fontSize * 0.9f;
+    ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, legend.c_str());
+    ImVec2 at(frame.x + 0.5f * (frame.w - size.x), frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale);
+    list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
+                        box, 4.0f * scale);
+    list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str());
   }
 
   if (!state.showsColourBar()) return;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "ui/viewer_state.h"
@@ -27,7 +28,8 @@ const std::vector<HotkeyHelp>& hotkeyList();
 
 // Width of the panel column on the left of the window (0 when the panels are hidden).
 float panelColumnWidth(const ViewerState& state);
-// Height kept free under the views for the colour bar (0 when the shading has none).
+// Height kept free under the views for the colour bar (curvature modes) or the line legend
+// (highlight / reflection lines); 0 for lit shading.
 float colourBarReserve(const ViewerState& state, float scale);
 // `count` views side by side in `frame` (a full grid such as 2 x 2 when that makes each view clearly
 // larger), above a strip of `bottomReserve`. [O(count)]
@@ -37,11 +39,22 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
 // window. Call between ImGui::NewFrame and ImGui::Render.
 void drawViewerPanels(ViewerState& state);
 
-// View labels ("C2PS · 3"), refining indicators and the colour bar with numeric ticks, drawn into
-// `list` (the background list on screen, a private list for screenshots). `scale` multiplies
-// sizes (supersampled screenshots).
-void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state,
-                     const std::vector<ScreenRect>& views, const ScreenRect& frame, float scale);
+// A visible pole of one view, in the overlay's coordinates (the app projects the poles and drops
+// those the surface hides).
+struct PoleMarker {
+  float x = 0, y = 0;
+};
+
+// View labels ("C2PS · 3"), refining / loading indicators, pole rings, and the colour bar with
+// numeric ticks (curvature modes) or a legend of the light lines (highlight / reflection modes),
+// drawn into `list` (the background list on screen, a private list for screenshots). `scale`
+// multiplies sizes (supersampled screenshots).
+void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
+                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles = {});
+
+// The one-line legend of highlight / reflection lines: light direction, spacing and width, e.g.
+// "highlight lines: light (1, 0, 0), spacing 0.25 x model radius, dark 30%"; empty in other modes.
+std::string lineLegend(const ShadingParams& shading);
 
 // A double-click on a view: the app reads the depth there and sets the pivot.
 struct PivotPick {

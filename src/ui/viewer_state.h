@@ -76,6 +76,8 @@ struct FileSettings {
   std::string modelName;                 // shown model ("default: ..." or a path)
   std::string loadedPath;                // empty for the built-in default model
   std::string error;                     // last load error (the model stays)
+  bool loading = false;                  // a file is being read and checked in the background
+  std::string loadingPath;               // which one
   std::vector<std::string> warnings;     // non-fatal findings of the last load
   int modelVertices = 0, modelFaces = 0;
 };

@@ -96,7 +96,9 @@ TEST_CASE("viewer app: a file that fails to load leaves the model shown and the 
   // The same through the file panel's request, with a file that does not exist.
   app->state().file.pathField = (fs::temp_directory_path() / "polarview_no_such_file.obj").string();
   app->state().requests.load = true;
-  runFrames(*app, 3);
+  runFrames(*app, 1);    // takes the request: the file is read in the background
+  app->waitUntilIdle();
+  runFrames(*app, 1);
   CHECK(app->state().file.error.find("polarview_no_such_file.obj") != std::string::npos);
   CHECK(app->modelGeneration() == generation);
   CHECK(app->shownSurface(0) == before);

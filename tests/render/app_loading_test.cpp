@@ -1,0 +1,263 @@
+// The viewer's file loading and what a researcher reads off the views: drops through the GLFW drop
+// callback, background loading that keeps the window drawing, the automatic colour range's
+// percentiles, and pole rings that outline the pole without covering its colour.
+//
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+
+#include "app/viewer_app.h"
+#include "app/viewer_surface.h"
+#include "core/mesh/shapes.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace polarview {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<ViewerApp> makeHiddenApp(int width, int height) {
+  ViewerOptions options;
+  options.width = width;
+  options.height = height;
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  auto app = std::make_unique<ViewerApp>(options);
+  std::string error;
+  REQUIRE_MESSAGE(app->init(&error), error);
+  return app;
+}
+
+// An open polar cap z = (x^2 - y^2) / 2 over `links` rings of `n` vertices (a saddle pole), as an
+// OBJ file; returns its face count.
+int writeSaddleObj(const fs::path& path, int n, int links) {
+  std::ofstream out(path);
+  out << "v 0 0 0\n";
+  for (int k = 1; k <= links; ++k) {
+    for (int j = 0; j < n; ++j) {
+      double a = 2.0 * 3.14159265358979 * j / n, r = double(k) / links;
+      double x = r * std::cos(a), y = r * std::sin(a);
+      out << "v " << x << ' ' << y << ' ' << 0.5 * (x * x - y * y) << '\n';
+    }
+  }
+  for (int j = 0; j < n; ++j) out << "f 1 " << 2 + j << ' ' << 2 + (j + 1) % n << '\n';
+  for (int k = 1; k < links; ++k) {
+    for (int j = 0; j < n; ++j) {
+      int a = 2 + (k - 1) * n + j, b = 2 + (k - 1) * n + (j + 1) % n;
+      out << "f " << a << ' ' << a + n << ' ' << b + n << ' ' << b << '\n';
+    }
+  }
+  return n * links;
+}
+
+// Weighted share of values above `bound`, below `-bound`, at or above it, at or below `-bound`.
+struct TailWeights {
+  double above = 0, below = 0, atOrAbove = 0, atOrBelow = 0, total = 0;
+};
+TailWeights tails(const std::vector<float>& values, const std::vector<float>& weights, float bound) {
+  TailWeights t;
+  for (size_t i = 0; i < values.size(); ++i) {
+    t.total += weights[i];
+    if (values[i] > bound) t.above += weights[i];
+    if (values[i] < -bound) t.below += weights[i];
+    if (values[i] >= bound) t.atOrAbove += weights[i];
+    if (values[i] <= -bound) t.atOrBelow += weights[i];
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file leaves it and shows why") {
+  auto app = makeHiddenApp(480, 320);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  const uint64_t start = app->modelGeneration();
+
+  // The callback GLFW calls on a drop (read back by swapping it out and in again).
+  GLFWdropfun drop = glfwSetDropCallback(app->window(), nullptr);
+  glfwSetDropCallback(app->window(), drop);
+  REQUIRE(bool(drop));
+
+  fs::path good = fs::temp_directory_path() / "polarview_drop_saddle.obj";
+  const int faces = writeSaddleObj(good, 6, 3);
+  std::string goodPath = good.string();
+  const char* goodPaths[] = {goodPath.c_str()};
+  drop(app->window(), 1, goodPaths);
+  app->waitUntilIdle();
+  CHECK(app->modelGeneration() == start + 1);
+  CHECK(app->state().file.loadedPath == goodPath);
+  CHECK(app->state().file.modelFaces == faces);
+  CHECK(app->state().file.error.empty());
+  REQUIRE(app->shownSurface(0) != nullptr);
+  CHECK(app->shownSurface(0)->key.model == app->modelGeneration());
+
+  // A file with a face index past the vertices: refused with FILE:LINE, the saddle stays shown.
+  fs::path bad = fs::temp_directory_path() / "polarview_drop_bad.obj";
+  std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  std::string badPath = bad.string();
+  const BuiltSurface* shown = app->shownSurface(0);
+  const char* badPaths[] = {badPath.c_str(), goodPath.c_str()};  // only the first of several is opened
+  drop(app->window(), 2, badPaths);
+  app->waitUntilIdle();
+  app->runFrame();
+  CHECK(app->modelGeneration() == start + 1);
+  CHECK(app->state().file.loadedPath == goodPath);
+  CHECK(app->state().file.error.find("polarview_drop_bad.obj:4:") != std::string::npos);
+  CHECK(app->shownSurface(0) == shown);
+  fs::remove(good);
+  fs::remove(bad);
+}
+
+TEST_CASE("background loading: frames keep coming while a large OBJ loads, and the model changes only when it is ready") {
+  auto app = makeHiddenApp(480, 320);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  const uint64_t start = app->modelGeneration();
+  const BuiltSurface* before = app->shownSurface(0);
+
+  // 160k faces (some 10 MB): long enough to read that several frames pass meanwhile.
+  fs::path big = fs::temp_directory_path() / "polarview_big_saddle.obj";
+  const int faces = writeSaddleObj(big, 800, 200);
+  app->requestLoad(big.string());
+  int framesWhileLoading = 0;
+  while (app->loading()) {
+    app->runFrame();
+    if (!app->loading()) break;
+    ++framesWhileLoading;
+    // Meanwhile the old model stays and the overlay says what is loading.
+    CHECK(app->modelGeneration() == start);
+    CHECK(app->shownSurface(0) == before);
+    CHECK(app->state().file.loading);
+  }
+  MESSAGE("frames drawn while loading: " << framesWhileLoading);
+  CHECK(framesWhileLoading >= 2);
+  CHECK(app->modelGeneration() == start + 1);
+  CHECK(app->state().file.modelFaces == faces);
+  CHECK_FALSE(app->state().file.loading);
+
+  // Requests while one runs: the last one wins.
+  fs::path small = fs::temp_directory_path() / "polarview_small_saddle.obj";
+  const int smallFaces = writeSaddleObj(small, 8, 2);
+  app->requestLoad(big.string());
+  app->requestLoad((fs::temp_directory_path() / "polarview_no_such.obj").string());
+  app->requestLoad(small.string());
+  app->waitUntilIdle();
+  CHECK(app->state().file.loadedPath == small.string());
+  CHECK(app->state().file.modelFaces == smallFaces);
+  CHECK(app->state().file.error.empty());
+  fs::remove(big);
+  fs::remove(small);
+}
+
+TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the weight and the range is the smallest such") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int trial = 0; trial < 400; ++trial) {
+    const size_t n = 1 + rng() % 300;
+    const float shift = 4.0f * u(rng) - 2.0f, scale = std::exp(6.0f * u(rng) - 3.0f);
+    std::vector<float> values(n), weights(n);
+    for (size_t i = 0; i < n; ++i) {
+      values[i] = scale * (shift + std::tan(3.0f * (u(rng) - 0.5f)));  // heavy tails on both sides
+      weights[i] = float(1 + rng() % 8);  // small integers: exact sums
+    }
+    const float quantile = 0.5f + 0.5f * u(rng);
+    const float range = weightedSymmetricRange(values, weights, quantile);
+    CAPTURE(trial);
+    REQUIRE(range > 0.0f);
+    TailWeights t = tails(values, weights, range);
+    const double allowed = (1.0 - quantile) * t.total;
+    CHECK(t.above <= allowed + 1e-9 * t.total);
+    CHECK(t.below <= allowed + 1e-9 * t.total);
+    // Smallest: at the range itself one tail reaches its share (unless all values are 0).
+    CHECK((t.atOrAbove >= allowed - 1e-9 * t.total || t.atOrBelow >= allowed - 1e-9 * t.total));
+  }
+}
+
+TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {
+  // 94% of the area curved like a cap (K in 0.5..1), 6% at a valence-3 corner (K = 100).
+  std::vector<float> values, weights;
+  for (int i = 0; i < 94; ++i) {
+    values.push_back(0.5f + 0.5f * float(i) / 93.0f);
+    weights.push_back(1.0f);
+  }
+  for (int i = 0; i < 6; ++i) {
+    values.push_back(100.0f);
+    weights.push_back(1.0f);
+  }
+  CHECK(weightedSymmetricRange(values, weights, 0.90f) <= 1.0f);
+  CHECK(weightedSymmetricRange(values, weights, 0.95f) == 100.0f);
+  // All zero (a plane) or no weight: 1, never 0.
+  CHECK(weightedSymmetricRange({0.0f, 0.0f}, {1.0f, 2.0f}, 0.9f) == 1.0f);
+  CHECK(weightedSymmetricRange({}, {}, 0.9f) == 1.0f);
+}
+
+TEST_CASE("curvature samples for the range come from every patch except the end caps at extraordinary vertices") {
+  Model model{std::make_shared<const PolyMesh>(shapes::mushroom(12)), "mushroom", 1};
+  for (SchemeChoice scheme : {SchemeChoice::C2PS, SchemeChoice::CatmullClark}) {
+    for (int level = 1; level <= 3; ++level) {
+      auto surface = buildSurface(model, SurfaceKey{1, scheme, level}, kDefaultFaceBudget);
+      const int endCaps = surface->patchesPerKind[size_t(PatchKind::EndCap)];
+      const size_t counted = surface->patches.size() - size_t(endCaps);
+      CAPTURE(level);
+      REQUIRE(endCaps > 0);
+      REQUIRE(counted > 0);
+      const size_t samples = surface->gaussianSamples.size();
+      CHECK(samples % counted == 0);
+      const size_t perPatch = samples / counted;
+      const size_t side = size_t(std::lround(std::sqrt(double(perPatch))));
+      CHECK(side * side == perPatch);
+      CHECK(surface->sampleAreas.size() == samples);
+    }
+  }
+}
+
+TEST_CASE("pole rings: drawn around a visible pole without covering its colour, not drawn when the surface hides it") {
+  auto app = makeHiddenApp(400, 400);
+  app->loadDefaultModel();  // the mushroom: one pole on top of the cap
+  ViewerState& state = app->state();
+  state.showPanels = false;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  app->waitUntilIdle();
+  app->runFrame();
+
+  auto differingPixels = [&](double pitch) {
+    state.sharedCamera.pitchDeg = pitch;
+    state.display.poleMarkers = true;
+    RgbaImage with = app->renderImage(400, 400, 1, false);
+    state.display.poleMarkers = false;
+    RgbaImage without = app->renderImage(400, 400, 1, false);
+    std::vector<std::pair<int, int>> changed;
+    for (int y = 0; y < 400; ++y) {
+      for (int x = 0; x < 400; ++x) {
+        if (!std::equal(with.at(x, y), with.at(x, y) + 3, without.at(x, y))) changed.emplace_back(x, y);
+      }
+    }
+    return changed;
+  };
+
+  // From above the pole faces the camera: a ring of changed pixels, its centre untouched.
+  std::vector<std::pair<int, int>> ring = differingPixels(60.0);
+  REQUIRE(ring.size() > 20);
+  double cx = 0, cy = 0;
+  for (auto [x, y] : ring) {
+    cx += x;
+    cy += y;
+  }
+  cx /= double(ring.size());
+  cy /= double(ring.size());
+  for (auto [x, y] : ring) CHECK(std::hypot(x - cx, y - cy) < 12.0);
+  for (auto [x, y] : ring) CHECK(std::hypot(x - cx, y - cy) > 3.0);
+
+  // From below the cap hides its pole: nothing is drawn.
+  CHECK(differingPixels(-70.0).empty());
+}
+
+}  // namespace polarview
