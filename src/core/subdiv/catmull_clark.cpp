@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "core/subdiv/parallel_for.h"
+
 namespace polarview {
 
 namespace {
@@ -58,17 +60,13 @@ PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& 
   return child;
 }
 
-void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
-                               Point* childPoints) {
-  const Point* p = parentPoints;
-  Point* facePoints = childPoints;
-  Point* edgePoints = childPoints + topo.faceCount;
-  Point* vertexPoints = childPoints + topo.faceCount + topo.edgeCount;
+namespace {
 
-  // Face points: centroids of any n-gon.
+// Face points of faces [begin, end): centroids of any n-gon.
+void computeFacePoints(const PolyMesh& parent, const Point* p, Point* facePoints, Index begin, Index end) {
   const Index* faceStart = parent.faceStart.data();
   const Index* faceVerts = parent.faceVerts.data();
-  for (Index f = 0; f < topo.faceCount; ++f) {
+  for (Index f = begin; f < end; ++f) {
     const Index* loop = faceVerts + faceStart[f];
     const Index k = faceStart[f + 1] - faceStart[f];
     if (k == 4) {  // the common case after one level: no loop, no division
@@ -79,24 +77,32 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
     for (Index i = 0; i < k; ++i) sum += p[loop[i]];
     facePoints[f] = sum * (1.0 / double(k));
   }
+}
 
-  // Edge points: midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside.
+// Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside.
+void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* edgePoints, Index begin,
+                       Index end) {
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
-  for (Index e = 0; e < topo.edgeCount; ++e) {
+  for (Index e = begin; e < end; ++e) {
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
     if (edgeFaces[2 * e + 1] < 0)
       edgePoints[e] = 0.5 * ends;
     else
       edgePoints[e] = 0.25 * (ends + facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]]);
   }
+}
 
-  // Vertex points: crease rule on the boundary, smooth rule inside, unused vertices copied.
+// Vertex points of vertices [begin, end): crease rule on the boundary, smooth rule inside, unused
+// vertices copied.
+void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* vertexPoints, Index begin,
+                         Index end) {
+  const Index* edgeVerts = topo.edgeVerts.data();
   const Index* vertexEdgeStart = topo.vertexEdgeStart.data();
   const Index* vertexEdges = topo.vertexEdges.data();
   const Index* vertexFaceStart = topo.vertexFaceStart.data();
   const Index* vertexFaces = topo.vertexFaces.data();
-  for (Index v = 0; v < topo.vertexCount; ++v) {
+  for (Index v = begin; v < end; ++v) {
     if (!topo.vertexUsed[v]) {
       vertexPoints[v] = p[v];
     } else if (topo.vertexOnBoundary[v]) {
@@ -114,6 +120,26 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
       vertexPoints[v] = smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
     }
   }
+}
+
+}  // namespace
+
+void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
+                               Point* childPoints) {
+  Point* facePoints = childPoints;
+  Point* edgePoints = childPoints + topo.faceCount;
+  Point* vertexPoints = childPoints + topo.faceCount + topo.edgeCount;
+  // Each point depends only on parent points and face points, so ranges run on separate threads
+  // with results independent of the split; face points first, as the others read them.
+  const unsigned parts = threadsFor(parent.faceVerts.size());
+  parallelRanges(topo.faceCount, parts,
+                 [&](Index begin, Index end) { computeFacePoints(parent, parentPoints, facePoints, begin, end); });
+  runParts(parts, [&](unsigned k) {
+    computeEdgePoints(topo, parentPoints, facePoints, edgePoints, partBound(topo.edgeCount, parts, k),
+                      partBound(topo.edgeCount, parts, k + 1));
+    computeVertexPoints(topo, parentPoints, facePoints, vertexPoints, partBound(topo.vertexCount, parts, k),
+                        partBound(topo.vertexCount, parts, k + 1));
+  });
 }
 
 PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent) {

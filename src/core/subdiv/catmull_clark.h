@@ -28,7 +28,8 @@ inline Index ccChildVertexCount(const MeshTopology& t) { return t.faceCount + t.
 PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent);
 
 // Fills all F + E + V child points from the parent points (childPoints must hold
-// ccChildVertexCount(topo) points). Vertices no face uses are copied through. No allocation. [O(corners)]
+// ccChildVertexCount(topo) points). Vertices no face uses are copied through. No allocation but the
+// threads it starts on large meshes (results do not depend on them). [O(corners)]
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
                                Point* childPoints);
 
