@@ -66,6 +66,9 @@ void drawFilePanel(ViewerState& state) {
   ImGui::SameLine();
   if (ImGui::Button("Default model")) state.requests.loadDefault = true;
   ImGui::TextDisabled("Or drop an .obj file on the window.");
+  if (file.loading) {
+    ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "loading %s... (the current model stays)", file.loadingPath.c_str());
+  }
   if (!file.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "Error: %s", file.error.c_str());
   for (size_t i = 0; i < file.warnings.size() && i < 3; ++i) {
     ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "Warning: %s", file.warnings[i].c_str());
