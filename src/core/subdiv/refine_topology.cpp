@@ -48,6 +48,20 @@ struct PartCounts {
   Index boundaryVertices = 0;
 };
 
+// Sizing one output table: reserve (allocation) and resize (first touch) may run on different threads.
+struct TableJob {
+  size_t bytes;
+  void (*reserve)(void* table, size_t size);
+  void (*resize)(void* table, size_t size);
+  void* table;
+  size_t size;
+};
+template <class T>
+TableJob tableJob(std::vector<T>& table, size_t size) {
+  return {size * sizeof(T), [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->reserve(n); },
+          [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->resize(n); }, &table, size};
+}
+
 // Where a ring-writing pass stands: the child vertex, its ring's first entry, the next entries.
 struct RingCursor {
   Index vertex = 0, ringStart = 0, facePos = 0, edgePos = 0;
@@ -153,29 +167,18 @@ class ConnectivityBuilder {
     mesh.faceLine.clear();
     if (!options_.childTwins) out_.twins.clear();
 
-    struct Job {
-      size_t bytes;
-      void (*resize)(void* table, size_t size);
-      void* table;
-      size_t size;
-    };
-    auto indexJob = [](std::vector<Index>& table, size_t size) {
-      return Job{size * sizeof(Index), [](void* v, size_t n) { static_cast<std::vector<Index>*>(v)->resize(n); }, &table, size};
-    };
-    auto flagJob = [](std::vector<uint8_t>& table, size_t size) {
-      return Job{size, [](void* v, size_t n) { static_cast<std::vector<uint8_t>*>(v)->resize(n); }, &table, size};
-    };
-    std::vector<Job> jobs = {
-        {vertices * sizeof(Point), [](void* v, size_t n) { static_cast<std::vector<Point>*>(v)->resize(n); }, &mesh.points, vertices},
-        indexJob(mesh.faceVerts, corners), indexJob(t.cornerEdge, corners), indexJob(t.cornerFace, corners),
-        indexJob(t.edgeVerts, 2 * size_t(t.edgeCount)), indexJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
-        indexJob(t.vertexFaces, corners), indexJob(t.vertexCorners, corners), indexJob(t.vertexEdges, ringEdges),
-        indexJob(mesh.faceStart, faces), indexJob(out_.faceParent, faces - 1),
-        indexJob(t.vertexFaceStart, vertices + 1), indexJob(t.vertexEdgeStart, vertices + 1),
-        flagJob(t.vertexOnBoundary, vertices), flagJob(t.vertexUsed, vertices)};
-    if (options_.childTwins) jobs.push_back(indexJob(out_.twins, corners));
-    // Largest first, each to the least loaded part.
-    std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.bytes > b.bytes; });
+    std::vector<TableJob> jobs = {
+        tableJob(mesh.points, vertices), tableJob(mesh.faceVerts, corners), tableJob(t.cornerEdge, corners),
+        tableJob(t.cornerFace, corners), tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)),
+        tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)), tableJob(t.vertexFaces, corners), tableJob(t.vertexCorners, corners),
+        tableJob(t.vertexEdges, ringEdges), tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1),
+        tableJob(t.vertexFaceStart, vertices + 1), tableJob(t.vertexEdgeStart, vertices + 1),
+        tableJob(t.vertexOnBoundary, vertices), tableJob(t.vertexUsed, vertices)};
+    if (options_.childTwins) jobs.push_back(tableJob(out_.twins, corners));
+    // Allocate here (malloc's arena of the calling thread), touch on the parts: largest first, each
+    // to the least loaded part.
+    for (const TableJob& job : jobs) job.reserve(job.table, job.size);
+    std::sort(jobs.begin(), jobs.end(), [](const TableJob& a, const TableJob& b) { return a.bytes > b.bytes; });
     std::vector<size_t> load(parts_, 0);
     std::vector<unsigned> owner(jobs.size());
     for (size_t j = 0; j < jobs.size(); ++j) {
