@@ -2,11 +2,18 @@
 // Screen-space adaptive tessellation levels. Each outer level is computed only from the boundary
 // curve of that edge (its Bezier control polygon, projected), with expressions symmetric under
 // reversal of the edge, so two patches sharing an edge get the same level (no cracks).
+// T-junction edges (Patch::edgeLevelDelta d != 0, patch.h): a coarse edge faces 2^d finer edges, so
+// their levels come from integers only (transitionEdgeSegments in patch_extraction.h, mirrored
+// here): 2^clamp(k - level, d, 6) on the coarse side, 2^clamp(k - level, 0, 6 + d) on a fine side,
+// k = u_transitionDensity. With equal spacing the fine vertices are then exactly the coarse ones.
 #include "common/patch_eval.glsl"
 
 layout(vertices = 16) out;
 
 in vec3 vc_controlPoint[];
+// x packs (patch_renderer.cpp): bits 0-7 PatchKind, 8-15 level, then Patch::edgeLevelDelta of
+// edges 0..3 (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) as signed 4-bit fields at
+// bits 16 + 4s. The evaluation stages get the plain kind. y: ring index.
 flat in ivec2 vc_kindRing[];
 out vec3 tc_controlPoint[];
 flat out ivec2 tc_kindRing[];
@@ -16,6 +23,7 @@ uniform vec2 u_viewportSize;         // pixels
 uniform float u_tessPixels;          // target edge length in pixels
 uniform float u_maxTessLevel;
 uniform float u_fixedTessLevel;      // > 0: use this level everywhere (probes, comparisons)
+uniform int u_transitionDensity;     // k: 2^k segments per level-0 parameter unit on T-junctions
 
 vec2 toPixels(vec3 p) {
   vec4 clip = u_modelViewProjection * vec4(p, 1.0);
@@ -45,6 +53,19 @@ float levelFor(float pixels) {
   return clamp(ceil(pixels / u_tessPixels), 1.0, u_maxTessLevel);
 }
 
+// Level of a T-junction edge with level jump d != 0 of a patch of `level` (see the top).
+float transitionLevel(int level, int d) {
+  int wanted = u_transitionDensity - level;
+  int exponent = d > 0 ? min(max(wanted, d), 6) : min(max(wanted, 0), max(6 + d, 0));
+  return float(1 << exponent);
+}
+
+// Outer level of an edge: the T-junction rule where it has a level jump, else adaptive.
+float edgeLevel(float pixels, int level, int d) {
+  if (d != 0 && u_fixedTessLevel <= 0.0) return transitionLevel(level, d);
+  return levelFor(pixels);
+}
+
 // All 16 control points outside one clip plane: the patch (inside their hull) is invisible.
 bool outsideFrustum() {
   ivec3 below = ivec3(0), above = ivec3(0);
@@ -58,12 +79,14 @@ bool outsideFrustum() {
 
 void main() {
   tc_controlPoint[gl_InvocationID] = vc_controlPoint[gl_InvocationID];
-  tc_kindRing[gl_InvocationID] = vc_kindRing[gl_InvocationID];
+  int kindLevelJumps = vc_kindRing[gl_InvocationID].x;
+  int kind = kindLevelJumps & 0xFF, level = (kindLevelJumps >> 8) & 0xFF;
+  tc_kindRing[gl_InvocationID] = ivec2(kind, vc_kindRing[gl_InvocationID].y);
   if (gl_InvocationID != 0) return;
 
   // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
   float outer0, outer1, outer2, outer3;
-  if (vc_kindRing[0].x == kPatchPoleCap) {
+  if (kind == kPatchPoleCap) {
     // Pole edge u = 0 is a point; the radial edges v = 0, 1 run from p0 to the boundary curve's
     // ends; the edge u = 1 is the boundary curve b0..b3 shared with the innermost ring.
     vec3 start = ((vc_controlPoint[6] + vc_controlPoint[8]) + 4.0 * vc_controlPoint[7]) / 6.0;
@@ -77,14 +100,18 @@ void main() {
   } else if (u_fixedTessLevel <= 0.0 && outsideFrustum()) {
     outer0 = outer1 = outer2 = outer3 = 0.0;  // discards the patch
   } else {
-    outer0 = levelFor(projectedCurveLength(edgePoint(0, 1, 2), edgePoint(4, 5, 6),
-                                           edgePoint(8, 9, 10), edgePoint(12, 13, 14)));
-    outer2 = levelFor(projectedCurveLength(edgePoint(1, 2, 3), edgePoint(5, 6, 7),
-                                           edgePoint(9, 10, 11), edgePoint(13, 14, 15)));
-    outer1 = levelFor(projectedCurveLength(edgePoint(0, 4, 8), edgePoint(1, 5, 9),
-                                           edgePoint(2, 6, 10), edgePoint(3, 7, 11)));
-    outer3 = levelFor(projectedCurveLength(edgePoint(4, 8, 12), edgePoint(5, 9, 13),
-                                           edgePoint(6, 10, 14), edgePoint(7, 11, 15)));
+    // bitfieldExtract of an int sign-extends: the 4 jumps in patch.h edge order.
+    ivec4 jump = ivec4(bitfieldExtract(kindLevelJumps, 16, 4), bitfieldExtract(kindLevelJumps, 20, 4),
+                       bitfieldExtract(kindLevelJumps, 24, 4), bitfieldExtract(kindLevelJumps, 28, 4));
+    // GL edge u = 0 is patch edge 3, v = 0 is 0, u = 1 is 1, v = 1 is 2.
+    outer0 = edgeLevel(projectedCurveLength(edgePoint(0, 1, 2), edgePoint(4, 5, 6),
+                                            edgePoint(8, 9, 10), edgePoint(12, 13, 14)), level, jump[3]);
+    outer2 = edgeLevel(projectedCurveLength(edgePoint(1, 2, 3), edgePoint(5, 6, 7),
+                                            edgePoint(9, 10, 11), edgePoint(13, 14, 15)), level, jump[1]);
+    outer1 = edgeLevel(projectedCurveLength(edgePoint(0, 4, 8), edgePoint(1, 5, 9),
+                                            edgePoint(2, 6, 10), edgePoint(3, 7, 11)), level, jump[0]);
+    outer3 = edgeLevel(projectedCurveLength(edgePoint(4, 8, 12), edgePoint(5, 9, 13),
+                                            edgePoint(6, 10, 14), edgePoint(7, 11, 15)), level, jump[2]);
   }
   gl_TessLevelOuter[0] = outer0;
   gl_TessLevelOuter[1] = outer1;

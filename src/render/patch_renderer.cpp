@@ -24,6 +24,33 @@ bool isPositionSlot(PatchKind kind, int slot) {
   return slot == 0 || (slot >= 6 && slot <= 9);  // p0 and the boundary curve b_{j-1..j+2}
 }
 
+// The kind attribute's x as patch.tesc unpacks it: bits 0-7 PatchKind, 8-15 level, then
+// Patch::edgeLevelDelta of edges 0..3 as signed 4-bit fields at bits 16 + 4s (jumps beyond
+// [-8, 7] get the same tessellation as those ends, see transitionEdgeSegments).
+int32_t packKindLevelJumps(const Patch& patch) {
+  uint32_t packed = uint32_t(patch.kind) | uint32_t(patch.level) << 8;
+  for (int s = 0; s < 4; ++s)
+    packed |= (uint32_t(std::clamp(int(patch.edgeLevelDelta[s]), -8, 7)) & 0xFu) << (16 + 4 * s);
+  return static_cast<int32_t>(packed);
+}
+
+// World length of one level-0 parameter unit along the T-junction edges: the mean over their
+// coarse sides of chord * 2^level (chord between the face's corner control points); 0 if none.
+double transitionUnitLength(const std::vector<Patch>& patches) {
+  static constexpr int kEdgeCorners[4][2] = {{5, 6}, {6, 10}, {10, 9}, {9, 5}};  // patch.h order
+  double sum = 0.0;
+  int sides = 0;
+  for (const Patch& patch : patches) {
+    if (patch.kind == PatchKind::PoleCap) continue;
+    for (int s = 0; s < 4; ++s)
+      if (patch.edgeLevelDelta[s] > 0) {
+        sum += std::ldexp(glm::length(patch.cp[kEdgeCorners[s][0]] - patch.cp[kEdgeCorners[s][1]]), patch.level);
+        ++sides;
+      }
+  }
+  return sides > 0 ? sum / sides : 0.0;
+}
+
 // Program specs: every shader file and variant the renderer uses.
 // One surface program per shading mode (a #define, so llvmpipe runs no per-pixel mode branches),
 // with or without the wireframe geometry shader.
@@ -169,6 +196,7 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range) {
 struct PatchRenderer::Impl {
   std::shared_ptr<ShaderLibrary> shaders;
   GLuint patchVao = 0, patchPositions = 0, patchKindRings = 0;
+  double transitionUnitLength = 0.0;  // see transitionUnitLength(): sets the transition density
   GLuint netVao = 0, netBuffer = 0;
   GLuint poleVao = 0, poleBuffer = 0;
   GLuint timerQueries[2] = {0, 0};
@@ -277,12 +305,15 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches) {
   std::vector<int32_t> kindRings;
   positions.reserve(patches.size() * kControlPointsPerPatch * 3);
   kindRings.reserve(patches.size() * kControlPointsPerPatch * 2);
-  for (const Patch& patch : patches)
+  for (const Patch& patch : patches) {
+    const int32_t kindLevelJumps = packKindLevelJumps(patch);
     for (int k = 0; k < kControlPointsPerPatch; ++k) {
       const glm::vec3 p(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : patch.cp[k]);
       positions.insert(positions.end(), {p.x, p.y, p.z});
-      kindRings.insert(kindRings.end(), {static_cast<int32_t>(patch.kind), patch.ring});
+      kindRings.insert(kindRings.end(), {kindLevelJumps, patch.ring});
     }
+  }
+  impl_->transitionUnitLength = transitionUnitLength(patches);
 
   glBindVertexArray(g.patchVao);
   glBindBuffer(GL_ARRAY_BUFFER, g.patchPositions);
@@ -341,6 +372,17 @@ void PatchRenderer::setTessellationUniforms(unsigned program, const ViewParams& 
   setUniform(program, "u_tessPixels", std::max(shading.tessPixels, 0.5f));
   setUniform(program, "u_maxTessLevel", static_cast<float>(std::clamp(shading.maxTessLevel, 1, 64)));
   setUniform(program, "u_fixedTessLevel", static_cast<float>(std::min(shading.fixedTessLevel, 64)));
+  setUniform(program, "u_transitionDensity", transitionDensity(view, shading));
+}
+
+int PatchRenderer::transitionDensity(const ViewParams& view, const ShadingParams& shading) const {
+  const double unitLength = impl_->transitionUnitLength;
+  if (!(unitLength > 0.0)) return 0;
+  // Pixels per world unit at the model centre: proj[1][1] maps view-space y to clip y; / w.
+  const glm::dvec4 clip = glm::dmat4(view.proj) * glm::dmat4(view.view) * glm::dvec4(center_, 1.0);
+  const double pixelsPerUnit = 0.5 * view.viewport.w * double(view.proj[1][1]) / std::max(clip.w, 1e-9);
+  const double segments = unitLength * pixelsPerUnit / std::max(double(shading.tessPixels), 0.5);
+  return static_cast<int>(std::clamp(std::lround(std::log2(std::max(segments, 1e-30))), -64L, 64L));
 }
 
 void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,

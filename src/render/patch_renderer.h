@@ -101,8 +101,9 @@ class PatchRenderer {
   // Re-reads the shader files; on failure keeps the previous programs and returns the log.
   bool reloadShaders(std::string* error);
 
-  // Uploads the patches (positions are stored relative to their bounding-box centre in float).
-  // [O(patches)]
+  // Uploads the patches (positions are stored relative to their bounding-box centre in float),
+  // with their levels and edge level jumps (Patch::edgeLevelDelta) packed beside the kind, from
+  // which patch.tesc gives T-junction edges the same vertices on both sides. [O(patches)]
   void setPatches(const std::vector<Patch>& patches);
   // Uploads the control mesh drawn by DisplayFlags::controlNet (its edges). [O(edges)]
   void setControlMesh(const PolyMesh& mesh);
@@ -140,6 +141,9 @@ class PatchRenderer {
   unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe);
   void setTessellationUniforms(unsigned program, const ViewParams& view,
                                const ShadingParams& shading) const;
+  // Per-view density exponent k of T-junction edges (patch.tesc): 2^k segments per level-0
+  // parameter unit, so that they are about shading.tessPixels long at the model centre.
+  int transitionDensity(const ViewParams& view, const ShadingParams& shading) const;
   std::unique_ptr<Impl> impl_;
   glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0}, center_{0.0};
   double radius_ = 1.0;

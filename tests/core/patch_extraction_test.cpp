@@ -458,6 +458,103 @@ TEST_CASE("extraction: the pole cap is C1 with ring L (same normal along the sea
     }
 }
 
+// Tessellation vertices of the T-junction sides (edgeLevelDelta != 0) with the segment counts the
+// TCS chooses (transitionEdgeSegments), split into coarse (+d) and fine (-d) sides.
+struct TransitionVertices {
+  std::vector<Point> coarse, fine;
+  int coarseSides = 0, fineSides = 0;
+  int fineSidesExpected = 0;  // sum of 2^d over the coarse sides
+};
+
+TransitionVertices transitionVertices(const PatchSet& set, int densityExponent) {
+  TransitionVertices out;
+  for (const Patch& patch : set.patches)
+    for (int s = 0; s < 4; ++s) {
+      const int d = patch.edgeLevelDelta[s];
+      if (d == 0) continue;
+      const int segments = transitionEdgeSegments(patch.level, d, densityExponent);
+      std::vector<Point>& into = d > 0 ? out.coarse : out.fine;
+      ++(d > 0 ? out.coarseSides : out.fineSides);
+      if (d > 0) out.fineSidesExpected += 1 << d;
+      for (int i = 0; i <= segments; ++i) {
+        double u, v;
+        sideParameter(s, double(i) / segments, u, v);
+        into.push_back(evaluatePatch(patch, u, v).position);
+      }
+    }
+  return out;
+}
+
+// How many of `points` have no point of `targets` within `tolerance` (targets sorted by x).
+size_t unmatchedPoints(const std::vector<Point>& points, std::vector<Point> targets, double tolerance) {
+  std::sort(targets.begin(), targets.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
+  size_t unmatched = 0;
+  for (const Point& p : points) {
+    auto it = std::lower_bound(targets.begin(), targets.end(), p.x - tolerance,
+                               [](const Point& a, double x) { return a.x < x; });
+    bool found = false;
+    for (; it != targets.end() && it->x <= p.x + tolerance && !found; ++it) found = glm::length(*it - p) <= tolerance;
+    unmatched += !found;
+  }
+  return unmatched;
+}
+
+TEST_CASE("extraction: at every T-junction the fine sides' tessellation vertices are exactly the coarse side's") {
+  struct Case {
+    const char* name;
+    PolyMesh mesh;
+    Scheme scheme;
+    int levels;
+  };
+  const Case cases[] = {{"mushroom C2PS", shapes::mushroom(12), Scheme::C2PS, 4},
+                        {"mushroom CC", shapes::mushroom(12), Scheme::CatmullClark, 3},
+                        {"mushroom RTS", shapes::mushroom(12), Scheme::RTS, 2},
+                        {"globe C2PS", shapes::globe(6, 9), Scheme::C2PS, 3},
+                        {"cube CC", shapes::cube(), Scheme::CatmullClark, 4},
+                        {"octahedron CC", octahedron(), Scheme::CatmullClark, 3}};
+  for (const Case& c : cases) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    const PatchSet set = extract(c.mesh, c.scheme, c.levels);
+    const double tolerance = 1e-10 * meshSize(set);
+    // Every patch's sides: a fine side's jump is at most the level, and caps have none.
+    for (const Patch& patch : set.patches)
+      for (int s = 0; s < 4; ++s) {
+        CHECK(-patch.edgeLevelDelta[s] <= int(patch.level));
+        if (patch.kind == PatchKind::PoleCap) CHECK(patch.edgeLevelDelta[s] == 0);
+      }
+    for (int k : {-3, 0, 2, 4, 7, 11}) {
+      CAPTURE(k);
+      const TransitionVertices t = transitionVertices(set, k);
+      CHECK(t.coarseSides > 0);
+      CHECK(t.fineSides == t.fineSidesExpected);  // each coarse side faces 2^d fine ones
+      CHECK(unmatchedPoints(t.fine, t.coarse, tolerance) == 0);
+      CHECK(unmatchedPoints(t.coarse, t.fine, tolerance) == 0);
+      if (k == 4)
+        MESSAGE(std::string(c.name) << " L=" << c.levels << ": " << t.coarseSides << " coarse and " << t.fineSides
+                                    << " fine T-junction sides, " << t.fine.size() << " fine vertices all on the coarse sides' "
+                                    << t.coarse.size());
+    }
+  }
+}
+
+TEST_CASE("extraction: RTS/BPS radial levels (caps, globes) have no T-junctions") {
+  for (Scheme scheme : {Scheme::RTS, Scheme::BPS}) {
+    RefineOptions options;
+    options.scheme = scheme;
+    options.levels = 3;
+    const Refinement refinement(shapes::globe(6, 9), options);
+    REQUIRE(refinement.radialOnly());
+    const PatchSet set = extractPatches(refinement);
+    int maxLevel = 0;
+    for (const Patch& patch : set.patches) {
+      maxLevel = std::max(maxLevel, int(patch.level));
+      for (int s = 0; s < 4; ++s) CHECK(patch.edgeLevelDelta[s] == 0);
+    }
+    CHECK(maxLevel == 3);  // patches of several levels, meeting along whole edges
+  }
+}
+
 TEST_CASE("extraction: a mushroom (pole, rings, CC stem with extraordinary vertices) is watertight") {
   for (Scheme scheme : {Scheme::C2PS, Scheme::RTS, Scheme::CatmullClark}) {
     const PatchSet set = extract(shapes::mushroom(12), scheme, 2);

@@ -3,6 +3,7 @@
 // [SECTION] regular patches: gathering the 4x4 stencil
 // [SECTION] end caps: limit points, tangents, Bezier nets
 // [SECTION] pole caps
+// [SECTION] level jumps across patch edges (T-junctions)
 // [SECTION] extraction driver
 #include "core/spline/patch_extraction.h"
 
@@ -357,7 +358,65 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vect
   }
 }
 
+// [SECTION] level jumps across patch edges (T-junctions)
+
+// The 4 sides of a face-based patch are the face's sides (patch.h EDGES); a k-gon's split end caps
+// (k != 4) have other sides and take no part.
+bool hasFaceSides(const Patch& patch, const Refinement& refinement) {
+  return patch.face >= 0 && refinement.level(patch.level).mesh.faceSize(patch.face) == 4;
+}
+
+// Fills Patch::edgeLevelDelta. cover[m][f] = the patch covering face f of level m: its own, an
+// ancestor's (the face was not refined further for patches), or a cap's (hole faces), -1 where the
+// surface there comes from finer levels. A patch side facing an uncovered face is a coarse side;
+// one facing a face covered by a coarser patch Q is a fine side, and tells Q's side which faces
+// the ancestor of its own face at Q's level. [O(faces of all levels + patches * level jump)]
+void markLevelJumps(const Refinement& refinement, std::vector<std::vector<int32_t>>& cover, std::vector<Patch>& patches) {
+  const int levels = refinement.levelCount();
+  for (size_t k = 0; k < patches.size(); ++k)
+    if (hasFaceSides(patches[k], refinement) && cover[patches[k].level][patches[k].face] < 0)
+      cover[patches[k].level][patches[k].face] = int32_t(k);
+  for (int m = 1; m < levels; ++m) {
+    const std::vector<Index>& parent = refinement.level(m).faceParent;
+    for (size_t f = 0; f < cover[m].size(); ++f)
+      if (cover[m][f] < 0) cover[m][f] = cover[m - 1][parent[f]];
+  }
+  for (Patch& patch : patches) {
+    if (!hasFaceSides(patch, refinement)) continue;
+    const int m = patch.level;
+    const RefinedLevel& level = refinement.level(m);
+    for (int s = 0; s < 4; ++s) {
+      const Index across = faceAcross(level.topology, level.topology.cornerEdge[level.mesh.faceStart[patch.face] + s], patch.face);
+      if (across < 0) continue;
+      const int32_t q = cover[m][across];
+      if (q < 0) {  // refined further: this is the coarse side (the fine sides set the exact jump)
+        patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
+        continue;
+      }
+      Patch& coarse = patches[q];
+      const int jump = m - coarse.level;
+      if (jump <= 0 || !hasFaceSides(coarse, refinement)) continue;
+      patch.edgeLevelDelta[s] = int8_t(-std::min(jump, 127));
+      // The ancestor of this face at the coarse level lies across one of the coarse patch's sides.
+      Index ancestor = patch.face;
+      for (int k = m; k > coarse.level; --k) ancestor = refinement.level(k).faceParent[ancestor];
+      const RefinedLevel& coarseLevel = refinement.level(coarse.level);
+      for (int t = 0; t < 4; ++t) {
+        const Index edge = coarseLevel.topology.cornerEdge[coarseLevel.mesh.faceStart[coarse.face] + t];
+        if (faceAcross(coarseLevel.topology, edge, coarse.face) == ancestor)
+          coarse.edgeLevelDelta[t] = int8_t(std::max(int(coarse.edgeLevelDelta[t]), std::min(jump, 127)));
+      }
+    }
+  }
+}
+
 }  // namespace
+
+int transitionEdgeSegments(int level, int delta, int densityExponent) {
+  const int wanted = densityExponent - level;
+  const int exponent = delta > 0 ? std::min(std::max(wanted, int(delta)), 6) : std::min(std::max(wanted, 0), std::max(6 + delta, 0));
+  return 1 << exponent;
+}
 
 // [SECTION] extraction driver
 
@@ -365,12 +424,15 @@ PatchSet extractPatches(const Refinement& refinement) {
   PatchSet set;
   const int finest = refinement.levelCount() - 1;
   LevelClasses parentClasses;
+  // Per level and face: the covering patch (markLevelJumps); here only the pole caps' hole faces.
+  std::vector<std::vector<int32_t>> cover(size_t(finest) + 1);
   for (int m = 0; m <= finest; ++m) {
     const RefinedLevel& level = refinement.level(m);
     const PolyMesh& mesh = level.mesh;
     const MeshTopology& topo = level.topology;
     LevelClasses classes = classifyLevel(level);
     const RingMembership rings = markRingLinks(level);
+    cover[m].assign(mesh.faceCount(), -1);
 
     // Regular (and boundary, polar-ring) patches whose parent was not regular.
     std::array<Index, 16> ids;
@@ -403,10 +465,14 @@ PatchSet extractPatches(const Refinement& refinement) {
       std::vector<uint8_t> inHole(mesh.faceCount(), 0);
       for (size_t p = 0; p < level.poles.size(); ++p) {
         if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
+        const int32_t firstCap = int32_t(set.patches.size());
         poleCaps(level.poleGrids[p], level.poleTaylor[p], set.patches, m, int(p));
         const PolarConfig& config = level.poles[p];
         auto markFaces = [&](Index v) {
-          for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) inHole[topo.vertexFaces[k]] = 1;
+          for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
+            inHole[topo.vertexFaces[k]] = 1;
+            cover[m][topo.vertexFaces[k]] = firstCap;  // same level as ring L: no level jump
+          }
         };
         markFaces(config.pole);
         for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
@@ -427,6 +493,9 @@ PatchSet extractPatches(const Refinement& refinement) {
     }
     parentClasses = std::move(classes);
   }
+  // Radial levels (RTS/BPS caps and globes) keep the columns: patches of different levels meet
+  // along whole edges there, so no side is a T-junction.
+  if (!refinement.radialOnly()) markLevelJumps(refinement, cover, set.patches);
   for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
   return set;
 }

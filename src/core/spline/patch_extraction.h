@@ -40,6 +40,11 @@
 //    the end caps' edges. A non-quad face (only possible at level 0, or at a pole left without a
 //    cap) is split into k quads (corner, edge midpoint, centre, edge midpoint) whose outer edges
 //    are the halves of the edge curves (still watertight) and whose spokes are straight.
+// Level jumps (Patch::edgeLevelDelta): for every side of a face-based quad patch, the level
+// difference to the patches across it, from the mesh adjacency and RefinedLevel::faceParent: a side
+// facing a face of its level that was refined further is a coarse side (+d, d = the largest jump
+// reported by the fine patches along it); a side facing a face covered by a coarser patch Q (an
+// ancestor of that face became Q) is a fine side (-d). Pole caps meet ring L at the same level (0).
 #pragma once
 
 #include <array>
@@ -58,7 +63,17 @@ struct PatchSet {
   size_t count(PatchKind kind) const { return kindCounts[size_t(kind)]; }
 };
 
-// Extracts the patches of every level of `refinement` (rules above). [O(faces of all levels)]
+// Extracts the patches of every level of `refinement` (rules above), with Patch::edgeLevelDelta
+// filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). [O(faces of all levels)]
 PatchSet extractPatches(const Refinement& refinement);
+
+// Tessellation segments of a T-junction edge (edgeLevelDelta d != 0) of a patch of `level`, for a
+// per-view density exponent k (2^k segments per level-0 parameter unit); shaders/patch.tesc is its
+// mirror. Coarse side (d > 0): 2^clamp(k - level, d, 6); fine side (d < 0): 2^clamp(k - level, 0,
+// 6 + d). For every k the coarse side then has 2^d times the segments of each fine side, so with
+// equal spacing the fine sides' vertices are exactly the coarse side's (the shared curve is the
+// same curve, refined by knot insertion), and no side exceeds GL's 64. Jumps over 6 levels and a
+// coarse side facing pieces of mixed levels can still crack (none seen on the test meshes). [O(1)]
+int transitionEdgeSegments(int level, int delta, int densityExponent);
 
 }  // namespace polarview
