@@ -62,6 +62,16 @@ TableJob tableJob(std::vector<T>& table, size_t size) {
           [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->resize(n); }, &table, size};
 }
 
+// Asks for a cache line that a later iteration reads at a data-dependent place.
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+constexpr Index kPrefetchDistance = 16;  // ring entries ahead
+
 // Where a ring-writing pass stands: the child vertex, its ring's first entry, the next entries.
 struct RingCursor {
   Index vertex = 0, ringStart = 0, facePos = 0, edgePos = 0;
@@ -150,8 +160,7 @@ class ConnectivityBuilder {
   }
 
   // Child counts: F + E + V vertices, one face per corner (+1 per split), 2 edges per parent edge
-  // and 1 per corner (+1 per split). The tables are sized on all threads at once, so the first
-  // touch of fresh memory (the kernel's page faults) is shared out too.
+  // and 1 per corner (+1 per split).
   void sizeTables() {
     const Index C = parentCorners_;
     vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
@@ -167,17 +176,22 @@ class ConnectivityBuilder {
     mesh.faceLine.clear();
     if (!options_.childTwins) out_.twins.clear();
 
-    std::vector<TableJob> jobs = {
-        tableJob(mesh.points, vertices), tableJob(mesh.faceVerts, corners), tableJob(t.cornerEdge, corners),
-        tableJob(t.cornerFace, corners), tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)),
-        tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)), tableJob(t.vertexFaces, corners), tableJob(t.vertexCorners, corners),
-        tableJob(t.vertexEdges, ringEdges), tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1),
-        tableJob(t.vertexFaceStart, vertices + 1), tableJob(t.vertexEdgeStart, vertices + 1),
-        tableJob(t.vertexOnBoundary, vertices), tableJob(t.vertexUsed, vertices)};
-    if (options_.childTwins) jobs.push_back(tableJob(out_.twins, corners));
-    // Allocate here (malloc's arena of the calling thread), touch on the parts: largest first, each
-    // to the least loaded part.
-    for (const TableJob& job : jobs) job.reserve(job.table, job.size);
+    faceTables_ = {tableJob(mesh.faceVerts, corners), tableJob(t.cornerEdge, corners), tableJob(t.cornerFace, corners),
+                   tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)), tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
+                   tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1)};
+    if (options_.childTwins) faceTables_.push_back(tableJob(out_.twins, corners));
+    ringTables_ = {tableJob(mesh.points, vertices), tableJob(t.vertexFaces, corners), tableJob(t.vertexCorners, corners),
+                   tableJob(t.vertexEdges, ringEdges), tableJob(t.vertexFaceStart, vertices + 1),
+                   tableJob(t.vertexEdgeStart, vertices + 1), tableJob(t.vertexOnBoundary, vertices),
+                   tableJob(t.vertexUsed, vertices)};
+    // Allocate on the calling thread (its malloc arena); touch later, on the parts.
+    for (const TableJob& job : faceTables_) job.reserve(job.table, job.size);
+    for (const TableJob& job : ringTables_) job.reserve(job.table, job.size);
+  }
+
+  // Sizes (first touch: the kernel's page faults, the zero fill) a pass's tables on all parts,
+  // largest first, each to the least loaded part; just before the pass, so they are still cached.
+  void touchTables(std::vector<TableJob>& jobs) {
     std::sort(jobs.begin(), jobs.end(), [](const TableJob& a, const TableJob& b) { return a.bytes > b.bytes; });
     std::vector<size_t> load(parts_, 0);
     std::vector<unsigned> owner(jobs.size());
@@ -217,6 +231,7 @@ class ConnectivityBuilder {
 
   // Faces, twins and edges, each part over its parent faces (child corners in increasing order).
   void buildFacesAndEdges() {
+    touchTables(faceTables_);
     MeshTopology& t = out_.topology;
     faceVerts_ = out_.mesh.faceVerts.data();
     cornerFace_ = t.cornerFace.data();
@@ -300,6 +315,7 @@ class ConnectivityBuilder {
   // Rings in three blocks (face points, edge points, vertex points); each part writes its own
   // stretch of each block, starting where the counts put it.
   void buildVertexRings() {
+    touchTables(ringTables_);
     MeshTopology& t = out_.topology;
     vertexFaces_ = t.vertexFaces.data();
     vertexCorners_ = t.vertexCorners.data();
@@ -371,10 +387,14 @@ class ConnectivityBuilder {
   // Vertex point of v: the parent ring's corners in the parent's order (a split corner gives both
   // triangles); a boundary ring ends with the edge into the last corner.
   void buildVertexPointRings(RingCursor& at, Index vBegin, Index vEnd) {
+    const Index* ringCorners = topo_.vertexCorners.data();
+    const Index ringEnd = topo_.vertexFaceStart[vEnd];
     for (Index v = vBegin; v < vEnd; ++v) {
       const Index first = topo_.vertexFaceStart[v], last = topo_.vertexFaceStart[v + 1];
       for (Index i = first; i < last; ++i) {
-        const Index c = topo_.vertexCorners[i];
+        // The parent's rings visit corners all over the mesh: fetch the edges a few rings ahead.
+        if (i + kPrefetchDistance < ringEnd) prefetch(cornerEdge_ + base(ringCorners[i + kPrefetchDistance]));
+        const Index c = ringCorners[i];
         put(at, childFace(c), base(c));
         if (isSplit(c)) put(at, childFace(c) + 1, base(c) + 3);
       }
@@ -391,6 +411,7 @@ class ConnectivityBuilder {
   const ConnectivityOptions& options_;
 
   unsigned parts_ = 1;
+  std::vector<TableJob> faceTables_, ringTables_;  // written by the faces-and-edges pass / the ring pass
   std::vector<PartCounts> counts_;     // counts_[k]: totals of parts before k (counts_[parts_]: all)
   std::vector<Index> firstChildFace_;  // split mode: per parent corner, its first child face
   Index parentCorners_ = 0, splitCount_ = 0, vertexPointBase_ = 0, childCorners_ = 0;
