@@ -74,11 +74,11 @@ void requireSameTopology(const MeshTopology& derived, const MeshTopology& rebuil
 }
 
 // Refines `base` three times both ways (the derived one on `threads` threads) and compares every
-// level's mesh, parents, tables and twins.
+// level's mesh, parents, tables and corner links.
 void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Splits splits, unsigned threads) {
   PolyMesh mesh = base;
   MeshTopology topo = buildTopology(mesh);
-  std::vector<Index> twins = cornerTwins(mesh, topo);
+  std::vector<Index> links = cornerLinks(mesh, topo);
   RefinedConnectivity out;
   for (int level = 1; level <= 3; ++level) {
     CAPTURE(name);
@@ -90,8 +90,8 @@ void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Sp
     PolyMesh reference = referenceChild(mesh, topo, split, faceParent);
     ConnectivityOptions options;
     options.threads = threads;
-    options.childTwins = level < 3;  // the finest level needs none
-    refineCatmullClarkConnectivity(mesh, topo, twins, splits == Splits::None ? nullptr : &split, out, options);
+    options.childLinks = level < 3;  // the finest level needs none
+    refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, out, options);
 
     REQUIRE(out.mesh.points.size() == reference.points.size());
     CHECK(out.mesh.faceStart == reference.faceStart);
@@ -99,30 +99,34 @@ void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Sp
     CHECK(out.faceParent == faceParent);
     const MeshTopology rebuilt = buildTopology(reference);
     requireSameTopology(out.topology, rebuilt);
-    if (options.childTwins)
-      CHECK(out.twins == cornerTwins(reference, rebuilt));
+    if (options.childLinks)
+      CHECK(out.links == cornerLinks(reference, rebuilt));
     else
-      CHECK(out.twins.empty());
+      CHECK(out.links.empty());
 
     mesh = out.mesh;
     topo = out.topology;
-    twins = out.twins;
+    links = out.links;
   }
 }
 
-// Opposite half-edges join the same two vertices in opposite directions, on the edge's two faces.
-void checkTwinsAreOppositeHalfEdges(const PolyMesh& mesh, const MeshTopology& topo, const std::vector<Index>& twins) {
+// Opposite half-edges join the same two vertices in opposite directions, on the edge's two faces;
+// the corner after the twin sits at the corner's own vertex.
+void checkLinksAreOppositeHalfEdges(const PolyMesh& mesh, const MeshTopology& topo, const std::vector<Index>& links) {
   auto next = [&](Index c) { Index f = topo.cornerFace[c]; return c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1; };
-  for (Index c = 0; c < Index(twins.size()); ++c) {
-    const Index t = twins[c], e = topo.cornerEdge[c];
+  REQUIRE(links.size() == 2 * mesh.faceVerts.size());
+  for (Index c = 0; c < Index(mesh.faceVerts.size()); ++c) {
+    const Index t = links[2 * c], e = topo.cornerEdge[c];
     if (t < 0) {
       CHECK(topo.edgeOnBoundary(e));
+      CHECK(links[2 * c + 1] == -1);
       continue;
     }
-    CHECK(twins[t] == c);
+    CHECK(links[2 * t] == c);
     CHECK(topo.cornerEdge[t] == e);
     CHECK(mesh.faceVerts[t] == mesh.faceVerts[next(c)]);
     CHECK(mesh.faceVerts[next(t)] == mesh.faceVerts[c]);
+    CHECK(links[2 * c + 1] == next(t));
   }
 }
 
@@ -217,10 +221,10 @@ TEST_CASE("derived connectivity with splits at random vertices (boundary ones to
     for (const auto& [name, mesh] : testMeshes()) checkDerivedEqualsRebuilt(name, mesh, Splits::RandomVertices, threads);
 }
 
-TEST_CASE("corner twins start the opposite half-edge of each interior edge, -1 on the boundary") {
+TEST_CASE("corner links name the opposite half-edge of each interior edge and its successor, -1 on the boundary") {
   for (const auto& [name, mesh] : testMeshes()) {
     CAPTURE(name);
     const MeshTopology topo = buildTopology(mesh);
-    checkTwinsAreOppositeHalfEdges(mesh, topo, cornerTwins(mesh, topo));
+    checkLinksAreOppositeHalfEdges(mesh, topo, cornerLinks(mesh, topo));
   }
 }

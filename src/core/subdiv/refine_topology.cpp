@@ -20,20 +20,24 @@
 
 namespace polarview {
 
-std::vector<Index> cornerTwins(const PolyMesh& mesh, const MeshTopology& topo) {
-  std::vector<Index> twins(mesh.faceVerts.size(), -1);
+std::vector<Index> cornerLinks(const PolyMesh& mesh, const MeshTopology& topo) {
+  std::vector<Index> links(2 * mesh.faceVerts.size(), -1);
   const Index* faceStart = mesh.faceStart.data();
-  // Consecutive ring corners r_i, r_i+1 at v: r_i+1 starts the opposite half-edge of r_i's incoming one.
+  // Consecutive ring corners r_i, r_i+1 at v: r_i+1 starts the opposite half-edge of r_i's incoming
+  // one, and the corner after r_i+1 in its face is the twin's successor.
   for (Index v = 0; v < topo.vertexCount; ++v) {
     const Index first = topo.vertexFaceStart[v], last = topo.vertexFaceStart[v + 1];
     for (Index i = first; i < last; ++i) {
       const Index corner = topo.vertexCorners[i], face = topo.vertexFaces[i];
       const Index incoming = corner == faceStart[face] ? faceStart[face + 1] - 1 : corner - 1;
-      const bool lastOfBoundaryFan = i + 1 == last && topo.vertexOnBoundary[v];
-      twins[incoming] = lastOfBoundaryFan ? -1 : topo.vertexCorners[i + 1 == last ? first : i + 1];
+      if (i + 1 == last && topo.vertexOnBoundary[v]) continue;  // the boundary edge: no twin
+      const Index j = i + 1 == last ? first : i + 1;
+      const Index twin = topo.vertexCorners[j], twinFace = topo.vertexFaces[j];
+      links[2 * size_t(incoming)] = twin;
+      links[2 * size_t(incoming) + 1] = twin + 1 == faceStart[twinFace + 1] ? faceStart[twinFace] : twin + 1;
     }
   }
-  return twins;
+  return links;
 }
 
 namespace {
@@ -80,9 +84,9 @@ struct RingCursor {
 template <bool kSplit>
 class ConnectivityBuilder {
  public:
-  ConnectivityBuilder(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
+  ConnectivityBuilder(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
                       const uint8_t* splitCorner, RefinedConnectivity& out, const ConnectivityOptions& options)
-      : parent_(parent), topo_(topo), parentTwins_(twins.data()), split_(splitCorner), out_(out), options_(options) {}
+      : parent_(parent), topo_(topo), parentLinks_(links.data()), split_(splitCorner), out_(out), options_(options) {}
 
   void build() {
     parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
@@ -95,11 +99,9 @@ class ConnectivityBuilder {
   }
 
  private:
-  // Parent corner navigation.
-  Index parentNext(Index c) const {
-    const Index f = topo_.cornerFace[c];
-    return c + 1 == parent_.faceStart[f + 1] ? parent_.faceStart[f] : c + 1;
-  }
+  // Parent corner links (cornerLinks): the twin of c and the corner after the twin.
+  Index twinOf(Index c) const { return parentLinks_[2 * size_t(c)]; }
+  Index twinNextOf(Index c) const { return parentLinks_[2 * size_t(c) + 1]; }
   bool isSplit(Index c) const { return kSplit && split_[c]; }
   // The child face (the first of two when split) and first child corner of parent corner c.
   Index childFace(Index c) const { return kSplit ? firstChildFace_[c] : c; }
@@ -135,8 +137,8 @@ class ConnectivityBuilder {
       for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
         const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
         for (Index c = begin; c < end; ++c) {
-          const Index twin = parentTwins_[c], twinPrev = parentTwins_[c == begin ? end - 1 : c - 1];
-          count.newEdges += (twin < 0 || parentNext(twin) > c) + (c + 1 != end) + (c == begin) +
+          const Index twin = twinOf(c), twinPrev = twinOf(c == begin ? end - 1 : c - 1);
+          count.newEdges += (twin < 0 || twinNextOf(c) > c) + (c + 1 != end) + (c == begin) +
                             (twinPrev < 0 || twinPrev > c) + (isSplit(c) ? 1 : 0);
           count.boundaryLeaders += twin < 0;
           count.interiorLeaders += twin > c;
@@ -174,12 +176,12 @@ class ConnectivityBuilder {
     const size_t ringEdges = corners + size_t(counts_[parts_].boundaryLeaders + counts_[parts_].boundaryVertices);
     PolyMesh& mesh = out_.mesh;
     mesh.faceLine.clear();
-    if (!options_.childTwins) out_.twins.clear();
+    if (!options_.childLinks) out_.links.clear();
 
     faceTables_ = {tableJob(mesh.faceVerts, corners), tableJob(t.cornerEdge, corners), tableJob(t.cornerFace, corners),
                    tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)), tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
                    tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1)};
-    if (options_.childTwins) faceTables_.push_back(tableJob(out_.twins, corners));
+    if (options_.childLinks) faceTables_.push_back(tableJob(out_.links, 2 * corners));
     ringTables_ = {tableJob(mesh.points, vertices), tableJob(t.vertexFaces, corners), tableJob(t.vertexCorners, corners),
                    tableJob(t.vertexEdges, ringEdges), tableJob(t.vertexFaceStart, vertices + 1),
                    tableJob(t.vertexEdgeStart, vertices + 1), tableJob(t.vertexOnBoundary, vertices),
@@ -205,14 +207,18 @@ class ConnectivityBuilder {
     });
   }
 
-  // Writes child corner x (vertex -> nextVertex in `face`, opposite half-edge `twin`) and numbers
+  // Writes child corner x (vertex -> nextVertex in `face`, opposite half-edge `twin`, the corner
+  // after it `twinNext`) and numbers
   // its edge by first use: the smaller corner of a twin pair opens the edge. A twin in an earlier
   // part may not be numbered yet: such corners wait in `deferred`.
-  void emitCorner(Index x, Index vertex, Index nextVertex, Index face, Index twin, Index partFirstCorner,
+  void emitCorner(Index x, Index vertex, Index nextVertex, Index face, Index twin, Index twinNext, Index partFirstCorner,
                   Index& nextEdge, std::vector<std::pair<Index, Index>>& deferred) {
     faceVerts_[x] = vertex;
     cornerFace_[x] = face;
-    if (twinsOut_) twinsOut_[x] = twin;
+    if (linksOut_) {
+      linksOut_[2 * size_t(x)] = twin;
+      linksOut_[2 * size_t(x) + 1] = twinNext;
+    }
     if (twin < 0 || twin > x) {
       const Index e = nextEdge++;
       cornerEdge_[x] = e;
@@ -238,7 +244,7 @@ class ConnectivityBuilder {
     cornerEdge_ = t.cornerEdge.data();
     edgeVerts_ = t.edgeVerts.data();
     edgeFaces_ = t.edgeFaces.data();
-    twinsOut_ = options_.childTwins ? out_.twins.data() : nullptr;
+    linksOut_ = options_.childLinks ? out_.links.data() : nullptr;
     out_.mesh.faceStart[0] = 0;
     std::vector<std::vector<std::pair<Index, Index>>> deferred(parts_);
     runParts(parts_, [&](unsigned k) { buildFacesAndEdgesOfPart(k, deferred[k]); });
@@ -259,8 +265,8 @@ class ConnectivityBuilder {
     const Index fBegin = faceBound(k), fEnd = faceBound(k + 1);
     const Index partFirstCorner = fBegin < fEnd ? base(parent_.faceStart[fBegin]) : 0;
     Index nextEdge = counts_[k].newEdges;
-    auto emit = [&](Index x, Index vertex, Index nextVertex, Index face, Index twin) {
-      emitCorner(x, vertex, nextVertex, face, twin, partFirstCorner, nextEdge, deferred);
+    auto emit = [&](Index x, Index vertex, Index nextVertex, Index face, Index twin, Index twinNext) {
+      emitCorner(x, vertex, nextVertex, face, twin, twinNext, partFirstCorner, nextEdge, deferred);
     };
     for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
@@ -268,25 +274,28 @@ class ConnectivityBuilder {
         const Index prev = c == begin ? end - 1 : c - 1, next = c + 1 == end ? begin : c + 1;
         const Index V = vertexPointBase_ + parentVerts[c], Ea = edgePointBase + parentEdge[c],
                     Eb = edgePointBase + parentEdge[prev], F = f;
-        const Index twinC = parentTwins_[c], twinPrev = parentTwins_[prev];
-        const Index twinVE = twinC < 0 ? -1 : edgeToVertex(parentNext(twinC));
-        const Index twinEF = faceToEdge(next);
-        const Index twinFE = edgeToFace(prev);
+        // Twins of the child half-edges (see the top of this file) and the corners after them.
+        const Index twinC = twinOf(c), twinPrev = twinOf(prev), afterTwinC = twinNextOf(c);
+        const Index twinVE = twinC < 0 ? -1 : edgeToVertex(afterTwinC);
+        const Index afterVE = twinC < 0 ? -1 : base(afterTwinC) + (isSplit(afterTwinC) ? 3 : 0);
+        const Index twinEF = faceToEdge(next), afterEF = edgeToVertex(next);
+        const Index twinFE = edgeToFace(prev), afterFE = base(prev) + 2;
         const Index twinEV = twinPrev < 0 ? -1 : vertexToEdge(twinPrev);
+        const Index afterEV = twinPrev < 0 ? -1 : base(twinPrev) + 1;
         const Index x = base(c), face = childFace(c);
-        emit(x, V, Ea, face, twinVE);
-        emit(x + 1, Ea, F, face, twinEF);
+        emit(x, V, Ea, face, twinVE, afterVE);
+        emit(x + 1, Ea, F, face, twinEF, afterEF);
         faceParent[face] = f;
         if (!isSplit(c)) {
-          emit(x + 2, F, Eb, face, twinFE);
-          emit(x + 3, Eb, V, face, twinEV);
+          emit(x + 2, F, Eb, face, twinFE, afterFE);
+          emit(x + 3, Eb, V, face, twinEV, afterEV);
           faceStart[face + 1] = x + 4;
         } else {  // the diagonal V - F closes the first triangle and opens the second
-          emit(x + 2, F, V, face, x + 3);
+          emit(x + 2, F, V, face, x + 3, x + 4);
           faceStart[face + 1] = x + 3;
-          emit(x + 3, V, F, face + 1, x + 2);
-          emit(x + 4, F, Eb, face + 1, twinFE);
-          emit(x + 5, Eb, V, face + 1, twinEV);
+          emit(x + 3, V, F, face + 1, x + 2, x);
+          emit(x + 4, F, Eb, face + 1, twinFE, afterFE);
+          emit(x + 5, Eb, V, face + 1, twinEV, afterEV);
           faceStart[face + 2] = x + 6;
           faceParent[face + 1] = f;
         }
@@ -363,7 +372,7 @@ class ConnectivityBuilder {
     for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
       for (Index c = begin; c < end; ++c) {
-        const Index d = parentTwins_[c];
+        const Index d = twinOf(c);
         if (d >= 0 && d < c) continue;  // not the edge's leading corner
         const Index next = c + 1 == end ? begin : c + 1;
         if (d < 0) {
@@ -372,7 +381,7 @@ class ConnectivityBuilder {
           closeRing(at, true, cornerEdge_[vertexToEdge(c)]);
           continue;
         }
-        const Index nextD = parentNext(d);
+        const Index nextD = twinNextOf(c);
         const Index faces[4] = {childFace(c), secondChildFace(nextD), childFace(d), secondChildFace(next)};
         const Index corners[4] = {edgeToFace(c), edgeToVertex(nextD), edgeToFace(d), edgeToVertex(next)};
         int start = 0;
@@ -405,7 +414,7 @@ class ConnectivityBuilder {
 
   const PolyMesh& parent_;
   const MeshTopology& topo_;
-  const Index* parentTwins_;
+  const Index* parentLinks_;
   const uint8_t* split_;
   RefinedConnectivity& out_;
   const ConnectivityOptions& options_;
@@ -417,19 +426,19 @@ class ConnectivityBuilder {
   Index parentCorners_ = 0, splitCount_ = 0, vertexPointBase_ = 0, childCorners_ = 0;
 
   Index *faceVerts_ = nullptr, *cornerFace_ = nullptr, *cornerEdge_ = nullptr, *edgeVerts_ = nullptr,
-        *edgeFaces_ = nullptr, *twinsOut_ = nullptr;
+        *edgeFaces_ = nullptr, *linksOut_ = nullptr;
   Index *vertexFaces_ = nullptr, *vertexCorners_ = nullptr, *vertexEdges_ = nullptr;
 };
 
 }  // namespace
 
-void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
+void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
                                     const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
                                     const ConnectivityOptions& options) {
   if (splitCorner)
-    ConnectivityBuilder<true>(parent, topo, twins, splitCorner->data(), out, options).build();
+    ConnectivityBuilder<true>(parent, topo, links, splitCorner->data(), out, options).build();
   else
-    ConnectivityBuilder<false>(parent, topo, twins, nullptr, out, options).build();
+    ConnectivityBuilder<false>(parent, topo, links, nullptr, out, options).build();
 }
 
 }  // namespace polarview

@@ -16,27 +16,29 @@
 
 namespace polarview {
 
-// Per corner: the corner starting the opposite half-edge of its edge (the neighbouring face's
-// corner at this corner's next vertex), -1 on a boundary edge. Read from the vertex rings. [O(corners)]
-std::vector<Index> cornerTwins(const PolyMesh& mesh, const MeshTopology& topo);
+// Per corner c, two entries: links[2c] = the twin, the corner starting the opposite half-edge of
+// c's edge (the neighbouring face's corner at c's next vertex); links[2c+1] = the corner after the
+// twin in its face (the corner before c in c's vertex ring). Both -1 on a boundary edge. Read from
+// the vertex rings. [O(corners)]
+std::vector<Index> cornerLinks(const PolyMesh& mesh, const MeshTopology& topo);
 
 // One level of refined connectivity.
 struct RefinedConnectivity {
   PolyMesh mesh;                 // faces; points sized F + E + V, values left for the point rules
   MeshTopology topology;         // equal to buildTopology(mesh)
   std::vector<Index> faceParent; // per child face: its parent face
-  std::vector<Index> twins;      // cornerTwins of the child, for the next level (if asked for)
+  std::vector<Index> links;      // cornerLinks of the child, for the next level (if asked for)
 };
 
 struct ConnectivityOptions {
-  bool childTwins = true;  // fill RefinedConnectivity::twins (not needed at the finest level)
+  bool childLinks = true;  // fill RefinedConnectivity::links (not needed at the finest level)
   unsigned threads = 0;    // 0: as many as pay for the mesh size (parallel_for.h); results never depend on it
 };
 
-// One Catmull-Clark step of the connectivity of `parent` (tables `topo`, twins from cornerTwins or
-// the previous step). `splitCorner` (nullptr, or one flag per parent corner) marks the corners whose
+// One Catmull-Clark step of the connectivity of `parent` (tables `topo`, `links` from cornerLinks
+// or the previous step). `splitCorner` (nullptr, or one flag per parent corner) marks the corners whose
 // quads are split along the diagonal V - F. [O(corners)]
-void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& twins,
+void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
                                     const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
                                     const ConnectivityOptions& options = {});
 

@@ -114,9 +114,9 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
-// into two triangles, doubling the polar valence. `twins` holds the parent's corner twins on entry
+// into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
 // and the child's on return (none after the `finest` level).
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& twins) {
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links) {
   std::vector<uint8_t> split;
   if (splitPoleQuads && !parent.poles.empty()) {
     split.assign(parent.mesh.faceVerts.size(), 0);
@@ -126,13 +126,13 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
   }
   RefinedConnectivity connectivity;
   ConnectivityOptions options;
-  options.childTwins = !finest;
-  refineCatmullClarkConnectivity(parent.mesh, parent.topology, twins, split.empty() ? nullptr : &split, connectivity, options);
+  options.childLinks = !finest;
+  refineCatmullClarkConnectivity(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, connectivity, options);
   RefinedLevel child;
   child.mesh = std::move(connectivity.mesh);
   child.topology = std::move(connectivity.topology);
   child.faceParent = std::move(connectivity.faceParent);
-  twins.swap(connectivity.twins);
+  links.swap(connectivity.links);
   for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
   return child;
 }
@@ -340,15 +340,15 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
     plan_->radial = !regions.empty();
     if (plan_->radial) plan_->regions.push_back(std::move(regions));
   }
-  std::vector<Index> twins;  // generic levels: the current finest level's corner twins
-  if (!plan_->radial && options.levels > 0) twins = cornerTwins(levels_[0].mesh, levels_[0].topology);
+  std::vector<Index> links;  // generic levels: the current finest level's corner links
+  if (!plan_->radial && options.levels > 0) links = cornerLinks(levels_[0].mesh, levels_[0].topology);
   for (int m = 1; m <= options.levels; ++m) {
     if (plan_->radial) {
       std::vector<RadialRegion> childRegions;
       levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
       plan_->regions.push_back(std::move(childRegions));
     } else {
-      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, m == options.levels, twins));
+      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, m == options.levels, links));
     }
   }
   updatePositions(base.points);
