@@ -137,5 +137,81 @@ TEST_CASE("seams: the tessellated mushroom has no cracks where patches of differ
   }
 }
 
+// Tessellation vertices the GPU put on side s of `patch` (patch.h edge order), as positions.
+std::vector<glm::dvec3> sideVertices(const std::vector<SurfaceProbe>& probes, int patch, int side) {
+  std::vector<glm::dvec3> out;
+  for (const SurfaceProbe& p : probes) {
+    if (p.patch != patch) continue;
+    const bool on = side == 0 ? p.v == 0.0f : side == 1 ? p.u == 1.0f : side == 2 ? p.v == 1.0f : p.u == 0.0f;
+    if (on) out.push_back(p.position);
+  }
+  return out;
+}
+
+// Every point of `a` has a point of `b` within `tolerance`.
+bool allMatched(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b, double tolerance) {
+  for (const glm::dvec3& p : a) {
+    bool found = false;
+    for (const glm::dvec3& q : b) found = found || glm::length(p - q) <= tolerance;
+    if (!found) return false;
+  }
+  return true;
+}
+
+TEST_CASE("seams: each pole cap sector and its ring-L neighbour get the same vertices on their shared edge") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // Small sets and moderate levels: the probe's patch index is gl_PrimitiveID, which llvmpipe
+  // wraps at 256 patches (and garbles at ~200k probe vertices).
+  struct Case {
+    const char* name;
+    PolyMesh mesh;
+    int levels;
+  };
+  const Case cases[] = {{"globe n=6 L=1", shapes::globe(6, 9), 1}, {"globe n=6 L=2", shapes::globe(6, 9), 2},
+                        {"polar cap n=7 L=2", shapes::polarCap(7, 6, 1.0, 1.5), 2}};
+  for (const Case& c : cases) {
+    const std::vector<Patch> patches = extractMesh(c.mesh, Scheme::C2PS, c.levels);
+    REQUIRE(patches.size() <= 256);
+    renderer->setPatches(patches);
+    const double size = renderer->boundingRadius();
+    // The ring side on each cap's boundary, found on the CPU: the side whose midpoint is the
+    // cap's boundary midpoint (u = 1, v = 1/2).
+    std::vector<std::pair<int, int>> seams;  // (cap, ring patch * 4 + side)
+    for (size_t cap = 0; cap < patches.size(); ++cap) {
+      if (patches[cap].kind != PatchKind::PoleCap) continue;
+      const Point mid = evaluatePatch(patches[cap], 1.0, 0.5).position;
+      static constexpr double kMid[4][2] = {{0.5, 0.0}, {1.0, 0.5}, {0.5, 1.0}, {0.0, 0.5}};
+      for (size_t k = 0; k < patches.size(); ++k)
+        for (int s = 0; s < 4 && patches[k].kind != PatchKind::PoleCap; ++s)
+          if (glm::length(evaluatePatch(patches[k], kMid[s][0], kMid[s][1]).position - mid) < 1e-9 * size)
+            seams.push_back({int(cap), int(4 * k + s)});
+    }
+    CHECK(seams.size() == size_t(std::count_if(patches.begin(), patches.end(),
+                                               [](const Patch& p) { return p.kind == PatchKind::PoleCap; })));
+    for (const auto& [yaw, pitch] : {std::pair{30.0, 50.0}, std::pair{-100.0, 80.0}, std::pair{200.0, 10.0}})
+      for (float pixels : {8.0f, 15.0f}) {
+        ShadingParams shading;
+        shading.tessPixels = pixels;
+        const auto probes = renderer->probeSurface(orbitView(*renderer, yaw, pitch, 1.6, 900, 700), shading);
+        int mismatched = 0, compared = 0;
+        for (const auto& [cap, ringSide] : seams) {
+          const auto capVertices = sideVertices(probes, cap, 1);
+          const auto ringVertices = sideVertices(probes, ringSide / 4, ringSide % 4);
+          if (ringVertices.empty()) continue;  // ring patch outside the view (culled; caps never are)
+          ++compared;
+          mismatched += capVertices.size() != ringVertices.size() ||
+                        !allMatched(capVertices, ringVertices, 1e-5 * size);
+        }
+        CAPTURE(std::string(c.name));
+        CAPTURE(yaw);
+        CAPTURE(pixels);
+        CHECK(compared * 4 > int(seams.size()));
+        CHECK(mismatched == 0);
+      }
+    MESSAGE(std::string(c.name) << ": " << seams.size() << " cap/ring seams, equal vertices in 3 views x 2 densities");
+  }
+}
+
 }  // namespace
 }  // namespace polarview
