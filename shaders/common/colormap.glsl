@@ -4,6 +4,7 @@
 const int kColorMapPaper = 0;
 const int kColorMapCoolWarm = 1;
 const int kColorMapViridis = 2;
+const int kColorMapMagnitude = 3;
 
 // The paper's Fig. 13 map: green at zero, blue negative, red positive (hue 240 -> 120 -> 0 degrees,
 // through cyan and yellow), saturating beyond the range.
@@ -36,8 +37,16 @@ vec3 viridisColorMap(float t) {
                           vec3(0.993, 0.906, 0.144));
 }
 
+// The paper's Figs. 11-12 map: dark blue where the value is near zero, through blue, cyan and
+// yellow to red at |value| = range (sign ignored).
+vec3 magnitudeColorMap(float t) {
+  return fiveStopColorMap(abs(t), vec3(0.0, 0.0, 0.45), vec3(0.0, 0.3, 1.0), vec3(0.0, 0.9, 0.9),
+                          vec3(1.0, 0.9, 0.0), vec3(0.85, 0.0, 0.0));
+}
+
 vec3 curvatureColor(int colormap, float value, float range) {
   float t = clamp(value / max(range, 1e-30), -1.0, 1.0);
+  if (colormap == kColorMapMagnitude) return magnitudeColorMap(t);
   if (colormap == kColorMapCoolWarm) return coolWarmColorMap(t);
   if (colormap == kColorMapViridis) return viridisColorMap(t);
   return paperColorMap(t);

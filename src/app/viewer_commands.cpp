@@ -190,7 +190,8 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
       if (name == "paper") r.colormap = ShadingParams::ColorMap::Paper;
       else if (name == "coolwarm") r.colormap = ShadingParams::ColorMap::CoolWarm;
       else if (name == "viridis") r.colormap = ShadingParams::ColorMap::Viridis;
-      else throw UsageError("unknown --colormap '" + name + "' (paper, coolwarm, viridis)");
+      else if (name == "magnitude") r.colormap = ShadingParams::ColorMap::Magnitude;
+      else throw UsageError("unknown --colormap '" + name + "' (paper, coolwarm, viridis, magnitude)");
     } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
       throw UsageError("unknown option '" + arg + "'");
     } else if (r.input.empty()) {

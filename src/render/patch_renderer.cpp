@@ -178,6 +178,11 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range) {
                                          {0.993f, 0.906f, 0.144f}};
       return fiveStops(0.5f * (t + 1.0f), stops);
     }
+    case ShadingParams::ColorMap::Magnitude: {
+      static const glm::vec3 stops[5] = {{0.0f, 0.0f, 0.45f}, {0.0f, 0.3f, 1.0f}, {0.0f, 0.9f, 0.9f},
+                                         {1.0f, 0.9f, 0.0f}, {0.85f, 0.0f, 0.0f}};
+      return fiveStops(std::abs(t), stops);
+    }
     case ShadingParams::ColorMap::Paper:
     default: {
       // Hue 240 (blue) at -range, 120 (green) at 0, 0 (red) at +range; full saturation.

@@ -26,7 +26,7 @@ class ShaderLibrary;
 // How the surface is coloured.
 struct ShadingParams {
   enum class Mode { Shaded, Gaussian, Mean, Highlight, Reflection };
-  enum class ColorMap { Paper, CoolWarm, Viridis };
+  enum class ColorMap { Paper, CoolWarm, Viridis, Magnitude };  // Magnitude: Figs 11-12, dark blue at 0
   Mode mode = Mode::Shaded;
   ColorMap colormap = ColorMap::Paper;
   float range = 1.0f;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)

@@ -24,6 +24,7 @@ const char* colourMapName(ShadingParams::ColorMap map) {
     case ShadingParams::ColorMap::Paper: return "paper";
     case ShadingParams::ColorMap::CoolWarm: return "coolwarm";
     case ShadingParams::ColorMap::Viridis: return "viridis";
+    case ShadingParams::ColorMap::Magnitude: return "magnitude";
   }
   return "?";
 }
@@ -162,8 +163,9 @@ void drawShadingPanel(ViewerState& state) {
 void drawColourPanel(ViewerState& state) {
   ShadingParams& s = state.shading;
   int map = int(s.colormap);
-  const char* maps[] = {"paper (green 0, blue -, red +)", "coolwarm", "viridis"};
-  if (ImGui::Combo("Colour map (C)", &map, maps, 3)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
+  const char* maps[] = {"paper Fig. 13 (green 0, blue -, red +)", "coolwarm", "viridis",
+                        "magnitude, Figs. 11-12 (dark blue 0)"};
+  if (ImGui::Combo("Colour map (C)", &map, maps, 4)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
   ImGui::Checkbox("Automatic range (A)", &state.colour.automatic);
   if (state.colour.automatic) {
     float percent = state.colour.quantile * 100.0f;
@@ -279,7 +281,7 @@ void handleHotkeys(ViewerState& state) {
   if (keyPressed(GLFW_KEY_M)) state.shading.mode = ShadingParams::Mode::Mean;
   if (keyPressed(GLFW_KEY_H)) state.shading.mode = ShadingParams::Mode::Highlight;
   if (keyPressed(GLFW_KEY_Z)) state.shading.mode = ShadingParams::Mode::Reflection;
-  if (keyPressed(GLFW_KEY_C)) state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 3);
+  if (keyPressed(GLFW_KEY_C)) state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
   if (keyPressed(GLFW_KEY_A)) state.colour.automatic = !state.colour.automatic;
   if (keyPressed(GLFW_KEY_U)) state.display.surface = !state.display.surface;
   if (keyPressed(GLFW_KEY_N)) state.display.controlNet = !state.display.controlNet;
@@ -313,7 +315,7 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"V", "number of views 1..4"},
       {"K", "link / unlink the cameras of the views"},
       {"L / G / M / H / Z", "lit / Gaussian / mean / highlight lines / reflection lines (zebra)"},
-      {"C", "next colour map (paper, coolwarm, viridis)"},
+      {"C", "next colour map (paper, coolwarm, viridis, magnitude)"},
       {"A", "automatic colour range on / off"},
       {"U / N / B / P / W", "limit surface / control net / patch boundaries / pole markers / wireframe"},
       {"X", "screenshot polarview_NNNN.png (colour bar and labels included)"},
