@@ -17,6 +17,7 @@
 #include <cassert>
 
 #include "core/subdiv/parallel_for.h"
+#include "core/subdiv/table_pool.h"
 
 namespace polarview {
 
@@ -52,7 +53,8 @@ struct PartCounts {
   Index boundaryVertices = 0;
 };
 
-// Sizing one output table: reserve (allocation) and resize (first touch) may run on different threads.
+// Sizing one output table: reserve (a pooled buffer or an allocation) and resize (first touch) may
+// run on different threads. Every entry is written later, so a pooled buffer's old contents never show.
 struct TableJob {
   size_t bytes;
   void (*reserve)(void* table, size_t size);
@@ -62,7 +64,7 @@ struct TableJob {
 };
 template <class T>
 TableJob tableJob(std::vector<T>& table, size_t size) {
-  return {size * sizeof(T), [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->reserve(n); },
+  return {size * sizeof(T), [](void* v, size_t n) { reserveFromPool(*static_cast<std::vector<T>*>(v), n); },
           [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->resize(n); }, &table, size};
 }
 
@@ -186,7 +188,7 @@ class ConnectivityBuilder {
                    tableJob(t.vertexEdges, ringEdges), tableJob(t.vertexFaceStart, vertices + 1),
                    tableJob(t.vertexEdgeStart, vertices + 1), tableJob(t.vertexOnBoundary, vertices),
                    tableJob(t.vertexUsed, vertices)};
-    // Allocate on the calling thread (its malloc arena); touch later, on the parts.
+    // Allocate (or take from the pool) on the calling thread, in its malloc arena; touch later, on the parts.
     for (const TableJob& job : faceTables_) job.reserve(job.table, job.size);
     for (const TableJob& job : ringTables_) job.reserve(job.table, job.size);
   }

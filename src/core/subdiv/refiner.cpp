@@ -16,6 +16,7 @@
 #include "core/subdiv/polar_rules.h"
 #include "core/subdiv/refine_topology.h"
 #include "core/subdiv/rts.h"
+#include "core/subdiv/table_pool.h"
 
 namespace polarview {
 
@@ -133,6 +134,7 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
   child.topology = std::move(connectivity.topology);
   child.faceParent = std::move(connectivity.faceParent);
   links.swap(connectivity.links);
+  releaseToPool(connectivity.links);  // the parent's, no longer needed
   for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
   return child;
 }
@@ -354,7 +356,21 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   updatePositions(base.points);
 }
 
-Refinement::~Refinement() = default;
+// The big tables go to the pool for the next refinement (table_pool.h).
+Refinement::~Refinement() {
+  for (RefinedLevel& level : levels_) {
+    releaseToPool(level.mesh.points);
+    releaseToPool(level.mesh.faceStart);
+    releaseToPool(level.mesh.faceVerts);
+    releaseToPool(level.faceParent);
+    MeshTopology& t = level.topology;
+    for (std::vector<Index>* table : {&t.cornerEdge, &t.cornerFace, &t.edgeVerts, &t.edgeFaces, &t.vertexFaceStart,
+                                      &t.vertexFaces, &t.vertexEdgeStart, &t.vertexEdges, &t.vertexCorners})
+      releaseToPool(*table);
+    releaseToPool(t.vertexOnBoundary);
+    releaseToPool(t.vertexUsed);
+  }
+}
 Refinement::Refinement(Refinement&&) noexcept = default;
 Refinement& Refinement::operator=(Refinement&&) noexcept = default;
 
