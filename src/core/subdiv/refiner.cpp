@@ -68,6 +68,28 @@ Index faceWith(const PolyMesh& mesh, const MeshTopology& topo, Index a, Index b,
   return -1;
 }
 
+// The face on edge e that also holds `toward`, a neighbour of e's end `from` in that face, and the
+// face's edge joining the two. False if neither face of e qualifies. [O(face size)]
+bool faceAndEdgeToward(const PolyMesh& mesh, const MeshTopology& topo, Index e, Index from, Index toward, Index& face,
+                       Index& edge) {
+  if (e < 0) return false;
+  for (int side = 0; side < 2; ++side) {
+    const Index f = topo.edgeFaces[2 * e + side];
+    if (f < 0) continue;
+    const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+    for (Index c = begin; c < end; ++c) {
+      if (mesh.faceVerts[c] != from) continue;
+      const Index next = c + 1 == end ? begin : c + 1, prev = c == begin ? end - 1 : c - 1;
+      if (mesh.faceVerts[next] == toward) edge = topo.cornerEdge[c];
+      else if (mesh.faceVerts[prev] == toward) edge = topo.cornerEdge[prev];
+      else break;
+      face = f;
+      return true;
+    }
+  }
+  return false;
+}
+
 // Repeats periodic refinement (5) `times` times: n points -> n 2^times points.
 void refinePeriodically(const Point* link, int n, int times, std::vector<Point>& out, std::vector<Point>& scratch) {
   out.assign(link, link + n);
@@ -93,16 +115,24 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
   child.links.resize(size_t(2 * K) * 2 * n);
   for (int i = 0; i <= K; ++i) {
     for (int j = 0; j < n; ++j) {
+      // The edge along link max(i, 1) from column j; the face beyond it toward the pole side's
+      // neighbour holds the radial edge too, so one edge search serves all three lookups.
+      const Index along = edgeBetween(topo, q(std::max(i, 1), j), q(std::max(i, 1), j + 1));
       if (i >= 1) {  // link 2i
         Index* row = &child.links[size_t(2 * i - 1) * 2 * n];
         row[2 * j] = ccVertexPoint(topo, q(i, j));
-        row[2 * j + 1] = ccEdgePoint(topo, edgeBetween(topo, q(i, j), q(i, j + 1)));
+        row[2 * j + 1] = ccEdgePoint(topo, along);
       }
       if (i < K) {  // link 2i+1
         Index* row = &child.links[size_t(2 * i) * 2 * n];
-        row[2 * j] = ccEdgePoint(topo, edgeBetween(topo, q(i, j), q(i + 1, j)));
-        row[2 * j + 1] = ccFacePoint(topo, i == 0 ? faceWith(mesh, topo, q(1, j), q(1, j + 1), parent.pole)
-                                                  : faceWith(mesh, topo, q(i, j), q(i, j + 1), q(i + 1, j)));
+        const Index from = q(std::max(i, 1), j), toward = i == 0 ? parent.pole : q(i + 1, j);
+        Index face = -1, radial = -1;
+        if (!faceAndEdgeToward(mesh, topo, along, from, toward, face, radial)) {  // not a valid configuration
+          radial = edgeBetween(topo, q(i, j), q(i + 1, j));
+          face = -1;
+        }
+        row[2 * j] = ccEdgePoint(topo, radial);
+        row[2 * j + 1] = ccFacePoint(topo, face);
       }
     }
   }
