@@ -12,6 +12,7 @@
 #include "core/mesh/input_error.h"
 #include "core/subdiv/bps.h"
 #include "core/subdiv/c2ps.h"
+#include "core/subdiv/parallel_for.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_rules.h"
 #include "core/subdiv/refine_topology.h"
@@ -113,29 +114,32 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
   child.valence = 2 * n;
   child.linkCount = 2 * K;
   child.links.resize(size_t(2 * K) * 2 * n);
-  for (int i = 0; i <= K; ++i) {
-    for (int j = 0; j < n; ++j) {
-      // The edge along link max(i, 1) from column j; the face beyond it toward the pole side's
-      // neighbour holds the radial edge too, so one edge search serves all three lookups.
-      const Index along = edgeBetween(topo, q(std::max(i, 1), j), q(std::max(i, 1), j + 1));
-      if (i >= 1) {  // link 2i
-        Index* row = &child.links[size_t(2 * i - 1) * 2 * n];
-        row[2 * j] = ccVertexPoint(topo, q(i, j));
-        row[2 * j + 1] = ccEdgePoint(topo, along);
-      }
-      if (i < K) {  // link 2i+1
-        Index* row = &child.links[size_t(2 * i) * 2 * n];
-        const Index from = q(std::max(i, 1), j), toward = i == 0 ? parent.pole : q(i + 1, j);
-        Index face = -1, radial = -1;
-        if (!faceAndEdgeToward(mesh, topo, along, from, toward, face, radial)) {  // not a valid configuration
-          radial = edgeBetween(topo, q(i, j), q(i + 1, j));
-          face = -1;
+  // Rows are independent: large configurations (a globe's pole spans the mesh) use all threads.
+  parallelRanges(K + 1, threadsFor(size_t(K + 1) * n), [&](Index rowBegin, Index rowEnd) {
+    for (int i = rowBegin; i < rowEnd; ++i) {
+      for (int j = 0; j < n; ++j) {
+        // The edge along link max(i, 1) from column j; the face beyond it toward the pole side's
+        // neighbour holds the radial edge too, so one edge search serves all three lookups.
+        const Index along = edgeBetween(topo, q(std::max(i, 1), j), q(std::max(i, 1), j + 1));
+        if (i >= 1) {  // link 2i
+          Index* row = &child.links[size_t(2 * i - 1) * 2 * n];
+          row[2 * j] = ccVertexPoint(topo, q(i, j));
+          row[2 * j + 1] = ccEdgePoint(topo, along);
         }
-        row[2 * j] = ccEdgePoint(topo, radial);
-        row[2 * j + 1] = ccFacePoint(topo, face);
+        if (i < K) {  // link 2i+1
+          Index* row = &child.links[size_t(2 * i) * 2 * n];
+          const Index from = q(std::max(i, 1), j), toward = i == 0 ? parent.pole : q(i + 1, j);
+          Index face = -1, radial = -1;
+          if (!faceAndEdgeToward(mesh, topo, along, from, toward, face, radial)) {  // not a valid configuration
+            radial = edgeBetween(topo, q(i, j), q(i + 1, j));
+            face = -1;
+          }
+          row[2 * j] = ccEdgePoint(topo, radial);
+          row[2 * j + 1] = ccFacePoint(topo, face);
+        }
       }
     }
-  }
+  });
   child.regularLinks = parent.regularLinks == K ? 2 * K : 2 * parent.regularLinks + 1;
   child.outer = parent.outer;
   child.oppositePole = parent.oppositePole >= 0 ? ccVertexPoint(topo, parent.oppositePole) : -1;
