@@ -51,6 +51,7 @@ struct PartCounts {
   Index boundaryLeaders = 0;
   Index splitRingCorners = 0;  // split corners in the rings of the part's vertices
   Index boundaryVertices = 0;
+  Index splitCorners = 0;      // split corners among the part's faces
 };
 
 // Sizing one output table: reserve (a pooled buffer or an allocation) and resize (first touch) may
@@ -93,11 +94,12 @@ class ConnectivityBuilder {
   void build() {
     parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
     parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
-    countSplits();
     countParts();
+    numberChildFaces();
     sizeTables();
     buildFacesAndEdges();
     buildVertexRings();
+    releaseToPool(firstChildFace_);
   }
 
  private:
@@ -120,14 +122,19 @@ class ConnectivityBuilder {
   Index faceBound(unsigned k) const { return partBound(topo_.faceCount, parts_, k); }
   Index vertexBound(unsigned k) const { return partBound(topo_.vertexCount, parts_, k); }
 
-  void countSplits() {
-    splitCount_ = 0;
+  // Split mode: each parent corner's first child face (corners before it, plus splits before it),
+  // filled by the parts from their split counts.
+  void numberChildFaces() {
     if (!kSplit) return;
+    reserveFromPool(firstChildFace_, size_t(parentCorners_));
     firstChildFace_.resize(parentCorners_);
-    for (Index c = 0; c < parentCorners_; ++c) {
-      firstChildFace_[c] = c + splitCount_;
-      splitCount_ += split_[c] ? 1 : 0;
-    }
+    runParts(parts_, [&](unsigned k) {
+      Index splits = counts_[k].splitCorners;
+      for (Index c = parent_.faceStart[faceBound(k)]; c < parent_.faceStart[faceBound(k + 1)]; ++c) {
+        firstChildFace_[c] = c + splits;
+        splits += split_[c] ? 1 : 0;
+      }
+    });
   }
 
   // Each part counts what it will write; prefix sums turn the counts into start positions.
@@ -143,6 +150,7 @@ class ConnectivityBuilder {
           count.newEdges += (twin < 0 || twinNextOf(c) > c) + (c + 1 != end) + (c == begin) +
                             (twinPrev < 0 || twinPrev > c) + (isSplit(c) ? 1 : 0);
           count.boundaryLeaders += twin < 0;
+          count.splitCorners += isSplit(c) ? 1 : 0;
           count.interiorLeaders += twin > c;
         }
       }
@@ -160,7 +168,9 @@ class ConnectivityBuilder {
       counts_[k].boundaryLeaders += counts_[k - 1].boundaryLeaders;
       counts_[k].splitRingCorners += counts_[k - 1].splitRingCorners;
       counts_[k].boundaryVertices += counts_[k - 1].boundaryVertices;
+      counts_[k].splitCorners += counts_[k - 1].splitCorners;
     }
+    splitCount_ = counts_[parts_].splitCorners;
   }
 
   // Child counts: F + E + V vertices, one face per corner (+1 per split), 2 edges per parent edge

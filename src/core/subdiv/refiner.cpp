@@ -154,6 +154,7 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links) {
   std::vector<uint8_t> split;
   if (splitPoleQuads && !parent.poles.empty()) {
+    reserveFromPool(split, parent.mesh.faceVerts.size());
     split.assign(parent.mesh.faceVerts.size(), 0);
     for (const PolarConfig& pole : parent.poles)
       for (Index k = parent.topology.vertexFaceStart[pole.pole]; k < parent.topology.vertexFaceStart[pole.pole + 1]; ++k)
@@ -169,6 +170,7 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
   child.faceParent = std::move(connectivity.faceParent);
   links.swap(connectivity.links);
   releaseToPool(connectivity.links);  // the parent's, no longer needed
+  releaseToPool(split);
   for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
   return child;
 }
