@@ -1,0 +1,102 @@
+// Table pool: recycled buffers are reused, bounded, and a refinement built on recycled (stale)
+// tables equals one built on fresh memory, entry for entry and bit for bit.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "core/mesh/shapes.h"
+#include "core/subdiv/refiner.h"
+#include "core/subdiv/table_pool.h"
+
+using namespace polarview;
+
+namespace {
+
+// Everything a level holds that the pool may recycle.
+void requireSameLevel(const RefinedLevel& a, const RefinedLevel& b) {
+  REQUIRE(a.mesh.points.size() == b.mesh.points.size());
+  for (size_t v = 0; v < a.mesh.points.size(); ++v) REQUIRE(a.mesh.points[v] == b.mesh.points[v]);
+  CHECK(a.mesh.faceStart == b.mesh.faceStart);
+  CHECK(a.mesh.faceVerts == b.mesh.faceVerts);
+  CHECK(a.faceParent == b.faceParent);
+  const MeshTopology &s = a.topology, &t = b.topology;
+  CHECK(s.cornerEdge == t.cornerEdge);
+  CHECK(s.cornerFace == t.cornerFace);
+  CHECK(s.edgeVerts == t.edgeVerts);
+  CHECK(s.edgeFaces == t.edgeFaces);
+  CHECK(s.vertexFaceStart == t.vertexFaceStart);
+  CHECK(s.vertexFaces == t.vertexFaces);
+  CHECK(s.vertexEdgeStart == t.vertexEdgeStart);
+  CHECK(s.vertexEdges == t.vertexEdges);
+  CHECK(s.vertexCorners == t.vertexCorners);
+  CHECK(s.vertexOnBoundary == t.vertexOnBoundary);
+  CHECK(s.vertexUsed == t.vertexUsed);
+}
+
+}  // namespace
+
+TEST_CASE("table pool: a released buffer comes back for a request it fits, and clearing empties the pool") {
+  clearTablePool();
+  std::vector<Index> table(size_t(1) << 20, 7);  // 4 MiB
+  const Index* buffer = table.data();
+  releaseToPool(table);
+  CHECK(table.empty());
+  CHECK(pooledBytes() == (size_t(1) << 20) * sizeof(Index));
+
+  std::vector<Index> small;
+  reserveFromPool(small, size_t(1) << 21);  // too big for the pooled buffer: fresh allocation
+  CHECK(small.capacity() >= (size_t(1) << 21));
+  CHECK(pooledBytes() == (size_t(1) << 20) * sizeof(Index));
+
+  std::vector<Index> reused;
+  reserveFromPool(reused, 300000);
+  CHECK(reused.data() == buffer);
+  CHECK(reused.capacity() >= 300000);
+  CHECK(pooledBytes() == 0);
+
+  releaseToPool(reused);
+  std::vector<uint8_t> tiny(100);
+  releaseToPool(tiny);  // below kMinPooledBytes: freed, not pooled
+  CHECK(pooledBytes() == (size_t(1) << 20) * sizeof(Index));
+  clearTablePool();
+  CHECK(pooledBytes() == 0);
+}
+
+TEST_CASE("table pool: never holds more than kMaxPooledBytes") {
+  clearTablePool();
+  for (int i = 0; i < 25; ++i) {
+    std::vector<Point> table(size_t(2) << 20);  // 48 MiB each, 1.2 GiB offered in all
+    releaseToPool(table);
+    CHECK(pooledBytes() <= kMaxPooledBytes);
+  }
+  CHECK(pooledBytes() > kMaxPooledBytes / 2);
+  clearTablePool();
+}
+
+TEST_CASE("refinements built on recycled tables equal those built on fresh memory, for every scheme") {
+  // Large enough for the threaded passes (> 32k corners at the finer levels).
+  const std::pair<PolyMesh, int> meshes[] = {{shapes::mushroom(12), 6}, {shapes::globe(24, 20), 4}, {shapes::torus(40, 30), 4}};
+  for (const auto& [base, levels] : meshes) {
+    for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
+      CAPTURE(std::string(schemeName(scheme)));
+      CAPTURE(base.faceCount());
+      const RefineOptions options{scheme, levels, false};
+      clearTablePool();
+      const Refinement fresh(base, options);
+      {
+        // Fill the pool with stale tables of the right sizes (another refinement of other points).
+        PolyMesh moved = base;
+        for (Point& p : moved.points) p = p * 3.0 + Point(1.0, -2.0, 0.5);
+        Refinement stale(moved, options);
+      }
+      if (fresh.finest().mesh.faceVerts.size() * sizeof(Index) >= kMinPooledBytes) CHECK(pooledBytes() > 0);
+      const Refinement recycled(base, options);
+      REQUIRE(recycled.levelCount() == fresh.levelCount());
+      for (int m = 0; m < fresh.levelCount(); ++m) {
+        CAPTURE(m);
+        requireSameLevel(recycled.level(m), fresh.level(m));
+      }
+    }
+  }
+  clearTablePool();
+}
