@@ -1,7 +1,8 @@
-// Table pool: recycled buffers are reused, bounded, and a refinement built on recycled (stale)
+// Table pool: recycled buffers are reused, bounded, and a refinement built on recycled (poisoned)
 // tables equals one built on fresh memory, entry for entry and bit for bit.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 
 #include "core/mesh/shapes.h"
@@ -83,11 +84,23 @@ TEST_CASE("refinements built on recycled tables equal those built on fresh memor
       const RefineOptions options{scheme, levels, false};
       clearTablePool();
       const Refinement fresh(base, options);
-      {
-        // Fill the pool with stale tables of the right sizes (another refinement of other points).
-        PolyMesh moved = base;
-        for (Point& p : moved.points) p = p * 3.0 + Point(1.0, -2.0, 0.5);
-        Refinement stale(moved, options);
+      // Fill the pool with poisoned tables of exactly the sizes the refinement asks for, so any entry
+      // it failed to write would show.
+      for (int m = 0; m < fresh.levelCount(); ++m) {
+        const RefinedLevel& level = fresh.level(m);
+        const MeshTopology& t = level.topology;
+        for (const std::vector<Index>* table : {&level.mesh.faceStart, &level.mesh.faceVerts, &level.faceParent, &t.cornerEdge,
+                                                &t.cornerFace, &t.edgeVerts, &t.edgeFaces, &t.vertexFaceStart, &t.vertexFaces,
+                                                &t.vertexEdgeStart, &t.vertexEdges, &t.vertexCorners}) {
+          std::vector<Index> poisoned(table->size(), Index(-777));
+          releaseToPool(poisoned);
+        }
+        for (const std::vector<uint8_t>* flags : {&t.vertexOnBoundary, &t.vertexUsed}) {
+          std::vector<uint8_t> poisoned(flags->size(), 0xAB);
+          releaseToPool(poisoned);
+        }
+        std::vector<Point> poisonedPoints(level.mesh.points.size(), Point(std::nan("")));
+        releaseToPool(poisonedPoints);
       }
       if (fresh.finest().mesh.faceVerts.size() * sizeof(Index) >= kMinPooledBytes) CHECK(pooledBytes() > 0);
       const Refinement recycled(base, options);
