@@ -18,7 +18,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // [SECTION] vertex and face classification
 
-enum class VertexClass : uint8_t { Irregular, Interior, Boundary };
+enum class VertexClass : uint8_t { Irregular, Interior, Boundary, Unknown };
 
 // Interior valence 4 with four quads, or boundary valence 3 with two quads (patch_extraction.h).
 VertexClass classifyVertex(const PolyMesh& mesh, const MeshTopology& topo, Index v) {
@@ -34,18 +34,29 @@ struct LevelClasses {
   std::vector<uint8_t> faceRegular;  // 1 when the face gets a B-spline patch at this level
 };
 
-LevelClasses classifyLevel(const RefinedLevel& level) {
+// Children of a regular face are regular (the vertex, edge and face points of an all-quad regular
+// neighbourhood keep valence 4, or 3 on the boundary), so only the other faces' vertices are
+// classified, on demand.
+LevelClasses classifyLevel(const RefinedLevel& level, const LevelClasses& parent) {
   const PolyMesh& mesh = level.mesh;
   const MeshTopology& topo = level.topology;
+  const bool inherit = !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
   LevelClasses classes;
-  classes.vertex.resize(mesh.vertexCount());
-  for (Index v = 0; v < mesh.vertexCount(); ++v) classes.vertex[v] = classifyVertex(mesh, topo, v);
+  classes.vertex.assign(mesh.vertexCount(), VertexClass::Unknown);
   classes.faceRegular.assign(mesh.faceCount(), 0);
   for (Index f = 0; f < mesh.faceCount(); ++f) {
+    if (inherit && parent.faceRegular[level.faceParent[f]]) {
+      classes.faceRegular[f] = 1;
+      continue;
+    }
     if (mesh.faceSize(f) != 4) continue;
     const Index* loop = mesh.face(f);
     bool regular = true;
-    for (int c = 0; c < 4; ++c) regular = regular && classes.vertex[loop[c]] != VertexClass::Irregular;
+    for (int c = 0; c < 4 && regular; ++c) {
+      VertexClass& vertex = classes.vertex[loop[c]];
+      if (vertex == VertexClass::Unknown) vertex = classifyVertex(mesh, topo, loop[c]);
+      regular = vertex != VertexClass::Irregular;
+    }
     classes.faceRegular[f] = regular;
   }
   return classes;
@@ -430,7 +441,7 @@ PatchSet extractPatches(const Refinement& refinement) {
     const RefinedLevel& level = refinement.level(m);
     const PolyMesh& mesh = level.mesh;
     const MeshTopology& topo = level.topology;
-    LevelClasses classes = classifyLevel(level);
+    LevelClasses classes = classifyLevel(level, parentClasses);
     const RingMembership rings = markRingLinks(level);
     cover[m].assign(mesh.faceCount(), -1);
 
