@@ -228,3 +228,23 @@ TEST_CASE("corner links name the opposite half-edge of each interior edge and it
     checkLinksAreOppositeHalfEdges(mesh, topo, cornerLinks(mesh, topo));
   }
 }
+
+TEST_CASE("Catmull-Clark points are bit-identical on 1, 2, 3 and 7 threads") {
+  for (const auto& [name, base] : testMeshes()) {
+    CAPTURE(name);
+    PolyMesh mesh = base;
+    for (int level = 1; level <= 3; ++level) {
+      const MeshTopology topo = buildTopology(mesh);
+      std::vector<Point> serial(ccChildVertexCount(topo));
+      computeCatmullClarkPoints(topo, mesh, mesh.points.data(), serial.data(), 1);
+      for (unsigned threads : {2u, 3u, 7u}) {
+        std::vector<Point> parallel(serial.size(), Point(-1.0));
+        computeCatmullClarkPoints(topo, mesh, mesh.points.data(), parallel.data(), threads);
+        for (size_t v = 0; v < serial.size(); ++v) REQUIRE(parallel[v] == serial[v]);
+      }
+      PolyMesh child = refineCatmullClarkTopology(mesh, topo, nullptr);
+      child.points = serial;
+      mesh = std::move(child);
+    }
+  }
+}

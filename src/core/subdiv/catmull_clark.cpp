@@ -125,13 +125,13 @@ void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* 
 }  // namespace
 
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
-                               Point* childPoints) {
+                               Point* childPoints, unsigned threads) {
   Point* facePoints = childPoints;
   Point* edgePoints = childPoints + topo.faceCount;
   Point* vertexPoints = childPoints + topo.faceCount + topo.edgeCount;
   // Each point depends only on parent points and face points, so ranges run on separate threads
   // with results independent of the split; face points first, as the others read them.
-  const unsigned parts = threadsFor(parent.faceVerts.size());
+  const unsigned parts = threads ? threads : threadsFor(parent.faceVerts.size());
   parallelRanges(topo.faceCount, parts,
                  [&](Index begin, Index end) { computeFacePoints(parent, parentPoints, facePoints, begin, end); });
   runParts(parts, [&](unsigned k) {

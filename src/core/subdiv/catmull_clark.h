@@ -29,9 +29,10 @@ PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& 
 
 // Fills all F + E + V child points from the parent points (childPoints must hold
 // ccChildVertexCount(topo) points). Vertices no face uses are copied through. No allocation but the
-// threads it starts on large meshes (results do not depend on them). [O(corners)]
+// threads it starts on large meshes: `threads` of them, or (0) as many as pay (parallel_for.h);
+// the results never depend on them. [O(corners)]
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
-                               Point* childPoints);
+                               Point* childPoints, unsigned threads = 0);
 
 // One full step: topology and points. [O(corners)]
 PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent = nullptr);
