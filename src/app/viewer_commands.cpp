@@ -204,6 +204,23 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
   return r;
 }
 
+// Loads the model (the default one when `input` is empty), then opens the window: a bad file
+// fails with its one-line error before any window or output exists.
+bool openModelAndWindow(ViewerApp& app, const std::string& input) {
+  if (input.empty()) {
+    app.loadDefaultModel();
+  } else if (!app.loadFile(input)) {
+    std::cerr << "polarview: " << app.state().file.error << "\n";
+    return false;
+  }
+  std::string error;
+  if (!app.init(&error)) {
+    std::cerr << "polarview: " << error << "\n";
+    return false;
+  }
+  return true;
+}
+
 int renderWithApp(const RenderRequest& r) {
   ViewerOptions options;
   options.width = std::min(r.width, 1920);
@@ -213,19 +230,7 @@ int renderWithApp(const RenderRequest& r) {
   options.vsync = false;
   ViewerApp app(options);
   ViewerState& state = app.state();
-
-  // The model first: a bad file fails before any window or output exists.
-  if (r.input.empty()) {
-    app.loadDefaultModel();
-  } else if (!app.loadFile(r.input)) {
-    std::cerr << "polarview: " << state.file.error << "\n";
-    return 1;
-  }
-  std::string error;
-  if (!app.init(&error)) {
-    std::cerr << "polarview: " << error << "\n";
-    return 1;
-  }
+  if (!openModelAndWindow(app, r.input)) return 1;
 
   // Views, shading, colour range and camera as asked.
   setViews(state, r.schemes, r.level);
@@ -247,6 +252,7 @@ int renderWithApp(const RenderRequest& r) {
   app.frameModel(double(firstView.w) / double(firstView.h));
   if (r.preset) state.sharedCamera.applyPreset(*r.preset);
   if (!r.cameraJson.empty()) {
+    std::string error;
     std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
     if (!camera) {
       std::cerr << "polarview: render: --camera: " << error << "\n" << kRenderUsage;
@@ -322,17 +328,7 @@ int viewWithApp(const ViewRequest& r) {
   options.vsync = r.frames == 0;
   ViewerApp app(options);
   ViewerState& state = app.state();
-  if (r.input.empty()) {
-    app.loadDefaultModel();
-  } else if (!app.loadFile(r.input)) {
-    std::cerr << "polarview: " << state.file.error << "\n";
-    return 1;
-  }
-  std::string error;
-  if (!app.init(&error)) {
-    std::cerr << "polarview: " << error << "\n";
-    return 1;
-  }
+  if (!openModelAndWindow(app, r.input)) return 1;
   if (!r.schemes.empty()) setViews(state, r.schemes, r.level.value_or(state.views[0].level));
   else if (r.level) requestLevel(state, *r.level);
   app.frameModel();

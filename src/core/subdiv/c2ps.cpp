@@ -50,7 +50,7 @@ double weightD(double g, int n) { return -std::cos(kTwoPi * g / n) / (6.0 * n); 
 
 Point refinePole(const PolarGrid& grid) {
   checkGrid(grid, 1, "refinePole");
-  return 0.75 * grid.pole + 0.25 * linkMean(&grid.q(1, 0), grid.n);
+  return polarVertexRule(grid.pole, &grid.q(1, 0), grid.n);
 }
 
 void refineLink1(const PolarGrid& grid, Point* out) {

@@ -36,6 +36,8 @@ Point LinkFourierSums::trigonometricPart(const std::array<double, kMaxLinkFreque
   return sum;
 }
 
+Point polarVertexRule(const Point& pole, const Point* link1, int n) { return 0.75 * pole + 0.25 * linkMean(link1, n); }
+
 Point linkMean(const Point* link, int n) {
   Point sum{0.0};
   for (int h = 0; h < n; ++h) sum += link[h];

@@ -33,6 +33,9 @@ struct LinkFourierSums {
                           const std::array<double, 2>& unit) const;
 };
 
+// Paper (1) = (9): the polar vertex moves to 3/4 q00 + 1/4 M (C2PS and RTS alike). [O(n)]
+Point polarVertexRule(const Point& pole, const Point* link1, int n);
+
 // M = (1/n) sum_h q_h. [O(n)]
 Point linkMean(const Point* link, int n);
 

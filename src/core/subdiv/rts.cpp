@@ -40,7 +40,7 @@ void link2FromSums(const PolarGrid& grid, const LinkFourierSums& sums, bool unif
 
 Point refinePole(const PolarGrid& grid) {
   checkGrid(grid, 1, "refinePole");
-  return 0.75 * grid.pole + 0.25 * linkMean(&grid.q(1, 0), grid.n);
+  return polarVertexRule(grid.pole, &grid.q(1, 0), grid.n);
 }
 
 void refineLink1(const PolarGrid& grid, Point* out) {
