@@ -101,6 +101,21 @@ TEST_CASE("obj: negative indices are relative to the vertices read so far") {
   CHECK(std::vector<Index>(m.face(2), m.face(2) + 3) == std::vector<Index>{0, 3, 2});
 }
 
+TEST_CASE("obj: a trailing backslash continues a statement, and errors name its first line") {
+  PolyMesh m = parseObjText("v 0 0 0\nv 1 0 \\\n 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\ \r\n 3 4\nf 1 4 3\n", "cont.obj");
+  REQUIRE(m.faceCount() == 2);
+  CHECK(m.faceSize(0) == 4);
+  CHECK(m.points[1] == Point(1, 0, 0));
+  CHECK(m.faceLine[0] == 6);
+  CHECK(m.faceLine[1] == 8);
+  try {
+    parseObjText("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 \\\n 9\n", "cont.obj");
+    FAIL("expected an InputError");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("cont.obj:4:") != std::string::npos);
+  }
+}
+
 TEST_CASE("obj: each kind of bad input names its line") {
   using namespace std::string_literals;  // "..."s keeps embedded NUL bytes
   struct Bad {

@@ -35,6 +35,14 @@ bool isIgnoredStatement(std::string_view keyword) {
   return std::find(std::begin(kIgnored), std::end(kIgnored), keyword) != std::end(kIgnored);
 }
 
+// Whether a line ends (before trailing blanks and a CR) with a continuation backslash.
+bool continues(std::string_view line) {
+  size_t end = line.find_last_not_of(" \t\r");
+  return end != std::string_view::npos && line[end] == '\\';
+}
+// The line up to its continuation backslash.
+std::string_view withoutContinuation(std::string_view line) { return line.substr(0, line.find_last_of('\\')); }
+
 // Splits one line into whitespace-separated tokens without allocating.
 class Tokens {
  public:
@@ -72,12 +80,29 @@ class ObjParser {
     size_t pos = 0;
     int lineNumber = 0;
     bool anyContent = false;
+    std::string joined;
     while (pos < text.size()) {
       size_t end = text.find('\n', pos);
       if (end == std::string_view::npos) end = text.size();
       ++lineNumber;
       std::string_view line = text.substr(pos, end - pos);
       pos = end + 1;
+      // A trailing backslash continues the statement on the next line (OBJ spec); errors name the
+      // statement's first line.
+      const int statementLine = lineNumber;
+      if (continues(line)) {
+        joined.clear();
+        while (continues(line) && pos < text.size()) {
+          joined.append(withoutContinuation(line)).push_back(' ');
+          end = text.find('\n', pos);
+          if (end == std::string_view::npos) end = text.size();
+          ++lineNumber;
+          line = text.substr(pos, end - pos);
+          pos = end + 1;
+        }
+        joined.append(continues(line) ? withoutContinuation(line) : line);
+        line = joined;
+      }
       size_t hash = line.find('#');  // comments run to the end of the line
       if (hash != std::string_view::npos) line = line.substr(0, hash);
       Tokens tokens(line);
@@ -85,9 +110,9 @@ class ObjParser {
       if (keyword.empty()) continue;
       anyContent = true;
       if (keyword == "v") {
-        readVertex(tokens, lineNumber);
+        readVertex(tokens, statementLine);
       } else if (keyword == "f" || keyword == "fo") {
-        readFace(tokens, lineNumber);
+        readFace(tokens, statementLine);
       } else if (keyword == "l") {
         ++polylines_;
       } else if (keyword == "p") {
@@ -95,7 +120,7 @@ class ObjParser {
       } else if (keyword == "t") {
         ++tags_;
       } else if (!isIgnoredStatement(keyword)) {
-        fail(lineNumber, "unknown statement " + quoted(keyword));
+        fail(statementLine, "unknown statement " + quoted(keyword));
       }
     }
     if (!anyContent) fail(0, "empty file");
