@@ -23,7 +23,7 @@ struct UsageError : std::runtime_error {
 const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u]] [--level L] "
     "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --percentile P] [--camera JSON] "
-    "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis] [--supersample 1|2|4] [--transparent] "
+    "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
     "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
