@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 
 #include "core/mesh/input_error.h"
 #include "core/subdiv/bps.h"
@@ -413,6 +414,9 @@ Refinement& Refinement::operator=(Refinement&&) noexcept = default;
 bool Refinement::radialOnly() const { return plan_->radial; }
 
 void Refinement::updatePositions(const std::vector<Point>& basePoints) {
+  if (basePoints.size() != levels_[0].mesh.points.size())
+    throw std::invalid_argument("updatePositions: " + std::to_string(basePoints.size()) + " points for a mesh of " +
+                                std::to_string(levels_[0].mesh.points.size()));
   levels_[0].mesh.points = basePoints;
   const Scheme scheme = options_.scheme;
   const bool polar = scheme != Scheme::CatmullClark;

@@ -56,7 +56,8 @@ class Refinement {
   // True when RTS/BPS refined the whole mesh radially (valence fixed; caps and globes).
   bool radialOnly() const;
 
-  // Recomputes every level's points from new base points (same count as the base). [O(output)]
+  // Recomputes every level's points from new base points (same count as the base, else
+  // std::invalid_argument). [O(output)]
   void updatePositions(const std::vector<Point>& basePoints);
 
  private:
