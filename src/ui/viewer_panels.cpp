@@ -154,6 +154,15 @@ void drawShadingPanel(ViewerState& state) {
   s.mode = kShadeModes[mode];
   if (s.mode == ShadingParams::Mode::Highlight || s.mode == ShadingParams::Mode::Reflection) {
     if (ImGui::SliderFloat3("Light direction", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
+    if (ImGui::SliderFloat3("Light plane normal", &s.highlightPlaneNormal.x, -1.0f, 1.0f, "%.2f"))
+      normaliseDirection(s.highlightPlaneNormal);
+    // The light plane facing the active view (lines along screen y) puts stripes wherever the
+    // viewer looks; the lines then stay fixed to the model while the camera moves on.
+    if (ImGui::Button("Light plane facing the view")) {
+      const OrbitCamera& camera = state.camera(state.activeView);
+      s.highlightPlaneNormal = glm::vec3(-camera.forward());
+      s.highlightDir = glm::vec3(camera.up());
+    }
     ImGui::SliderFloat("Line spacing", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("Line width", &s.highlightWidth, 0.02f, 0.98f, "%.2f");
   }
