@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
 
@@ -122,17 +123,7 @@ PolyMesh closedMixedMesh() {
   return m;
 }
 
-PolyMesh cube() {
-  PolyMesh m;
-  for (int i = 0; i < 8; ++i) m.points.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  m.addFace({0, 2, 3, 1});
-  m.addFace({4, 5, 7, 6});
-  m.addFace({0, 1, 5, 4});
-  m.addFace({2, 6, 7, 3});
-  m.addFace({0, 4, 6, 2});
-  m.addFace({1, 3, 7, 5});
-  return m;
-}
+using polarview::shapes::cube;  // the unit cube, eight valence-3 vertices
 
 // Two hexagons stacked on a 3 x 3 point grid: the middle vertex is interior with valence 2.
 PolyMesh stackedHexagons() {

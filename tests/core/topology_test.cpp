@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "core/mesh/shapes.h"
 #include "core/mesh/input_error.h"
 #include "core/mesh/topology.h"
 
@@ -32,17 +33,7 @@ PolyMesh quadGrid(int nu, int nv, bool wrapU, bool wrapV) {
   return m;
 }
 
-PolyMesh cube() {
-  PolyMesh m;
-  for (int i = 0; i < 8; ++i) m.points.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  m.addFace({0, 2, 3, 1});
-  m.addFace({4, 5, 7, 6});
-  m.addFace({0, 1, 5, 4});
-  m.addFace({2, 6, 7, 3});
-  m.addFace({0, 4, 6, 2});
-  m.addFace({1, 3, 7, 5});
-  return m;
-}
+using polarview::shapes::cube;  // the unit cube, eight valence-3 vertices
 
 // UV sphere: n-valent triangle fans at both poles, `rings` latitude rings of n vertices.
 PolyMesh uvSphere(int n, int rings) {

@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
 
@@ -36,17 +37,7 @@ struct OsdPoint {
 
 // [SECTION] Test meshes, each generated here
 
-PolyMesh cube() {
-  PolyMesh m;
-  for (int i = 0; i < 8; ++i) m.points.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  m.addFace({0, 2, 3, 1});
-  m.addFace({4, 5, 7, 6});
-  m.addFace({0, 1, 5, 4});
-  m.addFace({2, 6, 7, 3});
-  m.addFace({0, 4, 6, 2});
-  m.addFace({1, 3, 7, 5});
-  return m;
-}
+using polarview::shapes::cube;  // the unit cube, eight valence-3 vertices
 
 // An nu x nv grid of cells, open or wrapped into a torus, whose cells are randomly made into quads,
 // triangle pairs, 4-triangle fans around a centre vertex, hexagons (two cells merged) or a pentagon
