@@ -53,6 +53,28 @@ void OffscreenTarget::destroy() {
   fbo_ = color_ = depth_ = 0;
 }
 
+namespace {
+
+// Creates a framebuffer with a colour renderbuffer of `colorFormat` and a 24-bit depth renderbuffer;
+// returns the completeness status (the objects are created either way, for the caller to delete).
+GLenum createRenderbufferTarget(GLenum colorFormat, int width, int height, unsigned& fbo, unsigned& color, unsigned& depth) {
+  glGenFramebuffers(1, &fbo);
+  glGenRenderbuffers(1, &color);
+  glGenRenderbuffers(1, &depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, color);
+  glRenderbufferStorage(GL_RENDERBUFFER, colorFormat, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return status;
+}
+
+}  // namespace
+
 bool OffscreenTarget::create(int width, int height, int supersample, std::string* error) {
   destroy();
   if (width <= 0 || height <= 0 || !(supersample == 1 || supersample == 2 || supersample == 4)) {
@@ -62,18 +84,7 @@ bool OffscreenTarget::create(int width, int height, int supersample, std::string
   width_ = width;
   height_ = height;
   supersample_ = supersample;
-  glGenFramebuffers(1, &fbo_);
-  glGenRenderbuffers(1, &color_);
-  glGenRenderbuffers(1, &depth_);
-  glBindRenderbuffer(GL_RENDERBUFFER, color_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, renderWidth(), renderHeight());
-  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, renderWidth(), renderHeight());
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum status = createRenderbufferTarget(GL_RGBA8, renderWidth(), renderHeight(), fbo_, color_, depth_);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     if (error) *error = "OffscreenTarget: framebuffer incomplete (" + std::to_string(status) + ")";
     destroy();
@@ -131,18 +142,7 @@ FloatTarget::~FloatTarget() {
 bool FloatTarget::create(int width, int height, std::string* error) {
   width_ = width;
   height_ = height;
-  glGenFramebuffers(1, &fbo_);
-  glGenRenderbuffers(1, &color_);
-  glGenRenderbuffers(1, &depth_);
-  glBindRenderbuffer(GL_RENDERBUFFER, color_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum status = createRenderbufferTarget(GL_RGBA32F, width, height, fbo_, color_, depth_);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     if (error) *error = "FloatTarget: framebuffer incomplete";
     return false;
