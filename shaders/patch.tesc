@@ -15,8 +15,10 @@ in vec3 vc_controlPoint[];
 // edges 0..3 (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) as signed 4-bit fields at
 // bits 16 + 4s. The evaluation stages get the plain kind. y: ring index.
 flat in ivec2 vc_kindRing[];
+flat in int vc_patchIndex[];
 out vec3 tc_controlPoint[];
 flat out ivec2 tc_kindRing[];
+patch out int tc_patchIndex;
 
 uniform mat4 u_modelViewProjection;  // model = translation by the model centre
 uniform vec2 u_viewportSize;         // pixels
@@ -25,11 +27,14 @@ uniform float u_maxTessLevel;
 uniform float u_fixedTessLevel;      // > 0: use this level everywhere (probes, comparisons)
 uniform int u_transitionDensity;     // k: 2^k segments per level-0 parameter unit on T-junctions
 
+// Projected points are clamped to a frame half a viewport beyond each border, so an edge's level
+// follows its length on and near the screen: in close-ups, the parts of patches beside or behind
+// the eye (w <= 0 is clamped to a tiny w, then to the frame) do not all go to the highest level.
+// The clamp is per point, so two patches sharing an edge still measure it alike.
 vec2 toPixels(vec3 p) {
   vec4 clip = u_modelViewProjection * vec4(p, 1.0);
-  // Points behind the eye: a large but finite screen distance (the edge gets a high level).
   float w = max(clip.w, 1e-4);
-  return (clip.xy / w) * 0.5 * u_viewportSize;
+  return clamp(clip.xy / w, vec2(-2.0), vec2(2.0)) * 0.5 * u_viewportSize;
 }
 
 // Edge curve with B-spline control points e0..e3 over its middle span -> projected length of its
@@ -83,6 +88,7 @@ void main() {
   int kind = kindLevelJumps & 0xFF, level = (kindLevelJumps >> 8) & 0xFF;
   tc_kindRing[gl_InvocationID] = ivec2(kind, vc_kindRing[gl_InvocationID].y);
   if (gl_InvocationID != 0) return;
+  tc_patchIndex = vc_patchIndex[0];
 
   // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
   float outer0, outer1, outer2, outer3;

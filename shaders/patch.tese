@@ -15,6 +15,7 @@ out SurfaceData { SURFACE_DATA_MEMBERS } te_out;
 
 in vec3 tc_controlPoint[];
 flat in ivec2 tc_kindRing[];
+patch in int tc_patchIndex;
 uniform mat4 u_modelViewProjection;
 
 void main() {
@@ -24,7 +25,7 @@ void main() {
   SurfacePoint s = evaluatePatchLocally(cp, tc_kindRing[0].x, u, v);
 #ifdef PROBE
   probe_uvKH = vec4(u, v, s.gaussian, s.mean);
-  probe_positionPatch = vec4(s.position, float(gl_PrimitiveID));
+  probe_positionPatch = vec4(s.position, float(tc_patchIndex));
 #else
   te_out.position = s.position;
   te_out.normal = s.normal;

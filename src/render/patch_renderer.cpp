@@ -99,6 +99,35 @@ ProgramSpec overlaySpec() {
   return spec;
 }
 
+// Mesa's draw module (llvmpipe, softpipe) numbers the tessellated vertices of one draw with 16
+// bits: a draw whose patches yield more than 65535 vertices loses or scrambles whole patches (seen
+// as wedges missing in close-ups). Patches are therefore drawn in runs that stay below that even
+// when every edge reaches `maxLevel` ((level + 1)^2 vertices a quad patch); one glMultiDrawArrays
+// call, so GPUs that need no split pay nothing measurable.
+constexpr int kMaxVerticesPerDraw = 65535;
+
+int patchesPerRun(int maxLevel) {
+  const int perPatch = (std::clamp(maxLevel, 1, 64) + 1) * (std::clamp(maxLevel, 1, 64) + 1);
+  return std::max(1, kMaxVerticesPerDraw / perPatch);
+}
+
+void drawPatchRuns(int patchCount, int maxLevel) {
+  const int run = patchesPerRun(maxLevel);
+  std::vector<GLint> firsts;
+  std::vector<GLsizei> counts;
+  for (int first = 0; first < patchCount; first += run) {
+    firsts.push_back(first * kControlPointsPerPatch);
+    counts.push_back(std::min(run, patchCount - first) * kControlPointsPerPatch);
+  }
+  glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
+}
+
+// The largest tessellation level patch.tesc can emit with these settings: T-junction edges reach
+// 2^6 whatever the adaptive clamp is.
+int largestTessLevel(const ShadingParams& shading) {
+  return shading.fixedTessLevel > 0 ? std::min(shading.fixedTessLevel, 64) : 64;
+}
+
 const char* const kProbeProgram = "patch_probe";
 const char* const kBoundaryProgram = "patch_boundary";
 const char* const kOverlayProgram = "overlay";
@@ -451,7 +480,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     // Push the surface back a little so boundary curves and markers on it stay visible.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 2.0f);
-    glDrawArrays(GL_PATCHES, 0, patchVertices);
+    drawPatchRuns(patchCount_, largestTessLevel(shading));
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
@@ -534,7 +563,7 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
   glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_PATCHES, 0, patchCount_ * kControlPointsPerPatch);
+  drawPatchRuns(patchCount_, largestTessLevel(shading));
   glEndTransformFeedback();
   glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   glDisable(GL_RASTERIZER_DISCARD);
