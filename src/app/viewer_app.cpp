@@ -268,13 +268,16 @@ void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
   if (app) app->dropFiles(count, paths);
 }
 
+ScreenRect ViewerApp::viewArea() const {
+  int width = options_.width, height = options_.height;
+  if (window_) glfwGetWindowSize(window_, &width, &height);
+  const float panel = std::min(panelColumnWidth(state_), float(width) * 0.5f);
+  return ScreenRect{panel, 0, std::max(float(width) - panel, 1.0f), std::max(float(height), 1.0f)};
+}
+
 void ViewerApp::frameModel(double aspect) {
   if (aspect <= 0.0) {
-    int width = options_.width, height = options_.height;
-    if (window_) glfwGetWindowSize(window_, &width, &height);
-    float panel = panelColumnWidth(state_);
-    ScreenRect frame{panel, 0, std::max(float(width) - panel, 1.0f), float(height)};
-    ScreenRect view = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f)).front();
+    ScreenRect view = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f)).front();
     aspect = double(view.w) / std::max(double(view.h), 1.0);
   }
   auto frameCamera = [&](OrbitCamera& camera) {
@@ -510,10 +513,6 @@ void ViewerApp::runFrame() {
   int fbWidth = 0, fbHeight = 0;
   glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
   float pixelScale = io.DisplaySize.x > 0 ? float(fbWidth) / io.DisplaySize.x : 1.0f;
-  auto viewArea = [&] {
-    float panel = std::min(panelColumnWidth(state_), io.DisplaySize.x * 0.5f);
-    return ScreenRect{panel, 0, std::max(io.DisplaySize.x - panel, 1.0f), io.DisplaySize.y};
-  };
   ScreenRect frame = viewArea();
   std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   std::optional<PivotPick> pick = input_.handle(state_, rects);
@@ -606,9 +605,14 @@ std::string ViewerApp::saveScreenshot() {
     }
   }
   try {
-    int width = 0, height = 0;
+    // The views as laid out on screen (the panel column left out), at framebuffer resolution.
+    int width = 0, height = 0, windowWidth = 0;
     glfwGetFramebufferSize(window_, &width, &height);
-    RgbaImage image = renderImage(std::max(width, 1), std::max(height, 1), state_.screenshot.supersample,
+    glfwGetWindowSize(window_, &windowWidth, nullptr);
+    const ScreenRect area = viewArea();
+    const double pixelScale = windowWidth > 0 ? double(width) / windowWidth : 1.0;
+    RgbaImage image = renderImage(std::max(int(std::lround(area.w * pixelScale)), 1),
+                                  std::max(int(std::lround(area.h * pixelScale)), 1), state_.screenshot.supersample,
                                   state_.screenshot.transparent);
     writePngAtomic(path, image);
   } catch (const std::exception& e) {

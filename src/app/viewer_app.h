@@ -84,8 +84,8 @@ class ViewerApp {
   // Views, labels and colour bar rendered offscreen at width x height (rendered at supersample x
   // that size and filtered down). Needs a finished frame (ImGui fonts).
   RgbaImage renderImage(int width, int height, int supersample, bool transparent);
-  // Writes the next free polarview_NNNN.png in the current directory; returns its path (empty and
-  // a notice on failure).
+  // Writes the next free polarview_NNNN.png in the current directory: the views as on screen (same
+  // layout and cameras, the panel column left out); returns its path (empty and a notice on failure).
   std::string saveScreenshot();
   // The next frame sets the pivot of `pick.view` to the surface point under (pick.x, pick.y), as a
   // double-click does.
@@ -93,6 +93,8 @@ class ViewerApp {
   // The next frame also writes the whole window (panels included) to `path` as a PNG.
   void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
 
+  // The part of the window the views tile (window coordinates): right of the panel column.
+  ScreenRect viewArea() const;
   // Points every view's camera (or the shared one) at the model so that all its control points
   // (and with them the limit surface) fit views of `aspect` (width / height; 0: the aspect of the
   // window's current views), keeping the viewing direction.

@@ -16,6 +16,8 @@
 #include <fstream>
 #include <random>
 
+#include <stb_image.h>
+
 namespace polarview {
 namespace {
 
@@ -193,7 +195,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   CHECK(app->shownSurface(0)->key.level == 1);
 }
 
-TEST_CASE("viewer app: screenshots are numbered PNGs of the window size with labels and the colour bar") {
+TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with labels and the colour bar") {
   auto app = makeApp(720, 360);
   app->loadDefaultModel();
   ViewerState& state = app->state();
@@ -216,7 +218,8 @@ TEST_CASE("viewer app: screenshots are numbered PNGs of the window size with lab
   fs::current_path(previous);
   CHECK(fs::path(first).filename() == "polarview_0001.png");
   CHECK(fs::path(second).filename() == "polarview_0002.png");
-  CHECK(pngSize(first) == std::pair{720, 360});
+  const ScreenRect area = app->viewArea();  // the window less the panel column
+  CHECK(pngSize(first) == std::pair{int(area.w), int(area.h)});
 
   // The colour bar: both ends of the map appear in the strip under the views.
   RgbaImage image = app->renderImage(720, 360, 1, false);
@@ -238,6 +241,58 @@ TEST_CASE("viewer app: screenshots are numbered PNGs of the window size with lab
     }
     CHECK(white > 15);
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("viewer app: the X screenshot shows the views exactly as the window does (4 views in a 2 x 2 grid)") {
+  auto app = makeApp(1280, 720);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 4;
+  state.views[1].scheme = SchemeChoice::RTS;
+  state.views[2].scheme = SchemeChoice::BPS;
+  state.views[3].scheme = SchemeChoice::CatmullClark;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  state.requests.frame = true;
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+
+  fs::path dir = fs::temp_directory_path() / "polarview_app_layout";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string windowPng = (dir / "window.png").string();
+  app->captureWindowNextFrame(windowPng);
+  app->runFrame();
+  fs::path previous = fs::current_path();
+  fs::current_path(dir);
+  state.screenshot.supersample = 1;
+  const std::string shot = app->saveScreenshot();
+  fs::current_path(previous);
+  REQUIRE(!shot.empty());
+
+  int ww = 0, wh = 0, sw = 0, sh = 0, channels = 0;
+  uint8_t* window = stbi_load(windowPng.c_str(), &ww, &wh, &channels, 4);
+  uint8_t* image = stbi_load(shot.c_str(), &sw, &sh, &channels, 4);
+  REQUIRE(window);
+  REQUIRE(image);
+  const ScreenRect area = app->viewArea();
+  CHECK(sw == int(area.w));
+  CHECK(sh == int(area.h));
+  CHECK(layoutViews(4, area, colourBarReserve(state, 1.0f))[2].y > 0.0f);  // 2 x 2 on screen
+  // The screenshot is the window's view area pixel for pixel, up to rounding.
+  int differing = 0;
+  for (int y = 0; y < std::min(sh, wh); ++y)
+    for (int x = 0; x < sw && x + int(area.x) < ww; ++x) {
+      const uint8_t* a = image + 4 * (size_t(y) * sw + x);
+      const uint8_t* b = window + 4 * (size_t(y) * ww + x + int(area.x));
+      int worst = 0;
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a[c]) - int(b[c])));
+      differing += worst > 12;
+    }
+  stbi_image_free(window);
+  stbi_image_free(image);
+  MESSAGE("screenshot " << sw << "x" << sh << ": " << differing << " pixels differ from the window's view area");
+  CHECK(differing < sw * sh / 200);
   fs::remove_all(dir);
 }
 
