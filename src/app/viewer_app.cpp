@@ -116,8 +116,10 @@ bool ViewerApp::init(std::string* error) {
   }
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, &ViewerApp::onDrop);
+  glfwSetKeyCallback(window_, &ViewerApp::onKey);
 
-  // ImGui: its GLFW backend chains to callbacks set before it (the drop callback is ours only).
+  // ImGui: its GLFW backend chains to callbacks set before it (key presses reach onKey first; the
+  // drop callback is ours only).
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -261,6 +263,11 @@ void ViewerApp::loadRecent() {
   while (std::getline(in, line) && state_.file.recent.size() < kMaxRecentFiles) {
     if (!line.empty()) state_.file.recent.push_back(line);
   }
+}
+
+void ViewerApp::onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+  auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(window));
+  if (app && action == GLFW_PRESS) app->input_.queueKeyPress(key, mods);
 }
 
 void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {

@@ -120,6 +120,7 @@ class ViewerApp {
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
+  static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   // Shows an already checked mesh (bumps the model generation, frames it).
   void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);

@@ -266,44 +266,43 @@ void drawHelpWindow(ViewerState& state) {
 
 // [SECTION] Input
 
-bool keyPressed(int key) { return ImGui::IsKeyPressed(key, false); }
-
-void handleHotkeys(ViewerState& state) {
-  ImGuiIO& io = ImGui::GetIO();
-  for (ImWchar c : io.InputQueueCharacters) {
-    if (c == '?') state.showHelp = !state.showHelp;
-  }
-  if (io.KeyCtrl) {
-    if (keyPressed(GLFW_KEY_C)) state.requests.copyCamera = true;
-    if (keyPressed(GLFW_KEY_V)) state.requests.pasteCamera = true;
-    if (keyPressed(GLFW_KEY_R)) state.requests.reload = true;
+// One key press (GLFW key code and modifier bits) as a shortcut.
+void applyHotkey(ViewerState& state, int key, int mods) {
+  if (mods & GLFW_MOD_CONTROL) {
+    if (key == GLFW_KEY_C) state.requests.copyCamera = true;
+    if (key == GLFW_KEY_V) state.requests.pasteCamera = true;
+    if (key == GLFW_KEY_R) state.requests.reload = true;
     return;
   }
-  for (int digit = 0; digit <= 9; ++digit) {
-    if (keyPressed(GLFW_KEY_0 + digit) || keyPressed(GLFW_KEY_KP_0 + digit)) requestLevel(state, digit);
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) requestLevel(state, key - GLFW_KEY_0);
+  if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) requestLevel(state, key - GLFW_KEY_KP_0);
+  switch (key) {
+    case GLFW_KEY_S: cycleScheme(state, state.activeView, (mods & GLFW_MOD_SHIFT) ? -1 : 1); break;
+    case GLFW_KEY_V: state.viewCount = state.viewCount % kMaxViews + 1; break;
+    case GLFW_KEY_K: state.linkCameras = !state.linkCameras; break;
+    case GLFW_KEY_L: state.shading.mode = ShadingParams::Mode::Shaded; break;
+    case GLFW_KEY_G: state.shading.mode = ShadingParams::Mode::Gaussian; break;
+    case GLFW_KEY_M: state.shading.mode = ShadingParams::Mode::Mean; break;
+    case GLFW_KEY_H: state.shading.mode = ShadingParams::Mode::Highlight; break;
+    case GLFW_KEY_Z: state.shading.mode = ShadingParams::Mode::Reflection; break;
+    case GLFW_KEY_C:
+      state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
+      break;
+    case GLFW_KEY_A: state.colour.automatic = !state.colour.automatic; break;
+    case GLFW_KEY_U: state.display.surface = !state.display.surface; break;
+    case GLFW_KEY_N: state.display.controlNet = !state.display.controlNet; break;
+    case GLFW_KEY_B: state.display.patchBoundaries = !state.display.patchBoundaries; break;
+    case GLFW_KEY_P: state.display.poleMarkers = !state.display.poleMarkers; break;
+    case GLFW_KEY_W: state.display.wireframe = !state.display.wireframe; break;
+    case GLFW_KEY_F: state.requests.frame = true; break;
+    case GLFW_KEY_X: state.requests.screenshot = true; break;
+    case GLFW_KEY_TAB: state.showPanels = !state.showPanels; break;
+    case GLFW_KEY_F1: state.requests.preset = ViewPreset::Front; break;
+    case GLFW_KEY_F2: state.requests.preset = ViewPreset::Top; break;
+    case GLFW_KEY_F3: state.requests.preset = ViewPreset::Side; break;
+    case GLFW_KEY_F4: state.requests.preset = ViewPreset::Iso; break;
+    default: break;
   }
-  if (keyPressed(GLFW_KEY_S)) cycleScheme(state, state.activeView, io.KeyShift ? -1 : 1);
-  if (keyPressed(GLFW_KEY_V)) state.viewCount = state.viewCount % kMaxViews + 1;
-  if (keyPressed(GLFW_KEY_K)) state.linkCameras = !state.linkCameras;
-  if (keyPressed(GLFW_KEY_L)) state.shading.mode = ShadingParams::Mode::Shaded;
-  if (keyPressed(GLFW_KEY_G)) state.shading.mode = ShadingParams::Mode::Gaussian;
-  if (keyPressed(GLFW_KEY_M)) state.shading.mode = ShadingParams::Mode::Mean;
-  if (keyPressed(GLFW_KEY_H)) state.shading.mode = ShadingParams::Mode::Highlight;
-  if (keyPressed(GLFW_KEY_Z)) state.shading.mode = ShadingParams::Mode::Reflection;
-  if (keyPressed(GLFW_KEY_C)) state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
-  if (keyPressed(GLFW_KEY_A)) state.colour.automatic = !state.colour.automatic;
-  if (keyPressed(GLFW_KEY_U)) state.display.surface = !state.display.surface;
-  if (keyPressed(GLFW_KEY_N)) state.display.controlNet = !state.display.controlNet;
-  if (keyPressed(GLFW_KEY_B)) state.display.patchBoundaries = !state.display.patchBoundaries;
-  if (keyPressed(GLFW_KEY_P)) state.display.poleMarkers = !state.display.poleMarkers;
-  if (keyPressed(GLFW_KEY_W)) state.display.wireframe = !state.display.wireframe;
-  if (keyPressed(GLFW_KEY_F)) state.requests.frame = true;
-  if (keyPressed(GLFW_KEY_X)) state.requests.screenshot = true;
-  if (keyPressed(GLFW_KEY_TAB)) state.showPanels = !state.showPanels;
-  if (keyPressed(GLFW_KEY_F1)) state.requests.preset = ViewPreset::Front;
-  if (keyPressed(GLFW_KEY_F2)) state.requests.preset = ViewPreset::Top;
-  if (keyPressed(GLFW_KEY_F3)) state.requests.preset = ViewPreset::Side;
-  if (keyPressed(GLFW_KEY_F4)) state.requests.preset = ViewPreset::Iso;
 }
 
 }  // namespace
@@ -504,7 +503,14 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
 
 std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views) {
   ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantCaptureKeyboard) handleHotkeys(state);
+  // Every press since the last frame, in order (a press shorter than a frame still counts); while
+  // a text field has the keyboard they were typing, not shortcuts.
+  if (!io.WantCaptureKeyboard) {
+    for (ImWchar c : io.InputQueueCharacters)
+      if (c == '?') state.showHelp = !state.showHelp;
+    for (const auto& [key, mods] : pendingKeys_) applyHotkey(state, key, mods);
+  }
+  pendingKeys_.clear();
   state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
 
   bool anyDown = ImGui::IsMouseDown(0) || ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2);

@@ -69,9 +69,13 @@ class ViewerInput {
  public:
   // Call after ImGui::NewFrame. Returns a double-click position to resolve, if any.
   std::optional<PivotPick> handle(ViewerState& state, const std::vector<ScreenRect>& views);
+  // A key press from the window's key callback (GLFW key and modifier bits); handle() applies the
+  // presses queued since the last frame, so none is lost however short or slow the frame.
+  void queueKeyPress(int key, int mods) { pendingKeys_.emplace_back(key, mods); }
 
  private:
   int dragView_ = -1;
+  std::vector<std::pair<int, int>> pendingKeys_;
 };
 
 // Sets the level of the active view (or every view when levels are linked); levels above

@@ -296,6 +296,43 @@ TEST_CASE("viewer app: the X screenshot shows the views exactly as the window do
   fs::remove_all(dir);
 }
 
+TEST_CASE("viewer app: every key press counts, even several within one frame") {
+  auto app = makeApp(640, 400);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+  // The callback GLFW calls on a key event (ImGui's, which chains to the app's).
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  REQUIRE(bool(key));
+  auto tap = [&](int k, int mods = 0) {
+    key(app->window(), k, 0, GLFW_PRESS, mods);
+    key(app->window(), k, 0, GLFW_RELEASE, mods);
+  };
+  ViewerState& state = app->state();
+  const int map = int(state.shading.colormap), views = state.viewCount;
+  // Three quick C presses and a V, all released before the next frame polls the keyboard.
+  tap(GLFW_KEY_C);
+  tap(GLFW_KEY_C);
+  tap(GLFW_KEY_C);
+  tap(GLFW_KEY_V);
+  app->runFrame();
+  CHECK(int(state.shading.colormap) == (map + 3) % 4);
+  CHECK(state.viewCount == views % kMaxViews + 1);
+  // Modifiers travel with the press: Shift+S steps the scheme back, S forward again.
+  const SchemeChoice scheme = state.views[size_t(state.activeView)].scheme;
+  tap(GLFW_KEY_S, GLFW_MOD_SHIFT);
+  app->runFrame();
+  CHECK(state.views[size_t(state.activeView)].scheme != scheme);
+  tap(GLFW_KEY_S);
+  app->runFrame();
+  CHECK(state.views[size_t(state.activeView)].scheme == scheme);
+  // A press during a slow frame (no frame in between) still sets the level.
+  tap(GLFW_KEY_2);
+  app->runFrame();
+  CHECK(state.views[0].level == 2);
+}
+
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
   auto app = makeApp();
   app->loadDefaultModel();
