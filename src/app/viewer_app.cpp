@@ -393,6 +393,9 @@ void ViewerApp::updateSurfaces() {
     }
 
     // Report.
+    status.deepestLevel = deepestLevel(*model_.mesh, state_.views[size_t(v)].scheme, options_.faceBudget);
+    status.levelLimit = levelRefusal(*model_.mesh, state_.views[size_t(v)].scheme, status.deepestLevel + 1,
+                                     options_.faceBudget);
     status.refining = view.job.running();
     status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;
     status.hasSurface = view.shown != nullptr;
@@ -529,6 +532,7 @@ void ViewerApp::runFrame() {
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   processRequests();
+  expireNotice();
   pollLoad();
   updateSurfaces();
   updateColourRange();
@@ -558,6 +562,17 @@ void ViewerApp::runFrame() {
   }
   glfwSwapBuffers(window_);
   ++framesDrawn_;
+}
+
+void ViewerApp::expireNotice() {
+  const auto now = std::chrono::steady_clock::now();
+  if (state_.notice != shownNotice_) {
+    shownNotice_ = state_.notice;
+    noticeSince_ = now;
+  } else if (!state_.notice.empty() && now - noticeSince_ > kNoticeLifetime) {
+    state_.notice.clear();
+    shownNotice_.clear();
+  }
 }
 
 bool ViewerApp::shouldClose() const { return glfwWindowShouldClose(window_); }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <future>
 #include <optional>
 #include <memory>
@@ -127,6 +128,8 @@ class ViewerApp {
   // Takes a finished background load (if any) and starts the queued one.
   void pollLoad();
   void processRequests();
+  // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
+  void expireNotice();
   void updateSurfaces();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
   void updateColourRange();
@@ -155,6 +158,9 @@ class ViewerApp {
   std::string windowCapturePath_;
   std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
+  static constexpr std::chrono::seconds kNoticeLifetime{8};
+  std::string shownNotice_;
+  std::chrono::steady_clock::time_point noticeSince_;
 };
 
 }  // namespace polarview

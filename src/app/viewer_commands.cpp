@@ -104,7 +104,11 @@ bool reportViewErrors(const ViewerApp& app) {
                        shown->key.level == wanted.level;
     if (!showsWanted || !state.status[size_t(v)].message.empty()) {
       std::string message = state.status[size_t(v)].message;
-      std::cerr << "polarview: " << (message.empty() ? "view " + std::to_string(v + 1) + " could not be built" : message) << "\n";
+      if (message.empty()) message = "view " + std::to_string(v + 1) + " could not be built";
+      // Name the model file, as every input error does (refinement errors already start with it).
+      const std::string& file = app.model().name;
+      if (message.rfind(file + ":", 0) != 0) message = file + ": " + message;
+      std::cerr << "polarview: " << message << "\n";
       return true;
     }
   }

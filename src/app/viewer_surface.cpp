@@ -115,11 +115,29 @@ LoadedModel readModelFile(const std::string& path) {
   return loaded;
 }
 
+int deepestLevel(const PolyMesh& mesh, SchemeChoice scheme, size_t faceBudget) {
+  int level = 0;
+  while (level < kMaxLevel && estimateFaceCount(mesh, refineOptionsFor(scheme, level + 1)) <= faceBudget) ++level;
+  return level;
+}
+
+std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, size_t faceBudget) {
+  const int deepest = deepestLevel(mesh, scheme, faceBudget);
+  if (level <= deepest) return {};
+  std::string text = "level " + std::to_string(level) + " refused: " + schemeChoiceLabel(scheme) +
+                     " stops at level " + std::to_string(deepest) + " on this model";
+  if (deepest < kMaxLevel) {
+    const size_t faces = estimateFaceCount(mesh, refineOptionsFor(scheme, deepest + 1));
+    text += " (level " + std::to_string(deepest + 1) + " would make about " + std::to_string(faces) +
+            " faces, over the budget of " + std::to_string(faceBudget) + ")";
+  } else {
+    text += " (the deepest level polarview offers)";
+  }
+  return text;
+}
+
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {
-  size_t faces = estimateFaceCount(*model.mesh, refineOptionsFor(key.scheme, key.level));
-  if (faces <= faceBudget) return {};
-  return "level " + std::to_string(key.level) + " refused: " + schemeChoiceLabel(key.scheme) + " would make about " +
-         std::to_string(faces) + " faces, over the budget of " + std::to_string(faceBudget);
+  return levelRefusal(*model.mesh, key.scheme, key.level, faceBudget);
 }
 
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget) {

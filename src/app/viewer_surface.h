@@ -76,6 +76,12 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
 // most 1 - quantile of the weight; 1 when there is no weight or the range would be 0. [O(n log n)]
 float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
 
+// The deepest level of `scheme` on `mesh` whose estimated faces fit `faceBudget`, at most kMaxLevel:
+// the one limit of the level slider, the keys, `view` and `render`. [O(1) per level]
+int deepestLevel(const PolyMesh& mesh, SchemeChoice scheme, size_t faceBudget);
+// Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 9 refused: C2PS
+// stops at level 6 on this model (level 7 would make about 2334720 faces, over the budget of 2097152)".
+std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, size_t faceBudget);
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
 

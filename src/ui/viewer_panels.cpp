@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>  // key codes only (the ImGui 1.86 GLFW backend indexes io.KeysDown by them)
+#include <GLFW/glfw3.h>  // key codes and modifier bits only
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -17,6 +17,13 @@ namespace {
 
 ImU32 toImColour(const glm::vec3& c, float alpha = 1.0f) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, alpha));
+}
+
+// Coloured text that wraps at the panel's edge (errors and refusals are long sentences).
+void wrappedColoredText(const ImVec4& colour, const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
 }
 
 const char* colourMapName(ShadingParams::ColorMap map) {
@@ -68,11 +75,11 @@ void drawFilePanel(ViewerState& state) {
   if (ImGui::Button("Default model")) state.requests.loadDefault = true;
   ImGui::TextDisabled("Or drop an .obj file on the window.");
   if (file.loading) {
-    ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "loading %s... (the current model stays)", file.loadingPath.c_str());
+    wrappedColoredText(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "loading " + file.loadingPath + "... (the current model stays)");
   }
-  if (!file.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "Error: %s", file.error.c_str());
+  if (!file.error.empty()) wrappedColoredText(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "Error: " + file.error);
   for (size_t i = 0; i < file.warnings.size() && i < 3; ++i) {
-    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "Warning: %s", file.warnings[i].c_str());
+    wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "Warning: " + file.warnings[i]);
   }
   if (file.warnings.size() > 3) ImGui::TextDisabled("(%zu more warnings)", file.warnings.size() - 3);
   if (!file.recent.empty() && ImGui::TreeNode("Recent files")) {
@@ -103,15 +110,17 @@ void drawViewsPanel(ViewerState& state) {
     for (int i = 0; i < kSchemeChoiceCount; ++i) names[i] = schemeChoiceLabel(static_cast<SchemeChoice>(i));
     if (ImGui::Combo("Scheme (S)", &scheme, names, kSchemeChoiceCount)) view.scheme = static_cast<SchemeChoice>(scheme);
     int level = view.level;
-    if (ImGui::SliderInt("Level (0-9)", &level, 0, kMaxLevel)) {
+    const std::string levelLabel = "Level (0-" + std::to_string(status.deepestLevel) + ")";
+    if (ImGui::SliderInt(levelLabel.c_str(), &level, 0, status.deepestLevel)) {
       state.activeView = v;
       requestLevel(state, level);
     }
+    if (ImGui::IsItemHovered() && !status.levelLimit.empty()) ImGui::SetTooltip("%s", status.levelLimit.c_str());
     if (status.refining) {
       ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "refining %s %d... %.1f s", schemeChoiceLabel(view.scheme),
                          view.level, status.refiningSeconds);
     }
-    if (!status.message.empty()) ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", status.message.c_str());
+    if (!status.message.empty()) wrappedColoredText(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), status.message);
     ImGui::PopID();
   }
 }
@@ -243,7 +252,7 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::TextWrapped("%s", kinds.c_str());
     ImGui::Unindent();
   }
-  if (!state.glInfo.empty()) ImGui::TextDisabled("%s", state.glInfo.c_str());
+  if (!state.glInfo.empty()) wrappedColoredText(ImGui::GetStyle().Colors[ImGuiCol_TextDisabled], state.glInfo);
 }
 
 void drawHelpWindow(ViewerState& state) {
@@ -387,10 +396,20 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
 }
 
 void requestLevel(ViewerState& state, int level) {
-  if (level < 0 || level > kMaxLevel) {
-    state.notice = "level " + std::to_string(level) + " is above the maximum " + std::to_string(kMaxLevel);
-    return;
+  // Every view the request applies to must reach the level (ViewStatus::deepestLevel, the app's
+  // face-budget estimate); otherwise nothing changes and the notice says how deep it can go.
+  for (int v = 0; v < state.viewCount; ++v) {
+    if (!state.linkLevels && v != state.activeView) continue;
+    const ViewStatus& status = state.status[size_t(v)];
+    if (level > status.deepestLevel || level < 0) {
+      state.notice = level < 0 ? "level " + std::to_string(level) + " refused"
+                               : "level " + std::to_string(level) + " refused: " +
+                                     schemeChoiceLabel(state.views[size_t(v)].scheme) + " stops at level " +
+                                     std::to_string(status.deepestLevel) + " on this model";
+      return;
+    }
   }
+  if (state.notice.rfind("level ", 0) == 0) state.notice.clear();  // an earlier refusal is stale now
   if (state.linkLevels) {
     for (ViewSettings& view : state.views) view.level = level;
   } else {

@@ -19,7 +19,9 @@ namespace polarview {
 enum class SchemeChoice : uint8_t { CatmullClark, C2PS, C2PSUniformFirstStep, RTS, BPS };
 constexpr int kSchemeChoiceCount = 5;
 constexpr int kMaxViews = 4;
-constexpr int kMaxLevel = 8;
+// Hard cap of the level (keys 0-9 and the slider stop earlier where the model's face budget says
+// so: ViewStatus::deepestLevel).
+constexpr int kMaxLevel = 10;
 constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
 
 // On-screen name: "CC", "C2PS", "C2PS-U", "RTS", "BPS".
@@ -53,6 +55,8 @@ struct ViewStatus {
   int controlFaces = 0;            // faces of the shown level's control mesh
   double refineMs = 0.0;           // refinement + patch extraction of the shown result
   std::string message;             // e.g. "level 8 refused: ..." (empty when all is well)
+  int deepestLevel = kMaxLevel;    // deepest level of the view's scheme on this model (face budget)
+  std::string levelLimit;          // the refusal a level one deeper gets (empty at kMaxLevel)
 };
 
 // The colour range shared by all views.

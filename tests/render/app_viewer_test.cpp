@@ -187,12 +187,26 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   requestLevel(app->state(), 1);
   app->waitUntilIdle();
   REQUIRE(showsWanted(*app, 0));
-  requestLevel(app->state(), 8);
+  ViewerState& state = app->state();
+  // One limit: the slider's range, the keys' refusal and the app's refusal agree.
+  const int deepest = deepestLevel(*app->model().mesh, SchemeChoice::C2PS, 20000);
+  CHECK(state.status[0].deepestLevel == deepest);
+  CHECK(deepest >= 1);
+  CHECK(deepest < 8);
+  requestLevel(state, 8);  // a key or the slider: refused at once, nothing changes
+  CHECK(state.views[0].level == 1);
+  CHECK(state.notice.find("level 8 refused: C2PS stops at level " + std::to_string(deepest)) == 0);
+  requestLevel(state, deepest);  // a level within reach clears the stale refusal
+  CHECK(state.notice.empty());
+  CHECK(state.views[0].level == deepest);
+  app->waitUntilIdle();
+  state.views[0].level = 8;  // set directly (as `view --level` does): the app refuses it
   app->waitUntilIdle();
   runFrames(*app, 2);
-  CHECK(app->state().status[0].message.find("refused") != std::string::npos);
-  CHECK(app->state().views[0].level == 1);
-  CHECK(app->shownSurface(0)->key.level == 1);
+  CHECK(state.status[0].message.find("level 8 refused: C2PS stops at level " + std::to_string(deepest)) == 0);
+  CHECK(state.status[0].message == levelRefusal(*app->model().mesh, SchemeChoice::C2PS, 8, 20000));
+  CHECK(state.views[0].level == deepest);
+  CHECK(app->shownSurface(0)->key.level == deepest);
 }
 
 TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with labels and the colour bar") {
