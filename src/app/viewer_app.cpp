@@ -406,6 +406,9 @@ void ViewerApp::updateSurfaces() {
       status.patchesPerKind = view.shown->patchesPerKind;
       status.controlFaces = view.shown->controlMesh.faceCount();
       status.refineMs = view.shown->refineMs;
+      status.polesByScheme = view.shown->polesByScheme;
+      status.polesByCatmullClark = view.shown->polesByCatmullClark;
+      status.fallbackReason = view.shown->fallbackReason;
     }
   }
 }

@@ -130,6 +130,13 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(state.views[size_t(v)].scheme) << '"';
   json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "],\"patches\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].patchCount;
+  // Per view: poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
+  json << "],\"poles_by_scheme\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByScheme;
+  json << "],\"poles_by_cc\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByCatmullClark;
+  json << "],\"titles\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
   json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << state.colourRange();
   char numbers[160];
   std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", median(frameMs),

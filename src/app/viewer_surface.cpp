@@ -10,6 +10,7 @@
 #include "core/mesh/obj_io.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
+#include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
 
 namespace polarview {
@@ -43,6 +44,24 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
 // unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
 // shape's curvature scale and, at a valence-3 corner, would stretch the range until the rest of the
 // model is one colour. They still saturate visibly in the picture.
+// Polar configurations the scheme refines, and those Catmull-Clark refines instead (RTS and BPS
+// below valence 5), with the reason, so the view's title can say so.
+void countPoleFallbacks(BuiltSurface& surface, const Refinement& refinement) {
+  const Scheme scheme = refinement.options().scheme;
+  if (scheme == Scheme::CatmullClark) return;
+  const RefinedLevel& base = refinement.level(0);
+  for (const PolarConfig& config : findPolarConfigs(base.mesh, base.topology)) {
+    if (!config.refinable) continue;  // a plain extraordinary vertex, not a polar configuration
+    std::string why;
+    if (schemeRefinesPole(scheme, config, &why)) {
+      ++surface.polesByScheme;
+    } else {
+      ++surface.polesByCatmullClark;
+      surface.fallbackReason = why;
+    }
+  }
+}
+
 void sampleCurvatures(BuiltSurface& surface, int s) {
   const bool onlyEndCaps = std::all_of(surface.patches.begin(), surface.patches.end(),
                                        [](const Patch& p) { return p.kind == PatchKind::EndCap; });
@@ -151,6 +170,7 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   surface->patches = std::move(patchSet.patches);
   surface->controlMesh = refinement.finest().mesh;
   surface->poles = polePositions(surface->patches, refinement.finest());
+  countPoleFallbacks(*surface, refinement);
   surface->refineMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).

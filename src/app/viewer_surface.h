@@ -43,6 +43,10 @@ struct BuiltSurface {
   // except at valence 4) are left out unless there is nothing else.
   std::vector<float> gaussianSamples, meanSamples, sampleAreas;
   double refineMs = 0.0;             // refinement + patch extraction
+  // Polar configurations of the model refined by the scheme / by Catmull-Clark instead (RTS and
+  // BPS need valence >= 5), and why; both 0 for Catmull-Clark itself.
+  int polesByScheme = 0, polesByCatmullClark = 0;
+  std::string fallbackReason;
 };
 
 // The model every view refines: the mesh and where it came from.

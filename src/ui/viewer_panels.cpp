@@ -243,6 +243,12 @@ void drawStatsPanel(const ViewerState& state) {
                 s.refineMs);
     ImGui::Indent();
     ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
+    if (s.polesByCatmullClark > 0) {
+      wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f),
+                         std::to_string(s.polesByCatmullClark) + " of " +
+                             std::to_string(s.polesByScheme + s.polesByCatmullClark) +
+                             " poles refined by Catmull-Clark: " + s.fallbackReason);
+    }
     std::string kinds;
     for (int k = 0; k < kPatchKindCount; ++k) {
       if (s.patchesPerKind[k] == 0) continue;
@@ -342,6 +348,17 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"Drop a file", "open a dropped .obj"},
   };
   return list;
+}
+
+std::string viewTitle(const ViewStatus& status) {
+  if (!status.hasSurface) return "(no surface)";
+  const std::string scheme = schemeChoiceLabel(status.shownScheme);
+  const std::string level = " \xC2\xB7 " + std::to_string(status.shownLevel);
+  if (status.polesByCatmullClark == 0) return scheme + level;
+  // The scheme fell back to Catmull-Clark at some poles: the title must not claim it drew them.
+  if (status.polesByScheme == 0) return scheme + level + " \xC2\xB7 poles by CC (valence < 5)";
+  return scheme + level + " \xC2\xB7 " + std::to_string(status.polesByCatmullClark) + " of " +
+         std::to_string(status.polesByScheme + status.polesByCatmullClark) + " poles by CC";
 }
 
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
@@ -449,9 +466,7 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
     const ScreenRect& r = views[v];
     const ViewStatus& status = state.status[v];
     const ViewSettings& wanted = state.views[v];
-    std::string label = status.hasSurface ? std::string(schemeChoiceLabel(status.shownScheme)) + " \xC2\xB7 " +
-                                                std::to_string(status.shownLevel)
-                                          : std::string("(no surface)");
+    std::string label = viewTitle(status);
     if (status.refining) {
       label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
                std::to_string(wanted.level) + "...";

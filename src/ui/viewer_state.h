@@ -54,6 +54,9 @@ struct ViewStatus {
   std::array<int, kPatchKindCount> patchesPerKind{};
   int controlFaces = 0;            // faces of the shown level's control mesh
   double refineMs = 0.0;           // refinement + patch extraction of the shown result
+  int polesByScheme = 0;           // polar configurations the shown scheme refines
+  int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
+  std::string fallbackReason;      // why (empty when none)
   std::string message;             // e.g. "level 8 refused: ..." (empty when all is well)
   int deepestLevel = kMaxLevel;    // deepest level of the view's scheme on this model (face budget)
   std::string levelLimit;          // the refusal a level one deeper gets (empty at kMaxLevel)

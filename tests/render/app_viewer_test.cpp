@@ -347,6 +347,37 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
   CHECK(state.views[0].level == 2);
 }
 
+TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stats that Catmull-Clark refined it") {
+  auto app = makeApp(640, 400);
+  REQUIRE(app->loadMesh(fanWithOneRing(4), "valence-4 fan"));
+  ViewerState& state = app->state();
+  state.viewCount = 3;
+  state.views[0].scheme = SchemeChoice::RTS;
+  state.views[1].scheme = SchemeChoice::BPS;
+  state.views[2].scheme = SchemeChoice::C2PS;
+  for (ViewSettings& view : state.views) view.level = 2;
+  app->waitUntilIdle();
+  runFrames(*app, 1);
+  for (int v = 0; v < 2; ++v) {
+    CAPTURE(v);
+    CHECK(state.status[v].polesByScheme == 0);
+    CHECK(state.status[v].polesByCatmullClark == 1);
+    CHECK(state.status[v].fallbackReason.find("valence >= 5") != std::string::npos);
+    CHECK(viewTitle(state.status[v]).find("poles by CC") != std::string::npos);
+  }
+  CHECK(viewTitle(state.status[0]).rfind("RTS", 0) == 0);
+  // C2PS refines any valence >= 3: a plain title.
+  CHECK(state.status[2].polesByScheme == 1);
+  CHECK(state.status[2].polesByCatmullClark == 0);
+  CHECK(viewTitle(state.status[2]) == "C2PS \xC2\xB7 2");
+  // Valence 6: RTS refines it.
+  REQUIRE(app->loadMesh(fanWithOneRing(6), "valence-6 fan"));
+  app->waitUntilIdle();
+  runFrames(*app, 1);
+  CHECK(state.status[0].polesByScheme == 1);
+  CHECK(viewTitle(state.status[0]) == "RTS \xC2\xB7 2");
+}
+
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
   auto app = makeApp();
   app->loadDefaultModel();
