@@ -184,7 +184,8 @@ void drawColourPanel(ViewerState& state) {
   const char* maps[] = {"paper Fig. 13 (green 0, blue -, red +)", "coolwarm", "viridis",
                         "magnitude, Figs. 11-12 (dark blue 0)"};
   if (ImGui::Combo("Colour map (C)", &map, maps, 4)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
-  ImGui::Checkbox("Automatic range (A)", &state.colour.automatic);
+  bool automatic = state.colour.automatic;
+  if (ImGui::Checkbox("Automatic range (A)", &automatic)) setAutomaticRange(state, automatic);
   if (state.colour.automatic) {
     float percent = state.colour.quantile * 100.0f;
     if (ImGui::SliderFloat("Percentile (of K by area)", &percent, 50.0f, 100.0f, "%.1f")) {
@@ -303,7 +304,7 @@ void applyHotkey(ViewerState& state, int key, int mods) {
     case GLFW_KEY_C:
       state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
       break;
-    case GLFW_KEY_A: state.colour.automatic = !state.colour.automatic; break;
+    case GLFW_KEY_A: setAutomaticRange(state, !state.colour.automatic); break;
     case GLFW_KEY_U: state.display.surface = !state.display.surface; break;
     case GLFW_KEY_N: state.display.controlNet = !state.display.controlNet; break;
     case GLFW_KEY_B: state.display.patchBoundaries = !state.display.patchBoundaries; break;
@@ -410,6 +411,12 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
     rects[size_t(v)] = {left, top, right - left, bottom - top};
   }
   return rects;
+}
+
+void setAutomaticRange(ViewerState& state, bool automatic) {
+  // Turning it off keeps the colours on screen: the typed range starts at the automatic value.
+  if (state.colour.automatic && !automatic) state.colour.typedRange = state.colour.autoRange;
+  state.colour.automatic = automatic;
 }
 
 void requestLevel(ViewerState& state, int level) {

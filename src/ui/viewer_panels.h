@@ -81,6 +81,9 @@ class ViewerInput {
   std::vector<std::pair<int, int>> pendingKeys_;
 };
 
+// Automatic colour range on or off; switching it off keeps the current range (typed = automatic).
+void setAutomaticRange(ViewerState& state, bool automatic);
+
 // Sets the level of the active view (or every view when levels are linked); levels above
 // kMaxLevel leave the state unchanged and set a notice.
 void requestLevel(ViewerState& state, int level);

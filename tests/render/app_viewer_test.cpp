@@ -341,6 +341,16 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
   tap(GLFW_KEY_S);
   app->runFrame();
   CHECK(state.views[size_t(state.activeView)].scheme == scheme);
+  // A: automatic range off keeps the range on screen (it used to jump to +-1).
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  app->runFrame();
+  REQUIRE(state.colour.automatic);
+  const float range = state.colourRange();
+  CHECK(range != 1.0f);
+  tap(GLFW_KEY_A);
+  app->runFrame();
+  CHECK(!state.colour.automatic);
+  CHECK(state.colourRange() == range);
   // A press during a slow frame (no frame in between) still sets the level.
   tap(GLFW_KEY_2);
   app->runFrame();
