@@ -201,8 +201,35 @@ void ViewerApp::loadFailed(const std::string& path, const std::string& error) {
 
 void ViewerApp::dropFiles(int count, const char* const* paths) {
   if (count < 1 || !paths || !paths[0]) return;
-  if (count > 1) state_.notice = "opening the first of " + std::to_string(count) + " dropped files";
+  if (count > 1) {
+    // Several files: open the first, keep all of them as a list to step through.
+    state_.file.playlist.clear();
+    for (int i = 0; i < count; ++i)
+      if (paths[i]) state_.file.playlist.emplace_back(paths[i]);
+    state_.file.playlistIndex = 0;
+    state_.notice = "opening the first of " + std::to_string(count) + " dropped files (PageDown / PageUp for the others)";
+  }
   requestLoad(paths[0]);
+}
+
+void ViewerApp::openPlaylistEntry(int index) {
+  const std::vector<std::string>& list = state_.file.playlist;
+  if (list.empty()) return;
+  index = (index % int(list.size()) + int(list.size())) % int(list.size());
+  state_.file.playlistIndex = index;
+  requestLoad(list[size_t(index)]);
+}
+
+void ViewerApp::undoModelReplacement() {
+  if (!previousModel_.mesh) {
+    state_.notice = "nothing to undo";
+    return;
+  }
+  // Swap back (a second Ctrl+Z redoes): the previous mesh is shown as a new model generation.
+  Model previous = previousModel_;
+  const std::string previousPath = previousPath_;
+  adoptMesh(PolyMesh(*previous.mesh), previous.name, previousPath);
+  state_.notice = "back to " + previous.name;
 }
 
 bool ViewerApp::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
@@ -222,6 +249,11 @@ void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::str
   }
   state_.file.modelVertices = mesh.vertexCount();
   state_.file.modelFaces = mesh.faceCount();
+  if (model_.mesh) {  // what Ctrl+Z returns to
+    previousModel_ = model_;
+    previousPath_ = state_.file.loadedPath;
+    state_.file.previousModelName = model_.name;
+  }
   model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
   state_.file.modelName = name;
   state_.file.loadedPath = path;
@@ -309,6 +341,9 @@ void ViewerApp::processRequests() {
     else requestLoad(state_.file.loadedPath);
   }
   if (r.loadDefault) loadDefaultModel();
+  if (r.undoModel) undoModelReplacement();
+  if (r.playlistStep != 0) openPlaylistEntry(state_.file.playlistIndex + r.playlistStep);
+  if (r.playlistPick >= 0) openPlaylistEntry(r.playlistPick);
   if (r.frame) frameModel();
   if (r.preset) {
     for (int v = 0; v < kMaxViews; ++v) state_.camera(v).applyPreset(*r.preset);

@@ -125,6 +125,10 @@ class ViewerApp {
   // Shows an already checked mesh (bumps the model generation, frames it).
   void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);
+  // Ctrl+Z: shows the model replaced last (Open, Default model, a drop); again to redo.
+  void undoModelReplacement();
+  // Opens entry `index` (wrapping) of the dropped-files list.
+  void openPlaylistEntry(int index);
   // Takes a finished background load (if any) and starts the queued one.
   void pollLoad();
   void processRequests();
@@ -151,6 +155,8 @@ class ViewerApp {
   std::shared_ptr<ShaderLibrary> shaders_;
   std::array<ViewRuntime, kMaxViews> views_;
   Model model_;
+  Model previousModel_;       // the model before the last replacement (Ctrl+Z)
+  std::string previousPath_;  // its file (empty for generated models)
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
   std::future<LoadedModel> loadJob_;

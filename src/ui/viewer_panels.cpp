@@ -64,8 +64,8 @@ std::string formatTick(float value) {
 
 void drawFilePanel(ViewerState& state) {
   FileSettings& file = state.file;
-  ImGui::TextWrapped("Model: %s (%d vertices, %d faces)", file.modelName.c_str(), file.modelVertices,
-                     file.modelFaces);
+  // The controls come first and keep their places: text whose height changes (the model's name,
+  // errors, the loading line) goes below them, so a click never lands on a button that moved.
   ImGui::SetNextItemWidth(-90.0f);
   if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) state.requests.load = true;
   ImGui::SameLine();
@@ -73,7 +73,16 @@ void drawFilePanel(ViewerState& state) {
   if (ImGui::Button("Reload (Ctrl+R)")) state.requests.reload = true;
   ImGui::SameLine();
   if (ImGui::Button("Default model")) state.requests.loadDefault = true;
-  ImGui::TextDisabled("Or drop an .obj file on the window.");
+  ImGui::SameLine();
+  const bool canUndo = !file.previousModelName.empty();
+  if (!canUndo) ImGui::BeginDisabled();
+  if (ImGui::Button("Undo (Ctrl+Z)")) state.requests.undoModel = true;
+  if (!canUndo) ImGui::EndDisabled();
+  if (canUndo && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("back to %s", file.previousModelName.c_str());
+  ImGui::TextWrapped("Model: %s (%d vertices, %d faces)", file.modelName.c_str(), file.modelVertices,
+                     file.modelFaces);
+  ImGui::TextDisabled("Or drop .obj files on the window.");
   if (file.loading) {
     wrappedColoredText(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "loading " + file.loadingPath + "... (the current model stays)");
   }
@@ -82,6 +91,14 @@ void drawFilePanel(ViewerState& state) {
     wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "Warning: " + file.warnings[i]);
   }
   if (file.warnings.size() > 3) ImGui::TextDisabled("(%zu more warnings)", file.warnings.size() - 3);
+  if (file.playlist.size() > 1 && ImGui::TreeNodeEx("Dropped files (PageDown / PageUp)", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (size_t i = 0; i < file.playlist.size(); ++i) {
+      ImGui::PushID(int(i));
+      if (ImGui::Selectable(file.playlist[i].c_str(), int(i) == file.playlistIndex)) state.requests.playlistPick = int(i);
+      ImGui::PopID();
+    }
+    ImGui::TreePop();
+  }
   if (!file.recent.empty() && ImGui::TreeNode("Recent files")) {
     for (const std::string& path : file.recent) {
       if (ImGui::Selectable(path.c_str())) {
@@ -288,6 +305,7 @@ void applyHotkey(ViewerState& state, int key, int mods) {
     if (key == GLFW_KEY_C) state.requests.copyCamera = true;
     if (key == GLFW_KEY_V) state.requests.pasteCamera = true;
     if (key == GLFW_KEY_R) state.requests.reload = true;
+    if (key == GLFW_KEY_Z) state.requests.undoModel = true;
     return;
   }
   if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) requestLevel(state, key - GLFW_KEY_0);
@@ -317,6 +335,8 @@ void applyHotkey(ViewerState& state, int key, int mods) {
     case GLFW_KEY_F2: state.requests.preset = ViewPreset::Top; break;
     case GLFW_KEY_F3: state.requests.preset = ViewPreset::Side; break;
     case GLFW_KEY_F4: state.requests.preset = ViewPreset::Iso; break;
+    case GLFW_KEY_PAGE_DOWN: state.requests.playlistStep = 1; break;
+    case GLFW_KEY_PAGE_UP: state.requests.playlistStep = -1; break;
     default: break;
   }
 }
@@ -344,9 +364,11 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"U / N / B / P / W", "limit surface / control net / patch boundaries / pole markers / wireframe"},
       {"X", "screenshot polarview_NNNN.png (colour bar and labels included)"},
       {"Ctrl+R", "reload the model file"},
+      {"Ctrl+Z", "back to the previous model (after Open, Default model, a drop)"},
+      {"PageDown / PageUp", "next / previous of several dropped files"},
       {"Tab", "hide / show the panels"},
       {"?", "this help"},
-      {"Drop a file", "open a dropped .obj"},
+      {"Drop files", "open the first dropped .obj, list the others"},
   };
   return list;
 }

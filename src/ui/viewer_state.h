@@ -87,6 +87,9 @@ struct FileSettings {
   std::string loadingPath;               // which one
   std::vector<std::string> warnings;     // non-fatal findings of the last load
   int modelVertices = 0, modelFaces = 0;
+  std::string previousModelName;         // what Ctrl+Z returns to (empty: nothing to undo)
+  std::vector<std::string> playlist;     // files dropped together; PageDown / PageUp step through
+  int playlistIndex = -1;                // the entry last opened from it
 };
 
 struct ScreenshotSettings {
@@ -100,6 +103,9 @@ struct ViewerRequests {
   bool load = false;          // load file.pathField
   bool reload = false;        // reload file.loadedPath
   bool loadDefault = false;   // the built-in default model
+  bool undoModel = false;     // Ctrl+Z: back to the model shown before the last replacement
+  int playlistStep = 0;       // +1 / -1: next / previous file of the playlist (PageDown / PageUp)
+  int playlistPick = -1;      // open this playlist entry
   bool screenshot = false;
   bool frame = false;         // F
   bool copyCamera = false;    // Ctrl+C

@@ -116,6 +116,80 @@ TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file l
   fs::remove(bad);
 }
 
+TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again the replaced one)") {
+  auto app = makeHiddenApp(480, 320);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  const std::string defaultName = app->model().name;
+  const int defaultFaces = app->state().file.modelFaces;
+  CHECK(app->state().file.previousModelName.empty());
+
+  fs::path saddle = fs::temp_directory_path() / "polarview_undo_saddle.obj";
+  const int faces = writeSaddleObj(saddle, 6, 3);
+  app->requestLoad(saddle.string());
+  app->waitUntilIdle();
+  REQUIRE(app->state().file.modelFaces == faces);
+  CHECK(app->state().file.previousModelName == defaultName);
+
+  // Ctrl+Z through the real key callback: the default model again, then the saddle (redo).
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  REQUIRE(bool(key));
+  auto ctrlZ = [&] {
+    key(app->window(), GLFW_KEY_Z, 0, GLFW_PRESS, GLFW_MOD_CONTROL);
+    key(app->window(), GLFW_KEY_Z, 0, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    app->runFrame();
+    app->waitUntilIdle();
+  };
+  ctrlZ();
+  CHECK(app->state().file.modelFaces == defaultFaces);
+  CHECK(app->model().name == defaultName);
+  REQUIRE(app->shownSurface(0) != nullptr);
+  CHECK(app->shownSurface(0)->key.model == app->modelGeneration());
+  ctrlZ();
+  CHECK(app->state().file.modelFaces == faces);
+  CHECK(app->state().file.loadedPath == saddle.string());
+  fs::remove(saddle);
+}
+
+TEST_CASE("several dropped files: the first opens, the others are listed and PageDown / PageUp step through them") {
+  auto app = makeHiddenApp(480, 320);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  std::vector<std::string> paths;
+  std::vector<int> faces;
+  for (int n : {5, 7, 9}) {
+    fs::path p = fs::temp_directory_path() / ("polarview_drop_list_" + std::to_string(n) + ".obj");
+    faces.push_back(writeSaddleObj(p, n, 2));
+    paths.push_back(p.string());
+  }
+  const char* raw[] = {paths[0].c_str(), paths[1].c_str(), paths[2].c_str()};
+  GLFWdropfun drop = glfwSetDropCallback(app->window(), nullptr);
+  glfwSetDropCallback(app->window(), drop);
+  drop(app->window(), 3, raw);
+  app->waitUntilIdle();
+  CHECK(app->state().file.playlist == paths);
+  CHECK(app->state().file.loadedPath == paths[0]);
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  auto tap = [&](int k) {
+    key(app->window(), k, 0, GLFW_PRESS, 0);
+    key(app->window(), k, 0, GLFW_RELEASE, 0);
+    app->runFrame();
+    app->waitUntilIdle();
+  };
+  tap(GLFW_KEY_PAGE_DOWN);
+  CHECK(app->state().file.loadedPath == paths[1]);
+  CHECK(app->state().file.modelFaces == faces[1]);
+  tap(GLFW_KEY_PAGE_DOWN);
+  CHECK(app->state().file.loadedPath == paths[2]);
+  tap(GLFW_KEY_PAGE_DOWN);  // wraps around
+  CHECK(app->state().file.loadedPath == paths[0]);
+  tap(GLFW_KEY_PAGE_UP);
+  CHECK(app->state().file.loadedPath == paths[2]);
+  for (const std::string& p : paths) fs::remove(p);
+}
+
 TEST_CASE("background loading: frames keep coming while a large OBJ loads, and the model changes only when it is ready") {
   auto app = makeHiddenApp(480, 320);
   app->loadDefaultModel();
