@@ -21,7 +21,7 @@ struct UsageError : std::runtime_error {
 };
 
 const char* kRenderUsage =
-    "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u]] [--level L] "
+    "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
     "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --percentile P] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
     "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
@@ -71,7 +71,7 @@ std::vector<SchemeChoice> parseSchemes(const std::string& text) {
   std::string name;
   while (std::getline(list, name, ',')) {
     std::optional<SchemeChoice> scheme = parseSchemeChoice(name);
-    if (!scheme) throw UsageError("unknown scheme '" + name + "' (cc, c2ps, c2ps-u, rts, bps)");
+    if (!scheme) throw UsageError("unknown scheme '" + name + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)");
     schemes.push_back(*scheme);
   }
   if (schemes.empty() || int(schemes.size()) > kMaxViews) throw UsageError("--scheme takes 1 to 4 schemes");
@@ -174,7 +174,10 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     else if (arg == "--shade") r.shade = parseShade(cursor.value(arg));
     else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
     else if (arg == "--camera") r.cameraJson = cursor.value(arg);
-    else if (arg == "--supersample") r.supersample = parseInt(cursor.value(arg), arg, 1, 4);
+    else if (arg == "--supersample") {
+      r.supersample = parseInt(cursor.value(arg), arg, 1, 4);
+      if (r.supersample == 3) throw UsageError("--supersample takes 1, 2 or 4, got 3");
+    }
     else if (arg == "--transparent") r.transparent = true;
     else if (arg == "--net") r.controlNet = true;
     else if (arg == "--boundaries") r.boundaries = true;
@@ -242,6 +245,12 @@ int renderWithApp(const RenderRequest& r) {
   ViewerApp app(options);
   ViewerState& state = app.state();
   if (!openModelAndWindow(app, r.input)) return 1;
+  // An image this GL cannot hold is a usage error, said before any work.
+  if (std::string problem = checkRenderTargetSize(r.width, r.height, r.supersample); !problem.empty()) {
+    std::cerr << "polarview: render: --size " << r.width << "x" << r.height << " --supersample " << r.supersample
+              << ": " << problem << "\n";
+    return 2;
+  }
 
   // Views, shading, colour range and camera as asked.
   setViews(state, r.schemes, r.level);

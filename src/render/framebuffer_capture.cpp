@@ -75,10 +75,34 @@ GLenum createRenderbufferTarget(GLenum colorFormat, int width, int height, unsig
 
 }  // namespace
 
+int maxRenderTargetSide() {
+  GLint renderbuffer = 0, viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  return std::max(0, std::min({renderbuffer, viewport[0], viewport[1]}));
+}
+
+std::string checkRenderTargetSize(int width, int height, int supersample) {
+  if (width <= 0 || height <= 0) return "the image size must be positive";
+  if (!(supersample == 1 || supersample == 2 || supersample == 4)) return "supersampling is 1, 2 or 4";
+  const int limit = maxRenderTargetSide();
+  const long long renderWidth = (long long)width * supersample, renderHeight = (long long)height * supersample;
+  if (renderWidth <= limit && renderHeight <= limit) return {};
+  std::string text = std::to_string(width) + "x" + std::to_string(height) + " at supersampling " +
+                     std::to_string(supersample) + " renders " + std::to_string(renderWidth) + "x" +
+                     std::to_string(renderHeight) + " pixels, over this GL's limit of " + std::to_string(limit) +
+                     " per side; ";
+  int fits = 0;
+  for (int s : {4, 2, 1})
+    if (!fits && (long long)std::max(width, height) * s <= limit) fits = s;
+  if (fits) return text + "supersampling " + std::to_string(fits) + " fits";
+  return text + "the largest size is " + std::to_string(limit) + " per side";
+}
+
 bool OffscreenTarget::create(int width, int height, int supersample, std::string* error) {
   destroy();
-  if (width <= 0 || height <= 0 || !(supersample == 1 || supersample == 2 || supersample == 4)) {
-    if (error) *error = "OffscreenTarget: bad size or supersample factor";
+  if (std::string problem = checkRenderTargetSize(width, height, supersample); !problem.empty()) {
+    if (error) *error = problem;
     return false;
   }
   width_ = width;
@@ -86,7 +110,10 @@ bool OffscreenTarget::create(int width, int height, int supersample, std::string
   supersample_ = supersample;
   const GLenum status = createRenderbufferTarget(GL_RGBA8, renderWidth(), renderHeight(), fbo_, color_, depth_);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    if (error) *error = "OffscreenTarget: framebuffer incomplete (" + std::to_string(status) + ")";
+    // Within the size limits, this is the driver running out of memory for the buffers.
+    if (error)
+      *error = "cannot allocate a " + std::to_string(renderWidth()) + "x" + std::to_string(renderHeight()) +
+               " offscreen image (framebuffer status " + std::to_string(status) + "): try a smaller size or supersampling";
     destroy();
     return false;
   }

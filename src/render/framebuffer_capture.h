@@ -23,6 +23,14 @@ RgbaImage readFramebuffer(int x, int y, int width, int height);
 // see a half-written file. Throws std::runtime_error (with the path) on failure.
 void writePngAtomic(const std::string& path, const RgbaImage& image);
 
+// The largest side of an offscreen target this GL allows (GL_MAX_RENDERBUFFER_SIZE and the viewport
+// limit). Needs a current GL context.
+int maxRenderTargetSide();
+// Empty when a width x height image at `supersample` (1, 2 or 4) fits this GL, else one sentence
+// saying what does, e.g. "8192x8192 at supersampling 4 renders 32768x32768 pixels, over this GL's
+// limit of 16384 per side; supersampling 2 fits". Needs a current GL context.
+std::string checkRenderTargetSize(int width, int height, int supersample);
+
 // An offscreen colour + depth target of width x height output pixels, rendered at `supersample`
 // times the size (1, 2 or 4) and box-filtered down on read. Needs a current GL context.
 class OffscreenTarget {

@@ -355,7 +355,7 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
       {"Ctrl+C / Ctrl+V", "copy / paste the camera as JSON"},
       {"0 - 9", "subdivision level (all views when levels are linked, else the active one)"},
-      {"S / Shift+S", "next / previous scheme of the active view (CC, C2PS, C2PS-U, RTS, BPS)"},
+      {"S / Shift+S", "next / previous scheme of the active view (CC, C2PS, C2PS-U, RTS, RTS-U, BPS)"},
       {"V", "number of views 1..4"},
       {"K", "link / unlink the cameras of the views"},
       {"L / G / M / H / Z", "lit / Gaussian / mean / highlight lines / reflection lines (zebra)"},

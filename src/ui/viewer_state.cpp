@@ -19,6 +19,7 @@ const char* schemeChoiceLabel(SchemeChoice scheme) {
     case SchemeChoice::C2PS: return "C2PS";
     case SchemeChoice::C2PSUniformFirstStep: return "C2PS-U";
     case SchemeChoice::RTS: return "RTS";
+    case SchemeChoice::RTSUniformFirstStep: return "RTS-U";
     case SchemeChoice::BPS: return "BPS";
   }
   return "?";
@@ -30,6 +31,7 @@ const char* schemeChoiceCliName(SchemeChoice scheme) {
     case SchemeChoice::C2PS: return "c2ps";
     case SchemeChoice::C2PSUniformFirstStep: return "c2ps-u";
     case SchemeChoice::RTS: return "rts";
+    case SchemeChoice::RTSUniformFirstStep: return "rts-u";
     case SchemeChoice::BPS: return "bps";
   }
   return "?";
@@ -38,6 +40,7 @@ const char* schemeChoiceCliName(SchemeChoice scheme) {
 std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
   std::string key = lowercase(name);
   if (key == "c2ps-u" || key == "c2ps-uniform" || key == "c2psu") return SchemeChoice::C2PSUniformFirstStep;
+  if (key == "rts-uniform" || key == "rtsu") return SchemeChoice::RTSUniformFirstStep;
   if (key == "catmull-clark" || key == "catmullclark") return SchemeChoice::CatmullClark;
   for (int i = 0; i < kSchemeChoiceCount; ++i) {
     auto scheme = static_cast<SchemeChoice>(i);
@@ -49,12 +52,14 @@ std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
 RefineOptions refineOptionsFor(SchemeChoice scheme, int level) {
   RefineOptions options;
   options.levels = level;
-  options.uniformFirstStep = scheme == SchemeChoice::C2PSUniformFirstStep;
+  options.uniformFirstStep =
+      scheme == SchemeChoice::C2PSUniformFirstStep || scheme == SchemeChoice::RTSUniformFirstStep;
   switch (scheme) {
     case SchemeChoice::CatmullClark: options.scheme = Scheme::CatmullClark; break;
     case SchemeChoice::C2PS:
     case SchemeChoice::C2PSUniformFirstStep: options.scheme = Scheme::C2PS; break;
-    case SchemeChoice::RTS: options.scheme = Scheme::RTS; break;
+    case SchemeChoice::RTS:
+    case SchemeChoice::RTSUniformFirstStep: options.scheme = Scheme::RTS; break;
     case SchemeChoice::BPS: options.scheme = Scheme::BPS; break;
   }
   return options;

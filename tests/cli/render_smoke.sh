@@ -78,13 +78,40 @@ rc=$?
 [ ! -e "$work/missing.png" ] || fail "missing.obj: a PNG was written"
 
 # 6. Usage errors: exit 2, no PNG.
-for args in "--size 10" "--scheme xyz" "--level 99" "--camera {bad" "--frobnicate"; do
+for args in "--size 10" "--scheme xyz" "--level 99" "--camera {bad" "--frobnicate" "--supersample 3"; do
   # shellcheck disable=SC2086
   "$exe" render "$work/globe.obj" -o "$work/usage.png" $args > /dev/null 2>&1
   rc=$?
   [ $rc -eq 2 ] || fail "'$args': exit $rc, expected 2"
   [ ! -e "$work/usage.png" ] || fail "'$args': a PNG was written"
 done
+
+# 7. An image this GL cannot hold: a usage error (exit 2) that says what fits, one line, no PNG.
+"$exe" render "$work/globe.obj" -o "$work/huge.png" --size 8192x8192 --supersample 4 > /dev/null 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 2 ] || fail "8192x8192 at 4x: exit $rc, expected 2"
+[ ! -e "$work/huge.png" ] || fail "8192x8192 at 4x: a PNG was written"
+[ "$(wc -l < "$work/err.txt")" -eq 1 ] || fail "8192x8192 at 4x: expected one line, got: $(cat "$work/err.txt")"
+grep -q "fits" "$work/err.txt" || fail "8192x8192 at 4x: the message does not say what fits: $(cat "$work/err.txt")"
+
+# 8. A level deeper than the face budget allows: exit 1, one line naming the file and the deepest level.
+"$exe" render "$work/globe.obj" -o "$work/deep.png" --level 10 > /dev/null 2> "$work/err.txt"
+rc=$?
+[ $rc -eq 1 ] || fail "level 10: exit $rc, expected 1"
+[ ! -e "$work/deep.png" ] || fail "level 10: a PNG was written"
+grep -q "^polarview: .*globe.obj: level 10 refused: C2PS stops at level [0-9]" "$work/err.txt" ||
+  fail "level 10: unexpected message: $(cat "$work/err.txt")"
+
+# 9. RTS with the uniform first step (the paper's Fig. 11) is a scheme of its own; RTS at a
+#    valence-4 pole says in the view title that Catmull-Clark refined it.
+"$exe" render "$work/globe.obj" --scheme rts,rts-u --level 2 --time 1 > "$work/out.txt" 2> "$work/err.txt" ||
+  fail "rts,rts-u: $(cat "$work/err.txt")"
+grep -q '"titles":\["RTS · 2","RTS-U · 2"\]' "$work/out.txt" || fail "rts,rts-u titles: $(cat "$work/out.txt")"
+write_globe 4 5 "$work/globe4.obj"
+"$exe" render "$work/globe4.obj" --scheme rts,c2ps --level 2 --time 1 > "$work/out.txt" 2> "$work/err.txt" ||
+  fail "valence 4: $(cat "$work/err.txt")"
+grep -q '"poles_by_cc":\[2,0\]' "$work/out.txt" || fail "valence 4: RTS poles not reported as CC: $(cat "$work/out.txt")"
+grep -q '"RTS · 2 · poles by CC (valence < 5)"' "$work/out.txt" || fail "valence 4 title: $(cat "$work/out.txt")"
 
 if [ $failures -ne 0 ]; then
   echo "$failures failure(s)"
