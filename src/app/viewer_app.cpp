@@ -314,13 +314,14 @@ ScreenRect ViewerApp::viewArea() const {
   return ScreenRect{panel, 0, std::max(float(width) - panel, 1.0f), std::max(float(height), 1.0f)};
 }
 
-void ViewerApp::frameModel(double aspect) {
-  if (aspect <= 0.0) {
-    ScreenRect view = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f)).front();
-    aspect = double(view.w) / std::max(double(view.h), 1.0);
-  }
+void ViewerApp::frameModel(const ScreenRect* viewRect) {
+  const ScreenRect view =
+      viewRect ? *viewRect : layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f)).front();
+  const double aspect = double(view.w) / std::max(double(view.h), 1.0);
+  // Keep the model out from under the view's title (a strip at the top; symmetric, so centred).
+  const double heightFraction = std::max(0.5, 1.0 - 2.0 * double(viewTitleHeight(1.0f)) / std::max(double(view.h), 1.0));
   auto frameCamera = [&](OrbitCamera& camera) {
-    if (model_.mesh) camera.framePoints(model_.mesh->points.data(), model_.mesh->points.size(), aspect);
+    if (model_.mesh) camera.framePoints(model_.mesh->points.data(), model_.mesh->points.size(), aspect, heightFraction);
     else camera.frame(modelMin_, modelMax_, aspect);
   };
   if (state_.linkCameras) {
@@ -329,6 +330,8 @@ void ViewerApp::frameModel(double aspect) {
     for (ViewSettings& view : state_.views) frameCamera(view.camera);
   }
   framedOnce_ = true;
+  framedViewCount_ = state_.viewCount;
+  framedWithPanels_ = state_.showPanels;
 }
 
 // [SECTION] Requests from panels and hotkeys
@@ -569,6 +572,8 @@ void ViewerApp::runFrame() {
   drawViewerPanels(state_);
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
+  // More or fewer views, or the panels shown or hidden, change every view's shape: re-frame.
+  if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_)) frameModel();
   processRequests();
   expireNotice();
   pollLoad();

@@ -97,9 +97,9 @@ class ViewerApp {
   // The part of the window the views tile (window coordinates): right of the panel column.
   ScreenRect viewArea() const;
   // Points every view's camera (or the shared one) at the model so that all its control points
-  // (and with them the limit surface) fit views of `aspect` (width / height; 0: the aspect of the
-  // window's current views), keeping the viewing direction.
-  void frameModel(double aspect = 0.0);
+  // (and with them the limit surface) fit a view of the size of `viewRect` (nullptr: the window's
+  // first view now) below its title, keeping the viewing direction.
+  void frameModel(const ScreenRect* viewRect = nullptr);
 
   ViewerState& state() { return state_; }
   const ViewerState& state() const { return state_; }
@@ -151,6 +151,8 @@ class ViewerApp {
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;
   bool framedOnce_ = false;
+  int framedViewCount_ = 0;       // the layout the cameras were last framed for
+  bool framedWithPanels_ = true;
   int framesDrawn_ = 0;
   std::shared_ptr<ShaderLibrary> shaders_;
   std::array<ViewRuntime, kMaxViews> views_;

@@ -24,7 +24,7 @@ const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
     "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --percentile P] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
-    "[--net] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
+    "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
     "[--frames N [--stats] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
@@ -159,7 +159,7 @@ struct RenderRequest {
   std::optional<float> percentile;  // automatic range: +-max(-P(100 - p), P(p)) of K or H by area
   std::string cameraJson;
   std::optional<ViewPreset> preset;
-  bool transparent = false, controlNet = false, boundaries = false, wireframe = false, poles = true;
+  bool transparent = false, controlNet = false, boundaries = false, wireframe = false, poles = true, surface = true;
   int timeFrames = 0;
 };
 
@@ -180,6 +180,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     }
     else if (arg == "--transparent") r.transparent = true;
     else if (arg == "--net") r.controlNet = true;
+    else if (arg == "--no-surface") r.surface = false;
     else if (arg == "--boundaries") r.boundaries = true;
     else if (arg == "--wireframe") r.wireframe = true;
     else if (arg == "--no-poles") r.poles = false;
@@ -263,13 +264,15 @@ int renderWithApp(const RenderRequest& r) {
     state.colour.automatic = false;
     state.colour.typedRange = *r.range;
   }
-  state.display.controlNet = r.controlNet;
+  state.display.surface = r.surface;
+  // Net only: --no-surface shows the control net unless wireframe or boundaries stand in for it.
+  state.display.controlNet = r.controlNet || (!r.surface && !r.wireframe && !r.boundaries);
   state.display.patchBoundaries = r.boundaries;
   state.display.wireframe = r.wireframe;
   state.display.poleMarkers = r.poles;
   ScreenRect imageRect{0, 0, float(r.width), float(r.height)};
   ScreenRect firstView = layoutViews(state.viewCount, imageRect, colourBarReserve(state, 1.0f)).front();
-  app.frameModel(double(firstView.w) / double(firstView.h));
+  app.frameModel(&firstView);
   if (r.preset) state.sharedCamera.applyPreset(*r.preset);
   if (!r.cameraJson.empty()) {
     std::string error;

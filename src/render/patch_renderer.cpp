@@ -137,6 +137,9 @@ void setUniform(GLuint program, const char* name, const glm::mat4& value) {
   glProgramUniformMatrix4fv(program, glGetUniformLocation(program, name), 1, GL_FALSE,
                             glm::value_ptr(value));
 }
+void setUniform(GLuint program, const char* name, const glm::vec4& value) {
+  glProgramUniform4fv(program, glGetUniformLocation(program, name), 1, glm::value_ptr(value));
+}
 void setUniform(GLuint program, const char* name, const glm::vec3& value) {
   glProgramUniform3fv(program, glGetUniformLocation(program, name), 1, glm::value_ptr(value));
 }
@@ -452,7 +455,8 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     const glm::vec3 E = glm::cross(W, B);
     const float radius = static_cast<float>(radius_);
     // Key light fixed in view space (upper left, in front), expressed in world axes.
-    const glm::vec3 keyView = glm::normalize(glm::vec3(-0.35f, 0.55f, 0.76f));
+    const glm::vec3 keyView = glm::length(shading.keyLightView) > 1e-6f ? glm::normalize(shading.keyLightView)
+                                                                         : glm::vec3(0.0f, 0.0f, 1.0f);
     const glm::vec3 keyWorld = glm::normalize(glm::transpose(glm::mat3(view.view)) * keyView);
 
     setTessellationUniforms(program, view, shading);
@@ -468,7 +472,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     setUniform(program, "u_planePoint", W * (2.0f * radius));
     setUniform(program, "u_lineSpacing",
                shading.mode == ShadingParams::Mode::Reflection
-                   ? std::max(shading.highlightSpacing, 1e-4f)
+                   ? std::max(shading.reflectionSpacing, 1e-4f)
                    : std::max(shading.highlightSpacing * radius, 1e-12f));
     setUniform(program, "u_lineWidth", std::clamp(shading.highlightWidth, 0.0f, 1.0f));
     setUniform(program, "u_drawSurface", flags.surface ? 1 : 0);
@@ -505,13 +509,35 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
 
   const GLuint overlay = g.shaders->program(kOverlayProgram);
   setUniform(overlay, "u_modelViewProjection", mvp);
+  setUniform(overlay, "u_alpha", 1.0f);
+  setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
   if (flags.controlNet && g.netVertexCount > 0) {
-    setUniform(overlay, "u_depthBias", 0.0f);
+    // Dark lines over the surface, light ones over the background when the surface is hidden (the
+    // dark net vanished against the dark background). With the surface shown, the parts of the net
+    // behind it are drawn faintly first, so the net reads as one piece, as CAD viewers show hidden lines.
+    const glm::vec3 netColour = flags.surface ? glm::vec3(0.06f, 0.06f, 0.08f) : glm::vec3(0.85f, 0.87f, 0.9f);
     setUniform(overlay, "u_roundPoints", 0);
     setUniform(overlay, "u_pointSize", 1.0f);
+    setUniform(overlay, "u_colorOverride", glm::vec4(netColour, 1.0f));
     glUseProgram(overlay);
     glBindVertexArray(g.netVao);
+    if (flags.surface) {
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the image's alpha
+      glDepthMask(GL_FALSE);
+      glDepthFunc(GL_GREATER);
+      setUniform(overlay, "u_depthBias", 0.0f);
+      setUniform(overlay, "u_alpha", 0.3f);
+      glDrawArrays(GL_LINES, 0, g.netVertexCount);
+      glDepthFunc(GL_LEQUAL);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_BLEND);
+      setUniform(overlay, "u_alpha", 1.0f);
+    }
+    // Where the net meets the surface (boundaries, poles) a small bias keeps it in front.
+    setUniform(overlay, "u_depthBias", 0.0005f);
     glDrawArrays(GL_LINES, 0, g.netVertexCount);
+    setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
   }
   if (flags.poleMarkers && g.poleCount > 0) {
     setUniform(overlay, "u_depthBias", 0.002f);

@@ -35,11 +35,17 @@ struct ShadingParams {
   // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
   // direction) placed 2 bounding radii from the model centre. Spacing is in units of the model's
   // bounding radius; width is the fraction of one spacing that is dark (0..1).
-  // Reflection lines use the same direction, spacing as an angle fraction, and width.
+  // Reflection lines (zebra) use the same direction and width, and reflectionSpacing: the stripe
+  // period as a fraction of a full turn of the reflected ray (1/24: a stripe pair every 15 degrees,
+  // about a dozen stripes across a dome at the default view; 1/4 showed only ~3).
   glm::vec3 highlightDir{1.0f, 0.0f, 0.0f};
   glm::vec3 highlightPlaneNormal{0.0f, 0.0f, 1.0f};
   float highlightSpacing = 0.25f;
+  float reflectionSpacing = 1.0f / 24.0f;
   float highlightWidth = 0.3f;
+  // Key light of the lit and curvature modes, in view space (x right, y up, z towards the eye):
+  // upper left, in front. Ctrl+left drag turns it.
+  glm::vec3 keyLightView{-0.35f, 0.55f, 0.76f};
   float tessPixels = 12.0f;   // target screen length of a tessellated edge, in pixels
   int maxTessLevel = 64;      // clamp of the adaptive level (llvmpipe gets ~5x slower from 15 up)
   int fixedTessLevel = 0;     // > 0: this level on every edge instead of the adaptive one

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -50,6 +52,15 @@ class JsonCursor {
   }
   bool readNumber(double* out) {
     skipSpace();
+    // JSON's booleans read as 1 and 0 (the "ortho" key).
+    for (const auto& [word, value] : {std::pair{"true", 1.0}, std::pair{"false", 0.0}}) {
+      const size_t length = std::char_traits<char>::length(word);
+      if (s_.compare(i_, length, word) == 0) {
+        i_ += length;
+        *out = value;
+        return true;
+      }
+    }
     const char* begin = s_.c_str() + i_;
     char* end = nullptr;
     *out = std::strtod(begin, &end);
@@ -102,6 +113,13 @@ glm::mat4 OrbitCamera::projectionMatrix(double aspect, const glm::dvec3& sceneCe
   double radius = std::max(sceneRadius, 1e-6);
   double centreDepth = glm::dot(sceneCentre - eye(), forward());
   double farPlane = std::max(centreDepth + 1.5 * radius, 1e-6);
+  if (orthographic) {
+    // The same picture at the target's depth as the perspective view (half height D tan(fov/2));
+    // no eye to protect, so near may lie behind it.
+    const double halfHeight = distance * std::tan(radians(fovDeg) / 2.0);
+    const double halfWidth = halfHeight * std::max(aspect, 1e-6);
+    return glm::mat4(glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, centreDepth - 1.5 * radius, farPlane));
+  }
   double nearPlane = std::max(centreDepth - 1.5 * radius, farPlane * 1e-4);
   return glm::mat4(glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane));
 }
@@ -119,6 +137,16 @@ void OrbitCamera::pan(double dxPixels, double dyPixels, double viewportHeightPix
 
 void OrbitCamera::zoom(double wheelNotches) {
   distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), 1e-6, 1e9);
+}
+
+void OrbitCamera::zoomAt(double wheelNotches, double ndcX, double ndcY, double aspect) {
+  // The point of the target's plane under the cursor, before the zoom.
+  const double tanY = std::tan(radians(fovDeg) / 2.0), tanX = std::max(aspect, 1e-6) * tanY;
+  const glm::dvec3 underCursor = target + distance * (ndcX * tanX * right() + ndcY * tanY * up());
+  const double before = distance;
+  zoom(wheelNotches);
+  // Scaling the view about that point keeps it under the cursor (exactly on the target's plane).
+  target = underCursor + (target - underCursor) * (distance / before);
 }
 
 void OrbitCamera::setPivotKeepingEye(const glm::dvec3& point) {
@@ -142,7 +170,7 @@ void OrbitCamera::frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, doub
   framePoints(corners.data(), corners.size(), aspect);
 }
 
-void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double aspect) {
+void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double aspect, double heightFraction) {
   if (count == 0) return;
   // Fits the points in the current viewing direction rather than a bounding sphere: the sphere of
   // a flat cap or of a wide mushroom seen from above filled only a third of the view.
@@ -153,8 +181,11 @@ void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double asp
   }
   target = 0.5 * (lo + hi);
   constexpr double kMargin = 1.08;  // the outermost point lands at 1 / 1.08 of the half-width
-  const double tanY = std::tan(radians(fovDeg) / 2.0) / kMargin;
-  const double tanX = std::max(aspect, 1e-3) * tanY;
+  const double fullTanY = std::tan(radians(fovDeg) / 2.0) / kMargin;
+  const double tanX = std::max(aspect, 1e-3) * fullTanY;
+  const double tanY = fullTanY * std::clamp(heightFraction, 0.1, 1.0);
+  // Orthographic: the view's half-size at any depth is D tan, so depth does not help.
+  const double depthWeight = orthographic ? 0.0 : 1.0;
   const glm::dvec3 r = right(), u = up(), f = forward();
   const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
   double needed = 0.0;
@@ -163,8 +194,8 @@ void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double asp
     // the eye stays in front of every point.
     glm::dvec3 d = points[i] - target;
     double depth = glm::dot(d, f);
-    needed = std::max({needed, std::abs(glm::dot(d, r)) / tanX - depth, std::abs(glm::dot(d, u)) / tanY - depth,
-                       0.05 * radius - depth});
+    needed = std::max({needed, std::abs(glm::dot(d, r)) / tanX - depthWeight * depth,
+                       std::abs(glm::dot(d, u)) / tanY - depthWeight * depth, 0.05 * radius - depth});
   }
   distance = needed;
 }
@@ -191,8 +222,10 @@ const char* viewPresetName(ViewPreset preset) {
 std::string cameraToJson(const OrbitCamera& c) {
   char buffer[512];
   std::snprintf(buffer, sizeof buffer,
-                "{\"target\":[%.17g,%.17g,%.17g],\"distance\":%.17g,\"yaw\":%.17g,\"pitch\":%.17g,\"fov\":%.17g}",
-                c.target.x, c.target.y, c.target.z, c.distance, c.yawDeg, c.pitchDeg, c.fovDeg);
+                "{\"target\":[%.17g,%.17g,%.17g],\"distance\":%.17g,\"yaw\":%.17g,\"pitch\":%.17g,\"fov\":%.17g,"
+                "\"ortho\":%s}",
+                c.target.x, c.target.y, c.target.z, c.distance, c.yawDeg, c.pitchDeg, c.fovDeg,
+                c.orthographic ? "true" : "false");
   return buffer;
 }
 
@@ -217,7 +250,9 @@ std::optional<OrbitCamera> cameraFromJson(const std::string& json, const OrbitCa
       else if (key == "yaw" && scalar) camera.yawDeg = value[0];
       else if (key == "pitch" && scalar) camera.pitchDeg = std::clamp(value[0], -kMaxPitchDeg, kMaxPitchDeg);
       else if (key == "fov" && scalar && value[0] > 0.0 && value[0] < 180.0) camera.fovDeg = value[0];
-      else return fail("bad key or value \"" + key + "\" (keys: target[3], distance>0, yaw, pitch, fov in (0,180))");
+      else if (key == "ortho" && scalar && (value[0] == 0.0 || value[0] == 1.0)) camera.orthographic = value[0] == 1.0;
+      else return fail("bad key or value \"" + key +
+                       "\" (keys: target[3], distance>0, yaw, pitch, fov in (0,180), ortho true/false)");
     } while (cursor.consume(','));
     if (!cursor.consume('}')) return fail("expected ',' or '}'");
   }

@@ -21,6 +21,9 @@ struct OrbitCamera {
   // the tool is about) faces the viewer instead of sitting on the silhouette.
   double pitchDeg = 40.0;  // elevation of the eye, clamped to (-89, 89) so +z stays up
   double fovDeg = 35.0;    // vertical field of view
+  // Orthographic projection showing what the perspective one shows at the target's depth
+  // (half height distance * tan(fov / 2)); zoom and pan work alike.
+  bool orthographic = false;
 
   glm::dvec3 eye() const;
   glm::dvec3 forward() const;  // unit, eye -> target
@@ -37,21 +40,26 @@ struct OrbitCamera {
   void pan(double dxPixels, double dyPixels, double viewportHeightPixels);
   // Wheel: each notch moves 15% closer (positive) or further (negative).
   void zoom(double wheelNotches);
+  // Wheel over a view: zooms as zoom() and moves the target so that the point of the target's
+  // plane under the cursor (ndcX, ndcY in [-1, 1], y up) stays under it. `aspect` = width / height.
+  void zoomAt(double wheelNotches, double ndcX, double ndcY, double aspect);
   // Double-click: the pivot becomes `point`; the eye stays where it is and turns to look at it.
   void setPivotKeepingEye(const glm::dvec3& point);
   // F: centres the bounding box and, keeping the direction, backs off until its eight corners fit
   // a view of `aspect` (width / height) both ways with an 8% margin.
   void frame(const glm::dvec3& boxMin, const glm::dvec3& boxMax, double aspect = 1.0);
   // The same for `count` points (a model's control points, whose hull holds its limit surface):
-  // target at the centre of their box, distance so that every point fits. [O(count)]
-  void framePoints(const glm::dvec3* points, size_t count, double aspect = 1.0);
+  // target at the centre of their box, distance so that every point fits within the middle
+  // `heightFraction` of the view's height (room for the view's title above). [O(count)]
+  void framePoints(const glm::dvec3* points, size_t count, double aspect = 1.0, double heightFraction = 1.0);
   // Presets keep target and distance and set the direction.
   void applyPreset(ViewPreset preset);
 };
 
 const char* viewPresetName(ViewPreset preset);
 
-// {"target":[x,y,z],"distance":d,"yaw":deg,"pitch":deg,"fov":deg} with 17 significant digits.
+// {"target":[x,y,z],"distance":d,"yaw":deg,"pitch":deg,"fov":deg,"ortho":false} with 17 significant
+// digits.
 std::string cameraToJson(const OrbitCamera& camera);
 
 // Parses a JSON object with any subset of the keys above over `base` (missing keys keep base's

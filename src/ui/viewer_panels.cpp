@@ -7,6 +7,7 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>  // key codes and modifier bits only
+#include <glm/gtc/quaternion.hpp>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -41,6 +42,27 @@ constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Shaded, Shad
                                                ShadingParams::Mode::Reflection};
 constexpr const char* kShadeLabels[] = {"Lit (L)", "Gaussian K (G)", "Mean H (M)", "Highlight lines (H)",
                                         "Reflection lines / zebra (Z)"};
+
+// Ctrl+left drag: turns the light by the pixel deltas (0.4 degrees a pixel, as orbiting). Lit and
+// curvature modes turn the key light in view space; highlight and zebra modes turn the light lines
+// (direction and plane normal together) about world z and the screen's horizontal axis.
+void moveLight(ShadingParams& shading, const OrbitCamera& camera, float dxPixels, float dyPixels) {
+  const float yaw = glm::radians(0.4f * dxPixels), pitch = glm::radians(0.4f * dyPixels);
+  if (shading.mode == ShadingParams::Mode::Highlight || shading.mode == ShadingParams::Mode::Reflection) {
+    const glm::quat turn = glm::angleAxis(pitch, glm::vec3(camera.right())) * glm::angleAxis(yaw, glm::vec3(0, 0, 1));
+    shading.highlightDir = glm::normalize(turn * shading.highlightDir);
+    shading.highlightPlaneNormal = glm::normalize(turn * shading.highlightPlaneNormal);
+  } else {
+    const glm::quat turn = glm::angleAxis(pitch, glm::vec3(1, 0, 0)) * glm::angleAxis(yaw, glm::vec3(0, 1, 0));
+    shading.keyLightView = glm::normalize(turn * shading.keyLightView);
+  }
+}
+
+// Every view's projection (linked or not), so side-by-side views stay comparable.
+void setOrthographic(ViewerState& state, bool orthographic) {
+  state.sharedCamera.orthographic = orthographic;
+  for (ViewSettings& view : state.views) view.camera.orthographic = orthographic;
+}
 
 void cycleScheme(ViewerState& state, int view, int step) {
   int next = (int(state.views[view].scheme) + step + kSchemeChoiceCount) % kSchemeChoiceCount;
@@ -189,7 +211,10 @@ void drawShadingPanel(ViewerState& state) {
       s.highlightPlaneNormal = glm::vec3(-camera.forward());
       s.highlightDir = glm::vec3(camera.up());
     }
-    ImGui::SliderFloat("Line spacing", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    if (s.mode == ShadingParams::Mode::Highlight)
+      ImGui::SliderFloat("Line spacing (x radius)", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    else
+      ImGui::SliderFloat("Stripe period (turns)", &s.reflectionSpacing, 0.005f, 0.5f, "%.4f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("Line width", &s.highlightWidth, 0.02f, 0.98f, "%.2f");
   }
   if (state.showsColourBar()) ImGui::SliderFloat("Lighting on colours", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
@@ -232,9 +257,14 @@ void drawCameraPanel(ViewerState& state) {
   if (ImGui::Button("Copy (Ctrl+C)")) state.requests.copyCamera = true;
   ImGui::SameLine();
   if (ImGui::Button("Paste (Ctrl+V)")) state.requests.pasteCamera = true;
+  bool ortho = state.camera(state.activeView).orthographic;
+  if (ImGui::Checkbox("Orthographic (O)", &ortho)) setOrthographic(state, ortho);
   float fov = float(state.camera(state.activeView).fovDeg);
   if (ImGui::SliderFloat("Field of view", &fov, 5.0f, 90.0f, "%.0f deg")) state.camera(state.activeView).fovDeg = fov;
-  ImGui::TextDisabled("Left drag orbits, right/middle drag pans, wheel zooms,\ndouble-click sets the pivot.");
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("Left drag orbits, right/middle drag pans, the wheel zooms towards the cursor, a "
+                      "double-click sets the pivot, Ctrl+left drag moves the light.");
+  ImGui::PopTextWrapPos();
 }
 
 void drawScreenshotPanel(ViewerState& state) {
@@ -335,6 +365,7 @@ void applyHotkey(ViewerState& state, int key, int mods) {
     case GLFW_KEY_F2: state.requests.preset = ViewPreset::Top; break;
     case GLFW_KEY_F3: state.requests.preset = ViewPreset::Side; break;
     case GLFW_KEY_F4: state.requests.preset = ViewPreset::Iso; break;
+    case GLFW_KEY_O: setOrthographic(state, !state.camera(state.activeView).orthographic); break;
     case GLFW_KEY_PAGE_DOWN: state.requests.playlistStep = 1; break;
     case GLFW_KEY_PAGE_UP: state.requests.playlistStep = -1; break;
     default: break;
@@ -349,7 +380,9 @@ const std::vector<HotkeyHelp>& hotkeyList() {
   static const std::vector<HotkeyHelp> list = {
       {"Left drag", "orbit around the pivot"},
       {"Right / middle drag, Shift+left drag", "pan"},
-      {"Wheel", "zoom"},
+      {"Wheel", "zoom towards the point under the cursor"},
+      {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
+      {"O", "orthographic / perspective projection"},
       {"Double-click", "set the pivot to the surface point under the cursor"},
       {"F", "frame the model"},
       {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
@@ -384,6 +417,8 @@ std::string viewTitle(const ViewStatus& status) {
          std::to_string(status.polesByScheme + status.polesByCatmullClark) + " poles by CC";
 }
 
+float viewTitleHeight(float scale) { return 34.0f * scale; }
+
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
 
 float colourBarReserve(const ViewerState& state, float scale) {
@@ -398,8 +433,8 @@ std::string lineLegend(const ShadingParams& shading) {
     std::snprintf(text, sizeof text, "highlight lines: light direction (%.2f, %.2f, %.2f), spacing %.3g x model radius, dark %.0f%%",
                   d.x, d.y, d.z, shading.highlightSpacing, 100.0f * shading.highlightWidth);
   } else if (shading.mode == ShadingParams::Mode::Reflection) {
-    std::snprintf(text, sizeof text, "reflection lines (zebra): stripe direction (%.2f, %.2f, %.2f), spacing %.3g, dark %.0f%%",
-                  d.x, d.y, d.z, shading.highlightSpacing, 100.0f * shading.highlightWidth);
+    std::snprintf(text, sizeof text, "reflection lines (zebra): stripe direction (%.2f, %.2f, %.2f), period %.3g deg, dark %.0f%%",
+                  d.x, d.y, d.z, 360.0f * shading.reflectionSpacing, 100.0f * shading.highlightWidth);
   } else {
     return {};
   }
@@ -490,7 +525,8 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   const ImU32 text = IM_COL32(255, 255, 255, 255);
   const ImU32 box = IM_COL32(20, 20, 24, 190);
 
-  // Labels "scheme · level" at the top of each view, centred.
+  // Labels "scheme · level" at the top of each view, centred; the pole rings leave them alone.
+  std::vector<ImVec4> labelBoxes;
   for (size_t v = 0; v < views.size(); ++v) {
     const ScreenRect& r = views[v];
     const ViewStatus& status = state.status[v];
@@ -501,19 +537,28 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
                std::to_string(wanted.level) + "...";
     }
     if (v == 0 && state.file.loading) label += "   loading " + state.file.loadingPath + "...";
-    ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, label.c_str());
+    // Wraps in a narrow view instead of running past its sides.
+    const float wrap = std::max(r.w - 24.0f * scale, 40.0f * scale);
+    ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, wrap, label.c_str());
     ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f * scale);
     list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
                         box, 4.0f * scale);
-    list->AddText(font, fontSize, at, text, label.c_str());
+    list->AddText(font, fontSize, at, text, label.c_str(), nullptr, wrap);
+    labelBoxes.emplace_back(at.x - 6 * scale, at.y - 3 * scale, at.x + size.x + 6 * scale, at.y + size.y + 3 * scale);
     if (r.x > frame.x) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
     if (r.y > frame.y) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y), IM_COL32(128, 128, 128, 160), scale);
   }
 
   // Pole rings: an outline only (white over a dark rim, readable on every colour map) so the
   // colour at the pole itself, the value the paper's Taylor expansion gives, stays visible.
+  const float ringRadius = 7.0f * scale;
   for (const PoleMarker& pole : poles) {
     const ImVec2 centre(pole.x, pole.y);
+    const bool underLabel = std::any_of(labelBoxes.begin(), labelBoxes.end(), [&](const ImVec4& b) {
+      return centre.x > b.x - ringRadius && centre.x < b.z + ringRadius && centre.y > b.y - ringRadius &&
+             centre.y < b.w + ringRadius;
+    });
+    if (underLabel) continue;
     list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
     list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
   }
@@ -522,11 +567,15 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   // still say what they show.
   if (std::string legend = lineLegend(state.shading); !legend.empty()) {
     const float legendSize = fontSize * 0.9f;
-    ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, legend.c_str());
-    ImVec2 at(frame.x + 0.5f * (frame.w - size.x), frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale);
+    // Wraps in a narrow window; extra lines grow the box upwards over the views' bottom edge.
+    const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
+    ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, wrap, legend.c_str());
+    const float oneLine = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, "M").y;
+    ImVec2 at(frame.x + 0.5f * (frame.w - size.x),
+              frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale - (size.y - oneLine));
     list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
                         box, 4.0f * scale);
-    list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str());
+    list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str(), nullptr, wrap);
   }
 
   if (!state.showsColourBar()) return;
@@ -538,8 +587,15 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   const float left = frame.x + 0.5f * (frame.w - barWidth);
   const float top = frame.y + frame.h - reserve + 8.0f * scale;
   std::string title = state.shading.mode == ShadingParams::Mode::Gaussian ? "Gaussian curvature K" : "mean curvature H";
-  title += std::string("  (") + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
-  ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
+  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
+  ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
+  if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
+    title = fullTitle;
+  } else {  // a narrow window: the short form fits on the one line the strip has
+    title = std::string(state.shading.mode == ShadingParams::Mode::Gaussian ? "K" : "H") + " (" +
+            colourMapName(state.shading.colormap) + ")";
+    titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
+  }
   list->AddRectFilled(ImVec2(left - 40 * scale, top - 4 * scale),
                       ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), box, 4.0f * scale);
   const int segments = 96;
@@ -593,11 +649,18 @@ std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vect
     ImVec2 delta = io.MouseDelta;
     bool pan = ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
     if (delta.x != 0.0f || delta.y != 0.0f) {
-      if (pan) camera.pan(delta.x, delta.y, views[size_t(dragView_)].h);
+      if (ImGui::IsMouseDown(0) && io.KeyCtrl) moveLight(state.shading, camera, delta.x, delta.y);
+      else if (pan) camera.pan(delta.x, delta.y, views[size_t(dragView_)].h);
       else if (ImGui::IsMouseDown(0)) camera.orbit(delta.x, delta.y);
     }
   }
-  if (hovered >= 0 && io.MouseWheel != 0.0f) state.camera(hovered).zoom(io.MouseWheel);
+  if (hovered >= 0 && io.MouseWheel != 0.0f) {
+    // Towards the point under the cursor, as map and CAD viewers zoom.
+    const ScreenRect& r = views[size_t(hovered)];
+    const double ndcX = 2.0 * (io.MousePos.x - r.x) / std::max(r.w, 1.0f) - 1.0;
+    const double ndcY = 1.0 - 2.0 * (io.MousePos.y - r.y) / std::max(r.h, 1.0f);
+    state.camera(hovered).zoomAt(io.MouseWheel, ndcX, ndcY, double(r.w) / std::max(double(r.h), 1.0));
+  }
   if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) return PivotPick{hovered, io.MousePos.x, io.MousePos.y};
   return std::nullopt;
 }

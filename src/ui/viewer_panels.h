@@ -29,6 +29,8 @@ const std::vector<HotkeyHelp>& hotkeyList();
 // A view's title: "C2PS · 3", or "RTS · 3 · poles by CC (valence < 5)" when the scheme left its
 // poles to Catmull-Clark (RTS and BPS need valence >= 5).
 std::string viewTitle(const ViewStatus& status);
+// Height of the strip at the top of each view that its title covers (framing keeps the model below).
+float viewTitleHeight(float scale);
 // Width of the panel column on the left of the window (0 when the panels are hidden).
 float panelColumnWidth(const ViewerState& state);
 // Height kept free under the views for the colour bar (curvature modes) or the line legend

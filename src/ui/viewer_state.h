@@ -144,7 +144,8 @@ struct ViewerState {
   float colourRange() const { return colour.automatic ? colour.autoRange : colour.typedRange; }
   // True when the shading is a curvature map (then the colour bar is shown).
   bool showsColourBar() const {
-    return shading.mode == ShadingParams::Mode::Gaussian || shading.mode == ShadingParams::Mode::Mean;
+    return display.surface &&
+           (shading.mode == ShadingParams::Mode::Gaussian || shading.mode == ShadingParams::Mode::Mean);
   }
 };
 

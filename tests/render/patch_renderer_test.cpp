@@ -264,5 +264,50 @@ TEST_CASE("renderer: the control net is drawn along the mesh edges") {
   CHECK(offLines == 0);
 }
 
+TEST_CASE("control net: light lines where the surface is hidden, dark lines over it, faint where it runs behind") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  // A flat 3x3 grid of patches and, 0.3 below it, a 4x4 control net: every net line runs behind
+  // the surface (seen from above) except where it leaves the surface's footprint.
+  renderer->setPatches(test::graphPatches([](double, double) { return 0.0; }, 3, 3, -1.5, -1.5, 1.0));
+  PolyMesh net;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) net.points.push_back({-2.0 + i, -2.0 + j, -0.3});
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) net.addFace({Index(5 * j + i), Index(5 * j + i + 1), Index(5 * j + i + 6), Index(5 * j + i + 5)});
+  renderer->setControlMesh(net);
+  const int size = 200;
+  const ViewParams view = test::topView(Point(0.0), 2.4, {0, 0, size, size});
+  ShadingParams shading;
+  DisplayFlags netOnly;
+  netOnly.surface = false;
+  netOnly.controlNet = true;
+  netOnly.poleMarkers = false;
+  auto count = [&](const RgbaImage& image, auto predicate) {
+    int n = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) n += predicate(image.at(x, y));
+    return n;
+  };
+  // Net only: light lines (visible on the dark viewer background).
+  const RgbaImage alone = renderOffscreen(*renderer, view, shading, netOnly, size, size);
+  const int light = count(alone, [](const uint8_t* p) { return p[3] == 255 && p[0] > 180; });
+  CHECK(light > 5 * size);
+  // With the surface: the lines behind it show as a blend of net and surface colour (darker than
+  // the surface, lighter than the net), not as gaps.
+  DisplayFlags both = netOnly;
+  both.surface = true;
+  const RgbaImage drawn = renderOffscreen(*renderer, view, shading, both, size, size);
+  const RgbaImage plain = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+  int faint = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const int with = drawn.at(x, y)[1], without = plain.at(x, y)[1];
+      faint += drawn.at(x, y)[3] == 255 && with < without - 20 && with > 40;
+    }
+  CHECK(faint > 3 * size);
+  CHECK(count(drawn, [](const uint8_t* p) { return p[3] != 0 && p[3] != 255; }) == 0);  // alpha kept
+}
+
 }  // namespace
 }  // namespace polarview
