@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vec4.hpp>
 
 #include "ui/orbit_camera.h"
@@ -101,6 +103,79 @@ TEST_CASE("orbit camera: framing is tight: some corner of the box reaches the ed
     CAPTURE(trial);
     CHECK(widest > 0.9f);  // 1 / 1.08 = 0.926 unless the eye-distance floor applies
   }
+}
+
+TEST_CASE("orbit camera: framing below a title keeps every point in the middle fraction of the height, perspective and orthographic") {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    c.orthographic = trial % 2 == 1;
+    std::vector<glm::dvec3> points(20);
+    for (glm::dvec3& p : points) p = {3 * u(rng), 3 * u(rng), 3 * u(rng)};
+    const double aspect = std::exp(1.2 * u(rng)), fraction = 0.6 + 0.4 * std::abs(u(rng));
+    c.framePoints(points.data(), points.size(), aspect, fraction);
+    glm::mat4 clip = c.projectionMatrix(aspect, glm::dvec3(0.0), 6.0) * c.viewMatrix();
+    float tallest = 0.0f;
+    for (const glm::dvec3& p : points) {
+      glm::vec4 q = clip * glm::vec4(glm::vec3(p), 1.0f);
+      CAPTURE(trial);
+      CHECK(q.w > 0.0f);
+      CHECK(std::abs(q.x / q.w) <= 1.0f);
+      CHECK(std::abs(q.y / q.w) <= float(fraction) + 1e-5f);
+      CHECK(std::abs(q.z / q.w) <= 1.0f);
+      tallest = std::max({tallest, std::abs(q.x / q.w), std::abs(q.y / q.w) / float(fraction)});
+    }
+    CHECK(tallest > 0.85f);  // still tight
+  }
+}
+
+TEST_CASE("orbit camera: the wheel zooms towards the cursor: the point under it stays there") {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    c.orthographic = trial % 3 == 0;
+    const double aspect = std::exp(u(rng)), ndcX = u(rng), ndcY = u(rng);
+    // The point of the target's plane under the cursor.
+    const double tanY = std::tan(glm::radians(c.fovDeg) / 2.0), tanX = aspect * tanY;
+    const glm::dvec3 p = c.target + c.distance * (ndcX * tanX * c.right() + ndcY * tanY * c.up());
+    const double before = c.distance;
+    c.zoomAt(2.0 * u(rng), ndcX, ndcY, aspect);
+    CHECK(c.distance != before);
+    const glm::dmat4 clip = glm::dmat4(c.projectionMatrix(aspect, c.target, c.distance)) * glm::dmat4(c.viewMatrix());
+    const glm::dvec4 q = clip * glm::dvec4(p, 1.0);
+    CAPTURE(trial);
+    CHECK(q.x / q.w == doctest::Approx(ndcX).epsilon(1e-4));
+    CHECK(q.y / q.w == doctest::Approx(ndcY).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("orbit camera: the orthographic view shows at the target's depth what the perspective one shows") {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    const double aspect = std::exp(u(rng));
+    const glm::dvec3 p = c.target + c.distance * (0.3 * u(rng) * c.right() + 0.3 * u(rng) * c.up());
+    auto project = [&](bool ortho) {
+      c.orthographic = ortho;
+      const glm::dvec4 q = glm::dmat4(c.projectionMatrix(aspect, c.target, c.distance)) * glm::dmat4(c.viewMatrix()) * glm::dvec4(p, 1.0);
+      return glm::dvec2(q.x / q.w, q.y / q.w);
+    };
+    const glm::dvec2 a = project(false), b = project(true);
+    CAPTURE(trial);
+    CHECK(a.x == doctest::Approx(b.x).epsilon(1e-4));
+    CHECK(a.y == doctest::Approx(b.y).epsilon(1e-4));
+  }
+  // The projection travels with the camera JSON.
+  OrbitCamera ortho;
+  ortho.orthographic = true;
+  std::string error;
+  auto back = cameraFromJson(cameraToJson(ortho), OrbitCamera{}, &error);
+  REQUIRE_MESSAGE(back, error);
+  CHECK(back->orthographic);
+  CHECK(!cameraFromJson("{\"ortho\":2}", OrbitCamera{}, &error));
 }
 
 TEST_CASE("orbit camera: setting the pivot keeps the eye and looks at the new point") {
