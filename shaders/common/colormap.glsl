@@ -1,5 +1,6 @@
 // Curvature colour maps. Mirror of polarview::colorMapCpu (src/render/patch_renderer.cpp); the
-// render tests compare the two. Values are mapped symmetrically: t = clamp(value / range, -1, 1).
+// render tests compare the two. Values map to t in [-1, 1] with two slopes, zero in the middle:
+// t = value / range above zero and value / rangeBelow below (equal for a symmetric range).
 
 const int kColorMapPaper = 0;
 const int kColorMapCoolWarm = 1;
@@ -44,8 +45,8 @@ vec3 magnitudeColorMap(float t) {
                           vec3(1.0, 0.9, 0.0), vec3(0.85, 0.0, 0.0));
 }
 
-vec3 curvatureColor(int colormap, float value, float range) {
-  float t = clamp(value / max(range, 1e-30), -1.0, 1.0);
+vec3 curvatureColor(int colormap, float value, float range, float rangeBelow) {
+  float t = clamp(value / max(value >= 0.0 ? range : rangeBelow, 1e-30), -1.0, 1.0);
   if (colormap == kColorMapMagnitude) return magnitudeColorMap(t);
   if (colormap == kColorMapCoolWarm) return coolWarmColorMap(t);
   if (colormap == kColorMapViridis) return viridisColorMap(t);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <new>
 #include <numeric>
 #include <optional>
@@ -22,6 +23,9 @@
 namespace polarview::cli {
 
 namespace {
+
+// How many rejected pole candidates `info` lists in text (the JSON lists all).
+constexpr size_t kRejectedListed = 10;
 
 // A usage error: printed with the usage text, exit code 2.
 struct UsageError {
@@ -50,8 +54,26 @@ int parseInt(const std::string& flag, const std::string& text, int low, int high
   }
 }
 
-CommonOptions parseOptions(const Args& args, const std::vector<std::string>& allowed) {
+// The scheme names of refine, pole and bench: parseScheme's, plus the viewer's "c2ps-u" and
+// "rts-u" for the paper's Section-6 variant (the same as --uniform-first-step).
+std::optional<Scheme> parseCliScheme(const std::string& name, bool* uniformFirstStep) {
+  *uniformFirstStep = false;
+  for (Scheme s : {Scheme::C2PS, Scheme::RTS})
+    if (name == std::string(schemeName(s)) + "-u") {
+      *uniformFirstStep = true;
+      return s;
+    }
+  return parseScheme(name);
+}
+
+// The name parseCliScheme reads back: "c2ps-u" for C2PS with the uniform first step.
+std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) {
+  return std::string(schemeName(scheme)) + (uniformFirstStep ? "-u" : "");
+}
+
+CommonOptions parseOptions(const std::string& command, const Args& args, const std::vector<std::string>& allowed) {
   CommonOptions o;
+  bool uniformFlag = false, uniformScheme = false;
   auto isAllowed = [&](const std::string& flag) { return std::find(allowed.begin(), allowed.end(), flag) != allowed.end(); };
   for (size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
@@ -62,18 +84,23 @@ CommonOptions parseOptions(const Args& args, const std::vector<std::string>& all
     if (a.size() > 1 && a[0] == '-' && !isAllowed(a)) throw UsageError{"unknown option " + a};
     if (a == "-o" || a == "--output") o.output = next();
     else if (a == "--scheme") {
-      std::optional<Scheme> s = parseScheme(next());
-      if (!s) throw UsageError{"unknown scheme '" + args[k] + "' (cc, c2ps, rts, bps)"};
+      std::optional<Scheme> s = parseCliScheme(next(), &uniformScheme);
+      if (!s) throw UsageError{"unknown scheme '" + args[k] + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)"};
       o.scheme = *s;
       o.schemeGiven = true;
     } else if (a == "--levels" || a == "--level") o.levels = parseInt(a, next(), 0, 64);
     else if (a == "--reps") o.reps = parseInt(a, next(), 1, 1000);
-    else if (a == "--uniform-first-step") o.uniformFirstStep = true;
+    else if (a == "--uniform-first-step") uniformFlag = true;
     else if (a == "--json") o.json = true;
     else if (o.input.empty()) o.input = a;
     else throw UsageError{"unexpected argument '" + a + "'"};
   }
   if (o.input.empty()) throw UsageError{"missing input file"};
+  // The Section-6 variant changes the first step's 2-link of C2PS and RTS only; elsewhere the flag
+  // would be accepted and do nothing.
+  o.uniformFirstStep = uniformFlag || uniformScheme;
+  if (uniformFlag && o.scheme != Scheme::C2PS && o.scheme != Scheme::RTS)
+    throw UsageError{command + ": --uniform-first-step applies to c2ps and rts only"};
   return o;
 }
 
@@ -145,11 +172,13 @@ const char* usageText() {
          "  polarview view FILE.obj            open the viewer on a file\n"
          "  polarview render FILE.obj -o OUT.png --scheme c2ps[,rts,...] --level L\n"
          "                   --shade gaussian|mean|highlight|shaded --size WxH [--range R] [--camera JSON]\n"
-         "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|rts|bps --levels L [--uniform-first-step]\n"
+         "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L\n"
          "  polarview info IN.obj [--json]\n"
-         "  polarview pole IN.obj [--scheme c2ps|rts|bps] [--uniform-first-step] [--json]\n"
+         "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--json]\n"
-         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n";
+         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n"
+         "schemes: c2ps-u and rts-u are c2ps and rts with the uniform first step of the paper's Section 6\n"
+         "  (also written --scheme c2ps|rts --uniform-first-step, which no other scheme takes)\n";
 }
 
 int guarded(const std::string& file, int (*command)(const Args&), const Args& args) {
@@ -171,7 +200,7 @@ int guarded(const std::string& file, int (*command)(const Args&), const Args& ar
 }
 
 int runRefine(const Args& args) {
-  CommonOptions o = parseOptions(args, {"-o", "--output", "--scheme", "--levels", "--level", "--uniform-first-step"});
+  CommonOptions o = parseOptions("refine", args, {"-o", "--output", "--scheme", "--levels", "--level", "--uniform-first-step"});
   if (o.output.empty()) throw UsageError{"refine needs -o OUT.obj"};
   if (o.levels < 0) throw UsageError{"refine needs --levels L"};
   PolyMesh mesh = loadInput(o.input);
@@ -181,10 +210,15 @@ int runRefine(const Args& args) {
 }
 
 int runInfo(const Args& args) {
-  CommonOptions o = parseOptions(args, {"--json"});
+  CommonOptions o = parseOptions("info", args, {"--json"});
   PolyMesh mesh = loadInput(o.input);
   MeshTopology topo = buildTopology(mesh, o.input);
-  std::vector<PolarConfig> poles = findPolarConfigs(mesh, topo);
+  // Poles (configurations a polar scheme refines) apart from vertices that only look polar: on a
+  // triangle mesh nearly every vertex is such a candidate, and Catmull-Clark refines it.
+  std::vector<PolarConfig> poles, rejected;
+  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? poles : rejected).push_back(std::move(c));
+  std::map<PolarRejection, int> rejectedPerReason;
+  for (const PolarConfig& c : rejected) ++rejectedPerReason[c.rejection];
 
   // Which schemes refine the whole mesh radially (RTS/BPS on caps and globes).
   bool radialMesh = false;
@@ -195,7 +229,7 @@ int runInfo(const Args& args) {
     }
   }
   std::vector<uint8_t> isPole(topo.vertexCount, 0);
-  for (const PolarConfig& c : poles) isPole[c.pole] = c.refinable;
+  for (const PolarConfig& c : poles) isPole[c.pole] = 1;
   int used = 0, triangles = 0, quads = 0, polygons = 0;
   for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
   for (Index f = 0; f < mesh.faceCount(); ++f) {
@@ -227,13 +261,21 @@ int runInfo(const Args& args) {
       w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
       w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
       if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
-      w.field("refinable", c.refinable);
-      if (!c.refinable) w.field("reason", c.reason);
+      w.field("refinable", true);
       w.key("schemes").beginObject();
       for (Scheme s : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) w.field(schemeName(s), schemeAction(s, c, radialMesh));
       w.endObject().endObject();
     }
     w.endArray();
+    w.key("rejected_candidates").beginArray();
+    for (const PolarConfig& c : rejected) {
+      w.beginObject().field("vertex", c.pole).field("valence", c.valence);
+      w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
+    }
+    w.endArray();
+    w.key("rejected_reasons").beginObject();
+    for (const auto& [rejection, count] : rejectedPerReason) w.field(polarRejectionKey(rejection), count);
+    w.endObject();
     w.key("extraordinary_vertices").beginArray();
     for (const Extraordinary& x : extraordinary) {
       w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
@@ -255,11 +297,22 @@ int runInfo(const Args& args) {
                 c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
     if (c.oppositePole >= 0) std::printf(" %d", c.oppositePole);
     std::printf("\n");
-    if (!c.refinable)
-      std::printf("    vertex %d looks polar but %s: refined by Catmull-Clark\n", c.pole, c.reason.c_str());
-    else
-      for (Scheme s : {Scheme::C2PS, Scheme::RTS, Scheme::BPS, Scheme::CatmullClark})
-        std::printf("    %-4s %s\n", schemeName(s), schemeAction(s, c, radialMesh).c_str());
+    for (Scheme s : {Scheme::C2PS, Scheme::RTS, Scheme::BPS, Scheme::CatmullClark})
+      std::printf("    %-4s %s\n", schemeName(s), schemeAction(s, c, radialMesh).c_str());
+  }
+  if (!rejected.empty()) {
+    std::printf("rejected pole candidates: %zu (reasons:", rejected.size());
+    const char* separator = " ";
+    for (const auto& [rejection, count] : rejectedPerReason) {
+      std::printf("%s%d %s", separator, count, polarRejectionWords(rejection));
+      separator = "; ";
+    }
+    std::printf("); refined by Catmull-Clark in every scheme\n");
+    // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
+    const size_t shown = std::min<size_t>(rejected.size(), kRejectedListed);
+    for (size_t k = 0; k < shown; ++k)
+      std::printf("  vertex %d (valence %d): %s\n", rejected[k].pole, rejected[k].valence, rejected[k].reason.c_str());
+    if (rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", rejected.size() - shown);
   }
   std::printf("extraordinary vertices (Catmull-Clark): %zu\n", extraordinary.size());
   for (const Extraordinary& x : extraordinary)
@@ -272,8 +325,8 @@ int runInfo(const Args& args) {
 }
 
 int runPole(const Args& args) {
-  CommonOptions o = parseOptions(args, {"--scheme", "--uniform-first-step", "--json"});
-  if (o.scheme == Scheme::CatmullClark) throw UsageError{"pole analysis needs --scheme c2ps, rts or bps"};
+  CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json"});
+  if (o.scheme == Scheme::CatmullClark) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
   PolyMesh mesh = loadInput(o.input);
   // Level 0 only: the expansion is that of the input's own configuration (the Section-6 variant
   // leaves links 0 and 1, hence p0..p5, unchanged).
@@ -289,7 +342,7 @@ int runPole(const Args& args) {
                   level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
                   d.normal.z, d.gaussian, d.mean, d.curvatureDefined ? "" : " (curvature not defined: BPS is C1 at the pole)");
     w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
-    w.field("scheme", schemeName(o.scheme)).field("limit", d.limit).field("normal", d.normal);
+    w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
     if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
     else w.key("gaussian_curvature").null().key("mean_curvature").null();
     w.key("p").beginArray();
@@ -303,12 +356,12 @@ int runPole(const Args& args) {
 }
 
 int runBench(const Args& args) {
-  CommonOptions o = parseOptions(args, {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json"});
+  CommonOptions o = parseOptions("bench", args, {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json"});
   if (o.levels < 0) throw UsageError{"bench needs --levels L"};
   PolyMesh mesh = loadInput(o.input);
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   std::vector<double> build, positions, patches;
-  size_t outVertices = 0, outFaces = 0, patchCount = 0;
+  size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
     Refinement refinement(mesh, options, o.input);
@@ -322,6 +375,7 @@ int runBench(const Args& args) {
     outVertices = refinement.finest().mesh.points.size();
     outFaces = size_t(refinement.finest().mesh.faceCount());
     patchCount = set.patches.size();
+    polesRefined = refinement.level(0).poles.size();
   }
   // The constructor builds topology and computes positions once: topology = build - positions.
   // Repetitions after the first reuse the previous refinement's tables (table_pool.h), as the
@@ -330,29 +384,52 @@ int runBench(const Args& args) {
   const double coldTopologyMs = std::max(0.0, build.front() - positions.front());
   std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps);
 
+  // The peer computes Catmull-Clark only: timings compare only where this run computed the same
+  // surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
+  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
+  bool compared = false;
+  std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
+  if (!peer) {
+    comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
+  } else if (o.scheme != Scheme::CatmullClark && polesRefined > 0) {
+    comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
+                 (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+  } else if (peer->outFaces != outFaces) {
+    comparison = "not compared: Catmull-Clark both, but the face counts differ (" + std::to_string(outFaces) + " vs " +
+                 std::to_string(peer->outFaces) + ")";
+    peerWhat = "OpenSubdiv Catmull-Clark (face counts differ: not compared)";
+  } else {
+    compared = true;
+    comparison = "same surface: Catmull-Clark, equal face counts";
+    peerWhat = "OpenSubdiv Catmull-Clark (the same surface: compared)";
+  }
+  const double topologySpeedup = compared ? peer->topologyMs / std::max(topologyMs, 1e-9) : 0.0;
+  const double positionsSpeedup = compared ? peer->positionsMs / std::max(positionsMs, 1e-9) : 0.0;
+
   JsonWriter w;
-  w.beginObject().field("file", o.input).field("scheme", schemeName(o.scheme)).field("levels", o.levels);
+  w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
   w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
   w.field("cold_topology_ms", coldTopologyMs).field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
   w.field("patches", patchCount);
   if (peer) {
-    w.key("peer").beginObject().field("name", peer->name).field("topology_ms", peer->topologyMs);
+    w.key("peer").beginObject().field("what", peerWhat).field("name", peer->name).field("topology_ms", peer->topologyMs);
     w.field("positions_ms", peer->positionsMs).field("out_vertices", peer->outVertices).field("out_faces", peer->outFaces);
     w.endObject();
-    w.field("topology_speedup", peer->topologyMs / std::max(topologyMs, 1e-9));
-    w.field("positions_speedup", peer->positionsMs / std::max(positionsMs, 1e-9));
   }
+  w.field("compared", compared).field("comparison", comparison);
+  if (compared) w.field("topology_speedup", topologySpeedup).field("positions_speedup", positionsSpeedup);
   w.endObject();
   if (o.json) {
     std::cout << w.str() << "\n";
   } else {
     std::printf("%s %s level %d: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, %zu patches\n",
-                o.input.c_str(), schemeName(o.scheme), o.levels, topologyMs, positionsMs, median(patches), outVertices,
+                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), outVertices,
                 outFaces, patchCount);
     if (peer)
-      std::printf("%s: topology %.3f ms, positions %.3f ms (speed-up %.2fx, %.2fx)\n", peer->name.c_str(), peer->topologyMs,
-                  peer->positionsMs, peer->topologyMs / std::max(topologyMs, 1e-9),
-                  peer->positionsMs / std::max(positionsMs, 1e-9));
+      std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", peer->name.c_str(),
+                  peerWhat.c_str(), peer->topologyMs, peer->positionsMs, peer->outVertices, peer->outFaces);
+    if (compared) std::printf("%s: speed-up %.2fx (topology), %.2fx (positions)\n", comparison.c_str(), topologySpeedup, positionsSpeedup);
+    else std::printf("%s\n", comparison.c_str());
   }
   return 0;
 }

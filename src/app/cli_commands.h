@@ -10,13 +10,15 @@ namespace polarview::cli {
 
 using Args = std::vector<std::string>;
 
-// polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|rts|bps --levels L [--uniform-first-step]
+// polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L
+// (c2ps-u = c2ps --uniform-first-step, rts-u likewise; the flag with another scheme: usage error)
 int runRefine(const Args& args);
-// polarview info IN.obj [--json]
+// polarview info IN.obj [--json]: poles apart from rejected pole candidates (with reasons)
 int runInfo(const Args& args);
-// polarview pole IN.obj [--scheme c2ps|rts|bps] [--uniform-first-step] --json
+// polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]
 int runPole(const Args& args);
-// polarview bench IN.obj --scheme S --levels L [--reps N] --json
+// polarview bench IN.obj --scheme S --levels L [--reps N] [--json]; speed-ups over the OpenSubdiv
+// peer only where both computed the same (Catmull-Clark) surface
 int runBench(const Args& args);
 
 // polarview shape globe|cap|mushroom|cube|torus [--valence n] [--links k] -o OUT.obj

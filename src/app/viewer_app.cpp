@@ -458,12 +458,27 @@ void ViewerApp::updateColourRange() {
   hashMix(signature, uint64_t(mode));
   hashMix(signature, uint64_t(state_.colour.quantile * 1e6f));
   for (int v = 0; v < state_.viewCount; ++v) hashMix(signature, uint64_t(uintptr_t(views_[size_t(v)].shown.get())));
-  if (signature == colourRangeSignature_) return;
-  colourRangeSignature_ = signature;
+  if (signature != colourRangeSignature_) {
+    colourRangeSignature_ = signature;
+    collectColourSamples();
+  }
+  // The histogram follows the range the bar shows (typed or automatic).
+  const std::pair<float, float> shownRange{state_.colourRangeBelow(), state_.colourRange()};
+  if (shownRange != histogramRange_ || state_.colour.histogram.empty()) {
+    histogramRange_ = shownRange;
+    state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange.first, shownRange.second,
+                                                kHistogramBins);
+  }
+}
 
+void ViewerApp::collectColourSamples() {
+  const ShadingParams::Mode mode = state_.shading.mode;
   // One range over the samples of every visible view, so equal colours mean equal values.
   // Each view counts by area: weights are normalised per view so a finer level does not outvote.
-  std::vector<float> values, weights;
+  std::vector<float>& values = colourValues_;
+  std::vector<float>& weights = colourWeights_;
+  values.clear();
+  weights.clear();
   for (int v = 0; v < state_.viewCount; ++v) {
     if (!views_[size_t(v)].shown) continue;
     const BuiltSurface& s = *views_[size_t(v)].shown;
@@ -474,7 +489,15 @@ void ViewerApp::updateColourRange() {
     values.insert(values.end(), samples.begin(), samples.end());
     for (float a : s.sampleAreas) weights.push_back(float(a / area));
   }
-  if (!values.empty()) state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
+  if (values.empty()) return;
+  state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
+  // Each side apart, for the asymmetric range; a side without values keeps a sliver of the other.
+  const float low = weightedPercentile(values, weights, 1.0f - state_.colour.quantile);
+  const float high = weightedPercentile(values, weights, state_.colour.quantile);
+  const float floor = 1e-3f * state_.colour.autoRange;
+  state_.colour.autoBelow = std::max(-low, floor);
+  state_.colour.autoAbove = std::max(high, floor);
+  state_.colour.histogram.clear();  // recomputed for the new samples
 }
 
 bool ViewerApp::busy() const {
@@ -508,6 +531,7 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
   double radius = 0.5 * glm::length(modelMax_ - modelMin_);
   ShadingParams shading = state_.shading;
   shading.range = state_.colourRange();
+  shading.rangeBelow = state_.colourRangeBelow();
   // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read like
   // a curvature feature right at the pole).
   DisplayFlags display = state_.display;

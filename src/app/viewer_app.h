@@ -137,6 +137,8 @@ class ViewerApp {
   void updateSurfaces();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
   void updateColourRange();
+  // The curvature samples of the shown views (mode K or H) and the automatic ranges from them.
+  void collectColourSamples();
   // Draws the views into the bound framebuffer; returns the pole markers the surfaces leave visible
   // (overlay coordinates: framebuffer pixels / pixelScale, y down).
   std::vector<PoleMarker> drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
@@ -161,6 +163,8 @@ class ViewerApp {
   std::string previousPath_;  // its file (empty for generated models)
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
+  std::vector<float> colourValues_, colourWeights_;  // samples of the shown views, by area
+  std::pair<float, float> histogramRange_{0.0f, 0.0f};
   std::future<LoadedModel> loadJob_;
   std::optional<std::string> queuedLoad_;
   std::string windowCapturePath_;

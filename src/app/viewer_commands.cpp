@@ -22,7 +22,7 @@ struct UsageError : std::runtime_error {
 
 const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
-    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --percentile P] [--camera JSON] "
+    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --range MIN:MAX | --percentile P [--asymmetric]] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
     "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
@@ -137,7 +137,8 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByCatmullClark;
   json << "],\"titles\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
-  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << state.colourRange();
+  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << state.colourRange()
+       << ",\"range_min\":" << -state.colourRangeBelow() << ",\"range_max\":" << state.colourRange();
   char numbers[160];
   std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", median(frameMs),
                 frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end()),
@@ -156,6 +157,8 @@ struct RenderRequest {
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
   std::optional<float> range;
+  std::optional<float> rangeBelow;  // --range MIN:MAX: -MIN
+  bool asymmetric = false;          // automatic range with each side apart
   std::optional<float> percentile;  // automatic range: +-max(-P(100 - p), P(p)) of K or H by area
   std::string cameraJson;
   std::optional<ViewPreset> preset;
@@ -186,14 +189,24 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     else if (arg == "--no-poles") r.poles = false;
     else if (arg == "--time") r.timeFrames = parseInt(cursor.value(arg), arg, 1, 10000);
     else if (arg == "--percentile") r.percentile = float(parseInt(cursor.value(arg), arg, 50, 100));
+    else if (arg == "--asymmetric") r.asymmetric = true;
     else if (arg == "--range") {
+      // R (the map spans -R..R) or MIN:MAX with MIN < 0 < MAX (two slopes, zero in the middle).
       const std::string& text = cursor.value(arg);
-      char* end = nullptr;
-      float value = std::strtof(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !(value > 0.0f) || !std::isfinite(value)) {
-        throw UsageError("--range expects a positive number, got '" + text + "'");
-      }
-      r.range = value;
+      auto number = [&](const std::string& part) {
+        char* end = nullptr;
+        const float value = std::strtof(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(value))
+          throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
+        return value;
+      };
+      const size_t colon = text.find(':');
+      const float low = colon == std::string::npos ? 0.0f : number(text.substr(0, colon));
+      const float high = number(colon == std::string::npos ? text : text.substr(colon + 1));
+      if (!(high > 0.0f) || (colon != std::string::npos && !(low < 0.0f)))
+        throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
+      r.range = high;
+      if (colon != std::string::npos) r.rangeBelow = -low;
     } else if (arg == "--preset") {
       const std::string& name = cursor.value(arg);
       for (ViewPreset p : {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso}) {
@@ -263,6 +276,10 @@ int renderWithApp(const RenderRequest& r) {
   if (r.range) {
     state.colour.automatic = false;
     state.colour.typedRange = *r.range;
+  }
+  if (r.rangeBelow || r.asymmetric) {
+    state.colour.symmetric = false;
+    state.colour.typedBelow = r.rangeBelow.value_or(0.0f);
   }
   state.display.surface = r.surface;
   // Net only: --no-surface shows the control net unless wireframe or boundaries stand in for it.

@@ -86,6 +86,42 @@ void sampleCurvatures(BuiltSurface& surface, int s) {
 
 }  // namespace
 
+float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, float fraction) {
+  std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
+  double total = 0.0;
+  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
+    sorted.emplace_back(values[i], weights[i]);
+    total += weights[i];
+  }
+  if (sorted.empty() || !(total > 0.0)) return 0.0f;
+  std::sort(sorted.begin(), sorted.end());
+  const double needed = std::clamp(double(fraction), 0.0, 1.0) * total;
+  double sum = 0.0;
+  for (const auto& [value, weight] : sorted) {
+    sum += weight;
+    if (sum >= needed) return value;
+  }
+  return sorted.back().first;
+}
+
+std::vector<float> weightedHistogram(const std::vector<float>& values, const std::vector<float>& weights, float below,
+                                     float above, int bins) {
+  std::vector<float> histogram(size_t(std::max(bins, 1)), 0.0f);
+  if (!(below > 0.0f) || !(above > 0.0f)) return histogram;
+  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
+    // The colour bar's two slopes: t = value / above or value / below, in [-1, 1].
+    const float t = std::clamp(values[i] / (values[i] >= 0.0f ? above : below), -1.0f, 1.0f);
+    const int bin = std::min(int((t + 1.0f) * 0.5f * float(histogram.size())), int(histogram.size()) - 1);
+    histogram[size_t(bin)] += weights[i];
+  }
+  const float largest = *std::max_element(histogram.begin(), histogram.end());
+  if (largest > 0.0f)
+    for (float& h : histogram) h /= largest;
+  return histogram;
+}
+
 float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
   std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
   sorted.reserve(values.size());

@@ -86,6 +86,13 @@ int deepestLevel(const PolyMesh& mesh, SchemeChoice scheme, size_t faceBudget);
 // Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 9 refused: C2PS
 // stops at level 6 on this model (level 7 would make about 2334720 faces, over the budget of 2097152)".
 std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, size_t faceBudget);
+// The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
+// the total; 0 when there is no weight. [O(n log n)]
+float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, float fraction);
+// Area-weighted histogram over the colour bar's [-below, above] (two slopes, as the map; values
+// beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
+std::vector<float> weightedHistogram(const std::vector<float>& values, const std::vector<float>& weights, float below,
+                                     float above, int bins);
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
 

@@ -195,8 +195,9 @@ glm::vec3 ringColor(int ring) {
   return palette[ring % 8];
 }
 
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range) {
-  const float t = std::clamp(value / std::max(range, 1e-30f), -1.0f, 1.0f);
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow) {
+  const float side = value >= 0.0f || !(rangeBelow > 0.0f) ? range : rangeBelow;
+  const float t = std::clamp(value / std::max(side, 1e-30f), -1.0f, 1.0f);
   switch (map) {
     case ShadingParams::ColorMap::CoolWarm: {
       static const glm::vec3 stops[5] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f},
@@ -462,6 +463,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     setTessellationUniforms(program, view, shading);
     setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
     setUniform(program, "u_range", shading.range);
+    setUniform(program, "u_rangeBelow", shading.rangeBelow > 0.0f ? shading.rangeBelow : shading.range);
     setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
     setUniform(program, "u_eye", eye);
     setUniform(program, "u_keyLight", keyWorld);

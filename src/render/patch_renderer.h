@@ -30,6 +30,9 @@ struct ShadingParams {
   Mode mode = Mode::Shaded;
   ColorMap colormap = ColorMap::Paper;
   float range = 1.0f;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
+  // > 0: the negative side's range instead, [-rangeBelow, range] with zero still the map's middle
+  // (two slopes, as matplotlib's TwoSlopeNorm), so zero curvature keeps its colour.
+  float rangeBelow = 0.0f;
   float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
   // Highlight lines (Beier & Chen 1994, SCHEMES.md section 7): parallel light lines with direction
   // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
@@ -91,7 +94,7 @@ glm::vec3 patchKindColor(PatchKind kind);
 glm::vec3 ringColor(int ring);
 // The curvature colour map on the CPU, identical to shaders/common/colormap.glsl: value in
 // [-range, range] -> RGB in [0,1]. For legends and tests.
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range);
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow = 0.0f);
 
 class PatchRenderer {
  public:

@@ -75,6 +75,8 @@ void normaliseDirection(glm::vec3& d) {
   d = length > 1e-6f ? d / length : glm::vec3(1.0f, 0.0f, 0.0f);
 }
 
+constexpr float kHistogramHeight = 18.0f;  // pixels above the colour bar
+
 // A tick label short enough for the bar: 3 significant digits.
 std::string formatTick(float value) {
   char buffer[32];
@@ -233,14 +235,34 @@ void drawColourPanel(ViewerState& state) {
     if (ImGui::SliderFloat("Percentile (of K by area)", &percent, 50.0f, 100.0f, "%.1f")) {
       state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
     }
-    ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
-    ImGui::TextDisabled("+-max(-P%.0f, P%.0f); end caps at extraordinary\nvertices are not counted.",
-                        100.0f - percent, percent);
-  } else {
+    if (state.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
+    else ImGui::Text("Range: -%.4g .. +%.4g (shared by all views)", state.colour.autoBelow, state.colour.autoAbove);
+    ImGui::PushTextWrapPos(0.0f);
+    if (state.colour.symmetric)
+      ImGui::TextDisabled("+-max(-P%.0f, P%.0f); end caps at extraordinary vertices are not counted.",
+                          100.0f - percent, percent);
+    else
+      ImGui::TextDisabled("-P%.0f .. P%.0f; end caps at extraordinary vertices are not counted.", 100.0f - percent, percent);
+    ImGui::PopTextWrapPos();
+  } else if (state.colour.symmetric) {
     if (ImGui::InputFloat("Range +-", &state.colour.typedRange, 0.0f, 0.0f, "%.6g")) {
       state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);
     }
     if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.autoRange;
+  } else {
+    float low = -state.colour.typedBelow;
+    if (ImGui::InputFloat("Min (< 0)", &low, 0.0f, 0.0f, "%.6g")) state.colour.typedBelow = std::max(std::abs(low), 1e-12f);
+    if (ImGui::InputFloat("Max (> 0)", &state.colour.typedRange, 0.0f, 0.0f, "%.6g"))
+      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);
+    if (ImGui::Button("Use automatic values")) {
+      state.colour.typedRange = state.colour.autoAbove;
+      state.colour.typedBelow = state.colour.autoBelow;
+    }
+  }
+  bool symmetric = state.colour.symmetric;
+  if (ImGui::Checkbox("Symmetric (+-R); off: min and max apart", &symmetric)) {
+    if (!state.colour.automatic && !symmetric) state.colour.typedBelow = state.colour.typedRange;
+    state.colour.symmetric = symmetric;
   }
 }
 
@@ -422,7 +444,7 @@ float viewTitleHeight(float scale) { return 34.0f * scale; }
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
 
 float colourBarReserve(const ViewerState& state, float scale) {
-  if (state.showsColourBar()) return 64.0f * scale;
+  if (state.showsColourBar()) return (64.0f + kHistogramHeight + 4.0f) * scale;
   return lineLegend(state.shading).empty() ? 0.0f : 30.0f * scale;
 }
 
@@ -472,7 +494,10 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
 
 void setAutomaticRange(ViewerState& state, bool automatic) {
   // Turning it off keeps the colours on screen: the typed range starts at the automatic value.
-  if (state.colour.automatic && !automatic) state.colour.typedRange = state.colour.autoRange;
+  if (state.colour.automatic && !automatic) {
+    state.colour.typedRange = state.colourRange();
+    state.colour.typedBelow = state.colourRangeBelow();
+  }
   state.colour.automatic = automatic;
 }
 
@@ -580,12 +605,12 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
 
   if (!state.showsColourBar()) return;
   // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
-  const float range = state.colourRange();
+  const float range = state.colourRange(), below = state.colourRangeBelow();
   const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
   const float barHeight = 14.0f * scale;
   const float reserve = colourBarReserve(state, scale);
   const float left = frame.x + 0.5f * (frame.w - barWidth);
-  const float top = frame.y + frame.h - reserve + 8.0f * scale;
+  const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
   std::string title = state.shading.mode == ShadingParams::Mode::Gaussian ? "Gaussian curvature K" : "mean curvature H";
   const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
   ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
@@ -596,21 +621,32 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
             colourMapName(state.shading.colormap) + ")";
     titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
   }
-  list->AddRectFilled(ImVec2(left - 40 * scale, top - 4 * scale),
+  const float histogramHeight = kHistogramHeight * scale;
+  list->AddRectFilled(ImVec2(left - 40 * scale, top - histogramHeight - 6 * scale),
                       ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), box, 4.0f * scale);
+  // The bar's position t in [-1, 1] -> value, two slopes (below zero / above zero).
+  auto valueAt = [&](float t) { return t < 0.0f ? t * below : t * range; };
+  // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
+  const std::vector<float>& bins = state.colour.histogram;
+  for (size_t b = 0; b < bins.size(); ++b) {
+    const float x0 = left + barWidth * float(b) / float(bins.size()), x1 = left + barWidth * float(b + 1) / float(bins.size());
+    const float h = std::sqrt(std::clamp(bins[b], 0.0f, 1.0f)) * histogramHeight;  // sqrt: small bins stay visible
+    if (h > 0.0f) list->AddRectFilled(ImVec2(x0 + 0.5f * scale, top - 2 * scale - h), ImVec2(x1 - 0.5f * scale, top - 2 * scale),
+                                      IM_COL32(200, 200, 205, 220));
+  }
   const int segments = 96;
   for (int i = 0; i < segments; ++i) {
-    float v0 = -range + 2.0f * range * float(i) / segments;
-    float v1 = -range + 2.0f * range * float(i + 1) / segments;
-    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range));
-    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range));
+    float v0 = valueAt(-1.0f + 2.0f * float(i) / segments);
+    float v1 = valueAt(-1.0f + 2.0f * float(i + 1) / segments);
+    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range, below));
+    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range, below));
     float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
     list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
   }
   list->AddRect(ImVec2(left, top), ImVec2(left + barWidth, top + barHeight), IM_COL32(230, 230, 230, 255), 0.0f, 0, scale);
   for (int t = 0; t <= 4; ++t) {
     float x = left + barWidth * float(t) / 4.0f;
-    float value = -range + 2.0f * range * float(t) / 4.0f;
+    float value = valueAt(-1.0f + 2.0f * float(t) / 4.0f);
     list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), text, scale);
     std::string tick = formatTick(value);
     ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());

@@ -74,9 +74,18 @@ struct ColourRangeSettings {
   // the paper's Fig. 13 ("larger blue or red areas result from saturation in normalization").
   bool automatic = true;
   float quantile = 0.90f;    // upper percentile P (the lower one is 1 - P)
-  float typedRange = 1.0f;   // used when not automatic
+  float typedRange = 1.0f;   // used when not automatic (the positive side when not symmetric)
   float autoRange = 1.0f;    // last automatic value (written by the app)
+  // Not symmetric: the negative and positive sides have ranges of their own, [-below, above], zero
+  // staying the map's middle (two slopes). Automatic: below = -P(1 - P), above = P(P).
+  bool symmetric = true;
+  float typedBelow = 1.0f;   // negative side when typed
+  float autoBelow = 1.0f, autoAbove = 1.0f;  // written by the app
+  // Area-weighted distribution of K (or H) of the shown views over the colour bar: kHistogramBins
+  // bins spanning [-below, above] as the bar does (values beyond in the end bins), the largest 1.
+  std::vector<float> histogram;
 };
+constexpr int kHistogramBins = 48;
 
 struct FileSettings {
   std::string pathField;                 // the path text field
@@ -140,8 +149,15 @@ struct ViewerState {
   // The camera view `v` draws with.
   OrbitCamera& camera(int v) { return linkCameras ? sharedCamera : views[v].camera; }
   const OrbitCamera& camera(int v) const { return linkCameras ? sharedCamera : views[v].camera; }
-  // The colour range every view uses now.
-  float colourRange() const { return colour.automatic ? colour.autoRange : colour.typedRange; }
+  // The colour range every view uses now: its positive side, and its negative side.
+  float colourRange() const {
+    if (colour.automatic) return colour.symmetric ? colour.autoRange : colour.autoAbove;
+    return colour.typedRange;
+  }
+  float colourRangeBelow() const {
+    if (colour.symmetric) return colourRange();
+    return colour.automatic ? colour.autoBelow : colour.typedBelow;
+  }
   // True when the shading is a curvature map (then the colour bar is shown).
   bool showsColourBar() const {
     return display.surface &&

@@ -2,6 +2,7 @@
 // rules, RTS/BPS radial refinement, budgets.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -75,6 +76,45 @@ TEST_CASE("detection: an open cap ends at its boundary; a pole with a 5-valent 1
   REQUIRE(fanConfigs.size() == 1);
   CHECK_FALSE(fanConfigs[0].refinable);
   CHECK(fanConfigs[0].reason.find("boundary") != std::string::npos);
+}
+
+TEST_CASE("detection: every rejected candidate says why by kind, every refinable one has none") {
+  // An octahedron: each vertex is a fan of 4 triangles whose rim is 4-valent but ringed by triangles.
+  PolyMesh octahedron;
+  octahedron.points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (auto [a, b, c] : {std::array<Index, 3>{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}})
+    octahedron.addFace({a, b, c});
+  auto configs = findPolarConfigs(octahedron, buildTopology(octahedron));
+  REQUIRE(configs.size() == 6);
+  for (const PolarConfig& c : configs) {
+    CHECK_FALSE(c.refinable);
+    CHECK(c.rejection == PolarRejection::Link1NotTwoQuads);
+    CHECK(std::string(polarRejectionKey(c.rejection)) == "link1_not_2_triangles_2_quads");
+  }
+
+  // A fan ringed by a boundary; bipyramids (globes with one link: the apexes' rims are ringed by
+  // triangles, the equator's rims hold an apex); refinable globes.
+  PolyMesh fan = shapes::polarCap(6, 1);
+  auto open = findPolarConfigs(fan, buildTopology(fan));
+  REQUIRE(open.size() == 1);
+  CHECK(open[0].rejection == PolarRejection::Link1OnBoundary);
+  for (int n : {3, 8}) {
+    CAPTURE(n);
+    PolyMesh bipyramid = shapes::globe(n, 1);
+    auto candidates = findPolarConfigs(bipyramid, buildTopology(bipyramid));
+    CHECK(candidates.size() == size_t(n + 2));
+    for (const PolarConfig& c : candidates) {
+      CHECK_FALSE(c.refinable);
+      CHECK((c.rejection == PolarRejection::Link1NotTwoQuads || c.rejection == PolarRejection::Link1NotFourValent));
+      CHECK_FALSE(c.reason.empty());
+    }
+    PolyMesh refinable = shapes::globe(n, 4);
+    for (const PolarConfig& c : findPolarConfigs(refinable, buildTopology(refinable))) {
+      CHECK(c.refinable);
+      CHECK(c.rejection == PolarRejection::None);
+      CHECK(c.reason.empty());
+    }
+  }
 }
 
 TEST_CASE("detection on the mushroom: one pole, regular links down to the stem's closing grid") {

@@ -7,6 +7,7 @@
 
 #include "app/viewer_app.h"
 #include "app/viewer_surface.h"
+#include "ui/viewer_panels.h"
 #include "core/mesh/shapes.h"
 
 #include <doctest/doctest.h>
@@ -253,6 +254,41 @@ TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the w
     // Smallest: at the range itself one tail reaches its share (unless all values are 0).
     CHECK((t.atOrAbove >= allowed - 1e-9 * t.total || t.atOrBelow >= allowed - 1e-9 * t.total));
   }
+}
+
+TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, values beyond in the end bins") {
+  // below 2, above 1: -1 -> t = -0.5 (bin 1 of 4), 0.5 -> t = 0.5 (bin 3), 3 -> saturates into bin 3.
+  const std::vector<float> values{-1.0f, 0.5f, 3.0f, -8.0f}, weights{1.0f, 2.0f, 1.0f, 0.5f};
+  const std::vector<float> bins = weightedHistogram(values, weights, 2.0f, 1.0f, 4);
+  REQUIRE(bins.size() == 4);
+  CHECK(bins[0] == doctest::Approx(0.5f / 3.0f));  // -8 saturates into the first bin
+  CHECK(bins[1] == doctest::Approx(1.0f / 3.0f));
+  CHECK(bins[2] == 0.0f);
+  CHECK(bins[3] == doctest::Approx(1.0f));
+  CHECK(weightedPercentile(values, weights, 0.5f) == 0.5f);  // running weight 0.5, 1.5, 3.5 of 4.5
+  CHECK(weightedPercentile(values, weights, 0.0f) == -8.0f);
+  CHECK(weightedPercentile(values, weights, 1.0f) == 3.0f);
+}
+
+TEST_CASE("asymmetric colour range: each side from its own percentile; switching automatic off keeps both") {
+  auto app = makeHiddenApp(480, 320);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  state.colour.symmetric = false;
+  app->waitUntilIdle();
+  app->runFrame();
+  // The mushroom's K is mostly positive (cap) with a negative neck: two different sides.
+  const float below = state.colourRangeBelow(), above = state.colourRange();
+  CHECK(below > 0.0f);
+  CHECK(above > 0.0f);
+  CHECK(std::abs(below - above) > 0.1f * above);
+  CHECK(std::max(below, above) == doctest::Approx(state.colour.autoRange));  // the symmetric one is the larger
+  CHECK(state.colour.histogram.size() == size_t(kHistogramBins));
+  CHECK(*std::max_element(state.colour.histogram.begin(), state.colour.histogram.end()) == 1.0f);
+  setAutomaticRange(state, false);
+  CHECK(state.colourRangeBelow() == below);
+  CHECK(state.colourRange() == above);
 }
 
 TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {

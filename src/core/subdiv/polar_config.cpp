@@ -1,6 +1,7 @@
 #include "core/subdiv/polar_config.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace polarview {
 
@@ -36,11 +37,19 @@ bool allFacesHaveSize(const PolyMesh& mesh, const MeshTopology& topo, Index v, i
 
 std::string vertexName(Index v) { return "vertex " + std::to_string(v); }
 
+// Marks `config` as not refinable, with the kind and the sentence. Always returns false.
+bool reject(PolarConfig& config, PolarRejection rejection, std::string reason) {
+  config.refinable = false;
+  config.rejection = rejection;
+  config.reason = std::move(reason);
+  return false;
+}
+
 // Orders the fan around `pole` so that triangles (pole, q_{1j}, q_{1,j+1}) follow the face winding,
-// from the topology's rotational face order (walked forwards or backwards). Returns false (with a
-// reason) when the fan is not a simple cycle. [O(n)]
+// from the topology's rotational face order (walked forwards or backwards). Returns false (and
+// rejects `config`) when the fan is not a simple cycle. [O(n)]
 bool orderFan(const PolyMesh& mesh, const MeshTopology& topo, Index pole, std::vector<Index>& link1,
-              std::vector<Index>& fanFaces, std::string& reason) {
+              std::vector<Index>& fanFaces, PolarConfig& config) {
   const Index n = topo.faceValence(pole);
   const Index first = topo.vertexFaceStart[pole];
   // (a, b): the corners after the pole in face k's winding.
@@ -59,17 +68,13 @@ bool orderFan(const PolyMesh& mesh, const MeshTopology& topo, Index pole, std::v
   }
   for (Index j = 0; j < n; ++j) {
     Index k = forward ? j : (n - j) % n;
-    if (corner(k, 2) != link1[(j + 1) % n]) {
-      reason = "its fan is not a closed cycle of triangles";
-      return false;
-    }
+    if (corner(k, 2) != link1[(j + 1) % n])
+      return reject(config, PolarRejection::FanNotCycle, "its fan is not a closed cycle of triangles");
   }
   std::vector<Index> sorted = link1;
   std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-    reason = "its fan visits a vertex twice";
-    return false;
-  }
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    return reject(config, PolarRejection::FanRepeatsVertex, "its fan visits a vertex twice");
   return true;
 }
 
@@ -89,21 +94,22 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     config.pole = v;
     config.valence = topo.valence(v);
     const int n = config.valence;
-    std::string& reason = config.reason;
 
     // Link 1: the fan's rim, each a 4-valent interior vertex with two fan triangles and two quads.
-    if (!orderFan(mesh, topo, v, link1, fanFaces, reason)) { configs.push_back(config); continue; }
+    if (!orderFan(mesh, topo, v, link1, fanFaces, config)) { configs.push_back(config); continue; }
     bool ok = true;
     for (Index q : link1) {
       int quads = 0;
       allFacesHaveSize(mesh, topo, q, 4, &quads);
-      if (topo.vertexOnBoundary[q]) { reason = "its 1-link vertex " + std::to_string(q) + " is on a boundary"; ok = false; break; }
-      if (topo.valence(q) != 4) {
-        reason = "its 1-link has a " + std::to_string(topo.valence(q)) + "-valent vertex (" + vertexName(q) + ")";
-        ok = false;
-        break;
-      }
-      if (quads != 2) { reason = "its 1-link vertex " + std::to_string(q) + " is not surrounded by 2 triangles and 2 quads"; ok = false; break; }
+      if (topo.vertexOnBoundary[q])
+        ok = reject(config, PolarRejection::Link1OnBoundary, "its 1-link vertex " + std::to_string(q) + " is on a boundary");
+      else if (topo.valence(q) != 4)
+        ok = reject(config, PolarRejection::Link1NotFourValent,
+                    "its 1-link has a " + std::to_string(topo.valence(q)) + "-valent vertex (" + vertexName(q) + ")");
+      else if (quads != 2)
+        ok = reject(config, PolarRejection::Link1NotTwoQuads,
+                    "its 1-link vertex " + std::to_string(q) + " is not surrounded by 2 triangles and 2 quads");
+      if (!ok) break;
     }
     config.links = link1;
     config.linkCount = 1;
@@ -180,7 +186,7 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     }
 
     if (config.linkCount < 2) {
-      config.reason = "it has too few links (the 2-link is missing or not a ring of quads)";
+      reject(config, PolarRejection::NoLink2, "it has too few links (the 2-link is missing or not a ring of quads)");
     } else {
       config.refinable = true;
     }
@@ -194,14 +200,42 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     int clash = linkMark[config.pole];
     for (int j = 0; j < config.valence && clash < 0; ++j) clash = linkMark[config.links[j]];
     if (clash >= 0) {
-      config.refinable = false;
-      config.reason = "its stencil overlaps the pole at vertex " + std::to_string(configs[size_t(clash)].pole);
+      reject(config, PolarRejection::StencilOverlap,
+             "its stencil overlaps the pole at vertex " + std::to_string(configs[size_t(clash)].pole));
       continue;
     }
     linkMark[config.pole] = int(k);
     for (int j = 0; j < config.valence; ++j) linkMark[config.links[j]] = int(k);
   }
   return configs;
+}
+
+const char* polarRejectionKey(PolarRejection rejection) {
+  switch (rejection) {
+    case PolarRejection::None: return "none";
+    case PolarRejection::FanNotCycle: return "fan_not_closed";
+    case PolarRejection::FanRepeatsVertex: return "fan_repeats_vertex";
+    case PolarRejection::Link1OnBoundary: return "link1_on_boundary";
+    case PolarRejection::Link1NotFourValent: return "link1_not_4_valent";
+    case PolarRejection::Link1NotTwoQuads: return "link1_not_2_triangles_2_quads";
+    case PolarRejection::NoLink2: return "no_link2";
+    case PolarRejection::StencilOverlap: return "stencil_overlap";
+  }
+  return "?";
+}
+
+const char* polarRejectionWords(PolarRejection rejection) {
+  switch (rejection) {
+    case PolarRejection::None: return "refinable";
+    case PolarRejection::FanNotCycle: return "the fan is not a closed cycle";
+    case PolarRejection::FanRepeatsVertex: return "the fan visits a vertex twice";
+    case PolarRejection::Link1OnBoundary: return "a 1-link vertex is on a boundary";
+    case PolarRejection::Link1NotFourValent: return "a 1-link vertex is not 4-valent";
+    case PolarRejection::Link1NotTwoQuads: return "a 1-link vertex is not between 2 triangles and 2 quads";
+    case PolarRejection::NoLink2: return "no 2-link (ring of quads)";
+    case PolarRejection::StencilOverlap: return "its stencil overlaps another pole's";
+  }
+  return "?";
 }
 
 bool schemeRefinesPole(Scheme scheme, const PolarConfig& config, std::string* reason) {

@@ -12,6 +12,19 @@
 
 namespace polarview {
 
+// Why a vertex that looks polar is not a polar configuration, by kind (PolarConfig::reason holds
+// the sentence with the vertex ids).
+enum class PolarRejection {
+  None,                // refinable
+  FanNotCycle,         // the triangles around it do not form one closed fan
+  FanRepeatsVertex,    // the fan visits a rim vertex twice
+  Link1OnBoundary,     // a 1-link vertex lies on a boundary
+  Link1NotFourValent,  // a 1-link vertex does not have valence 4
+  Link1NotTwoQuads,    // a 4-valent 1-link vertex is not surrounded by 2 fan triangles and 2 quads
+  NoLink2,             // no ring of quads beyond the 1-link
+  StencilOverlap,      // its fan and 1-link overlap those of another pole
+};
+
 struct PolarConfig {
   Index pole = -1;       // the polar vertex
   int valence = 0;       // n: number of fan triangles
@@ -25,10 +38,17 @@ struct PolarConfig {
   Index oppositePole = -1;  // the other polar vertex when outer == Pole
   bool refinable = false;   // C2PS/RTS/BPS may refine it; otherwise Catmull-Clark does
   std::string reason;       // why not refinable (empty when refinable)
+  PolarRejection rejection = PolarRejection::None;  // the kind of `reason`
 };
 
+// A stable snake_case key for JSON ("link1_not_4_valent") and a few words for text ("a 1-link
+// vertex is not 4-valent"). [O(1)]
+const char* polarRejectionKey(PolarRejection rejection);
+const char* polarRejectionWords(PolarRejection rejection);
+
 // Finds every vertex that looks polar (interior, all incident faces triangles, valence >= 3) and
-// decides whether it can be refined as a pole. [O(mesh)]
+// decides whether it can be refined as a pole: candidates that are not come back with refinable
+// false and their rejection (a triangle mesh makes nearly every vertex such a candidate). [O(mesh)]
 std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopology& topo);
 
 // Whether `scheme` refines this refinable configuration as a pole; if not, why (Catmull-Clark then

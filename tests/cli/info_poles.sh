@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# info tells real poles (configurations a polar scheme refines) apart from vertices that only look
+# polar (a fan of triangles whose ring is not 4-valent vertices between quads): those are rejected
+# candidates with a reason, never counted or listed as poles. Args: <polarview executable> <repository root>.
+set -euo pipefail
+exe=$1
+root=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+py() { python3 -c "$@"; }
+
+# Triangle meshes where every vertex is a candidate: an icosahedron (its fans' rims are 5-valent)
+# and an octahedron (4-valent rims, but ringed by triangles, no quads). Then both next to a globe
+# (shifted apart) in one file.
+"$exe" shape globe --valence 8 --links 3 -o "$tmp/globe.obj"
+py "
+import itertools, math
+def hull(points):  # the faces of a convex polyhedron whose edges all have the shortest length
+    d = min(math.dist(a, b) for a, b in itertools.combinations(points, 2))
+    adj = lambda a, b: abs(math.dist(points[a], points[b]) - d) < 1e-9
+    faces = []
+    for a, b, c in itertools.combinations(range(len(points)), 3):
+        if adj(a, b) and adj(b, c) and adj(a, c):
+            u = [points[b][k] - points[a][k] for k in range(3)]
+            v = [points[c][k] - points[a][k] for k in range(3)]
+            n = [u[1]*v[2]-u[2]*v[1], u[2]*v[0]-u[0]*v[2], u[0]*v[1]-u[1]*v[0]]
+            faces.append((a, b, c) if sum(n[k]*points[a][k] for k in range(3)) > 0 else (a, c, b))
+    return faces
+phi = (1 + 5 ** 0.5) / 2
+ico = [p for s in itertools.product((-1, 1), repeat=2) for p in ((0, s[0], s[1]*phi), (s[0], s[1]*phi, 0), (s[1]*phi, 0, s[0]))]
+octa = [tuple(s * (k == axis) for k in range(3)) for axis in range(3) for s in (-1, 1)]
+def write(path, parts):
+    out, faces, base = [], [], 0
+    for points, tris in parts:
+        out += ['v %.17g %.17g %.17g' % p for p in points]
+        faces += ['f ' + ' '.join(str(base + i + 1) for i in t) for t in tris]
+        base += len(points)
+    open(path, 'w').write('\n'.join(out + faces) + '\n')
+lines = open('$tmp/globe.obj').read().split('\n')
+globe = ([tuple(map(float, l.split()[1:])) for l in lines if l.startswith('v ')],
+         [tuple(int(i) - 1 for i in l.split()[1:]) for l in lines if l.startswith('f ')])
+shift = lambda pts, x: [(p[0] + x, p[1], p[2]) for p in pts]
+write('$tmp/ico.obj', [(ico, hull(ico))])
+write('$tmp/octa.obj', [(octa, hull(octa))])
+write('$tmp/all.obj', [globe, (shift(ico, 5), hull(ico)), (shift(octa, 10), hull(octa))])"
+
+# The icosahedron: no pole, 12 rejected candidates whose 1-link is not 4-valent.
+"$exe" info "$tmp/ico.obj" > "$tmp/ico.txt"
+grep -qx "poles: 0" "$tmp/ico.txt" || fail "icosahedron: $(grep poles "$tmp/ico.txt")"
+grep -q "^rejected pole candidates: 12 (reasons: 12 a 1-link vertex is not 4-valent)" "$tmp/ico.txt" ||
+  fail "icosahedron: $(grep rejected "$tmp/ico.txt")"
+"$exe" info "$tmp/ico.obj" --json | py "
+import json,sys; d=json.load(sys.stdin)
+assert d['faces']==20 and d['poles']==[], d['poles']
+r=d['rejected_candidates']
+assert sorted(x['vertex'] for x in r)==list(range(12)), r
+assert all(x['reason']=='link1_not_4_valent' and x['valence']==5 and '5-valent' in x['detail'] for x in r), r
+assert d['rejected_reasons']=={'link1_not_4_valent':12}, d['rejected_reasons']
+assert not any(x['pole'] for x in d['extraordinary_vertices'])"
+
+# All three in one file: the globe's two poles are the poles, the 18 others are rejected.
+"$exe" info "$tmp/all.obj" > "$tmp/all.txt"
+grep -qx "poles: 2" "$tmp/all.txt" || fail "globe + icosahedron + octahedron: $(grep poles "$tmp/all.txt")"
+grep -q "^rejected pole candidates: 18 (reasons: 12 a 1-link vertex is not 4-valent; 6 a 1-link vertex is not between 2 triangles and 2 quads)" "$tmp/all.txt" ||
+  fail "globe + icosahedron + octahedron: $(grep rejected "$tmp/all.txt")"
+"$exe" info "$tmp/all.obj" --json | py "
+import json,sys; d=json.load(sys.stdin)
+p=d['poles']
+assert [x['valence'] for x in p]==[8,8] and all(x['refinable'] for x in p), p
+assert p[0]['opposite_pole']==p[1]['vertex']
+poles={x['vertex'] for x in p}
+r=d['rejected_candidates']
+assert len(r)==18 and poles.isdisjoint(x['vertex'] for x in r)
+assert d['rejected_reasons']=={'link1_not_4_valent':12,'link1_not_2_triangles_2_quads':6}, d['rejected_reasons']
+assert all(x['valence']==4 for x in r if x['reason']=='link1_not_2_triangles_2_quads')
+assert {x['vertex'] for x in d['extraordinary_vertices'] if x['pole']}==poles"
+
+# Real poles stay listed, with nothing rejected: the default globe and the built-in model.
+"$exe" shape globe -o "$tmp/g.obj"
+"$exe" info "$tmp/g.obj" > "$tmp/g.txt"
+grep -qx "poles: 2" "$tmp/g.txt" || fail "globe: $(grep poles "$tmp/g.txt")"
+if grep -q "rejected" "$tmp/g.txt"; then fail "globe: rejected candidates reported"; fi
+"$exe" info "$root/assets/default.obj" --json | py "
+import json,sys; d=json.load(sys.stdin)
+assert [(x['vertex'],x['valence']) for x in d['poles']]==[(0,12)], d['poles']
+assert d['rejected_candidates']==[] and d['rejected_reasons']=={}"
+echo "info_poles: ok"
