@@ -169,15 +169,22 @@ int countBoundaryLoops(const MeshTopology& topo) {
 const char* usageText() {
   return "usage:\n"
          "  polarview                          open the viewer on the built-in model\n"
-         "  polarview view FILE.obj            open the viewer on a file\n"
-         "  polarview render FILE.obj -o OUT.png --scheme c2ps[,rts,...] --level L\n"
-         "                   --shade gaussian|mean|highlight|shaded --size WxH [--range R] [--camera JSON]\n"
+         "  polarview view [FILE.obj] [--scheme S[,S...]] [--level L] [--shade MODE] [--size WxH]\n"
+         "                 [--frames N [--stats] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
+         "  polarview render FILE.obj -o OUT.png [--scheme S[,S...] (1 to 4 views)] [--level L]\n"
+         "                 [--shade gaussian|mean|highlight|reflection|shaded] [--size WxH]\n"
+         "                 [--range R | --range MIN:MAX | --percentile P [--asymmetric]]\n"
+         "                 [--colormap paper|coolwarm|viridis|magnitude] [--camera JSON] [--preset front|top|side|iso]\n"
+         "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
+         "                 [--wireframe] [--no-poles] [--time N]\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L\n"
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--json]\n"
          "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n"
-         "schemes: c2ps-u and rts-u are c2ps and rts with the uniform first step of the paper's Section 6\n"
+         "  polarview help                     this text\n"
+         "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
+         "  uniform first step of the paper's Section 6\n"
          "  (also written --scheme c2ps|rts --uniform-first-step, which no other scheme takes)\n";
 }
 

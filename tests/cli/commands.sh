@@ -70,4 +70,12 @@ set -e
 [ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "huge level: not one line"
 grep -q "^polarview: .*mushroom.obj" "$tmp/err" || fail "huge level: no file name"
 [ ! -e "$tmp/huge.obj" ] || fail "huge level left an output file"
+# the top-level usage lists every option `render` and `view` take (their own usage lines)
+help="$("$exe" help)"
+for cmd in render view; do
+  own="$("$exe" "$cmd" /nonexistent.obj --frobnicate 2>&1 || true)"
+  for opt in $(printf '%s\n' "$own" | grep "^usage:" | grep -o -- '--[a-z-]*' | sort -u); do
+    printf '%s\n' "$help" | grep -q -- "$opt" || fail "'polarview help' lacks $cmd's $opt"
+  done
+done
 echo "commands: ok"
