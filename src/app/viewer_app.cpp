@@ -116,10 +116,25 @@ bool ViewerApp::init(std::string* error) {
   }
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, &ViewerApp::onDrop);
+  // Keys, characters, buttons and the wheel go through the app's queue (ui/input_events.h), which
+  // replays them to ImGui's backend one change per key a frame; focus and cursor-enter go straight.
   glfwSetKeyCallback(window_, &ViewerApp::onKey);
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int c) {
+    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w)))
+      app->inputEvents_.push({InputEvent::Kind::Char, int(c)});
+  });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int mods) {
+    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w)))
+      app->inputEvents_.push({InputEvent::Kind::MouseButton, button, 0, action, mods});
+  });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
+    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w)))
+      app->inputEvents_.push({InputEvent::Kind::Scroll, 0, 0, 0, 0, dx, dy});
+  });
+  glfwSetWindowFocusCallback(window_, ImGui_ImplGlfw_WindowFocusCallback);
+  glfwSetCursorEnterCallback(window_, ImGui_ImplGlfw_CursorEnterCallback);
 
-  // ImGui: its GLFW backend chains to callbacks set before it (key presses reach onKey first; the
-  // drop callback is ours only).
+  // ImGui without its own callbacks (install_callbacks = false): the app feeds its backend.
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -129,7 +144,7 @@ bool ViewerApp::init(std::string* error) {
   if (std::filesystem::exists(kFontPath)) io.Fonts->AddFontFromFileTTF(kFontPath, 15.0f);
   else io.Fonts->AddFontDefault();
   ImGui::StyleColorsDark();
-  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplGlfw_InitForOpenGL(window_, false);
   ImGui_ImplOpenGL3_Init("#version 410");
   imguiReady_ = true;
 
@@ -257,6 +272,7 @@ void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::str
   model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
   state_.file.modelName = name;
   state_.file.loadedPath = path;
+  if (!path.empty()) state_.file.pathField = path;  // the field names what is shown (after Ctrl+Z too)
   state_.file.error.clear();
   state_.file.warnings.clear();
   for (ViewRuntime& view : views_) view.failed.reset();
@@ -297,9 +313,26 @@ void ViewerApp::loadRecent() {
   }
 }
 
-void ViewerApp::onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+void ViewerApp::onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
   auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(window));
-  if (app && action == GLFW_PRESS) app->input_.queueKeyPress(key, mods);
+  if (!app) return;
+  // Shortcuts take every press at once (their own queue); ImGui gets the event trickled.
+  if (action == GLFW_PRESS) app->input_.queueKeyPress(key, mods);
+  app->inputEvents_.push({InputEvent::Kind::Key, key, scancode, action, mods});
+}
+
+void ViewerApp::replayInputEvents() {
+  for (const InputEvent& e : inputEvents_.takeFrame()) {
+    switch (e.kind) {
+      case InputEvent::Kind::Key: ImGui_ImplGlfw_KeyCallback(window_, e.code, e.scancode, e.action, e.mods); break;
+      case InputEvent::Kind::Char: ImGui_ImplGlfw_CharCallback(window_, unsigned(e.code)); break;
+      case InputEvent::Kind::MouseButton: ImGui_ImplGlfw_MouseButtonCallback(window_, e.code, e.action, e.mods); break;
+      case InputEvent::Kind::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.dx, e.dy); break;
+    }
+  }
+  // A double-click's two presses now reach ImGui at least two frames apart: allow for slow frames.
+  ImGuiIO& io = ImGui::GetIO();
+  io.MouseDoubleClickTime = std::max(0.30f, 2.5f * io.DeltaTime);
 }
 
 void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
@@ -332,6 +365,8 @@ void ViewerApp::frameModel(const ScreenRect* viewRect) {
   framedOnce_ = true;
   framedViewCount_ = state_.viewCount;
   framedWithPanels_ = state_.showPanels;
+  const ScreenRect area = viewArea();
+  framedAreaSize_ = {area.w, area.h};
 }
 
 // [SECTION] Requests from panels and hotkeys
@@ -349,7 +384,9 @@ void ViewerApp::processRequests() {
   if (r.playlistPick >= 0) openPlaylistEntry(r.playlistPick);
   if (r.frame) frameModel();
   if (r.preset) {
+    // A preset turns the cameras and shows the whole model again (from a close-up too).
     for (int v = 0; v < kMaxViews; ++v) state_.camera(v).applyPreset(*r.preset);
+    frameModel();
   }
   OrbitCamera& active = state_.camera(state_.activeView);
   if (r.copyCamera) {
@@ -562,7 +599,8 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
   float depth = 1.0f;
   glReadPixels(x, y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
   if (depth >= 1.0f) {
-    state_.notice = "no surface under the cursor";
+    if (pick.zoomNotches != 0.0f) zoomTowardsCursor(state_, rects[size_t(pick.view)], pick.view, pick.zoomNotches);
+    else state_.notice = "no surface under the cursor";
     return;
   }
   const ScreenRect& r = rects[size_t(pick.view)];
@@ -572,6 +610,10 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
   glm::vec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale, r.h * pixelScale);
   glm::vec3 world = glm::unProject(glm::vec3(float(x) + 0.5f, float(y) + 0.5f, depth), camera.viewMatrix(),
                                    camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius), viewport);
+  if (pick.zoomNotches != 0.0f) {
+    camera.zoomTowards(glm::dvec3(world), pick.zoomNotches);
+    return;
+  }
   camera.setPivotKeepingEye(glm::dvec3(world));
   state_.notice = "pivot set";
 }
@@ -579,6 +621,7 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
 void ViewerApp::runFrame() {
   auto frameStart = std::chrono::steady_clock::now();
   glfwPollEvents();
+  replayInputEvents();
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
@@ -597,7 +640,11 @@ void ViewerApp::runFrame() {
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
   // More or fewer views, or the panels shown or hidden, change every view's shape: re-frame.
-  if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_)) frameModel();
+  // (a resized window too: its views change shape)
+  const ScreenRect area = viewArea();
+  if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_ ||
+                      std::pair{area.w, area.h} != framedAreaSize_))
+    frameModel();
   processRequests();
   expireNotice();
   pollLoad();

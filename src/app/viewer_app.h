@@ -18,6 +18,7 @@
 
 #include "app/viewer_surface.h"
 #include "render/framebuffer_capture.h"
+#include "ui/input_events.h"
 #include "ui/viewer_panels.h"
 #include "ui/viewer_state.h"
 
@@ -122,6 +123,8 @@ class ViewerApp {
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+  // Hands this frame's share of the queued input events to ImGui's GLFW backend.
+  void replayInputEvents();
   // Shows an already checked mesh (bumps the model generation, frames it).
   void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);
@@ -150,11 +153,13 @@ class ViewerApp {
   ViewerOptions options_;
   ViewerState state_;
   ViewerInput input_;
+  InputEventQueue inputEvents_;
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;
   bool framedOnce_ = false;
   int framedViewCount_ = 0;       // the layout the cameras were last framed for
   bool framedWithPanels_ = true;
+  std::pair<float, float> framedAreaSize_{0.0f, 0.0f};
   int framesDrawn_ = 0;
   std::shared_ptr<ShaderLibrary> shaders_;
   std::array<ViewRuntime, kMaxViews> views_;

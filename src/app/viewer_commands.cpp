@@ -289,8 +289,8 @@ int renderWithApp(const RenderRequest& r) {
   state.display.poleMarkers = r.poles;
   ScreenRect imageRect{0, 0, float(r.width), float(r.height)};
   ScreenRect firstView = layoutViews(state.viewCount, imageRect, colourBarReserve(state, 1.0f)).front();
+  if (r.preset) state.sharedCamera.applyPreset(*r.preset);  // the direction, then framing along it
   app.frameModel(&firstView);
-  if (r.preset) state.sharedCamera.applyPreset(*r.preset);
   if (!r.cameraJson.empty()) {
     std::string error;
     std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);

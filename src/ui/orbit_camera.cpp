@@ -139,6 +139,12 @@ void OrbitCamera::zoom(double wheelNotches) {
   distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), 1e-6, 1e9);
 }
 
+void OrbitCamera::zoomTowards(const glm::dvec3& point, double wheelNotches) {
+  const double before = distance;
+  zoom(wheelNotches);
+  target = point + (target - point) * (distance / before);
+}
+
 void OrbitCamera::zoomAt(double wheelNotches, double ndcX, double ndcY, double aspect) {
   // The point of the target's plane under the cursor, before the zoom.
   const double tanY = std::tan(radians(fovDeg) / 2.0), tanX = std::max(aspect, 1e-6) * tanY;

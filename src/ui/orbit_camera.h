@@ -43,6 +43,10 @@ struct OrbitCamera {
   // Wheel over a view: zooms as zoom() and moves the target so that the point of the target's
   // plane under the cursor (ndcX, ndcY in [-1, 1], y up) stays under it. `aspect` = width / height.
   void zoomAt(double wheelNotches, double ndcX, double ndcY, double aspect);
+  // Wheel over the surface: scales the camera's placement about `point` (the surface point under
+  // the cursor) by the zoom factor, keeping the direction: the point stays where it is on screen and
+  // the eye approaches it without ever passing it (zooming in never flies through the surface).
+  void zoomTowards(const glm::dvec3& point, double wheelNotches);
   // Double-click: the pivot becomes `point`; the eye stays where it is and turns to look at it.
   void setPivotKeepingEye(const glm::dvec3& point);
   // F: centres the bounding box and, keeping the direction, backs off until its eight corners fit

@@ -90,7 +90,8 @@ void drawFilePanel(ViewerState& state) {
   FileSettings& file = state.file;
   // The controls come first and keep their places: text whose height changes (the model's name,
   // errors, the loading line) goes below them, so a click never lands on a button that moved.
-  ImGui::SetNextItemWidth(-90.0f);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("Open (Enter)").x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
   if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) state.requests.load = true;
   ImGui::SameLine();
   if (ImGui::Button("Open (Enter)")) state.requests.load = true;
@@ -191,7 +192,7 @@ void drawDisplayPanel(ViewerState& state) {
   }
   ImGui::Checkbox("Pole markers (P)", &d.poleMarkers);
   ImGui::Checkbox("Wireframe over surface (W)", &d.wireframe);
-  ImGui::SliderFloat("Tessellation (px per edge)", &state.shading.tessPixels, 2.0f, 40.0f, "%.0f");
+  ImGui::SliderFloat("Edge length (px)", &state.shading.tessPixels, 2.0f, 40.0f, "%.0f");
 }
 
 void drawShadingPanel(ViewerState& state) {
@@ -203,8 +204,8 @@ void drawShadingPanel(ViewerState& state) {
   for (int i = 0; i < 5; ++i) ImGui::RadioButton(kShadeLabels[i], &mode, i);
   s.mode = kShadeModes[mode];
   if (s.mode == ShadingParams::Mode::Highlight || s.mode == ShadingParams::Mode::Reflection) {
-    if (ImGui::SliderFloat3("Light direction", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
-    if (ImGui::SliderFloat3("Light plane normal", &s.highlightPlaneNormal.x, -1.0f, 1.0f, "%.2f"))
+    if (ImGui::SliderFloat3("Light dir.", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
+    if (ImGui::SliderFloat3("Plane normal", &s.highlightPlaneNormal.x, -1.0f, 1.0f, "%.2f"))
       normaliseDirection(s.highlightPlaneNormal);
     // The light plane facing the active view (lines along screen y) puts stripes wherever the
     // viewer looks; the lines then stay fixed to the model while the camera moves on.
@@ -214,25 +215,24 @@ void drawShadingPanel(ViewerState& state) {
       s.highlightDir = glm::vec3(camera.up());
     }
     if (s.mode == ShadingParams::Mode::Highlight)
-      ImGui::SliderFloat("Line spacing (x radius)", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+      ImGui::SliderFloat("Spacing (x R)", &s.highlightSpacing, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     else
-      ImGui::SliderFloat("Stripe period (turns)", &s.reflectionSpacing, 0.005f, 0.5f, "%.4f", ImGuiSliderFlags_Logarithmic);
+      ImGui::SliderFloat("Period (turns)", &s.reflectionSpacing, 0.005f, 0.5f, "%.4f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("Line width", &s.highlightWidth, 0.02f, 0.98f, "%.2f");
   }
-  if (state.showsColourBar()) ImGui::SliderFloat("Lighting on colours", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
+  if (state.showsColourBar()) ImGui::SliderFloat("Lighting", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
 }
 
 void drawColourPanel(ViewerState& state) {
   ShadingParams& s = state.shading;
   int map = int(s.colormap);
-  const char* maps[] = {"paper Fig. 13 (green 0, blue -, red +)", "coolwarm", "viridis",
-                        "magnitude, Figs. 11-12 (dark blue 0)"};
+  const char* maps[] = {"paper (Fig. 13)", "coolwarm", "viridis", "magnitude (Figs. 11-12)"};
   if (ImGui::Combo("Colour map (C)", &map, maps, 4)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
   bool automatic = state.colour.automatic;
   if (ImGui::Checkbox("Automatic range (A)", &automatic)) setAutomaticRange(state, automatic);
   if (state.colour.automatic) {
     float percent = state.colour.quantile * 100.0f;
-    if (ImGui::SliderFloat("Percentile (of K by area)", &percent, 50.0f, 100.0f, "%.1f")) {
+    if (ImGui::SliderFloat("Percentile", &percent, 50.0f, 100.0f, "%.1f")) {
       state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
     }
     if (state.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
@@ -329,6 +329,27 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::Unindent();
   }
   if (!state.glInfo.empty()) wrappedColoredText(ImGui::GetStyle().Colors[ImGuiCol_TextDisabled], state.glInfo);
+}
+
+// The last notice, at the top of the view area where it is always in sight (the panel column may be
+// scrolled or hidden). An ImGui window: screenshots, which draw only the views' overlay, leave it out.
+void drawNotice(const ViewerState& state) {
+  if (state.notice.empty()) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  const float left = std::min(panelColumnWidth(state), io.DisplaySize.x * 0.5f);
+  const float width = std::max(io.DisplaySize.x - left - 40.0f, 120.0f);
+  ImGui::SetNextWindowPos(ImVec2(left + 20.0f, 40.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(width, io.DisplaySize.y * 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoSavedSettings;
+  if (ImGui::Begin("##notice", nullptr, flags)) {
+    ImGui::PushTextWrapPos(width - 16.0f);
+    ImGui::TextUnformatted(state.notice.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::End();
 }
 
 void drawHelpWindow(ViewerState& state) {
@@ -525,12 +546,15 @@ void requestLevel(ViewerState& state, int level) {
 
 void drawViewerPanels(ViewerState& state) {
   drawHelpWindow(state);
+  drawNotice(state);
   if (!state.showPanels) return;
   // A fixed column on the left; the views share the rest of the window.
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(panelColumnWidth(state), ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
   if (ImGui::Begin("polarview (Tab hides, ? for help)", nullptr, flags)) {
+    // Widgets leave a fixed 120 px to their labels, so the labels are not cut.
+    ImGui::PushItemWidth(-120.0f);
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(state);
     if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(state);
     if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(state);
@@ -539,7 +563,7 @@ void drawViewerPanels(ViewerState& state) {
     if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(state);
     if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(state);
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
-    if (!state.notice.empty()) ImGui::TextWrapped("%s", state.notice.c_str());
+    ImGui::PopItemWidth();
   }
   ImGui::End();
 }
@@ -656,6 +680,14 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
                 IM_COL32(210, 210, 210, 255), title.c_str());
 }
 
+void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches) {
+  // Towards the point of the target's plane under the cursor, as map and CAD viewers zoom.
+  const ImGuiIO& io = ImGui::GetIO();
+  const double ndcX = 2.0 * (io.MousePos.x - view.x) / std::max(view.w, 1.0f) - 1.0;
+  const double ndcY = 1.0 - 2.0 * (io.MousePos.y - view.y) / std::max(view.h, 1.0f);
+  state.camera(v).zoomAt(notches, ndcX, ndcY, double(view.w) / std::max(double(view.h), 1.0));
+}
+
 std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views) {
   ImGuiIO& io = ImGui::GetIO();
   // Every press since the last frame, in order (a press shorter than a frame still counts); while
@@ -690,14 +722,12 @@ std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vect
       else if (ImGui::IsMouseDown(0)) camera.orbit(delta.x, delta.y);
     }
   }
-  if (hovered >= 0 && io.MouseWheel != 0.0f) {
-    // Towards the point under the cursor, as map and CAD viewers zoom.
-    const ScreenRect& r = views[size_t(hovered)];
-    const double ndcX = 2.0 * (io.MousePos.x - r.x) / std::max(r.w, 1.0f) - 1.0;
-    const double ndcY = 1.0 - 2.0 * (io.MousePos.y - r.y) / std::max(r.h, 1.0f);
-    state.camera(hovered).zoomAt(io.MouseWheel, ndcX, ndcY, double(r.w) / std::max(double(r.h), 1.0));
+  if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) {
+    if (io.MouseWheel != 0.0f) zoomTowardsCursor(state, views[size_t(hovered)], hovered, io.MouseWheel);
+    return PivotPick{hovered, io.MousePos.x, io.MousePos.y};
   }
-  if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) return PivotPick{hovered, io.MousePos.x, io.MousePos.y};
+  // The wheel zooms towards the surface point under the cursor: the app reads the depth there.
+  if (hovered >= 0 && io.MouseWheel != 0.0f) return PivotPick{hovered, io.MousePos.x, io.MousePos.y, io.MouseWheel};
   return std::nullopt;
 }
 

@@ -61,10 +61,12 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
 // "highlight lines: light (1, 0, 0), spacing 0.25 x model radius, dark 30%"; empty in other modes.
 std::string lineLegend(const ShadingParams& shading);
 
-// A double-click on a view: the app reads the depth there and sets the pivot.
+// A double-click on a view (the app reads the depth there and sets the pivot), or the wheel over it
+// (zoomNotches != 0: the app zooms towards the surface point there, or the target's plane).
 struct PivotPick {
   int view = 0;
   float x = 0, y = 0;  // window coordinates
+  float zoomNotches = 0.0f;
 };
 
 // Hotkeys and mouse camera control. Keys are ignored while ImGui wants the keyboard and the mouse
@@ -82,6 +84,10 @@ class ViewerInput {
   int dragView_ = -1;
   std::vector<std::pair<int, int>> pendingKeys_;
 };
+
+// Wheel over a view where no surface is under the cursor: zooms towards the point of the camera
+// target's plane under it (OrbitCamera::zoomAt).
+void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches);
 
 // Automatic colour range on or off; switching it off keeps the current range (typed = automatic).
 void setAutomaticRange(ViewerState& state, bool automatic);

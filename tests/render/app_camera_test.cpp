@@ -151,6 +151,32 @@ TEST_CASE("orbit camera: the wheel zooms towards the cursor: the point under it 
   }
 }
 
+TEST_CASE("orbit camera: zooming towards a surface point keeps it on screen and never passes it") {
+  std::mt19937 rng(24);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    OrbitCamera c = randomCamera(rng);
+    const double aspect = std::exp(u(rng));
+    // A point in front of the eye, somewhere in the view.
+    const glm::dvec3 p = c.eye() + c.distance * (0.2 + std::abs(u(rng))) *
+                                       (c.forward() + 0.3 * u(rng) * c.right() + 0.3 * u(rng) * c.up());
+    auto ndc = [&] {  // the perspective projection in double (the camera's matrices are float)
+      const glm::dvec3 d = p - c.eye();
+      const double tanY = std::tan(glm::radians(c.fovDeg) / 2.0), depth = glm::dot(d, c.forward());
+      return glm::dvec2(glm::dot(d, c.right()) / (depth * tanY * aspect), glm::dot(d, c.up()) / (depth * tanY));
+    };
+    const glm::dvec2 before = ndc();
+    const glm::dvec3 forward = c.forward();
+    for (int notch = 0; notch < 60; ++notch) c.zoomTowards(p, 1.0);
+    const glm::dvec2 after = ndc();
+    CAPTURE(trial);
+    CHECK(after.x == doctest::Approx(before.x).epsilon(1e-6));
+    CHECK(after.y == doctest::Approx(before.y).epsilon(1e-6));
+    CHECK(glm::dot(p - c.eye(), forward) > 0.0);  // still in front after 60 notches
+    CHECK(glm::length(c.forward() - forward) < 1e-12);  // the direction is kept
+  }
+}
+
 TEST_CASE("orbit camera: the orthographic view shows at the target's depth what the perspective one shows") {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -388,6 +388,31 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
   CHECK(viewTitle(state.status[0]) == "RTS \xC2\xB7 2");
 }
 
+TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames; a preset shows the whole model again") {
+  auto app = makeApp(1280, 720);
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  runFrames(*app, 1);
+  ViewerState& state = app->state();
+  const double one = state.sharedCamera.distance;
+  state.viewCount = 4;  // 2 x 2: each view is smaller and closer to square
+  runFrames(*app, 1);
+  const double four = state.sharedCamera.distance;
+  CHECK(four != one);
+  state.showPanels = false;
+  runFrames(*app, 1);
+  CHECK(state.sharedCamera.distance != four);
+  // A close-up, then F2: the top view of the whole model, not of the close-up.
+  state.showPanels = true;
+  runFrames(*app, 1);
+  const double framed = state.sharedCamera.distance;
+  state.sharedCamera.zoom(12.0);
+  state.requests.preset = ViewPreset::Top;
+  runFrames(*app, 1);
+  CHECK(state.sharedCamera.pitchDeg > 80.0);
+  CHECK(state.sharedCamera.distance > 0.5 * framed);
+}
+
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
   auto app = makeApp();
   app->loadDefaultModel();
