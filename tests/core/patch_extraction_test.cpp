@@ -625,3 +625,85 @@ TEST_CASE("end caps: the limit point and normal at an extraordinary vertex do no
       if (glm::length(a.position - b.position) < 1e-12) CHECK(glm::length(a.normal - b.normal) < 1e-12);
   MESSAGE("EV limit point drift level 1 -> 4: " << worstPosition << ", normal drift " << worstAngle << " rad");
 }
+
+TEST_CASE("end caps around a valence-300 vertex: tangents are the Catmull-Clark mask's, the caps meet watertight") {
+  // A jittered 300-gon refined once: its centre is an extraordinary vertex of valence 300 with 300
+  // quads around it, all end caps. The caps read each vertex's limit data once (linear in the
+  // valence); here the tangents along every spoke are checked against the mask summed directly.
+  const int n = 300;
+  PolyMesh polygon;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  std::vector<Index> loop;
+  for (int j = 0; j < n; ++j) {
+    const double a = 2.0 * 3.14159265358979323846 * j / n;
+    polygon.points.push_back({std::cos(a) + jitter(rng), std::sin(a) + jitter(rng), jitter(rng)});
+    loop.push_back(Index(j));
+  }
+  polygon.addFace(loop.data(), loop.size());
+  RefineOptions options;
+  options.scheme = Scheme::CatmullClark;
+  options.levels = 1;
+  const Refinement refinement(polygon, options);
+  const PatchSet set = extractPatches(refinement);
+  const PolyMesh& mesh = refinement.finest().mesh;
+  const MeshTopology& topo = refinement.finest().topology;
+  // The mask, directly: t_i = scale sum_j A cos(step (j - i)) e_j + (cos(step (j - i)) + cos(step (j + 1 - i))) f_j.
+  auto directTangent = [&](Index v, Index towards) {
+    const Index k = topo.valence(v), first = topo.vertexEdgeStart[v], faceFirst = topo.vertexFaceStart[v];
+    const double kd = double(k), step = 2.0 * 3.14159265358979323846 / kd;
+    const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
+    const double scale = 1.0 / (kd * (0.5 * A + 1.0 + std::cos(step)));
+    Index i = -1;
+    for (Index j = 0; j < k; ++j)
+      if (topo.otherEnd(topo.vertexEdges[first + j], v) == towards) i = j;
+    REQUIRE(i >= 0);
+    Point t(0.0);
+    for (Index j = 0; j < k; ++j) {
+      const Index face = topo.vertexFaces[faceFirst + j], corner = topo.vertexCorners[faceFirst + j];
+      const Index start = mesh.faceStart[face];
+      const Point& f = mesh.points[mesh.faceVerts[start + (corner - start + 2) % 4]];  // quad: opposite
+      const Point& e = mesh.points[topo.otherEnd(topo.vertexEdges[first + j], v)];
+      const double a = step * double(j - i), b = step * double(j + 1 - i);
+      t += (A * std::cos(a)) * e + (std::cos(a) + std::cos(b)) * f;
+    }
+    return scale * t;
+  };
+  int checked = 0;
+  double worst = 0.0;
+  const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const Patch& p : set.patches) {
+    REQUIRE(p.kind == PatchKind::EndCap);
+    const Index* face = mesh.face(p.face);
+    for (int c = 0; c < 4; ++c) {
+      if (topo.valence(face[c]) != Index(n)) continue;
+      // Along the face's edge from this corner to the next: +du, +dv, -du, -dv at corners 0..3.
+      const SurfacePoint sp = evaluatePatch(p, corner[c][0], corner[c][1]);
+      const Point along = c == 0 ? sp.du : c == 1 ? sp.dv : c == 2 ? -sp.du : -sp.dv;
+      const Point expected = directTangent(face[c], face[(c + 1) % 4]);
+      worst = std::max(worst, glm::length(along - expected) / std::max(glm::length(expected), 1e-300));
+      ++checked;
+    }
+  }
+  CHECK(checked == n);
+  CHECK(worst < 1e-9);
+  // Neighbouring caps share their spoke curves: sample every cap's sides, each sample must lie on
+  // another cap's side too (watertight up to round-off).
+  std::vector<Point> samples;
+  for (const Patch& p : set.patches)
+    for (double t : {0.25, 0.5, 0.75})
+      for (const auto& uv : {std::pair{t, 0.0}, std::pair{1.0, t}, std::pair{t, 1.0}, std::pair{0.0, t}})
+        samples.push_back(evaluatePatch(p, uv.first, uv.second).position);
+  std::sort(samples.begin(), samples.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
+  int unmatched = 0;
+  for (size_t s = 0; s < samples.size(); ++s) {
+    bool found = false;
+    for (size_t o = s; o-- > 0 && samples[s].x - samples[o].x < 1e-9;) found = found || glm::length(samples[o] - samples[s]) < 1e-11;
+    for (size_t o = s + 1; o < samples.size() && samples[o].x - samples[s].x < 1e-9; ++o)
+      found = found || glm::length(samples[o] - samples[s]) < 1e-11;
+    unmatched += !found;
+  }
+  // The outer sides (on the polygon's boundary) have no neighbour: 3 samples on each of 2n of them.
+  CHECK(unmatched == 3 * 2 * n);
+  MESSAGE("valence " << n << ": " << checked << " spoke tangents, worst relative difference to the direct mask " << worst);
+}

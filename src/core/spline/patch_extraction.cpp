@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <utility>
 
 namespace polarview {
 
@@ -176,11 +178,6 @@ Point diagonalPoint(const PolyMesh& mesh, Index face, Index corner, const Point&
   return (4.0 / size) * sum - v - a - b;
 }
 
-// Reusable buffers for the 1-ring of a vertex (no allocation per end cap once grown).
-struct RingScratch {
-  std::vector<Point> e, f;  // edge neighbours e_j and diagonals f_j (face j between edges j, j+1)
-};
-
 // Catmull-Clark limit data at a face corner: limit point and the limit tangents along the face's
 // two edges there (patch_extraction.h), in the parameter scale of a regular B-spline patch.
 struct CornerFrame {
@@ -189,63 +186,117 @@ struct CornerFrame {
   double weight = 4.0;  // Loop-Schaefer interior-point weight: valence (4 at boundary vertices)
 };
 
-// Limit tangent along edge i of the 1-ring in `ring` (see patch_extraction.h). The same
-// arithmetic runs for both faces on an edge, so their boundary curves agree. [O(valence)]
-Point limitTangent(const RingScratch& ring, Index k, bool boundary, const Point& limit, Index i) {
-  if (boundary) {
-    if (i == 0) return 0.5 * (ring.e.front() - ring.e.back());
-    if (i == k - 1) return 0.5 * (ring.e.back() - ring.e.front());
-    return (ring.f[i - 1] + 4.0 * ring.e[i] + ring.f[i]) / 6.0 - limit;
-  }
-  // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
-  // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12).
-  const double kd = double(k), step = 2.0 * kPi / kd;
-  const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
-  const double scale = 1.0 / (kd * (0.5 * A + 1.0 + std::cos(step)));
-  Point t(0.0);
-  for (Index j = 0; j < k; ++j) {
-    const double a = step * double(j - i), b = step * double(j + 1 - i);
-    t += (A * std::cos(a)) * ring.e[j] + (std::cos(a) + std::cos(b)) * ring.f[j];
-  }
-  return scale * t;
-}
+// The limit point of a vertex and what its limit tangents along each of its edges need, computed
+// once per vertex: every face around an extraordinary vertex of valence k asks for it, and
+// recomputing the O(k) sums per face made end caps O(k^2) around it (10k-valent: 4.6 s).
+struct VertexLimit {
+  Point point{}, limit{};
+  double weight = 4.0;
+  bool boundary = false;
+  // Interior: the tangent along edge i is cos(step i) cosine + sin(step i) sine (the mask's sums
+  // over j of cos(step (j - i)) split by the angle-difference identity). Boundary: the ring itself.
+  Point cosine{}, sine{};
+  std::vector<Point> e, f;                    // boundary vertices only
+  std::vector<std::pair<Index, Index>> edges;  // (edge id, position in the ring), sorted by edge id
+};
 
-// Limit point and tangents at corner `corner` (an index into faceVerts) of `face`. [O(valence)]
-CornerFrame cornerFrame(const PolyMesh& mesh, const MeshTopology& topo, Index face, Index corner, RingScratch& ring) {
-  const Index v = mesh.faceVerts[corner];
-  const Index edgeFirst = topo.vertexEdgeStart[v], faceFirst = topo.vertexFaceStart[v];
-  const Index k = topo.valence(v), faces = topo.faceValence(v);
-  const bool boundary = topo.vertexOnBoundary[v] != 0;
-  const Point& p = mesh.points[v];
-  ring.e.resize(k);
-  ring.f.resize(faces);
-  for (Index j = 0; j < k; ++j) ring.e[j] = mesh.points[topo.otherEnd(topo.vertexEdges[edgeFirst + j], v)];
-  for (Index j = 0; j < faces; ++j)
-    ring.f[j] = diagonalPoint(mesh, topo.vertexFaces[faceFirst + j], topo.vertexCorners[faceFirst + j], p, ring.e[j],
-                              ring.e[(j + 1) % k]);
+class LimitFrames {
+ public:
+  LimitFrames(const PolyMesh& mesh, const MeshTopology& topo) : mesh_(mesh), topo_(topo) {}
 
-  CornerFrame frame;
-  frame.point = p;
-  if (boundary) {
-    frame.limit = (ring.e.front() + 4.0 * p + ring.e.back()) / 6.0;
-  } else {
+  // Limit point and tangents at corner `corner` (an index into faceVerts) of `face`. [O(valence)
+  // the first time a vertex is asked for, O(log valence) after]
+  CornerFrame at(Index face, Index corner) {
+    const Index v = mesh_.faceVerts[corner];
+    const VertexLimit& vl = vertex(v);
+    CornerFrame frame;
+    frame.point = vl.point;
+    frame.limit = vl.limit;
+    frame.weight = vl.weight;
+    // The face's outgoing and incoming edges at this corner, found in v's edge ring.
+    const Index start = mesh_.faceStart[face], size = mesh_.faceSize(face);
+    const Index previous = start + (corner - start + size - 1) % size;
+    frame.towardNext = tangent(vl, ringPosition(vl, topo_.cornerEdge[corner]));
+    frame.towardPrev = tangent(vl, ringPosition(vl, topo_.cornerEdge[previous]));
+    return frame;
+  }
+
+ private:
+  const VertexLimit& vertex(Index v) {
+    auto [it, inserted] = cache_.try_emplace(v);
+    if (inserted) compute(v, it->second);
+    return it->second;
+  }
+
+  void compute(Index v, VertexLimit& out) {
+    const Index edgeFirst = topo_.vertexEdgeStart[v], faceFirst = topo_.vertexFaceStart[v];
+    const Index k = topo_.valence(v), faces = topo_.faceValence(v);
+    out.boundary = topo_.vertexOnBoundary[v] != 0;
+    out.point = mesh_.points[v];
+    std::vector<Point>& e = ring_.e;
+    std::vector<Point>& f = ring_.f;
+    e.resize(k);
+    f.resize(faces);
+    for (Index j = 0; j < k; ++j) e[j] = mesh_.points[topo_.otherEnd(topo_.vertexEdges[edgeFirst + j], v)];
+    for (Index j = 0; j < faces; ++j)
+      f[j] = diagonalPoint(mesh_, topo_.vertexFaces[faceFirst + j], topo_.vertexCorners[faceFirst + j], out.point, e[j],
+                           e[(j + 1) % k]);
+    out.edges.resize(k);
+    for (Index j = 0; j < k; ++j) out.edges[j] = {topo_.vertexEdges[edgeFirst + j], j};
+    std::sort(out.edges.begin(), out.edges.end());
+    if (out.boundary) {
+      out.limit = (e.front() + 4.0 * out.point + e.back()) / 6.0;
+      out.e = e;
+      out.f = f;
+      return;
+    }
     Point edgeSum(0.0), faceSum(0.0);
-    for (Index j = 0; j < k; ++j) edgeSum += ring.e[j], faceSum += ring.f[j];
+    for (Index j = 0; j < k; ++j) edgeSum += e[j], faceSum += f[j];
     const double kd = double(k);
-    frame.limit = (kd / (kd + 5.0)) * p + (4.0 / (kd * (kd + 5.0))) * edgeSum + (1.0 / (kd * (kd + 5.0))) * faceSum;
-    frame.weight = kd;
+    out.limit = (kd / (kd + 5.0)) * out.point + (4.0 / (kd * (kd + 5.0))) * edgeSum + (1.0 / (kd * (kd + 5.0))) * faceSum;
+    out.weight = kd;
+    // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
+    // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12):
+    // t_i = scale sum_j A cos(step (j - i)) e_j + (cos(step (j - i)) + cos(step (j + 1 - i))) f_j.
+    const double step = 2.0 * kPi / kd;
+    const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
+    const double scale = 1.0 / (kd * (0.5 * A + 1.0 + std::cos(step)));
+    Point cosine(0.0), sine(0.0);
+    for (Index j = 0; j < k; ++j) {
+      const double a = step * double(j), b = step * double(j + 1);
+      cosine += (A * std::cos(a)) * e[j] + (std::cos(a) + std::cos(b)) * f[j];
+      sine += (A * std::sin(a)) * e[j] + (std::sin(a) + std::sin(b)) * f[j];
+    }
+    out.cosine = scale * cosine;
+    out.sine = scale * sine;
   }
-  // The face's outgoing and incoming edges at this corner, found in v's edge ring.
-  const Index start = mesh.faceStart[face], size = mesh.faceSize(face);
-  const Index previous = start + (corner - start + size - 1) % size;
-  const Index outgoing = topo.cornerEdge[corner], incoming = topo.cornerEdge[previous];
-  for (Index j = 0; j < k; ++j) {
-    const Index e = topo.vertexEdges[edgeFirst + j];
-    if (e == outgoing) frame.towardNext = limitTangent(ring, k, boundary, frame.limit, j);
-    if (e == incoming) frame.towardPrev = limitTangent(ring, k, boundary, frame.limit, j);
+
+  static Index ringPosition(const VertexLimit& vl, Index edge) {
+    auto it = std::lower_bound(vl.edges.begin(), vl.edges.end(), std::pair<Index, Index>{edge, Index(-1)});
+    return it != vl.edges.end() && it->first == edge ? it->second : 0;
   }
-  return frame;
-}
+
+  // Limit tangent along edge i of the vertex's ring (patch_extraction.h). Both faces on an edge
+  // read the same cached data, so their boundary curves agree. [O(1)]
+  static Point tangent(const VertexLimit& vl, Index i) {
+    if (vl.boundary) {
+      const Index k = Index(vl.e.size());
+      if (i == 0) return 0.5 * (vl.e.front() - vl.e.back());
+      if (i == k - 1) return 0.5 * (vl.e.back() - vl.e.front());
+      return (vl.f[i - 1] + 4.0 * vl.e[i] + vl.f[i]) / 6.0 - vl.limit;
+    }
+    const double angle = 2.0 * kPi * double(i) / double(vl.weight);
+    return std::cos(angle) * vl.cosine + std::sin(angle) * vl.sine;
+  }
+
+  struct Scratch {
+    std::vector<Point> e, f;  // edge neighbours e_j and diagonals f_j (face j between edges j, j+1)
+  };
+  const PolyMesh& mesh_;
+  const MeshTopology& topo_;
+  std::unordered_map<Index, VertexLimit> cache_;
+  Scratch ring_;
+};
 
 using Bezier = std::array<Point, 4>;
 
@@ -276,10 +327,10 @@ Point interiorPoint(const CornerFrame& at, const Point& a, const Point& b, const
 }
 
 // End cap of a quad face (patch_extraction.h).
-Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f, RingScratch& ring) {
+Patch quadEndCap(const PolyMesh& mesh, Index f, LimitFrames& limits) {
   const Index start = mesh.faceStart[f];
   CornerFrame frames[4];
-  for (int c = 0; c < 4; ++c) frames[c] = cornerFrame(mesh, topo, f, start + c, ring);
+  for (int c = 0; c < 4; ++c) frames[c] = limits.at(f, start + c);
   std::array<Point, 16> b;
   auto B = [&](int i, int j) -> Point& { return b[4 * j + i]; };
   // Boundary curves, side s from corner s to s+1; grid positions of its 4 Bezier points.
@@ -303,10 +354,10 @@ Patch quadEndCap(const PolyMesh& mesh, const MeshTopology& topo, Index f, RingSc
 
 // End caps of a k-gon (k != 4): k quads (corner, edge midpoint, centre, previous edge midpoint).
 // Only at level 0 or at a pole left without a cap, so the per-face buffers do not matter.
-void polygonEndCaps(const PolyMesh& mesh, const MeshTopology& topo, Index f, RingScratch& ring, std::vector<Patch>& out) {
+void polygonEndCaps(const PolyMesh& mesh, Index f, LimitFrames& limits, std::vector<Patch>& out) {
   const Index k = mesh.faceSize(f), start = mesh.faceStart[f];
   std::vector<CornerFrame> frames(k);
-  for (Index c = 0; c < k; ++c) frames[c] = cornerFrame(mesh, topo, f, start + c, ring);
+  for (Index c = 0; c < k; ++c) frames[c] = limits.at(f, start + c);
   // Halves of each edge curve by de Casteljau at 1/2.
   std::vector<Bezier> firstHalf(k), secondHalf(k);
   Point centre(0.0);
@@ -489,12 +540,12 @@ PatchSet extractPatches(const Refinement& refinement) {
         for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
       }
       // End caps for everything else not covered.
-      RingScratch ring;
+      LimitFrames limits(mesh, topo);
       for (Index f = 0; f < mesh.faceCount(); ++f) {
         if (classes.faceRegular[f] || inHole[f]) continue;
         const size_t first = set.patches.size();
-        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, topo, f, ring));
-        else polygonEndCaps(mesh, topo, f, ring, set.patches);
+        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, f, limits));
+        else polygonEndCaps(mesh, f, limits, set.patches);
         for (size_t k = first; k < set.patches.size(); ++k) {
           set.patches[k].kind = PatchKind::EndCap;
           set.patches[k].level = uint8_t(std::min(m, 255));
