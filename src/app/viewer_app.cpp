@@ -18,6 +18,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/mesh/shapes.h"
+#include "core/subdiv/refiner.h"
 #include "render/gl_context.h"
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
@@ -270,6 +271,7 @@ void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::str
     state_.file.previousModelName = model_.name;
   }
   model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
+  model_.radialForRtsBps = refinesRadially(*model_.mesh, Scheme::RTS);
   state_.file.modelName = name;
   state_.file.loadedPath = path;
   if (!path.empty()) state_.file.pathField = path;  // the field names what is shown (after Ctrl+Z too)
@@ -468,8 +470,8 @@ void ViewerApp::updateSurfaces() {
     }
 
     // Report.
-    status.deepestLevel = deepestLevel(*model_.mesh, state_.views[size_t(v)].scheme, options_.faceBudget);
-    status.levelLimit = levelRefusal(*model_.mesh, state_.views[size_t(v)].scheme, status.deepestLevel + 1,
+    status.deepestLevel = deepestLevel(model_, state_.views[size_t(v)].scheme, options_.faceBudget);
+    status.levelLimit = levelRefusal(model_, state_.views[size_t(v)].scheme, status.deepestLevel + 1,
                                      options_.faceBudget);
     status.refining = view.job.running();
     status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;

@@ -170,19 +170,29 @@ LoadedModel readModelFile(const std::string& path) {
   return loaded;
 }
 
-int deepestLevel(const PolyMesh& mesh, SchemeChoice scheme, size_t faceBudget) {
+namespace {
+// The face estimate of `scheme` at `level` on the model (radial growth where RTS/BPS refine it all
+// radially).
+size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level) {
+  const RefineOptions options = refineOptionsFor(scheme, level);
+  const bool radial = model.radialForRtsBps && (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS);
+  return estimateFaceCount(*model.mesh, options, radial);
+}
+}  // namespace
+
+int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget) {
   int level = 0;
-  while (level < kMaxLevel && estimateFaceCount(mesh, refineOptionsFor(scheme, level + 1)) <= faceBudget) ++level;
+  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1) <= faceBudget) ++level;
   return level;
 }
 
-std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, size_t faceBudget) {
-  const int deepest = deepestLevel(mesh, scheme, faceBudget);
+std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
+  const int deepest = deepestLevel(model, scheme, faceBudget);
   if (level <= deepest) return {};
   std::string text = "level " + std::to_string(level) + " refused: " + schemeChoiceLabel(scheme) +
                      " stops at level " + std::to_string(deepest) + " on this model";
   if (deepest < kMaxLevel) {
-    const size_t faces = estimateFaceCount(mesh, refineOptionsFor(scheme, deepest + 1));
+    const size_t faces = estimatedFaces(model, scheme, deepest + 1);
     text += " (level " + std::to_string(deepest + 1) + " would make about " + std::to_string(faces) +
             " faces, over the budget of " + std::to_string(faceBudget) + ")";
   } else {
@@ -192,7 +202,7 @@ std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, s
 }
 
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {
-  return levelRefusal(*model.mesh, key.scheme, key.level, faceBudget);
+  return levelRefusal(model, key.scheme, key.level, faceBudget);
 }
 
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget) {

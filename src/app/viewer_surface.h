@@ -54,6 +54,7 @@ struct Model {
   std::shared_ptr<const PolyMesh> mesh;
   std::string name;        // file path or "default: ..."
   uint64_t generation = 0;
+  bool radialForRtsBps = false;  // RTS/BPS refine the whole mesh radially (faces x2 a level, not x4)
 };
 
 // A model file read and checked off the UI thread: the mesh, or the error of the first problem.
@@ -82,10 +83,10 @@ float weightedSymmetricRange(const std::vector<float>& values, const std::vector
 
 // The deepest level of `scheme` on `mesh` whose estimated faces fit `faceBudget`, at most kMaxLevel:
 // the one limit of the level slider, the keys, `view` and `render`. [O(1) per level]
-int deepestLevel(const PolyMesh& mesh, SchemeChoice scheme, size_t faceBudget);
+int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
 // Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 9 refused: C2PS
 // stops at level 6 on this model (level 7 would make about 2334720 faces, over the budget of 2097152)".
-std::string levelRefusal(const PolyMesh& mesh, SchemeChoice scheme, int level, size_t faceBudget);
+std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
 // the total; 0 when there is no weight. [O(n log n)]
 float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, float fraction);

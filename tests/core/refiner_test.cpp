@@ -184,3 +184,30 @@ TEST_CASE("a level over the memory budget is refused with an input error") {
   CHECK_THROWS_AS(Refinement(mesh, {Scheme::CatmullClark, 12, false}, "cube.obj", 1000000), InputError);
   CHECK(estimateFaceCount(mesh, {Scheme::CatmullClark, 2, false}) >= 96);
 }
+
+TEST_CASE("face estimates: RTS/BPS on caps and globes grow x2 a level (radial), exactly; elsewhere x4") {
+  const PolyMesh globe = shapes::globe(16, 7), cap = shapes::polarCap(12, 6), mushroom = shapes::mushroom(12);
+  CHECK(refinesRadially(globe, Scheme::RTS));
+  CHECK(refinesRadially(cap, Scheme::BPS));
+  CHECK(!refinesRadially(mushroom, Scheme::RTS));       // CC stem: periodic refinement, x4
+  CHECK(!refinesRadially(globe, Scheme::C2PS));          // the valence doubles: x4
+  CHECK(!refinesRadially(shapes::globe(4, 5), Scheme::RTS));  // valence 4: Catmull-Clark refines it
+  for (const Scheme scheme : {Scheme::RTS, Scheme::BPS})
+    for (const PolyMesh* mesh : {&globe, &cap})
+      for (int levels = 1; levels <= 5; ++levels) {
+        RefineOptions options;
+        options.scheme = scheme;
+        options.levels = levels;
+        const Refinement refinement(*mesh, options);
+        REQUIRE(refinement.radialOnly());
+        CAPTURE(levels);
+        CHECK(estimateFaceCount(*mesh, options, true) == size_t(refinement.finest().mesh.faceCount()));
+      }
+  // The refiner's own budget uses the radial estimate: RTS level 12 of the globe (524288 faces)
+  // fits a budget Catmull-Clark growth would exceed 100 times over.
+  RefineOptions deep;
+  deep.scheme = Scheme::RTS;
+  deep.levels = 12;
+  CHECK(estimateFaceCount(globe, deep) > 100 * estimateFaceCount(globe, deep, true));
+  CHECK_NOTHROW(Refinement(shapes::globe(6, 3), deep, "<globe>", size_t(1) << 20));
+}

@@ -189,7 +189,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   REQUIRE(showsWanted(*app, 0));
   ViewerState& state = app->state();
   // One limit: the slider's range, the keys' refusal and the app's refusal agree.
-  const int deepest = deepestLevel(*app->model().mesh, SchemeChoice::C2PS, 20000);
+  const int deepest = deepestLevel(app->model(), SchemeChoice::C2PS, 20000);
   CHECK(state.status[0].deepestLevel == deepest);
   CHECK(deepest >= 1);
   CHECK(deepest < 8);
@@ -204,7 +204,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   app->waitUntilIdle();
   runFrames(*app, 2);
   CHECK(state.status[0].message.find("level 8 refused: C2PS stops at level " + std::to_string(deepest)) == 0);
-  CHECK(state.status[0].message == levelRefusal(*app->model().mesh, SchemeChoice::C2PS, 8, 20000));
+  CHECK(state.status[0].message == levelRefusal(app->model(), SchemeChoice::C2PS, 8, 20000));
   CHECK(state.views[0].level == deepest);
   CHECK(app->shownSurface(0)->key.level == deepest);
 }

@@ -349,8 +349,25 @@ struct Refinement::Plan {
   std::string source;
 };
 
-size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options) {
+bool refinesRadially(const PolyMesh& base, Scheme scheme) {
+  if (scheme != Scheme::RTS && scheme != Scheme::BPS) return false;
+  RefinedLevel level0;
+  level0.mesh = base;
+  try {
+    level0.topology = buildTopology(base, "<mesh>");
+  } catch (const std::exception&) {
+    return false;  // not refinable at all; the refiner says why
+  }
+  for (PolarConfig& config : findPolarConfigs(base, level0.topology))
+    if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
+  return !findRadialRegions(level0).empty();
+}
+
+size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options, bool radial) {
   if (options.levels <= 0) return size_t(base.faceCount());
+  // Radial refinement (RTS/BPS on caps and globes) keeps the valence and doubles the links: the
+  // face count doubles a level (globe: 128, 256, 512, ... exactly).
+  if (radial) return size_t(std::min(double(base.faceCount()) * std::pow(2.0, options.levels), 1e18));
   // Catmull-Clark: one quad per corner, then x4 per level; polar splits add < corners per level.
   double faces = double(base.faceVerts.size()) * std::pow(4.0, options.levels - 1);
   return size_t(std::min(faces * 1.25, 1e18));
@@ -360,11 +377,16 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
     : options_(options), plan_(std::make_unique<Plan>()) {
   plan_->source = sourceName;
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
-  size_t estimate = estimateFaceCount(base, options);
-  if (estimate > maxFaces)
-    throw InputError(sourceName, 0,
-                     "level " + std::to_string(options.levels) + " would need about " + std::to_string(estimate) +
-                         " faces, over the memory budget of " + std::to_string(maxFaces) + " faces");
+  // Catmull-Clark growth unless RTS/BPS refine the whole mesh radially (checked below, once the
+  // base topology is known): refuse at once what cannot fit either way.
+  const bool mayBeRadial = options.scheme == Scheme::RTS || options.scheme == Scheme::BPS;
+  auto refuseOver = [&](size_t estimate) {
+    if (estimate > maxFaces)
+      throw InputError(sourceName, 0,
+                       "level " + std::to_string(options.levels) + " would need about " + std::to_string(estimate) +
+                           " faces, over the memory budget of " + std::to_string(maxFaces) + " faces");
+  };
+  refuseOver(estimateFaceCount(base, options, mayBeRadial));
 
   RefinedLevel level0;
   level0.mesh = base;
@@ -379,6 +401,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
     plan_->radial = !regions.empty();
     if (plan_->radial) plan_->regions.push_back(std::move(regions));
   }
+  if (!plan_->radial) refuseOver(estimateFaceCount(base, options));
   std::vector<Index> links;  // generic levels: the current finest level's corner links
   if (!plan_->radial && options.levels > 0) links = cornerLinks(levels_[0].mesh, levels_[0].topology);
   for (int m = 1; m <= options.levels; ++m) {

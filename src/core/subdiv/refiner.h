@@ -67,7 +67,12 @@ class Refinement {
   std::unique_ptr<Plan> plan_;
 };
 
-// Faces the finest level would have (cheap estimate from the base mesh, used for the budget). [O(mesh)]
-size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options);
+// Faces the finest level would have (cheap estimate from the base mesh, used for the budget):
+// Catmull-Clark growth (x4 a level), or x2 a level where RTS/BPS refine the whole mesh radially
+// (`radial`: refinesRadially). [O(1)]
+size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options, bool radial = false);
+// True when `scheme` (RTS or BPS) refines all of `base` radially: a cap or globe made of polar
+// configurations only (Refinement::radialOnly before refining). [O(mesh)]
+bool refinesRadially(const PolyMesh& base, Scheme scheme);
 
 }  // namespace polarview
