@@ -212,7 +212,7 @@ int runRefine(const Args& args) {
   if (o.levels < 0) throw UsageError{"refine needs --levels L"};
   PolyMesh mesh = loadInput(o.input);
   Refinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input);
-  saveObj(o.output, refinement.finest().mesh);
+  saveObj(o.output, refinement.finest().mesh, o.input);
   return 0;
 }
 
@@ -257,7 +257,7 @@ int runInfo(const Args& args) {
   const int loops = countBoundaryLoops(topo);
 
   if (o.json) {
-    JsonWriter w;
+    JsonWriter w(o.input);
     w.beginObject();
     w.field("file", o.input).field("vertices", used).field("unreferenced_vertices", topo.vertexCount - used);
     w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", triangles);
@@ -339,15 +339,12 @@ int runPole(const Args& args) {
   // leaves links 0 and 1, hence p0..p5, unchanged).
   Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
   const RefinedLevel& level = refinement.level(0);
-  JsonWriter w;
+  JsonWriter w(o.input);
   w.beginObject().key("poles").beginArray();
   for (size_t k = 0; k < level.poles.size(); ++k) {
     const TaylorCoefficients& t = level.poleTaylor[k];
     PoleDifferential d = analyzePole(t);
-    if (!o.json)
-      std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
-                  level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
-                  d.normal.z, d.gaussian, d.mean, d.curvatureDefined ? "" : " (curvature not defined: BPS is C1 at the pole)");
+    // The JSON first, text or not: it refuses a non-finite number before anything is printed.
     w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
     w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
     if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
@@ -355,6 +352,15 @@ int runPole(const Args& args) {
     w.key("p").beginArray();
     for (const Point& p : t.p) w.value(p);
     w.endArray().endObject();
+    if (o.json) continue;
+    // Why K and H are missing: no tangent plane (any scheme), or BPS's expansion, which stops at
+    // the tangent plane.
+    std::string note;
+    if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
+    else if (!d.curvatureDefined && o.scheme == Scheme::BPS) note = " (curvature not defined: BPS is C1 at the pole)";
+    std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
+                level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
+                d.normal.z, d.gaussian, d.mean, note.c_str());
   }
   w.endArray().endObject();
   if (o.json) std::cout << w.str() << "\n";
@@ -413,7 +419,7 @@ int runBench(const Args& args) {
   const double topologySpeedup = compared ? peer->topologyMs / std::max(topologyMs, 1e-9) : 0.0;
   const double positionsSpeedup = compared ? peer->positionsMs / std::max(positionsMs, 1e-9) : 0.0;
 
-  JsonWriter w;
+  JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
   w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
   w.field("cold_topology_ms", coldTopologyMs).field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);

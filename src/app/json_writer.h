@@ -4,19 +4,33 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <glm/vec3.hpp>
+
+#include "core/mesh/input_error.h"
 
 namespace polarview::cli {
 
 class JsonWriter {
  public:
+  // `source` is the input file the numbers come from, named in the error a non-finite number raises.
+  explicit JsonWriter(std::string source = "") : source_(std::move(source)) {}
   JsonWriter& beginObject() { separate(); out_ += '{'; first_ = true; return *this; }
   JsonWriter& endObject() { out_ += '}'; first_ = false; return *this; }
   JsonWriter& beginArray() { separate(); out_ += '['; first_ = true; return *this; }
   JsonWriter& endArray() { out_ += ']'; first_ = false; return *this; }
-  JsonWriter& key(const char* name) { separate(); out_ += quote(name) + ':'; first_ = true; return *this; }
-  JsonWriter& value(double x) { separate(); out_ += number(x); return *this; }
+  JsonWriter& key(const char* name) { separate(); out_ += quote(name) + ':'; first_ = true; lastKey_ = name; return *this; }
+  // JSON has no inf or NaN, and printing null for a value that overflowed would hide the failure:
+  // throws InputError(source, 0, ...) naming the key.
+  JsonWriter& value(double x) {
+    if (!std::isfinite(x))
+      throw InputError(source_, 0, "the result has a non-finite number (\"" + lastKey_ +
+                                       "\"): the input's coordinates are too large or degenerate");
+    separate();
+    out_ += number(x);
+    return *this;
+  }
   JsonWriter& value(long long x) { separate(); out_ += std::to_string(x); return *this; }
   JsonWriter& value(int x) { return value(static_cast<long long>(x)); }
   JsonWriter& value(size_t x) { return value(static_cast<long long>(x)); }
@@ -29,7 +43,7 @@ class JsonWriter {
   JsonWriter& field(const char* name, const T& v) { key(name); return value(v); }
   const std::string& str() const { return out_; }
 
-  // 17 significant digits (round-trips a double); NaN/inf become null (JSON has no such numbers).
+  // 17 significant digits (round-trips a double); NaN/inf become null (value() refuses them first).
   static std::string number(double x) {
     if (!std::isfinite(x)) return "null";
     char buf[32];
@@ -51,6 +65,7 @@ class JsonWriter {
     if (!first_ && !out_.empty() && out_.back() != '[' && out_.back() != '{' && out_.back() != ':') out_ += ',';
     first_ = false;
   }
+  std::string source_, lastKey_;
   std::string out_;
   bool first_ = true;
 };

@@ -2,6 +2,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "core/mesh/input_error.h"
 
 namespace polarview {
 namespace {
@@ -137,12 +139,18 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByCatmullClark;
   json << "],\"titles\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
-  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << state.colourRange()
-       << ",\"range_min\":" << -state.colourRangeBelow() << ",\"range_max\":" << state.colourRange();
+  const double range = state.colourRange(), rangeBelow = state.colourRangeBelow();
+  const double medianMs = median(frameMs);
+  const double minMs = frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end());
+  const double maxMs = frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end());
+  // JSON has no inf or NaN: refuse rather than print them (or null for a number that overflowed).
+  for (double number : {range, rangeBelow, medianMs, minMs, maxMs})
+    if (!std::isfinite(number))
+      throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large or degenerate");
+  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << range
+       << ",\"range_min\":" << -rangeBelow << ",\"range_max\":" << range;
   char numbers[160];
-  std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", median(frameMs),
-                frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end()),
-                frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end()));
+  std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", medianMs, minMs, maxMs);
   json << numbers;
   return json.str();
 }
@@ -315,13 +323,15 @@ int renderWithApp(const RenderRequest& r) {
       image = app.renderImage(r.width, r.height, r.supersample, r.transparent);
       frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
+    // The statistics before the image: a refused number leaves no file behind.
+    const std::string stats = r.timeFrames > 0 ? frameStatsJson(app, frameMs, r.width, r.height) : "";
     if (!r.output.empty()) writePngAtomic(r.output, image);
+    if (r.timeFrames > 0) std::cout << stats << "\n";
+    else std::cout << r.output << "\n";
   } catch (const std::exception& e) {
     std::cerr << "polarview: " << e.what() << "\n";
     return 1;
   }
-  if (r.timeFrames > 0) std::cout << frameStatsJson(app, frameMs, r.width, r.height) << "\n";
-  else std::cout << r.output << "\n";
   return 0;
 }
 

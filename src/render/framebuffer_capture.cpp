@@ -5,8 +5,9 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <stdexcept>
+
+#include "core/mesh/atomic_file.h"
 
 namespace polarview {
 
@@ -30,16 +31,14 @@ void writePngAtomic(const std::string& path, const RgbaImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != size_t(image.width) * image.height * 4)
     throw std::runtime_error("writePngAtomic: empty or inconsistent image for " + path);
-  const std::string temporary = path + ".tmp";
-  if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.pixels.data(),
-                      image.width * 4)) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write PNG " + temporary);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot rename " + temporary + " to " + path);
-  }
+  // Encode in memory, then one atomic write: no temporary of our own to name or clean up.
+  std::string png;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.pixels.data(), image.width * 4))
+    throw std::runtime_error(path + ": cannot encode the PNG");
+  writeFileAtomically(path, png);
 }
 
 // [SECTION] OffscreenTarget

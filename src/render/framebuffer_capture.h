@@ -19,8 +19,9 @@ struct RgbaImage {
 // into an image with rows top to bottom. Needs a current GL context.
 RgbaImage readFramebuffer(int x, int y, int width, int height);
 
-// Writes a PNG via stb_image_write to `path + ".tmp"` and renames it over `path`, so readers never
-// see a half-written file. Throws std::runtime_error (with the path) on failure.
+// Encodes a PNG in memory (stb_image_write) and writes it atomically (core/mesh/atomic_file.h):
+// readers never see a half-written file and no temporary is left. Throws std::runtime_error (an
+// InputError for file errors) naming the path.
 void writePngAtomic(const std::string& path, const RgbaImage& image);
 
 // The largest side of an offscreen target this GL allows (GL_MAX_RENDERBUFFER_SIZE and the viewport

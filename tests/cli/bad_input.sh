@@ -81,6 +81,9 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.0.1\nf 1 2 3\n' > "$work/malformed.obj"
 check_file malformed 3 "malformed number"
 printf 'v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n' > "$work/shortvertex.obj"
 check_file shortvertex 2 "coordinates"
+# Coordinates whose squares overflow: over the reader's limit of 1e150.
+printf 'v 0 0 0\nv 1e151 0 0\nv 0 1 0\nf 1 2 3\n' > "$work/toolarge.obj"
+check_file toolarge 2 "is too large (the limit is 1e150)"
 
 # Bad face indices.
 printf "${tri}f 1 2 9\n" > "$work/range.obj"
@@ -91,6 +94,14 @@ printf "${tri}f 1 0 2\n" > "$work/zero.obj"
 check_file zero 4 "face index 0"
 printf "${tri}f 1 2 99999999999999999999\n" > "$work/huge.obj"
 check_file huge 4 "too large"
+# 64-bit extremes: negating LLONG_MIN was undefined and let this face through (exit 0, output
+# written) when a vertex followed it.
+printf "${tri}f 1 2 -9223372036854775808\nv 1 1 1\n" > "$work/llmin.obj"
+check_file llmin 4 "face index -9223372036854775808 out of range (3 vertices)"
+printf "${tri}f 1 2 -99999999999999999999999\n" > "$work/hugeneg.obj"
+check_file hugeneg 4 "out of range (3 vertices)"
+printf "${tri}f 1 2 9223372036854775807\n" > "$work/llmax.obj"
+check_file llmax 4 "is too large"
 printf "${tri}f 1 2\n" > "$work/twovertex.obj"
 check_file twovertex 4 "face has 2 vertices"
 printf "${tri}f 1 2 3 2\n" > "$work/repeat.obj"

@@ -56,11 +56,11 @@ TEST_CASE("obj: doubles survive a save/load round trip bit for bit") {
   TempDir dir;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::uniform_int_distribution<int> exponent(-300, 300);
+  std::uniform_int_distribution<int> exponent(-300, 149);  // the reader stops at 1e150
   PolyMesh mesh;
   for (int i = 0; i < 3000; ++i)
     mesh.points.emplace_back(unit(rng) * std::pow(10.0, exponent(rng)), unit(rng), unit(rng) * 1e-310);
-  mesh.points.emplace_back(std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min(), -0.0);
+  mesh.points.emplace_back(kMaxObjCoordinate, std::numeric_limits<double>::denorm_min(), -0.0);
   for (Index i = 0; i + 2 < mesh.vertexCount(); i += 3) mesh.addFace({i, i + 1, i + 2});
   mesh.addFace({0, 3, 6, 9, 12});
 
@@ -158,6 +158,84 @@ TEST_CASE("obj: each kind of bad input names its line") {
   }
 }
 
+TEST_CASE("obj: face indices at the limits of 64-bit integers are refused without overflow") {
+  struct Bad {
+    const char* text;
+    int line;
+    const char* words;
+  };
+  // Negating LLONG_MIN was undefined behaviour and let this face through (then a vertex came).
+  const Bad cases[] = {
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 1 1 1\n", 4,
+       "face index -9223372036854775808 out of range (3 vertices)"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775809\n", 4, "out of range (3 vertices)"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -2147483648\n", 4, "face index -2147483648 out of range"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", 4, "face index -4 out of range (3 vertices)"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9223372036854775807\n", 4, "face index 9223372036854775807 is too large"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 18446744073709551617\n", 4, "is too large"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483648\n", 4, "face index 2147483648 is too large"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483647\n", 4, "face index 2147483647 out of range (3 vertices)"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -0\n", 4, "face index 0"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -\n", 4, "malformed face index"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 --3\n", 4, "malformed face index"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 +3\n", 4, "malformed face index"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3x/1\n", 4, "malformed face index"},
+  };
+  for (const Bad& bad : cases) {
+    std::string message;
+    CAPTURE(bad.text);
+    CHECK(errorLine(bad.text, &message) == bad.line);
+    CAPTURE(message);
+    CHECK(message.find(bad.words) != std::string::npos);
+  }
+  // The extremes that do resolve still work.
+  PolyMesh m = parseObjText("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -0001\nf 00001 -2 3/7/9\n", "ok.obj");
+  CHECK(m.faceVerts == std::vector<Index>{0, 1, 2, 0, 1, 2});
+}
+
+TEST_CASE("obj: coordinates beyond 1e150 are refused, so no result overflows") {
+  CHECK(errorLine("v 0 0 0\nv 1 0 0\nv 0 1 1.0000001e150\nf 1 2 3\n") == 3);
+  CHECK(errorLine("v 0 0 0\nv -1e151 0 0\nv 0 1 0\nf 1 2 3\n") == 2);
+  std::string message;
+  CHECK(errorLine("v 1e307 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &message) == 1);
+  CHECK(message == "bad.obj:1: coordinate '1e307' is too large (the limit is 1e150)");
+  PolyMesh m = parseObjText("v 1e150 -1e150 0\nv 1 0 0\nv 0 1 1e-320\nf 1 2 3\n", "ok.obj");
+  CHECK(m.points[0] == Point(kMaxObjCoordinate, -kMaxObjCoordinate, 0));
+}
+
+TEST_CASE("obj: a UTF-8 byte-order mark is skipped; LF, CRLF and a lone CR all end lines") {
+  const char* kBom = "\xEF\xBB\xBF";
+  PolyMesh bom = parseObjText(std::string(kBom) + kTwoQuads, "bom.obj");
+  CHECK(bom.faceCount() == 2);
+  CHECK(bom.faceLine == std::vector<int>{8, 9});
+  CHECK(parseObjText(std::string(kBom) + "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n", "bom.obj").faceCount() == 1);
+  // Only at the very start: elsewhere the bytes are not a statement.
+  CHECK(errorLine(std::string("v 0 0 0\n") + kBom + "v 1 0 0\n") == 2);
+
+  // Old Mac (CR only), Windows (CRLF) and a mix give the same mesh and the same line numbers.
+  std::string lf = kTwoQuads, cr, crlf, mixed;
+  int newline = 0;
+  for (char ch : lf) {
+    cr += ch == '\n' ? '\r' : ch;
+    crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+    mixed += ch == '\n' ? std::string(++newline % 3 == 0 ? "\n" : newline % 3 == 1 ? "\r" : "\r\n") : std::string(1, ch);
+  }
+  const PolyMesh expected = parseObjText(lf, "lf.obj");
+  for (const std::string& text : {cr, crlf, mixed}) {
+    CAPTURE(text);
+    PolyMesh m = parseObjText(text, "eol.obj");
+    CHECK(m.points == expected.points);
+    CHECK(m.faceVerts == expected.faceVerts);
+    CHECK(m.faceLine == expected.faceLine);
+  }
+  // Errors in a CR-only file name the right line, binary bytes included.
+  CHECK(errorLine("v 0 0 0\rv 1 0 0\rv 0 1 0.0.1\rf 1 2 3\r") == 3);
+  CHECK(errorLine("v 0 0 0\rv 1 0 0\r\x01\rf 1 2 3\r") == 3);
+  CHECK(errorLine("v 0 0 0\r\nv 1 0 0\r\n\x01\r\nf 1 2 3\r\n") == 3);
+  // A continuation backslash works across CR-only lines too.
+  CHECK(parseObjText("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 \\\r2 3\r", "cont.obj").faceLine == std::vector<int>{4});
+}
+
 TEST_CASE("obj: random corruption of a valid file never crashes the reader") {
   std::mt19937 rng(2024);
   const std::string valid = kTwoQuads;
@@ -226,6 +304,34 @@ TEST_CASE("obj: a failed save leaves neither a partial file nor a temp file") {
   CHECK_THROWS_AS(saveObj(dirPath, mesh), InputError);
   CHECK(fs::is_directory(dirPath));
   CHECK_FALSE(fs::exists(dirPath + ".tmp"));
+}
+
+TEST_CASE("obj: a mesh with a non-finite coordinate is never written, and the error names the input") {
+  TempDir dir;
+  PolyMesh mesh = parseObjText(kTwoQuads, "q.obj");
+  const std::string path = (dir.path / "out.obj").string();
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()}) {
+    PolyMesh broken = mesh;
+    broken.points[4].y = bad;
+    try {
+      saveObj(path, broken, "in.obj");
+      FAIL("a non-finite coordinate was written");
+    } catch (const InputError& e) {
+      CHECK(e.file() == "in.obj");
+      CHECK(std::string(e.what()).find("non-finite coordinate (vertex 5)") != std::string::npos);
+    }
+    CHECK(fs::is_empty(dir.path));
+  }
+  // Without a source name the error names the output.
+  mesh.points[0].x = std::numeric_limits<double>::quiet_NaN();
+  try {
+    saveObj(path, mesh);
+    FAIL("a NaN coordinate was written");
+  } catch (const InputError& e) {
+    CHECK(e.file() == path);
+  }
+  CHECK(fs::is_empty(dir.path));
 }
 
 TEST_CASE("obj: a million-face grid parses quickly and completely") {

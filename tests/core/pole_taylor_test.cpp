@@ -196,3 +196,24 @@ TEST_CASE("pole taylor: a degenerate tangent plane leaves the normal and curvatu
   CHECK_FALSE(d.curvatureDefined);
   CHECK(glm::length(d.normal) == 0.0);
 }
+
+TEST_CASE("pole taylor: huge and tiny nets give the exactly scaled normal, K and H (no overflow in E G - F^2)") {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Quadratic f{u(rng), u(rng), u(rng), u(rng), u(rng)};
+  const PolarGrid net = mapGrid(exactQuadraticNet(f, 12, 3), rigidMotion);
+  const PoleDifferential unit = analyzePole(poleTaylorCoefficients(net, Scheme::C2PS));
+  REQUIRE(unit.curvatureDefined);
+  // Powers of two scale exactly; 1e150 (the OBJ reader's limit) and 1e-150 as they come.
+  for (double s : {0x1p400, 0x1p-400, 1e150, 1e-150, 1e100}) {
+    CAPTURE(s);
+    const PolarGrid scaled = mapGrid(net, [s](const Point& p) { return s * p; });
+    const PoleDifferential d = analyzePole(poleTaylorCoefficients(scaled, Scheme::C2PS));
+    REQUIRE(d.curvatureDefined);
+    CHECK(distance(d.normal, unit.normal) < 1e-13);
+    CHECK(d.gaussian * s * s == doctest::Approx(unit.gaussian).epsilon(1e-11));
+    CHECK(d.mean * s == doctest::Approx(unit.mean).epsilon(1e-11));
+    CHECK(std::isfinite(d.gaussian));
+    CHECK(std::isfinite(d.mean));
+  }
+}

@@ -1,6 +1,8 @@
 // Strict line-based OBJ reader and atomic OBJ writer (see obj_io.h).
 #include "core/mesh/obj_io.h"
 
+#include "core/mesh/atomic_file.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cerrno>
@@ -43,6 +45,41 @@ bool continues(std::string_view line) {
 // The line up to its continuation backslash.
 std::string_view withoutContinuation(std::string_view line) { return line.substr(0, line.find_last_of('\\')); }
 
+// Cuts text into lines at LF, CRLF or a lone CR (old Mac files), counting them. A CRLF's CR stays
+// on the line (it is a blank to the tokenizer); a lone CR ends it.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {}
+  bool done() const { return pos_ >= text_.size(); }
+  int lineNumber() const { return lineNumber_; }
+  // The next line, without its line end. [O(line length), amortised]
+  std::string_view next() {
+    // The next LF is found once and reused, so a file without any (CR-only) stays linear.
+    if (!newlineKnown_ || newline_ < pos_) {
+      newline_ = std::min(text_.find('\n', pos_), text_.size());
+      newlineKnown_ = true;
+    }
+    size_t end = newline_;
+    size_t next = end + 1;
+    const size_t cr = text_.substr(pos_, end - pos_).find('\r');
+    if (cr != std::string_view::npos && pos_ + cr + 1 < end) {  // a lone CR before the LF
+      end = pos_ + cr;
+      next = end + 1;
+    }
+    std::string_view line = text_.substr(pos_, end - pos_);
+    pos_ = next;
+    ++lineNumber_;
+    return line;
+  }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  size_t newline_ = 0;  // the next LF at or after pos_ (text size when none), once known
+  bool newlineKnown_ = false;
+  int lineNumber_ = 0;
+};
+
 // Splits one line into whitespace-separated tokens without allocating.
 class Tokens {
  public:
@@ -70,35 +107,35 @@ std::string quoted(std::string_view token) {
   return "'" + s + (token.size() > kMaxShown ? "...'" : "'");
 }
 
+// A checked number as written, cut short when it is very long.
+std::string shortened(std::string_view number) {
+  constexpr size_t kMaxShown = 24;
+  return number.size() <= kMaxShown ? std::string(number) : std::string(number.substr(0, kMaxShown)) + "...";
+}
+
 class ObjParser {
  public:
   ObjParser(const std::string& sourceName, std::vector<std::string>* warnings)
       : source_(sourceName), warnings_(warnings) {}
 
   PolyMesh parse(std::string_view text) {
+    // A UTF-8 byte-order mark (Windows editors write one) is not part of the first statement.
+    constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+    if (text.substr(0, kUtf8Bom.size()) == kUtf8Bom) text.remove_prefix(kUtf8Bom.size());
     rejectBinary(text);
-    size_t pos = 0;
-    int lineNumber = 0;
+    LineReader lines(text);
     bool anyContent = false;
     std::string joined;
-    while (pos < text.size()) {
-      size_t end = text.find('\n', pos);
-      if (end == std::string_view::npos) end = text.size();
-      ++lineNumber;
-      std::string_view line = text.substr(pos, end - pos);
-      pos = end + 1;
+    while (!lines.done()) {
+      std::string_view line = lines.next();
       // A trailing backslash continues the statement on the next line (OBJ spec); errors name the
       // statement's first line.
-      const int statementLine = lineNumber;
+      const int statementLine = lines.lineNumber();
       if (continues(line)) {
         joined.clear();
-        while (continues(line) && pos < text.size()) {
+        while (continues(line) && !lines.done()) {
           joined.append(withoutContinuation(line)).push_back(' ');
-          end = text.find('\n', pos);
-          if (end == std::string_view::npos) end = text.size();
-          ++lineNumber;
-          line = text.substr(pos, end - pos);
-          pos = end + 1;
+          line = lines.next();
         }
         joined.append(continues(line) ? withoutContinuation(line) : line);
         line = joined;
@@ -137,7 +174,9 @@ class ObjParser {
   void rejectBinary(std::string_view text) const {
     auto bad = std::find_if(text.begin(), text.end(), [](char ch) { return isBinaryByte(static_cast<unsigned char>(ch)); });
     if (bad == text.end()) return;
-    int line = 1 + static_cast<int>(std::count(text.begin(), bad, '\n'));
+    LineReader lines(text.substr(0, size_t(bad - text.begin())));
+    while (!lines.done()) lines.next();
+    const int line = lines.lineNumber() + (text.begin() == bad || bad[-1] == '\n' || bad[-1] == '\r' ? 1 : 0);
     fail(line, *bad == '\0' ? "binary data (NUL byte), not a text OBJ file" : "binary data (control character), not a text OBJ file");
   }
 
@@ -151,12 +190,13 @@ class ObjParser {
       // Overflow is an error; underflow to zero or a subnormal is harmless.
       std::string copy(first, last);
       value = std::strtod(copy.c_str(), nullptr);
-      if (std::isinf(value)) fail(line, "coordinate " + quoted(token) + " is too large");
+      if (std::isinf(value)) fail(line, "coordinate " + quoted(token) + " is too large (the limit is 1e150)");
       return value;
     }
     if (ec != std::errc() || ptr != last) fail(line, "malformed number " + quoted(token));
     if (std::isnan(value)) fail(line, "coordinate is NaN");
     if (std::isinf(value)) fail(line, "coordinate is infinite");
+    if (std::abs(value) > kMaxObjCoordinate) fail(line, "coordinate " + quoted(token) + " is too large (the limit is 1e150)");
     return value;
   }
 
@@ -179,21 +219,26 @@ class ObjParser {
   // are relative to the vertices read so far and must resolve inside them.
   Index parseFaceIndex(std::string_view token, int line) const {
     std::string_view number = token.substr(0, token.find('/'));
-    long long value = 0;
-    auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
-    if (ec == std::errc::result_out_of_range) fail(line, "face index " + quoted(number) + " is too large");
-    if (ec != std::errc() || ptr != number.data() + number.size() || number.empty())
-      fail(line, "malformed face index " + quoted(token));
-    if (value == 0) fail(line, "face index 0 (OBJ indices start at 1)");
-    const long long defined = static_cast<long long>(mesh_.points.size());
-    if (value < 0) {
-      if (-value > defined)
-        fail(line, "face index " + std::to_string(value) + " out of range (" + std::to_string(defined) + " vertices)");
-      return static_cast<Index>(defined + value);
+    const bool negative = !number.empty() && number.front() == '-';
+    std::string_view digits = number.substr(negative ? 1 : 0);
+    if (digits.empty()) fail(line, "malformed face index " + quoted(token));
+    // The magnitude as unsigned, stopping past the largest Index: no signed overflow, no
+    // negation of an extreme value, whatever the digits.
+    constexpr uint64_t kMaxIndex = 0x7fffffff;  // Index is int32
+    uint64_t magnitude = 0;
+    for (char ch : digits) {
+      if (ch < '0' || ch > '9') fail(line, "malformed face index " + quoted(token));
+      if (magnitude <= kMaxIndex) magnitude = magnitude * 10 + uint64_t(ch - '0');
     }
-    constexpr long long kMaxIndex = 0x7fffffff;  // Index is int32
-    if (value > kMaxIndex) fail(line, "face index " + std::to_string(value) + " is too large");
-    return static_cast<Index>(value - 1);
+    if (magnitude == 0) fail(line, "face index 0 (OBJ indices start at 1)");
+    const uint64_t defined = mesh_.points.size();
+    if (negative) {
+      if (magnitude > defined)
+        fail(line, "face index " + shortened(number) + " out of range (" + std::to_string(defined) + " vertices)");
+      return static_cast<Index>(defined - magnitude);
+    }
+    if (magnitude > kMaxIndex) fail(line, "face index " + shortened(number) + " is too large");
+    return static_cast<Index>(magnitude - 1);
   }
 
   void readFace(Tokens& tokens, int line) {
@@ -278,19 +323,22 @@ PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings) {
   return parseObjText(text, path, warnings);
 }
 
-void saveObj(const std::string& path, const PolyMesh& mesh) {
-  const std::string tmp = path + ".tmp";
-  FILE* file = std::fopen(tmp.c_str(), "wb");
-  if (!file) throw InputError(path, 0, std::string("cannot write: ") + std::strerror(errno));
+void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName) {
+  // A non-finite coordinate would be written as "nan"/"inf", which no reader takes back: refuse
+  // before anything is created.
+  for (size_t v = 0; v < mesh.points.size(); ++v) {
+    const Point& p = mesh.points[v];
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+    throw InputError(sourceName.empty() ? path : sourceName, 0,
+                     "the result has a non-finite coordinate (vertex " + std::to_string(v + 1) +
+                         "): the input's coordinates are too large or degenerate; " + path + " not written");
+  }
+  AtomicFileWriter file(path);
 
-  // Format into a buffer with to_chars (%.17g equivalent) and flush in large blocks.
+  // Format into a buffer with to_chars (%.17g equivalent) and write it in large blocks.
   std::string out;
   constexpr size_t kFlushAt = 1 << 20;
-  bool ok = true;
-  auto flush = [&] {
-    if (!out.empty() && std::fwrite(out.data(), 1, out.size(), file) != out.size()) ok = false;
-    out.clear();
-  };
+  out.reserve(kFlushAt + 256);
   char number[64];
   for (const Point& p : mesh.points) {
     out += 'v';
@@ -300,7 +348,10 @@ void saveObj(const std::string& path, const PolyMesh& mesh) {
       out.append(number, result.ptr);
     }
     out += '\n';
-    if (out.size() >= kFlushAt) flush();
+    if (out.size() >= kFlushAt) {
+      file.write(out);
+      out.clear();
+    }
   }
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     out += 'f';
@@ -310,19 +361,13 @@ void saveObj(const std::string& path, const PolyMesh& mesh) {
       out.append(number, result.ptr);
     }
     out += '\n';
-    if (out.size() >= kFlushAt) flush();
+    if (out.size() >= kFlushAt) {
+      file.write(out);
+      out.clear();
+    }
   }
-  flush();
-  if (std::fclose(file) != 0) ok = false;
-  if (!ok) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "write failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, std::string("cannot replace the file: ") + std::strerror(err));
-  }
+  file.write(out);
+  file.commit();
 }
 
 }  // namespace polarview

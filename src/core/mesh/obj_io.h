@@ -12,11 +12,18 @@
 
 namespace polarview {
 
+// The largest coordinate magnitude the reader accepts. Squares of coordinates and sums of
+// thousands of them (lengths, dot products, the schemes' weighted sums) then stay finite, so no
+// result holds inf or NaN.
+constexpr double kMaxObjCoordinate = 1e150;
+
 // Reads an OBJ file: `v` and `f` statements (texture/normal parts of `f a/b/c` ignored; negative
-// indices resolved relative to the vertices read so far). Fills PolyMesh::faceLine. Throws
+// indices resolved relative to the vertices read so far). Lines end at LF, CRLF or a lone CR; a
+// leading UTF-8 byte-order mark is skipped. Fills PolyMesh::faceLine. Throws
 // InputError(path, line, msg) for unreadable, empty, binary or malformed input, non-finite
-// coordinates, bad indices, faces with < 3 vertices or a repeated vertex. Non-fatal findings
-// (unreferenced vertices, ignored `l`/`p`/`t` statements) go to `warnings`. [O(file size)]
+// coordinates or ones over kMaxObjCoordinate, bad indices, faces with < 3 vertices or a repeated
+// vertex. Non-fatal findings (unreferenced vertices, ignored `l`/`p`/`t` statements) go to
+// `warnings`. [O(file size)]
 PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 // Same as loadObj on an already opened stream; `sourceName` is the file name used in errors.
@@ -26,9 +33,11 @@ PolyMesh parseObj(std::istream& in, const std::string& sourceName, std::vector<s
 PolyMesh parseObjText(const std::string& text, const std::string& sourceName,
                       std::vector<std::string>* warnings = nullptr);
 
-// Writes `v` lines with 17 significant digits (doubles round-trip exactly) and 1-based `f` lines.
-// Writes path + ".tmp" then renames it, so a failure never leaves a partial file at `path`.
-// Throws InputError(path, 0, msg) on failure. [O(mesh)]
-void saveObj(const std::string& path, const PolyMesh& mesh);
+// Writes `v` lines with 17 significant digits (doubles round-trip exactly) and 1-based `f` lines,
+// atomically (atomic_file.h): a failure or a kill never leaves a partial file or a temporary.
+// A non-finite coordinate is refused before anything is written: InputError naming `sourceName`
+// (the input the mesh came from; `path` when empty). Other failures: InputError(path, 0, msg).
+// [O(mesh)]
+void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName = "");
 
 }  // namespace polarview

@@ -1,6 +1,7 @@
 // Eigencoefficients and Taylor expansion at the pole (Myles & Peters 2009, (26), (32)). See pole_taylor.h.
 #include "core/spline/pole_taylor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -55,20 +56,32 @@ TaylorJet evaluateTaylor(const TaylorCoefficients& t, double x, double y) {
 
 PoleDifferential analyzePole(const TaylorCoefficients& t) {
   PoleDifferential d;
-  TaylorJet jet = evaluateTaylor(t, 0.0, 0.0);
-  d.limit = jet.position;
+  d.limit = t.p[0];
+  // Work on p1..p5 scaled by a power of two to about unit size: E G - F^2 holds fourth powers of
+  // the coordinates, which overflow from about 1e77 (and underflow below 1e-77). Power-of-two
+  // scaling is exact, so the normal is unchanged and K, H are rescaled exactly at the end.
+  double size = 0.0;
+  for (int k = 1; k < 6; ++k)
+    for (int i = 0; i < 3; ++i) size = std::max(size, std::abs(t.p[k][i]));
+  int exponent = 0;
+  if (std::isfinite(size) && size > 0.0) std::frexp(size, &exponent);
+  TaylorCoefficients unit = t;
+  for (int k = 1; k < 6; ++k)
+    for (int i = 0; i < 3; ++i) unit.p[k][i] = std::ldexp(t.p[k][i], -exponent);
+  TaylorJet jet = evaluateTaylor(unit, 0.0, 0.0);
   Point cross = glm::cross(jet.x, jet.y);
   double crossLength = glm::length(cross);
   if (!(crossLength > 0.0)) return d;  // no tangent plane: normal and curvature undefined
   d.normal = cross / crossLength;
   if (t.order < 2) return d;
 
-  // First and second fundamental forms (SCHEMES.md section 7).
+  // First and second fundamental forms (SCHEMES.md section 7), of the scaled expansion.
   double E = glm::dot(jet.x, jet.x), F = glm::dot(jet.x, jet.y), G = glm::dot(jet.y, jet.y);
   double L = glm::dot(jet.xx, d.normal), M = glm::dot(jet.xy, d.normal), N = glm::dot(jet.yy, d.normal);
   double area2 = E * G - F * F;
-  d.gaussian = (L * N - M * M) / area2;
-  d.mean = (E * N - 2.0 * F * M + G * L) / (2.0 * area2);
+  // Curvature scales as 1/length (H) and 1/length^2 (K).
+  d.gaussian = std::ldexp((L * N - M * M) / area2, -2 * exponent);
+  d.mean = std::ldexp((E * N - 2.0 * F * M + G * L) / (2.0 * area2), -exponent);
   d.curvatureDefined = true;
   return d;
 }
