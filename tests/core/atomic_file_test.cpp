@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "temp_dir.h"
 #include "core/mesh/atomic_file.h"
 #include "core/mesh/input_error.h"
 
@@ -24,17 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("polarview_atomic_test_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("polarview_atomic_test_") {}
 };
 
 // Runs the test body with named temporaries forced (true) or the default O_TMPFILE path (false).

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "temp_dir.h"
 #include "core/mesh/obj_io.h"
 
 using namespace polarview;
@@ -18,18 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh directory under the system temp dir, removed when the test ends.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("polarview_obj_test_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("polarview_obj_test_") {}
 };
 
 // Parses `text`; returns the InputError's line (or -1 when it parsed) and its message.
