@@ -1,6 +1,8 @@
 #include "app/cli_commands.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -17,6 +19,7 @@
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
 #include "core/spline/pole_taylor.h"
+#include "core/spline/ring_curvature.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
 
@@ -39,6 +42,7 @@ struct CommonOptions {
   bool schemeGiven = false;
   int levels = -1;
   int reps = 5;
+  int rings = 0;  // pole --rings M
   bool uniformFirstStep = false;
   bool json = false;
 };
@@ -90,6 +94,7 @@ CommonOptions parseOptions(const std::string& command, const Args& args, const s
       o.schemeGiven = true;
     } else if (a == "--levels" || a == "--level") o.levels = parseInt(a, next(), 0, 64);
     else if (a == "--reps") o.reps = parseInt(a, next(), 1, 1000);
+    else if (a == "--rings") o.rings = parseInt(a, next(), 1, 20);
     else if (a == "--uniform-first-step") uniformFlag = true;
     else if (a == "--json") o.json = true;
     else if (o.input.empty()) o.input = a;
@@ -179,7 +184,7 @@ const char* usageText() {
          "                 [--wireframe] [--no-poles] [--time N]\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L\n"
          "  polarview info IN.obj [--json]\n"
-         "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]\n"
+         "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--json]\n"
          "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n"
          "  polarview help                     this text\n"
@@ -332,8 +337,11 @@ int runInfo(const Args& args) {
 }
 
 int runPole(const Args& args) {
-  CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json"});
+  CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json", "--rings"});
   if (o.scheme == Scheme::CatmullClark) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
+  // RTS is not C2 for finite n: its K keeps depending on the direction. Its text report gives the
+  // range over ring 8 at least, rather than one K as if it were defined.
+  const int rings = o.scheme == Scheme::RTS && !o.json ? std::max(o.rings, 8) : o.rings;
   PolyMesh mesh = loadInput(o.input);
   // Level 0 only: the expansion is that of the input's own configuration (the Section-6 variant
   // leaves links 0 and 1, hence p0..p5, unchanged).
@@ -351,16 +359,54 @@ int runPole(const Args& args) {
     else w.key("gaussian_curvature").null().key("mean_curvature").null();
     w.key("p").beginArray();
     for (const Point& p : t.p) w.value(p);
-    w.endArray().endObject();
+    w.endArray();
+    // Rings 1..M (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5.
+    std::vector<RingCurvature> ringStats;
+    if (rings > 0) {
+      const PolarGrid& grid = level.poleGrids[k];
+      // C2PS doubles the valence each level: keep the last ring's columns within 2^18.
+      if (o.scheme == Scheme::C2PS && (double(grid.n) * std::pow(2.0, rings) > double(1 << 18)))
+        throw UsageError{"pole: --rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
+                         std::to_string(level.poles[k].pole) + " (valence " + std::to_string(grid.n) + ")"};
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      ringStats = ringCurvatures(grid, o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
+                                 d.curvatureDefined ? d.mean : nan, d.normal);
+      w.key("rings").beginArray();
+      for (const RingCurvature& r : ringStats) {
+        w.beginObject().field("m", r.m).field("valence", r.valence);
+        if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
+        else w.key("max_abs_dK").null();
+        w.field("K_min", r.minK).field("K_max", r.maxK);
+        if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
+        else w.key("max_abs_dH").null();
+        w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
+      }
+      w.endArray();
+    }
+    w.endObject();
     if (o.json) continue;
     // Why K and H are missing: no tangent plane (any scheme), or BPS's expansion, which stops at
     // the tangent plane.
     std::string note;
     if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
     else if (!d.curvatureDefined && o.scheme == Scheme::BPS) note = " (curvature not defined: BPS is C1 at the pole)";
+    if (o.scheme == Scheme::RTS && !ringStats.empty()) {
+      const RingCurvature& last = ringStats.back();
+      char range[200];
+      std::snprintf(range, sizeof range,
+                    " (Taylor (32); RTS is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
+                    last.m, last.minK, last.maxK);
+      note += range;
+    }
     std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
                 level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
                 d.normal.z, d.gaussian, d.mean, note.c_str());
+    if (o.rings > 0) {
+      std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
+      for (const RingCurvature& r : ringStats)
+        std::printf("  %4d  %7d  %-12.4g  %-12.6g .. %-12.6g  %-12.4g\n", r.m, r.valence, r.maxAbsDeltaK, r.minK, r.maxK,
+                    r.maxAbsDeltaH);
+    }
   }
   w.endArray().endObject();
   if (o.json) std::cout << w.str() << "\n";

@@ -58,11 +58,30 @@ import json,sys; d=json.loads(sys.stdin.read())
 for k in ['topology_ms','positions_ms','patches_ms','out_vertices','out_faces','patches']: assert k in d, k
 assert d['patches']>0 and d['out_faces']>0"
 
+# pole --rings: curvature ring by ring. C2PS doubles the valence and converges to the pole's K;
+# RTS keeps the valence, its K keeps an angular spread (the text says so); BPS has no K0 to compare.
+"$exe" shape cap --valence 12 --links 6 -o "$tmp/cap12.obj"
+"$exe" pole "$tmp/cap12.obj" --scheme c2ps --rings 10 --json | py "
+import json,sys; d=json.loads(sys.stdin.read()); r=d['poles'][0]['rings']
+assert [x['m'] for x in r]==list(range(1,11)), r
+assert [x['valence'] for x in r]==[12*2**m for m in range(1,11)]
+dk=[x['max_abs_dK'] for x in r]; assert all(dk[m] < dk[m-1] for m in range(4,10)), dk
+assert dk[-1] < 1e-4, dk
+for k in ['K_min','K_max','max_abs_dH','H_min','H_max']: assert k in r[0], k"
+"$exe" pole "$tmp/cap12.obj" --scheme rts --rings 10 --json | py "
+import json,sys; r=json.loads(sys.stdin.read())['poles'][0]['rings']
+assert all(x['valence']==12 for x in r); assert r[-1]['K_max']-r[-1]['K_min'] > 1e-3, r[-1]"
+"$exe" pole "$tmp/cap12.obj" --scheme rts | grep -q "K depends on the direction" || fail "pole rts: no direction note"
+"$exe" pole "$tmp/cap12.obj" --scheme bps --rings 3 --json | py "
+import json,sys; r=json.loads(sys.stdin.read())['poles'][0]['rings']; assert r[0]['max_abs_dK'] is None, r"
+
 # usage errors exit 2 with the usage; an unknown scheme too
 set +e
 "$exe" refine "$tmp/globe.obj" --levels 1 >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing -o should exit 2"
 "$exe" refine "$tmp/globe.obj" -o "$tmp/x.obj" --scheme loop --levels 1 2>/dev/null; [ $? -eq 2 ] || fail "unknown scheme should exit 2"
 "$exe" frobnicate 2>/dev/null; [ $? -eq 2 ] || fail "unknown command should exit 2"
+"$exe" pole "$tmp/cap12.obj" --rings 0 2>/dev/null; [ $? -eq 2 ] || fail "pole --rings 0 should exit 2"
+"$exe" pole "$tmp/cap12.obj" --scheme c2ps --rings 20 2>/dev/null; [ $? -eq 2 ] || fail "pole: C2PS valence over 2^18 should exit 2"
 # a level that would not fit in memory: exit 1, one line, no output file
 "$exe" refine "$tmp/mushroom.obj" -o "$tmp/huge.obj" --scheme c2ps --levels 30 2>"$tmp/err"; rc=$?
 set -e

@@ -1,0 +1,79 @@
+#include "core/spline/ring_curvature.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "core/spline/patch.h"
+#include "core/spline/spline_ring.h"
+#include "core/subdiv/bps.h"
+#include "core/subdiv/c2ps.h"
+#include "core/subdiv/rts.h"
+
+namespace polarview {
+namespace {
+
+constexpr int kRingLinks = 5;  // links 0..5: what spline ring (6) reads
+
+PolarGrid innerLinks(const PolarGrid& grid) {
+  if (grid.links <= kRingLinks) return grid;
+  PolarGrid inner(grid.n, kRingLinks);
+  inner.pole = grid.pole;
+  std::copy(grid.ring.begin(), grid.ring.begin() + size_t(kRingLinks) * grid.n, inner.ring.begin());
+  return inner;
+}
+
+}  // namespace
+
+std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool uniformFirstStep, int rings, double poleK,
+                                          double poleH, const Point& poleNormal, int samples) {
+  if (grid.links < 2) throw std::invalid_argument("ringCurvatures: a pole needs links 0..2");
+  samples = std::max(samples, 2);
+  std::vector<RingCurvature> out;
+  for (int m = 1; m <= rings; ++m) {
+    const bool first = uniformFirstStep && m == 1;
+    switch (scheme) {
+      case Scheme::C2PS: grid = c2ps::refineGrid(grid, first); break;
+      case Scheme::RTS: grid = rts::refineGrid(grid, first); break;
+      case Scheme::BPS: grid = bps::refineGrid(grid); break;
+      default: throw std::invalid_argument("ringCurvatures: C2PS, RTS or BPS");
+    }
+    grid = innerLinks(grid);
+    // Pole-relative from here on (the rules are affine: K and H do not move): rounding then scales
+    // with the ring, not with the model's offset from the origin.
+    const Point pole = grid.pole;
+    grid.pole = Point(0.0);
+    for (Point& p : grid.ring) p -= pole;
+    if (grid.links < kRingLinks) continue;  // a 2-link input has its first ring at m = 2
+    RingCurvature rc;
+    rc.m = m;
+    rc.valence = grid.n;
+    rc.minK = rc.minH = std::numeric_limits<double>::infinity();
+    rc.maxK = rc.maxH = -std::numeric_limits<double>::infinity();
+    for (Patch patch : splineRing(grid, m)) {
+      // Relative to one of its own points: the derivatives are then differences of small numbers
+      // (a deep ring is 2^-m of the model, far from the origin); K and H do not move.
+      const Point origin = patch.cp[5];
+      for (Point& p : patch.cp) p -= origin;
+      for (int a = 0; a < samples; ++a)
+        for (int b = 0; b < samples; ++b) {
+          const SurfacePoint sp = evaluatePatch(patch, double(a) / (samples - 1), double(b) / (samples - 1));
+          // The ring's normal points outwards; H takes the sign of the pole's normal.
+          const double H = glm::dot(sp.normal, poleNormal) < 0.0 ? -sp.mean : sp.mean;
+          rc.minK = std::min(rc.minK, sp.gaussian);
+          rc.maxK = std::max(rc.maxK, sp.gaussian);
+          rc.minH = std::min(rc.minH, H);
+          rc.maxH = std::max(rc.maxH, H);
+        }
+    }
+    rc.maxAbsDeltaK = std::max(std::abs(rc.maxK - poleK), std::abs(rc.minK - poleK));
+    rc.maxAbsDeltaH = std::max(std::abs(rc.maxH - poleH), std::abs(rc.minH - poleH));
+    out.push_back(rc);
+  }
+  return out;
+}
+
+}  // namespace polarview
