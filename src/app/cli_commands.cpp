@@ -20,6 +20,7 @@
 #include "core/spline/patch_extraction.h"
 #include "core/spline/pole_taylor.h"
 #include "core/spline/ring_curvature.h"
+#include "core/subdiv/spectrum.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
 
@@ -187,6 +188,7 @@ const char* usageText() {
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--json]\n"
          "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n"
+         "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--json]\n"
          "  polarview help                     this text\n"
          "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
          "  uniform first step of the paper's Section 6\n"
@@ -489,6 +491,60 @@ int runBench(const Args& args) {
                   peerWhat.c_str(), peer->topologyMs, peer->positionsMs, peer->outVertices, peer->outFaces);
     if (compared) std::printf("%s: speed-up %.2fx (topology), %.2fx (positions)\n", comparison.c_str(), topologySpeedup, positionsSpeedup);
     else std::printf("%s\n", comparison.c_str());
+  }
+  return 0;
+}
+
+int runSpectrum(const Args& args) {
+  // Own parsing: no input file. --scheme rts|bps|cc --valence n [--count k] [--json]
+  std::optional<Scheme> scheme;
+  int valence = -1, count = 8;
+  bool json = false, uniform = false;
+  for (size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto next = [&]() -> const std::string& {
+      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
+      return args[++k];
+    };
+    if (a == "--scheme") {
+      scheme = parseCliScheme(next(), &uniform);
+      if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps or cc, got '" + args[k] + "'"};
+    } else if (a == "--valence") valence = parseInt(a, next(), 3, 64);
+    else if (a == "--count") count = parseInt(a, next(), 1, 1000);
+    else if (a == "--json") json = true;
+    else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
+  }
+  if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc and --valence n (3..64)"};
+  if (*scheme == Scheme::C2PS)
+    throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix; its analysis "
+                     "goes through RTS (--scheme rts)"};
+  if ((*scheme == Scheme::RTS || *scheme == Scheme::BPS) && valence < 5)
+    throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= 5 (its weights alias below)"};
+  const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
+  const size_t shown = std::min(all.size(), size_t(count));
+  const std::string name = cliSchemeName(*scheme, false);
+  // An eigenvalue whose imaginary part is round-off is printed as real.
+  auto imaginary = [](const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; };
+  if (json) {
+    JsonWriter w("spectrum");
+    w.beginObject().field("scheme", name).field("valence", valence).field("size", all.size()).key("eigenvalues").beginArray();
+    for (size_t k = 0; k < shown; ++k) {
+      w.beginObject().field("re", all[k].value.real()).field("im", imaginary(all[k].value));
+      w.field("modulus", std::abs(all[k].value));
+      if (all[k].alpha >= 0) w.field("fourier_block", all[k].alpha);
+      w.endObject();
+    }
+    w.endArray().endObject();
+    std::cout << w.str() << "\n";
+    return 0;
+  }
+  std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", name.c_str(), valence, all.size(),
+              *scheme == Scheme::CatmullClark ? "1-ring matrix" : "matrix (13) on links 0..5, by Fourier block", shown);
+  for (size_t k = 0; k < shown; ++k) {
+    const double im = imaginary(all[k].value);
+    std::printf("  %2zu  %.15g%s", k + 1, all[k].value.real(), im != 0.0 ? "" : "\n");
+    if (im != 0.0) std::printf(" %+.15gi\n", im);
+    if (all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", all[k].alpha);
   }
   return 0;
 }

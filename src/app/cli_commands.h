@@ -23,6 +23,9 @@ int runBench(const Args& args);
 
 // polarview shape globe|cap|mushroom|cube|torus [--valence n] [--links k] -o OUT.obj
 int runShape(const Args& args);
+// `polarview spectrum --scheme rts|bps|cc --valence n [--count k] [--json]`: the leading eigenvalues
+// of the scheme's subdivision matrix at valence n (Table 1 for RTS).
+int runSpectrum(const Args& args);
 
 // The usage text printed for `polarview --help` and usage errors.
 const char* usageText();

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   if (command == "pole") return guarded(file, runPole, args);
   if (command == "bench") return guarded(file, runBench, args);
   if (command == "shape") return guarded("", runShape, args);
+  if (command == "spectrum") return guarded("", runSpectrum, args);
   if (command == "-h" || command == "--help" || command == "help") {
     std::cout << usageText();
     return 0;

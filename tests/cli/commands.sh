@@ -75,11 +75,21 @@ assert all(x['valence']==12 for x in r); assert r[-1]['K_max']-r[-1]['K_min'] > 
 "$exe" pole "$tmp/cap12.obj" --scheme bps --rings 3 --json | py "
 import json,sys; r=json.loads(sys.stdin.read())['poles'][0]['rings']; assert r[0]['max_abs_dK'] is None, r"
 
+# spectrum: Table 1 for RTS at valence 7, Catmull-Clark's 1, 1/2, 1/2, 1/4 at valence 4
+"$exe" spectrum --scheme rts --valence 7 --json | py "
+import json,sys; d=json.loads(sys.stdin.read()); v=[e['re'] for e in d['eigenvalues'][:6]]
+assert all(abs(a-b)<1e-12 for a,b in zip(v,[1,.5,.5,.25,.25,.25])), v; assert d['size']==42"
+"$exe" spectrum --scheme cc --valence 4 --count 4 --json | py "
+import json,sys; v=[e['re'] for e in json.loads(sys.stdin.read())['eigenvalues']]
+assert all(abs(a-b)<1e-12 for a,b in zip(v,[1,.5,.5,.25])), v"
+
 # usage errors exit 2 with the usage; an unknown scheme too
 set +e
 "$exe" refine "$tmp/globe.obj" --levels 1 >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing -o should exit 2"
 "$exe" refine "$tmp/globe.obj" -o "$tmp/x.obj" --scheme loop --levels 1 2>/dev/null; [ $? -eq 2 ] || fail "unknown scheme should exit 2"
 "$exe" frobnicate 2>/dev/null; [ $? -eq 2 ] || fail "unknown command should exit 2"
+"$exe" spectrum --scheme c2ps --valence 6 2>/dev/null; [ $? -eq 2 ] || fail "spectrum c2ps should exit 2"
+"$exe" spectrum --scheme rts --valence 4 2>/dev/null; [ $? -eq 2 ] || fail "spectrum rts n=4 should exit 2"
 "$exe" pole "$tmp/cap12.obj" --rings 0 2>/dev/null; [ $? -eq 2 ] || fail "pole --rings 0 should exit 2"
 "$exe" pole "$tmp/cap12.obj" --scheme c2ps --rings 20 2>/dev/null; [ $? -eq 2 ] || fail "pole: C2PS valence over 2^18 should exit 2"
 # a level that would not fit in memory: exit 1, one line, no output file

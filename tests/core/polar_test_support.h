@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/subdiv/polar_grid.h"
+#include "core/subdiv/spectrum.h"
 
 namespace polarview::test {
 
@@ -129,35 +130,17 @@ inline double planeDefect(const Refine& refine, int n, int links, unsigned seed)
   return offPlane;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Subdivision matrix (13) of a valence-preserving polar scheme on links 0..5, the pole listed once
-// per column (q_{0j} = q00), unknowns ordered q = [q_{0,0}, .., q_{5,0}, q_{0,1}, .., q_{5,n-1}].
-// Column (h, c) is the scheme applied to the unit input at q_{c,h}; the pole's column is split
-// evenly among its n copies, as in (13).
-using Matrix = std::vector<std::vector<double>>;
-
-inline int matrixIndex(int link, int column) { return 6 * column + link; }
-
-inline Matrix subdivisionMatrix(int n, const Refine& refine) {
-  Matrix a(6 * n, std::vector<double>(6 * n, 0.0));
-  for (int h = 0; h < n; ++h)
-    for (int c = 0; c < 6; ++c) {
-      PolarGrid unit(n, 5);
-      double share = 1.0;
-      if (c == 0) {
-        unit.pole = Point(1.0);
-        share = 1.0 / n;
-      } else {
-        unit.q(c, h) = Point(1.0);
-      }
-      PolarGrid fine = refine(unit);
-      for (int j = 0; j < n; ++j) {
-        a[matrixIndex(0, j)][matrixIndex(c, h)] = share * fine.pole.x;
-        for (int i = 1; i < 6; ++i) a[matrixIndex(i, j)][matrixIndex(c, h)] = share * fine.q(i, j).x;
-      }
-    }
-  return a;
-}
+// The matrix (13), its Fourier blocks and eigenvalues live in core/subdiv/spectrum.h (the `spectrum`
+// command uses them too); these names keep the tests short.
+using polarview::Complex;
+using polarview::ComplexMatrix;
+using polarview::eigenvalues;
+using polarview::fourierBlock;
+using polarview::Matrix;
+using polarview::spectrumByFourierBlocks;
+using polarview::TaggedEigenvalue;
+inline int matrixIndex(int link, int column) { return polarMatrixIndex(link, column); }
+inline Matrix subdivisionMatrix(int n, const Refine& refine) { return polarSubdivisionMatrix(n, refine); }
 
 // Largest |A_{jh} - A_{0,(h-j) mod n}|: zero for a block-circulant matrix.
 inline double blockCirculantDefect(const Matrix& a, int n) {
@@ -169,124 +152,6 @@ inline double blockCirculantDefect(const Matrix& a, int n) {
           defect = std::max(defect, std::abs(a[matrixIndex(r, j)][matrixIndex(c, h)] -
                                              a[matrixIndex(r, 0)][matrixIndex(c, ((h - j) % n + n) % n)]));
   return defect;
-}
-
-using Complex = std::complex<double>;
-using ComplexMatrix = std::vector<std::vector<Complex>>;
-
-// Fourier block hat A_alpha = sum_h omega^{h alpha} A_{0h}: A maps v_h = v^ omega^{h alpha} to
-// (hat A_alpha v^) omega^{j alpha} when A is block circulant, so the blocks' spectra make A's.
-inline ComplexMatrix fourierBlock(const Matrix& a, int n, int alpha) {
-  ComplexMatrix block(6, std::vector<Complex>(6, 0.0));
-  for (int h = 0; h < n; ++h) {
-    Complex omega = std::polar(1.0, 2.0 * kPi * double((long long)h * alpha % n) / n);
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) block[r][c] += omega * a[matrixIndex(r, 0)][matrixIndex(c, h)];
-  }
-  return block;
-}
-
-// Eigenvalues of a small complex matrix: Householder reduction to Hessenberg form, then QR steps
-// with Wilkinson shifts and deflation.
-inline std::vector<Complex> eigenvalues(ComplexMatrix h) {
-  const int size = int(h.size());
-  double norm = 0.0;
-  for (auto& row : h)
-    for (auto& x : row) norm = std::max(norm, std::abs(x));
-  // Hessenberg reduction.
-  for (int k = 0; k + 2 < size; ++k) {
-    std::vector<Complex> v(size, 0.0);
-    double alpha = 0.0;
-    for (int i = k + 1; i < size; ++i) alpha += std::norm(h[i][k]);
-    alpha = std::sqrt(alpha);
-    if (alpha == 0.0) continue;
-    Complex phase = std::abs(h[k + 1][k]) > 0.0 ? h[k + 1][k] / std::abs(h[k + 1][k]) : Complex(1.0);
-    for (int i = k + 1; i < size; ++i) v[i] = h[i][k];
-    v[k + 1] += phase * alpha;
-    double vv = 0.0;
-    for (int i = k + 1; i < size; ++i) vv += std::norm(v[i]);
-    if (vv == 0.0) continue;
-    // H <- (I - 2 v v*/v*v) H (I - 2 v v*/v*v)
-    for (int c = 0; c < size; ++c) {
-      Complex s = 0.0;
-      for (int i = k + 1; i < size; ++i) s += std::conj(v[i]) * h[i][c];
-      s *= 2.0 / vv;
-      for (int i = k + 1; i < size; ++i) h[i][c] -= v[i] * s;
-    }
-    for (int r = 0; r < size; ++r) {
-      Complex s = 0.0;
-      for (int i = k + 1; i < size; ++i) s += h[r][i] * v[i];
-      s *= 2.0 / vv;
-      for (int i = k + 1; i < size; ++i) h[r][i] -= s * std::conj(v[i]);
-    }
-  }
-  // Shifted QR on the active leading block 0..m-1.
-  std::vector<Complex> result;
-  const double eps = 1e-15;
-  int m = size, iterations = 0;
-  while (m > 0) {
-    if (m == 1) {
-      result.push_back(h[0][0]);
-      break;
-    }
-    double sub = std::abs(h[m - 1][m - 2]);
-    if (sub <= eps * (std::abs(h[m - 1][m - 1]) + std::abs(h[m - 2][m - 2])) || sub <= eps * norm * 1e-3) {
-      result.push_back(h[m - 1][m - 1]);
-      --m;
-      iterations = 0;
-      continue;
-    }
-    if (++iterations > 1000) throw std::runtime_error("eigenvalues: QR did not converge");
-    // Wilkinson shift from the trailing 2x2 block (an exceptional shift now and then).
-    Complex a = h[m - 2][m - 2], b = h[m - 2][m - 1], c = h[m - 1][m - 2], d = h[m - 1][m - 1];
-    Complex tr = a + d, det = a * d - b * c;
-    Complex root = std::sqrt(tr * tr / 4.0 - det);
-    Complex mu1 = tr / 2.0 + root, mu2 = tr / 2.0 - root;
-    Complex shift = std::abs(mu1 - d) < std::abs(mu2 - d) ? mu1 : mu2;
-    if (iterations % 11 == 10) shift = d + Complex(0.75 * sub, 0.25 * sub);
-    for (int i = 0; i < m; ++i) h[i][i] -= shift;
-    std::vector<Complex> cs(m), sn(m);
-    for (int k = 0; k + 1 < m; ++k) {  // H = Q R by Givens rotations
-      Complex x = h[k][k], y = h[k + 1][k];
-      double r = std::sqrt(std::norm(x) + std::norm(y));
-      if (r == 0.0) {
-        cs[k] = 1.0;
-        sn[k] = 0.0;
-        continue;
-      }
-      cs[k] = x / r;
-      sn[k] = y / r;
-      for (int col = k; col < m; ++col) {
-        Complex top = h[k][col], bottom = h[k + 1][col];
-        h[k][col] = std::conj(cs[k]) * top + std::conj(sn[k]) * bottom;
-        h[k + 1][col] = -sn[k] * top + cs[k] * bottom;
-      }
-    }
-    for (int k = 0; k + 1 < m; ++k) {  // H = R Q
-      for (int row = 0; row <= std::min(k + 1, m - 1); ++row) {
-        Complex left = h[row][k], right = h[row][k + 1];
-        h[row][k] = left * cs[k] + right * sn[k];
-        h[row][k + 1] = -left * std::conj(sn[k]) + right * std::conj(cs[k]);
-      }
-    }
-    for (int i = 0; i < m; ++i) h[i][i] += shift;
-  }
-  return result;
-}
-
-// All eigenvalues of a block-circulant (13) matrix via its n Fourier blocks, tagged by block,
-// sorted by decreasing modulus.
-struct TaggedEigenvalue {
-  Complex value;
-  int alpha;
-};
-inline std::vector<TaggedEigenvalue> spectrumByFourierBlocks(const Matrix& a, int n) {
-  std::vector<TaggedEigenvalue> all;
-  for (int alpha = 0; alpha < n; ++alpha)
-    for (Complex z : eigenvalues(fourierBlock(a, n, alpha))) all.push_back({z, alpha});
-  std::stable_sort(all.begin(), all.end(),
-                   [](const TaggedEigenvalue& x, const TaggedEigenvalue& y) { return std::abs(x.value) > std::abs(y.value); });
-  return all;
 }
 
 // Dense products used to check eigenvector identities.
