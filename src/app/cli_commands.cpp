@@ -392,7 +392,7 @@ int runPole(const Args& args) {
     std::string note;
     if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
     else if (!d.curvatureDefined && o.scheme == Scheme::BPS) note = " (curvature not defined: BPS is C1 at the pole)";
-    if (o.scheme == Scheme::RTS && !ringStats.empty()) {
+    if (o.scheme == Scheme::RTS && d.curvatureDefined && !ringStats.empty()) {
       const RingCurvature& last = ringStats.back();
       char range[200];
       std::snprintf(range, sizeof range,
