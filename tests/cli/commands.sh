@@ -107,4 +107,17 @@ for cmd in render view; do
     printf '%s\n' "$help" | grep -q -- "$opt" || fail "'polarview help' lacks $cmd's $opt"
   done
 done
+# the memory budget is bytes: a refusal comes at once, in one line, and names the deepest level that fits
+"$exe" shape cube -o "$tmp/cube.obj"
+set +e
+"$exe" refine "$tmp/cube.obj" -o "$tmp/cube11.obj" --scheme cc --levels 11 --memory-budget 1G 2>"$tmp/err"; rc=$?
+"$exe" refine "$tmp/cube.obj" -o "$tmp/cube2.obj" --scheme cc --levels 2 --memory-budget 1X 2>/dev/null; rc2=$?
+set -e
+[ $rc -eq 1 ] || fail "memory budget: exit $rc"
+[ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "memory budget: not one line: $(cat "$tmp/err")"
+grep -q "cube.obj: level 11 would need about .* over the memory budget of .*: level 9 fits" "$tmp/err" || fail "memory budget message: $(cat "$tmp/err")"
+[ ! -e "$tmp/cube11.obj" ] || fail "memory budget: an output file was left"
+[ $rc2 -eq 2 ] || fail "--memory-budget 1X should be a usage error"
+# RTS on a globe grows x2 a level: level 12 fits 200 MB
+"$exe" refine "$tmp/globe.obj" -o "$tmp/globe12.obj" --scheme rts --levels 12 --memory-budget 200M || fail "rts level 12 in 200M"
 echo "commands: ok"
