@@ -86,7 +86,7 @@ void sampleCurvatures(BuiltSurface& surface, int s) {
 
 }  // namespace
 
-float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, float fraction) {
+float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, double fraction) {
   std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
   double total = 0.0;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
@@ -96,7 +96,7 @@ float weightedPercentile(const std::vector<float>& values, const std::vector<flo
   }
   if (sorted.empty() || !(total > 0.0)) return 0.0f;
   std::sort(sorted.begin(), sorted.end());
-  const double needed = std::clamp(double(fraction), 0.0, 1.0) * total;
+  const double needed = std::clamp(fraction, 0.0, 1.0) * total;
   double sum = 0.0;
   for (const auto& [value, weight] : sorted) {
     sum += weight;
@@ -123,28 +123,9 @@ std::vector<float> weightedHistogram(const std::vector<float>& values, const std
 }
 
 float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
-  std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
-  sorted.reserve(values.size());
-  double total = 0.0;
-  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
-    sorted.emplace_back(values[i], weights[i]);
-    total += weights[i];
-  }
-  if (!(total > 0.0)) return 1.0f;
-  std::sort(sorted.begin(), sorted.end());
   const double upper = std::clamp(double(quantile), 0.5, 1.0);
-  // The first value where the running weight reaches `fraction` of the total.
-  auto percentile = [&](double fraction) {
-    double needed = fraction * total, sum = 0.0;
-    for (const auto& [value, weight] : sorted) {
-      sum += weight;
-      if (sum >= needed) return value;
-    }
-    return sorted.back().first;
-  };
-  const float range = std::max(-percentile(1.0 - upper), percentile(upper));
-  return range > 0.0f && std::isfinite(range) ? range : 1.0f;
+  const float range = std::max(-weightedPercentile(values, weights, 1.0 - upper), weightedPercentile(values, weights, upper));
+  return range > 0.0f && std::isfinite(range) ? range : 1.0f;  // also when there is no weight
 }
 
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {

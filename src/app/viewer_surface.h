@@ -89,7 +89,7 @@ int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
 std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
 // the total; 0 when there is no weight. [O(n log n)]
-float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, float fraction);
+float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, double fraction);
 // Area-weighted histogram over the colour bar's [-below, above] (two slopes, as the map; values
 // beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
 std::vector<float> weightedHistogram(const std::vector<float>& values, const std::vector<float>& weights, float below,
