@@ -254,6 +254,7 @@ const char* usageText() {
          "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
          "                 [--wireframe] [--no-poles] [--time N]\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"
+         "  polarview export IN.obj -o OUT.bv --scheme S --level L [--uniform] [--memory-budget SIZE]\n"
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--json]\n"

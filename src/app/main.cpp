@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/cli_commands.h"
+#include "app/export_command.h"
 #ifdef POLARVIEW_HAVE_VIEWER
 #include "app/viewer_app.h"
 #endif
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   Args args(argv + std::min(argc, 2), argv + argc);
   const std::string file = args.empty() ? "" : args[0];
   if (command == "refine") return guarded(file, runRefine, args);
+  if (command == "export") return guarded(file, runExport, args);
   if (command == "info") return guarded(file, runInfo, args);
   if (command == "pole") return guarded(file, runPole, args);
   if (command == "bench") return guarded(file, runBench, args);

@@ -7,7 +7,11 @@
 // [SECTION] extraction driver
 #include "core/spline/patch_extraction.h"
 
+#include "core/subdiv/face_regularity.h"
+
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
@@ -20,16 +24,25 @@ constexpr double kPi = 3.14159265358979323846;
 
 // [SECTION] vertex and face classification
 
-enum class VertexClass : uint8_t { Irregular, Interior, Boundary, Unknown };
+// The levels patches come from: a uniform Refinement (every face of every level, regular children
+// of regular faces skipped), or an AdaptiveRefinement (only its needed faces, whose stencils must
+// be exact: checked, since a miss would silently change the surface).
+struct LevelStack {
+  std::vector<const RefinedLevel*> levels;
+  std::vector<const std::vector<uint8_t>*> needed, exact;  // adaptive only
+  bool radial = false;
 
-// Interior valence 4 with four quads, or boundary valence 3 with two quads (patch_extraction.h).
-VertexClass classifyVertex(const PolyMesh& mesh, const MeshTopology& topo, Index v) {
-  const Index faces = topo.faceValence(v), valence = topo.valence(v);
-  for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
-    if (mesh.faceSize(topo.vertexFaces[k]) != 4) return VertexClass::Irregular;
-  if (!topo.vertexOnBoundary[v]) return valence == 4 && faces == 4 ? VertexClass::Interior : VertexClass::Irregular;
-  return valence == 3 && faces == 2 ? VertexClass::Boundary : VertexClass::Irregular;
-}
+  int count() const { return int(levels.size()); }
+  const RefinedLevel& level(int m) const { return *levels[size_t(m)]; }
+  bool adaptive() const { return !needed.empty(); }
+  bool isNeeded(int m, Index f) const { return !adaptive() || (*needed[size_t(m)])[f]; }
+  // Throws std::logic_error when a patch of face f at level m reads a vertex that is not exact.
+  void checkExact(int m, Index v, Index f) const {
+    if (adaptive() && !(*exact[size_t(m)])[v])
+      throw std::logic_error("adaptive refinement: the patch of face " + std::to_string(f) + " at level " + std::to_string(m) +
+                             " reads vertex " + std::to_string(v) + ", which is not exact");
+  }
+};
 
 struct LevelClasses {
   std::vector<VertexClass> vertex;
@@ -39,10 +52,11 @@ struct LevelClasses {
 // Children of a regular face are regular (the vertex, edge and face points of an all-quad regular
 // neighbourhood keep valence 4, or 3 on the boundary), so only the other faces' vertices are
 // classified, on demand.
-LevelClasses classifyLevel(const RefinedLevel& level, const LevelClasses& parent) {
+LevelClasses classifyLevel(const LevelStack& stack, int m, const LevelClasses& parent) {
+  const RefinedLevel& level = stack.level(m);
   const PolyMesh& mesh = level.mesh;
   const MeshTopology& topo = level.topology;
-  const bool inherit = !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
+  const bool inherit = !stack.adaptive() && !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
   LevelClasses classes;
   classes.vertex.assign(mesh.vertexCount(), VertexClass::Unknown);
   classes.faceRegular.assign(mesh.faceCount(), 0);
@@ -51,15 +65,8 @@ LevelClasses classifyLevel(const RefinedLevel& level, const LevelClasses& parent
       classes.faceRegular[f] = 1;
       continue;
     }
-    if (mesh.faceSize(f) != 4) continue;
-    const Index* loop = mesh.face(f);
-    bool regular = true;
-    for (int c = 0; c < 4 && regular; ++c) {
-      VertexClass& vertex = classes.vertex[loop[c]];
-      if (vertex == VertexClass::Unknown) vertex = classifyVertex(mesh, topo, loop[c]);
-      regular = vertex != VertexClass::Irregular;
-    }
-    classes.faceRegular[f] = regular;
+    if (!stack.isNeeded(m, f)) continue;
+    classes.faceRegular[f] = isRegularFace(mesh, topo, f, classes.vertex.data());
   }
   return classes;
 }
@@ -424,7 +431,7 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vect
 
 // The 4 sides of a face-based patch are the face's sides (patch.h EDGES); a k-gon's split end caps
 // (k != 4) have other sides and take no part.
-bool hasFaceSides(const Patch& patch, const Refinement& refinement) {
+bool hasFaceSides(const Patch& patch, const LevelStack& refinement) {
   return patch.face >= 0 && refinement.level(patch.level).mesh.faceSize(patch.face) == 4;
 }
 
@@ -433,8 +440,8 @@ bool hasFaceSides(const Patch& patch, const Refinement& refinement) {
 // surface there comes from finer levels. A patch side facing an uncovered face is a coarse side;
 // one facing a face covered by a coarser patch Q is a fine side, and tells Q's side which faces
 // the ancestor of its own face at Q's level. [O(faces of all levels + patches * level jump)]
-void markLevelJumps(const Refinement& refinement, std::vector<std::vector<int32_t>>& cover, std::vector<Patch>& patches) {
-  const int levels = refinement.levelCount();
+void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_t>>& cover, std::vector<Patch>& patches) {
+  const int levels = refinement.count();
   for (size_t k = 0; k < patches.size(); ++k)
     if (hasFaceSides(patches[k], refinement) && cover[patches[k].level][patches[k].face] < 0)
       cover[patches[k].level][patches[k].face] = int32_t(k);
@@ -482,9 +489,11 @@ int transitionEdgeSegments(int level, int delta, int densityExponent) {
 
 // [SECTION] extraction driver
 
-PatchSet extractPatches(const Refinement& refinement) {
+namespace {
+
+PatchSet extractFromStack(const LevelStack& refinement) {
   PatchSet set;
-  const int finest = refinement.levelCount() - 1;
+  const int finest = refinement.count() - 1;
   LevelClasses parentClasses;
   // Per level and face: the covering patch (markLevelJumps); here only the pole caps' hole faces.
   std::vector<std::vector<int32_t>> cover(size_t(finest) + 1);
@@ -492,7 +501,7 @@ PatchSet extractPatches(const Refinement& refinement) {
     const RefinedLevel& level = refinement.level(m);
     const PolyMesh& mesh = level.mesh;
     const MeshTopology& topo = level.topology;
-    LevelClasses classes = classifyLevel(level, parentClasses);
+    LevelClasses classes = classifyLevel(refinement, m, parentClasses);
     const RingMembership rings = markRingLinks(level);
     cover[m].assign(mesh.faceCount(), -1);
 
@@ -501,8 +510,10 @@ PatchSet extractPatches(const Refinement& refinement) {
     std::array<bool, 4> sideMissing;
     for (Index f = 0; f < mesh.faceCount(); ++f) {
       if (!classes.faceRegular[f]) continue;
-      if (m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
+      if (!refinement.adaptive() && m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
       gatherStencil(mesh, topo, f, ids, sideMissing);
+      for (Index id : ids)
+        if (id >= 0) refinement.checkExact(m, id, f);
       Patch patch;
       fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
       const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
@@ -527,6 +538,9 @@ PatchSet extractPatches(const Refinement& refinement) {
       std::vector<uint8_t> inHole(mesh.faceCount(), 0);
       for (size_t p = 0; p < level.poles.size(); ++p) {
         if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
+        const PolarConfig& pole = level.poles[p];
+        refinement.checkExact(m, pole.pole, -1);
+        for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) refinement.checkExact(m, pole.links[size_t(k)], -1);
         const int32_t firstCap = int32_t(set.patches.size());
         poleCaps(level.poleGrids[p], level.poleTaylor[p], set.patches, m, int(p));
         const PolarConfig& config = level.poles[p];
@@ -542,7 +556,13 @@ PatchSet extractPatches(const Refinement& refinement) {
       // End caps for everything else not covered.
       LimitFrames limits(mesh, topo);
       for (Index f = 0; f < mesh.faceCount(); ++f) {
-        if (classes.faceRegular[f] || inHole[f]) continue;
+        if (classes.faceRegular[f] || inHole[f] || !refinement.isNeeded(m, f)) continue;
+        if (refinement.adaptive())  // the limit frames read the faces around each corner
+          for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+            for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {
+              const Index g = topo.vertexFaces[k];
+              for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d) refinement.checkExact(m, mesh.faceVerts[d], f);
+            }
         const size_t first = set.patches.size();
         if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, f, limits));
         else polygonEndCaps(mesh, f, limits, set.patches);
@@ -557,9 +577,29 @@ PatchSet extractPatches(const Refinement& refinement) {
   }
   // Radial levels (RTS/BPS caps and globes) keep the columns: patches of different levels meet
   // along whole edges there, so no side is a T-junction.
-  if (!refinement.radialOnly()) markLevelJumps(refinement, cover, set.patches);
+  if (!refinement.radial) markLevelJumps(refinement, cover, set.patches);
   for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
   return set;
+}
+
+}  // namespace
+
+PatchSet extractPatches(const Refinement& refinement) {
+  LevelStack stack;
+  for (int m = 0; m < refinement.levelCount(); ++m) stack.levels.push_back(&refinement.level(m));
+  stack.radial = refinement.radialOnly();
+  return extractFromStack(stack);
+}
+
+PatchSet extractPatches(const AdaptiveRefinement& refinement) {
+  LevelStack stack;
+  for (int m = 0; m < refinement.levelCount(); ++m) {
+    stack.levels.push_back(&refinement.level(m));
+    stack.needed.push_back(&refinement.neededFaces(m));
+    stack.exact.push_back(&refinement.exactVertices(m));
+  }
+  stack.radial = refinement.radialOnly();
+  return extractFromStack(stack);
 }
 
 }  // namespace polarview

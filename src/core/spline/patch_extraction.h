@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "core/spline/patch.h"
+#include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
 
 namespace polarview {
@@ -66,6 +67,11 @@ struct PatchSet {
 // Extracts the patches of every level of `refinement` (rules above), with Patch::edgeLevelDelta
 // filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). [O(faces of all levels)]
 PatchSet extractPatches(const Refinement& refinement);
+// The same patches from a feature-adaptive refinement: only its needed faces give patches, end caps
+// and level jumps (adaptive_refiner.h), so the set equals extractPatches of the uniform refinement
+// of the same levels (face ids differ). Throws std::logic_error if a patch would read a vertex that
+// is not exact. [O(faces of all levels)]
+PatchSet extractPatches(const AdaptiveRefinement& refinement);
 
 // Tessellation segments of a T-junction edge (edgeLevelDelta d != 0) of a patch of `level`, for a
 // per-view density exponent k (2^k segments per level-0 parameter unit); shaders/patch.tesc is its

@@ -16,23 +16,14 @@
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_rules.h"
+#include "core/subdiv/refine_steps.h"
 #include "core/subdiv/refine_topology.h"
 #include "core/subdiv/rts.h"
 #include "core/subdiv/table_pool.h"
 
 namespace polarview {
 
-namespace {
-
 // [SECTION] helpers: grids and lookups
-
-// The scheme's radial rules (valence fixed), so RTS and BPS share the level drivers below.
-struct RadialScheme {
-  std::function<Point(const PolarGrid&)> pole;
-  std::function<void(const PolarGrid&, Point*)> link1;
-  std::function<void(const PolarGrid&, Point*, bool)> link2;
-  std::function<PolarGrid(const PolarGrid&, bool)> grid;
-};
 
 RadialScheme radialSchemeFor(Scheme scheme) {
   if (scheme == Scheme::BPS)  // BPS's 2-link rule already is the uniform one
@@ -56,6 +47,8 @@ Index edgeBetween(const MeshTopology& topo, Index a, Index b) {
     if (topo.otherEnd(topo.vertexEdges[k], a) == b) return topo.vertexEdges[k];
   return -1;
 }
+
+namespace {
 
 // The face on edge (a,b) that also holds vertex c (-1 if none). [O(valence + face size)]
 Index faceWith(const PolyMesh& mesh, const MeshTopology& topo, Index a, Index b, Index c) {
@@ -92,6 +85,8 @@ bool faceAndEdgeToward(const PolyMesh& mesh, const MeshTopology& topo, Index e, 
   return false;
 }
 
+}  // namespace
+
 // Repeats periodic refinement (5) `times` times: n points -> n 2^times points.
 void refinePeriodically(const Point* link, int n, int times, std::vector<Point>& out, std::vector<Point>& scratch) {
   out.assign(link, link + n);
@@ -103,6 +98,8 @@ void refinePeriodically(const Point* link, int n, int times, std::vector<Point>&
 }
 
 // [SECTION] generic levels: Catmull-Clark connectivity (+ C2PS's split pole quads)
+
+namespace {
 
 // The configuration one Catmull-Clark/C2PS step makes of `parent` (column j -> 2j). Link 2i holds
 // the vertex points of link i (even columns) and the edge points of its edges (odd); link 2i+1
@@ -148,6 +145,8 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
   return child;
 }
 
+}  // namespace
+
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
@@ -177,26 +176,6 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
 }
 
 // [SECTION] radial levels: RTS/BPS on meshes made only of polar regions
-
-// A polar region refined radially: pole A, `links` rings of n points, then pole B (closed) or
-// nothing (the last ring is a boundary). Rows: 0 = A, 1..links = rings, links+1 = B.
-struct RadialRegion {
-  int n = 0, links = 0;
-  bool closed = false;
-  Index vertexBase = 0, faceBase = 0;  // first vertex / face of the region at this level
-  std::vector<Index> vertexIds;        // level 0 only: mesh ids by row (A, rings, B)
-  std::vector<Index> faceIds;          // level 0 only: mesh face ids by row and column
-
-  int rowCount() const { return links + (closed ? 2 : 1); }
-  Index vertexCount() const { return Index(n) * links + (closed ? 2 : 1); }
-  Index faceCount() const { return Index(n) * (closed ? links + 1 : links); }
-  // Vertex id of row r, column j at a level >= 1 (laid out row by row).
-  Index vertex(int r, int j) const {
-    if (r == 0) return vertexBase;
-    if (r == links + 1) return vertexBase + 1 + Index(n) * links;
-    return vertexBase + 1 + Index(r - 1) * n + ((j % n) + n) % n;
-  }
-};
 
 // Regions covering the whole mesh, or empty when some face lies outside every polar region.
 std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level) {
@@ -297,6 +276,8 @@ RefinedLevel refineRadialTopology(const std::vector<RadialRegion>& parentRegions
   return child;
 }
 
+namespace {
+
 // The rows (A, rings, B) of a region as a PolarGrid seen from A, or from B (reversed columns).
 PolarGrid regionGrid(const std::vector<Point>& rows, const RadialRegion& region, bool fromB) {
   const int n = region.n, K = region.links;
@@ -310,6 +291,8 @@ PolarGrid regionGrid(const std::vector<Point>& rows, const RadialRegion& region,
     }
   return grid;
 }
+
+}  // namespace
 
 // One radial step of a region's rows (A, links 1..K, B?) into the child's rows: rules (9)-(12) at
 // each pole, the uniform radial cubic rules between, a boundary ring kept in place.
@@ -339,7 +322,18 @@ void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& pa
   }
 }
 
-}  // namespace
+void fillPoleData(RefinedLevel& level, Scheme scheme, const std::vector<PolarGrid>* schemeGrids) {
+  const int gridLinks = 5;  // links kept in poleGrids: enough for ring 0 and the cap
+  level.poleGrids.clear();
+  level.poleTaylor.clear();
+  if (scheme == Scheme::CatmullClark) return;
+  for (size_t k = 0; k < level.poles.size(); ++k) {
+    const PolarConfig& config = level.poles[k];
+    level.poleGrids.push_back(gatherGrid(level.mesh.points, config, std::min(gridLinks, config.linkCount)));
+    const PolarGrid& source = schemeGrids ? (*schemeGrids)[k] : level.poleGrids.back();
+    level.poleTaylor.push_back(poleTaylorCoefficients(source, scheme));
+  }
+}
 
 // [SECTION] Refinement
 
@@ -442,18 +436,8 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
                                 std::to_string(levels_[0].mesh.points.size()));
   levels_[0].mesh.points = basePoints;
   const Scheme scheme = options_.scheme;
-  const bool polar = scheme != Scheme::CatmullClark;
-  const int gridLinks = 5;  // links kept in poleGrids: enough for ring 0 and the cap
   auto fillPoleData = [&](RefinedLevel& level, const std::vector<PolarGrid>* schemeGrids) {
-    level.poleGrids.clear();
-    level.poleTaylor.clear();
-    if (!polar) return;
-    for (size_t k = 0; k < level.poles.size(); ++k) {
-      const PolarConfig& config = level.poles[k];
-      level.poleGrids.push_back(gatherGrid(level.mesh.points, config, std::min(gridLinks, config.linkCount)));
-      const PolarGrid& source = schemeGrids ? (*schemeGrids)[k] : level.poleGrids.back();
-      level.poleTaylor.push_back(poleTaylorCoefficients(source, scheme));
-    }
+    polarview::fillPoleData(level, scheme, schemeGrids);
   };
 
   if (plan_->radial) {

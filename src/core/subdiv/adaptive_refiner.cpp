@@ -1,0 +1,392 @@
+// Feature-adaptive refinement (rules and exactness: adaptive_refiner.h).
+// [SECTION] selecting the faces to refine
+// [SECTION] the selection as a mesh of its own
+// [SECTION] which child vertices are exact
+// [SECTION] AdaptiveRefinement
+#include "core/subdiv/adaptive_refiner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/mesh/input_error.h"
+#include "core/subdiv/catmull_clark.h"
+#include "core/subdiv/c2ps.h"
+#include "core/subdiv/face_regularity.h"
+#include "core/subdiv/refine_steps.h"
+#include "core/subdiv/refine_topology.h"
+
+namespace polarview {
+
+namespace {
+
+// Rings of support around the faces refined: Catmull-Clark's stencils reach one ring, and a child
+// face's 4x4 stencil reads children of the parent's next ring, so two rings keep every needed
+// stencil exact. Radial steps read up to two rows beyond (the cubic radial rules and (11)): three.
+constexpr int kGenericSupportRings = 2;
+constexpr int kRadialSupportRings = 3;
+
+// [SECTION] selecting the faces to refine
+
+// Faces of `level` to refine: needed and not regular. [O(faces)]
+std::vector<uint8_t> facesToRefine(const RefinedLevel& level, const std::vector<uint8_t>& needed) {
+  std::vector<VertexClass> classes(level.mesh.vertexCount(), VertexClass::Unknown);
+  std::vector<uint8_t> refine(level.mesh.faceCount(), 0);
+  for (Index f = 0; f < level.mesh.faceCount(); ++f)
+    refine[f] = needed[f] && !isRegularFace(level.mesh, level.topology, f, classes.data());
+  return refine;
+}
+
+// `selected` grown by `rings` rings (every face sharing a vertex with a selected face), then closed
+// so that the selected faces around every vertex form one fan (a copied-out mesh must be manifold).
+void growSelection(const RefinedLevel& level, std::vector<uint8_t>& selected, int rings) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  std::vector<uint8_t> touched(mesh.vertexCount());
+  auto addFacesAround = [&](Index v) {
+    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) selected[topo.vertexFaces[k]] = 1;
+  };
+  for (int ring = 0; ring < rings; ++ring) {
+    std::fill(touched.begin(), touched.end(), 0);
+    for (Index f = 0; f < mesh.faceCount(); ++f)
+      if (selected[f])
+        for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) touched[mesh.faceVerts[c]] = 1;
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+      if (touched[v]) addFacesAround(v);
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (Index v = 0; v < mesh.vertexCount(); ++v) {
+      const Index first = topo.vertexFaceStart[v], count = topo.faceValence(v);
+      int runs = 0, in = 0;
+      for (Index k = 0; k < count; ++k) {
+        const bool now = selected[topo.vertexFaces[first + k]];
+        // A run starts where a selected face follows an unselected one (rotational order; an
+        // interior vertex's ring wraps round, a boundary vertex's does not).
+        const bool before = k > 0 ? bool(selected[topo.vertexFaces[first + k - 1]])
+                                  : !topo.vertexOnBoundary[v] && bool(selected[topo.vertexFaces[first + count - 1]]);
+        runs += now && !before;
+        in += now;
+      }
+      if (in > 0 && in < count && runs > 1) {
+        addFacesAround(v);
+        changed = true;
+      }
+    }
+  }
+}
+
+// [SECTION] the selection as a mesh of its own
+
+// Per vertex of `level`: 1 when every face around it is selected.
+std::vector<uint8_t> verticesInside(const RefinedLevel& level, const std::vector<uint8_t>& selected) {
+  const MeshTopology& topo = level.topology;
+  std::vector<uint8_t> inside(level.mesh.vertexCount(), 0);
+  for (Index v = 0; v < level.mesh.vertexCount(); ++v) {
+    bool all = topo.vertexFaceStart[v + 1] > topo.vertexFaceStart[v];
+    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1] && all; ++k)
+      all = selected[topo.vertexFaces[k]];
+    inside[v] = all;
+  }
+  return inside;
+}
+
+// A pole of `level` in the copied-out mesh: the same columns and first links, truncated to the
+// links whose inner rows lie wholly inside the selection.
+PolarConfig truncatedConfig(const PolarConfig& config, const std::vector<uint8_t>& inside, const std::vector<Index>& toSub,
+                            bool radial) {
+  if (!inside[config.pole]) throw std::logic_error("adaptive refinement: a pole's fan was not selected");
+  int links = 1;  // links 0..links-1 have all their faces selected, so rows 0..links-1 are whole
+  while (links < config.linkCount) {
+    bool all = true;
+    for (int j = 0; j < config.valence && all; ++j) all = inside[config.links[size_t(links - 1) * config.valence + j]];
+    if (!all) break;
+    ++links;
+  }
+  PolarConfig sub = config;
+  sub.pole = toSub[config.pole];
+  sub.links.resize(size_t(links) * config.valence);
+  for (size_t k = 0; k < sub.links.size(); ++k) sub.links[k] = toSub[config.links[k]];
+  if (links < config.linkCount) {
+    sub.linkCount = links;
+    sub.regularLinks = std::min(config.regularLinks, links);
+    // The cut is a boundary of the copied-out mesh: a radial step then treats the part as a cap.
+    sub.outer = radial ? PolarConfig::Outer::Boundary : PolarConfig::Outer::Mesh;
+    sub.oppositePole = -1;
+  } else if (config.oppositePole >= 0) {
+    sub.oppositePole = toSub[config.oppositePole];
+  }
+  return sub;
+}
+
+}  // namespace
+
+struct AdaptiveRefinement::Step {
+  RefinedLevel sub;                   // the selected faces of level m as a mesh (points gathered)
+  std::vector<Index> subToLevel;      // sub vertex -> level m vertex
+  std::vector<RadialRegion> regions;  // radial steps: the regions of `sub` and of the child
+  std::vector<RadialRegion> childRegions;
+};
+
+namespace {
+
+// [SECTION] which child vertices are exact
+
+// Catmull-Clark (and C2PS) step: exactness and completeness of the child vertices [F | E | V] of
+// `sub`, from those of the parent (`ok`: exact, per sub vertex; `full`: its faces in sub are the
+// uniform level's) (adaptive_refiner.h).
+void markGenericChildren(const RefinedLevel& sub, const std::vector<uint8_t>& ok, const std::vector<uint8_t>& full,
+                         const RefinedLevel& child, std::vector<uint8_t>& exact, std::vector<uint8_t>& complete) {
+  const MeshTopology& topo = sub.topology;
+  const PolyMesh& mesh = sub.mesh;
+  exact.assign(child.mesh.vertexCount(), 0);
+  complete.assign(child.mesh.vertexCount(), 0);
+  std::vector<uint8_t> faceOk(mesh.faceCount(), 1);
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) faceOk[f] &= ok[mesh.faceVerts[c]];
+  for (Index f = 0; f < topo.faceCount; ++f) {
+    exact[ccFacePoint(topo, f)] = faceOk[f];
+    complete[ccFacePoint(topo, f)] = 1;
+  }
+  for (Index e = 0; e < topo.edgeCount; ++e) {
+    const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+    const Index child0 = ccEdgePoint(topo, e);
+    if (!topo.edgeOnBoundary(e)) {
+      exact[child0] = faceOk[topo.edgeFaces[2 * e]] && faceOk[topo.edgeFaces[2 * e + 1]];
+      complete[child0] = 1;
+    } else {  // a real boundary when an end sees all its uniform faces
+      const bool real = full[a] || full[b];
+      exact[child0] = real && ok[a] && ok[b];
+      complete[child0] = real;
+    }
+  }
+  for (Index v = 0; v < topo.vertexCount; ++v) {
+    bool all = full[v];
+    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1] && all; ++k) all = faceOk[topo.vertexFaces[k]];
+    exact[ccVertexPoint(topo, v)] = all;
+    complete[ccVertexPoint(topo, v)] = full[v];
+  }
+}
+
+}  // namespace
+
+// [SECTION] AdaptiveRefinement
+
+AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName,
+                                       size_t maxFaces)
+    : options_(options) {
+  if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
+  const Scheme scheme = options.scheme;
+  RefinedLevel level0;
+  level0.mesh = base;
+  level0.topology = buildTopology(base, sourceName);
+  for (PolarConfig& config : findPolarConfigs(base, level0.topology))
+    if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
+  radial_ = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !findRadialRegions(level0).empty();
+  needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
+  exact_.push_back(std::vector<uint8_t>(base.vertexCount(), 1));
+  std::vector<uint8_t> complete(base.vertexCount(), 1);
+  totalFaces_ = size_t(base.faceCount());
+  levels_.push_back(std::move(level0));
+
+  for (int m = 0; m < options.levels; ++m) {
+    const RefinedLevel& level = levels_[m];
+    const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
+    std::vector<uint8_t> selected = refine;
+    growSelection(level, selected, radial_ ? kRadialSupportRings : kGenericSupportRings);
+    const std::vector<uint8_t> inside = verticesInside(level, selected);
+
+    // The selection copied out: faces in order, vertices numbered by first use.
+    Step step;
+    std::vector<Index> toSub(level.mesh.vertexCount(), -1), subFaces;
+    for (Index f = 0; f < level.mesh.faceCount(); ++f) {
+      if (!selected[f]) continue;
+      subFaces.push_back(f);
+      const Index* loop = level.mesh.face(f);
+      std::vector<Index> subLoop(loop, loop + level.mesh.faceSize(f));
+      for (Index& v : subLoop) {
+        if (toSub[v] < 0) {
+          toSub[v] = Index(step.subToLevel.size());
+          step.subToLevel.push_back(v);
+        }
+        v = toSub[v];
+      }
+      step.sub.mesh.addFace(subLoop.data(), subLoop.size());
+    }
+    const size_t childFaces = radial_ ? 2 * subFaces.size() : step.sub.mesh.faceVerts.size() * 5 / 4;
+    if (totalFaces_ + subFaces.size() + childFaces > maxFaces)
+      throw InputError(sourceName, 0,
+                       "level " + std::to_string(options.levels) + " would need more than " + std::to_string(maxFaces) +
+                           " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
+    step.sub.mesh.points.assign(step.subToLevel.size(), Point(0.0));
+    step.sub.topology = buildTopology(step.sub.mesh, sourceName);
+    for (const PolarConfig& config : level.poles) step.sub.poles.push_back(truncatedConfig(config, inside, toSub, radial_));
+
+    // Per sub vertex: exact, and whether its faces in sub are the uniform level's.
+    std::vector<uint8_t> ok(step.subToLevel.size()), full(step.subToLevel.size());
+    for (size_t v = 0; v < step.subToLevel.size(); ++v) {
+      const Index w = step.subToLevel[v];
+      ok[v] = exact_[m][w];
+      full[v] = complete[w] && inside[w];
+    }
+
+    RefinedLevel child;
+    std::vector<uint8_t> childExact, childComplete;
+    if (radial_) {
+      step.regions = findRadialRegions(step.sub);
+      if (step.regions.empty()) throw std::logic_error("adaptive refinement: the selection is not made of polar regions");
+      child = refineRadialTopology(step.regions, step.childRegions, sourceName);
+      childExact.assign(child.mesh.vertexCount(), 0);
+      childComplete.assign(child.mesh.vertexCount(), 0);
+      for (size_t r = 0; r < step.regions.size(); ++r) {
+        const RadialRegion& parent = step.regions[r];
+        const RadialRegion& region = step.childRegions[r];
+        // Parent rows exact in a row (0..K, then B); the last ring of an open region counts when
+        // it is a real boundary (kept in place by the rule) and not a cut.
+        auto rowOk = [&](int row) {
+          const int n = parent.n;
+          for (int j = 0; j < (row == 0 || row == parent.links + 1 ? 1 : n); ++j) {
+            const Index v = parent.vertexIds[row == 0 ? 0 : row == parent.links + 1 ? parent.vertexIds.size() - 1 : 1 + size_t(row - 1) * n + j];
+            if (!ok[v] || (!parent.closed && row == parent.links && !full[v])) return false;
+          }
+          return true;
+        };
+        std::vector<uint8_t> prefixOk(size_t(parent.rowCount()), 0);  // rows 0..r all exact
+        for (int row = 0; row < parent.rowCount(); ++row) prefixOk[row] = rowOk(row) && (row == 0 || prefixOk[row - 1]);
+        const bool realRim = parent.closed || prefixOk[parent.links];
+        for (int row = 0; row < region.rowCount(); ++row) {
+          // A child row reads parent rows up to row / 2 + 2 (a closed region: all of them).
+          const int reads = parent.closed ? parent.rowCount() - 1 : std::min(parent.links, row / 2 + 2);
+          const bool rowExact = prefixOk[reads];
+          const bool rowComplete = parent.closed || row < region.links || realRim;
+          for (int j = 0; j < (row == 0 || row == region.links + 1 ? 1 : region.n); ++j) {
+            childExact[region.vertex(row, j)] = rowExact;
+            childComplete[region.vertex(row, j)] = rowComplete;
+          }
+        }
+      }
+    } else {
+      std::vector<Index> links = cornerLinks(step.sub.mesh, step.sub.topology);
+      child = refineGenericTopology(step.sub, scheme != Scheme::CatmullClark, true, links);
+      markGenericChildren(step.sub, ok, full, child, childExact, childComplete);
+      if (scheme == Scheme::C2PS) {
+        // Rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
+        for (size_t k = 0; k < child.poles.size(); ++k) {
+          const PolarConfig& parent = step.sub.poles[k];
+          bool gridOk = ok[parent.pole];
+          for (size_t i = 0; i < size_t(std::min(2, parent.linkCount)) * parent.valence; ++i) gridOk = gridOk && ok[parent.links[i]];
+          const PolarConfig& config = child.poles[k];
+          childExact[config.pole] = gridOk;
+          for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[config.links[i]] = gridOk;
+        }
+      } else if (scheme == Scheme::RTS || scheme == Scheme::BPS) {
+        // The pole's own radial grid (kept whole to the links used) owns the configuration's links.
+        for (const PolarConfig& config : child.poles) {
+          childExact[config.pole] = 1;
+          for (Index v : config.links) childExact[v] = 1;
+        }
+      }
+    }
+    for (Index& parent : child.faceParent) parent = subFaces[parent];
+    std::vector<uint8_t> childNeeded(child.mesh.faceCount());
+    for (Index f = 0; f < child.mesh.faceCount(); ++f) childNeeded[f] = refine[child.faceParent[f]];
+    totalFaces_ += subFaces.size() + size_t(child.mesh.faceCount());
+    levels_.push_back(std::move(child));
+    needed_.push_back(std::move(childNeeded));
+    exact_.push_back(std::move(childExact));
+    complete = std::move(childComplete);
+    steps_.push_back(std::move(step));
+  }
+  updatePositions(base.points);
+}
+
+AdaptiveRefinement::~AdaptiveRefinement() = default;
+AdaptiveRefinement::AdaptiveRefinement(AdaptiveRefinement&&) noexcept = default;
+AdaptiveRefinement& AdaptiveRefinement::operator=(AdaptiveRefinement&&) noexcept = default;
+
+void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
+  if (basePoints.size() != levels_[0].mesh.points.size())
+    throw std::invalid_argument("updatePositions: " + std::to_string(basePoints.size()) + " points for a mesh of " +
+                                std::to_string(levels_[0].mesh.points.size()));
+  levels_[0].mesh.points = basePoints;
+  const Scheme scheme = options_.scheme;
+  const bool radialPoles = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !radial_;
+  const RadialScheme rules = radialSchemeFor(scheme);
+  std::vector<PolarGrid> radialGrids;  // RTS/BPS in mixed meshes: each pole's own radial grid
+  if (radialPoles)
+    for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
+  fillPoleData(levels_[0], scheme, radialPoles ? &radialGrids : nullptr);
+
+  std::vector<Point> rows, childRows, link1, link2, refined, scratch;
+  for (size_t m = 0; m < steps_.size(); ++m) {
+    Step& step = steps_[m];
+    const RefinedLevel& level = levels_[m];
+    RefinedLevel& child = levels_[m + 1];
+    std::vector<Point>& subPoints = step.sub.mesh.points;
+    for (size_t v = 0; v < step.subToLevel.size(); ++v) subPoints[v] = level.mesh.points[step.subToLevel[v]];
+    const bool uniformStep = options_.uniformFirstStep && m == 0;
+    if (radial_) {
+      for (size_t r = 0; r < step.regions.size(); ++r) {
+        const RadialRegion& region = step.regions[r];
+        rows.clear();
+        for (Index id : region.vertexIds) rows.push_back(subPoints[id]);
+        refineRegionRadially(rows, region, rules, uniformStep, childRows);
+        std::copy(childRows.begin(), childRows.end(), child.mesh.points.begin() + step.childRegions[r].vertexBase);
+      }
+      fillPoleData(child, scheme, nullptr);
+      continue;
+    }
+    computeCatmullClarkPoints(step.sub.topology, step.sub.mesh, subPoints.data(), child.mesh.points.data());
+    std::vector<Point>& points = child.mesh.points;
+    for (size_t k = 0; k < child.poles.size(); ++k) {
+      const PolarConfig& config = child.poles[k];
+      if (scheme == Scheme::C2PS) {
+        const PolarGrid grid = gatherGrid(subPoints, step.sub.poles[k], 2);
+        const int n2 = config.valence;
+        link1.resize(n2);
+        link2.resize(n2);
+        c2ps::refineLink1(grid, link1.data());
+        c2ps::refineLink2(grid, link2.data(), uniformStep);
+        points[config.pole] = c2ps::refinePole(grid);
+        for (int j = 0; j < n2; ++j) {
+          points[config.links[j]] = link1[j];
+          if (config.linkCount >= 2) points[config.links[size_t(n2) + j]] = link2[j];
+        }
+      } else if (radialPoles) {
+        PolarGrid& grid = radialGrids[k];
+        grid = rules.grid(grid, uniformStep);
+        // Links beyond the ones this and the next level own are never read: keep the grid small.
+        const int keep = std::min(grid.links, config.linkCount + 2);
+        grid.links = keep;
+        grid.ring.resize(size_t(keep) * grid.n);
+        points[config.pole] = grid.pole;
+        const int owned = std::min(grid.links - 1, config.linkCount);
+        for (int i = 1; i <= owned; ++i) {
+          refinePeriodically(&grid.q(i, 0), grid.n, int(m) + 1, refined, scratch);
+          for (int j = 0; j < config.valence; ++j) points[config.links[size_t(i - 1) * config.valence + j]] = refined[j];
+        }
+      }
+    }
+    fillPoleData(child, scheme, radialPoles ? &radialGrids : nullptr);
+  }
+}
+
+size_t estimateAdaptiveFaceCount(const PolyMesh& base, const RefineOptions& options, int measured) {
+  RefineOptions first = options;
+  first.levels = std::min(options.levels, std::max(measured, 1));
+  // Topology and points of the first levels (small); their growth continues below.
+  AdaptiveRefinement refinement(base, first, "<estimate>", std::numeric_limits<size_t>::max());
+  size_t total = refinement.totalFaces();
+  if (first.levels == options.levels) return total;
+  const int last = refinement.levelCount() - 1;
+  const double lastFaces = double(refinement.level(last).mesh.faceCount());
+  const double growth = std::max(1.0, lastFaces / std::max(1.0, double(refinement.level(last - 1).mesh.faceCount())));
+  double faces = lastFaces, sum = double(total);
+  for (int m = last + 1; m <= options.levels && sum < 1e18; ++m) {
+    faces *= growth;
+    sum += 2.0 * faces;  // the level and the copied-out part that made it
+  }
+  return size_t(std::min(sum, 1e18));
+}
+
+}  // namespace polarview

@@ -1,0 +1,68 @@
+// Feature-adaptive refinement (after OpenSubdiv's Far::TopologyRefiner::RefineAdaptive and
+// Niessner et al. 2012): level m+1 refines only the faces whose patches are not yet regular, with
+// the neighbourhood their rules need, so the cost grows with the patches, not as 4^L.
+//
+// Level m holds a part of the uniform refinement's level m (refiner.h), with
+//  * neededFaces(m): the faces the uniform extraction would take patches from or refine (children
+//    of faces refined because they were not regular; level 0: all). Their corners have the uniform
+//    level's faces around them and their 4x4 stencils the uniform level's points;
+//  * exactVertices(m): vertices whose position equals the uniform level's (round-off). Vertices at
+//    the rim of the refined part were computed from incomplete neighbourhoods and are not exact.
+// Step m -> m+1: R = needed faces that are not regular; S = R grown by `supportRings` rings of
+// faces (every face sharing a vertex); S is copied out as a mesh of its own and refined one step
+// by the uniform refiner's own steps (refine_steps.h): Catmull-Clark connectivity with C2PS's split
+// pole corners, or RTS/BPS's radial step on caps and globes. A child vertex is exact when the
+// points its rule reads are exact and complete: Catmull-Clark vertex point: all faces around the
+// vertex in S; edge point: both faces; face point: its corners; C2PS's rules (1)-(3): links 0..2
+// of the pole; radial rows: the parent rows of the cubic rules. Poles keep the uniform level's
+// index, orientation and first links (truncated where S ends).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/subdiv/refiner.h"
+
+namespace polarview {
+
+class AdaptiveRefinement {
+ public:
+  // Refines `base` (already validated) `options.levels` times adaptively. Throws InputError when
+  // the levels together would hold more than `maxFaces` faces (checked before each level is made).
+  AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName = "<mesh>",
+                     size_t maxFaces = size_t(1) << 26);
+  ~AdaptiveRefinement();
+  AdaptiveRefinement(AdaptiveRefinement&&) noexcept;
+  AdaptiveRefinement& operator=(AdaptiveRefinement&&) noexcept;
+
+  const RefineOptions& options() const { return options_; }
+  int levelCount() const { return int(levels_.size()); }
+  const RefinedLevel& level(int m) const { return levels_[m]; }
+  const std::vector<uint8_t>& neededFaces(int m) const { return needed_[m]; }
+  const std::vector<uint8_t>& exactVertices(int m) const { return exact_[m]; }
+  // True when RTS/BPS refine radially (caps and globes), as Refinement::radialOnly.
+  bool radialOnly() const { return radial_; }
+  // Faces of all levels and of the copied-out parts (what the budget counts). [O(1)]
+  size_t totalFaces() const { return totalFaces_; }
+
+  // Recomputes every level's points from new base points (same count as the base, else
+  // std::invalid_argument); topology untouched. [O(faces of all levels)]
+  void updatePositions(const std::vector<Point>& basePoints);
+
+ private:
+  struct Step;  // what makes level m+1 from level m
+  RefineOptions options_;
+  bool radial_ = false;
+  std::vector<RefinedLevel> levels_;
+  std::vector<std::vector<uint8_t>> needed_, exact_;
+  std::vector<Step> steps_;
+  size_t totalFaces_ = 0;
+};
+
+// Faces an adaptive refinement of `options.levels` levels would hold in all (what
+// AdaptiveRefinement's budget counts): levels up to `measured` are refined (topology only), deeper
+// ones extrapolated with the growth of the last measured level. [O(faces of the measured levels)]
+size_t estimateAdaptiveFaceCount(const PolyMesh& base, const RefineOptions& options, int measured = 5);
+
+}  // namespace polarview
