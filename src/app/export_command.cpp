@@ -232,8 +232,8 @@ int runExport(const Args& args) {
               stats.written[size_t(PatchKind::Boundary)], stats.written[size_t(PatchKind::PolarRing)],
               stats.written[size_t(PatchKind::PoleCap)], stats.capSectors, stats.written[size_t(PatchKind::EndCap)]);
   if (stats.capSectors > 0)
-    std::printf("; caps within %.2g of the bounding box (up to %d sub-sectors a cap)", stats.capRelativeDeviation(),
-                stats.maxCapSplit);
+    std::printf("; caps within %.2g of the bounding box (at most %d piece%s a cap sector)", stats.capRelativeDeviation(),
+                stats.maxCapSplit, stats.maxCapSplit == 1 ? "" : "s");
   std::printf("\n");
   return 0;
 }

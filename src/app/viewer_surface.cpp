@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 
 #include <glm/geometric.hpp>
 
@@ -10,6 +11,7 @@
 #include "core/mesh/obj_io.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
 
@@ -46,10 +48,8 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
 // model is one colour. They still saturate visibly in the picture.
 // Polar configurations the scheme refines, and those Catmull-Clark refines instead (RTS and BPS
 // below valence 5), with the reason, so the view's title can say so.
-void countPoleFallbacks(BuiltSurface& surface, const Refinement& refinement) {
-  const Scheme scheme = refinement.options().scheme;
+void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme scheme) {
   if (scheme == Scheme::CatmullClark) return;
-  const RefinedLevel& base = refinement.level(0);
   for (const PolarConfig& config : findPolarConfigs(base.mesh, base.topology)) {
     if (!config.refinable) continue;  // a plain extraordinary vertex, not a polar configuration
     std::string why;
@@ -152,12 +152,22 @@ LoadedModel readModelFile(const std::string& path) {
 }
 
 namespace {
-// The face estimate of `scheme` at `level` on the model (radial growth where RTS/BPS refine it all
-// radially).
+// The faces of the feature-adaptive refinement of `scheme` at each level 0..kMaxLevel on the model
+// (estimateAdaptiveFaceCounts), measured once per model and scheme: the level limit is asked for
+// every frame.
 size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level) {
-  const RefineOptions options = refineOptionsFor(scheme, level);
-  const bool radial = model.radialForRtsBps && (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS);
-  return estimateFaceCount(*model.mesh, options, radial);
+  static std::mutex mutex;
+  static std::map<std::pair<uint64_t, int>, std::vector<size_t>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::vector<size_t>& totals = cache[{model.generation, int(scheme)}];
+  if (totals.empty()) {
+    try {
+      totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel));
+    } catch (const std::exception&) {
+      totals.assign(size_t(kMaxLevel) + 1, 0);  // not refinable: building says why
+    }
+  }
+  return totals[size_t(std::clamp(level, 0, kMaxLevel))];
 }
 }  // namespace
 
@@ -191,13 +201,17 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   auto surface = std::make_shared<BuiltSurface>();
   surface->key = key;
 
-  // Refine and extract the limit patches.
-  Refinement refinement(*model.mesh, refineOptionsFor(key.scheme, key.level), model.name, faceBudget);
+  // Refine feature-adaptively and extract the limit patches. The level limit (deepestLevel) comes
+  // from the estimate; the refiner's own hard limit leaves it room (the estimate is an upper bound
+  // at the measured levels, an extrapolation beyond).
+  const std::string refusal = levelRefusal(model, key.scheme, key.level, faceBudget);
+  if (!refusal.empty()) throw InputError(model.name, 0, refusal);
+  AdaptiveRefinement refinement(*model.mesh, refineOptionsFor(key.scheme, key.level), model.name, 2 * faceBudget);
   PatchSet patchSet = extractPatches(refinement);
   surface->patches = std::move(patchSet.patches);
-  surface->controlMesh = refinement.finest().mesh;
-  surface->poles = polePositions(surface->patches, refinement.finest());
-  countPoleFallbacks(*surface, refinement);
+  surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
+  surface->poles = polePositions(surface->patches, refinement.level(refinement.levelCount() - 1));
+  countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
   surface->refineMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).

@@ -22,7 +22,7 @@ constexpr int kSchemeChoiceCount = 6;
 constexpr int kMaxViews = 4;
 // Hard cap of the level (keys 0-9 and the slider stop earlier where the model's face budget says
 // so: ViewStatus::deepestLevel).
-constexpr int kMaxLevel = 10;
+constexpr int kMaxLevel = 24;
 constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
 
 // On-screen name: "CC", "C2PS", "C2PS-U", "RTS", "RTS-U", "BPS".

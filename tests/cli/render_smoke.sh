@@ -95,12 +95,12 @@ rc=$?
 grep -q "fits" "$work/err.txt" || fail "8192x8192 at 4x: the message does not say what fits: $(cat "$work/err.txt")"
 
 # 8. A level deeper than the face budget allows: exit 1, one line naming the file and the deepest level.
-"$exe" render "$work/globe.obj" -o "$work/deep.png" --level 10 > /dev/null 2> "$work/err.txt"
+"$exe" render "$work/globe.obj" -o "$work/deep.png" --level 20 > /dev/null 2> "$work/err.txt"
 rc=$?
-[ $rc -eq 1 ] || fail "level 10: exit $rc, expected 1"
-[ ! -e "$work/deep.png" ] || fail "level 10: a PNG was written"
-grep -q "^polarview: .*globe.obj: level 10 refused: C2PS stops at level [0-9]" "$work/err.txt" ||
-  fail "level 10: unexpected message: $(cat "$work/err.txt")"
+[ $rc -eq 1 ] || fail "level 20: exit $rc, expected 1"
+[ ! -e "$work/deep.png" ] || fail "level 20: a PNG was written"
+grep -q "^polarview: .*globe.obj: level 20 refused: C2PS stops at level [0-9]" "$work/err.txt" ||
+  fail "level 20: unexpected message: $(cat "$work/err.txt")"
 
 # 9. RTS with the uniform first step (the paper's Fig. 11) is a scheme of its own; RTS at a
 #    valence-4 pole says in the view title that Catmull-Clark refined it.

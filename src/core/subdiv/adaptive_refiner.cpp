@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/mesh/input_error.h"
@@ -371,22 +372,27 @@ void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
   }
 }
 
-size_t estimateAdaptiveFaceCount(const PolyMesh& base, const RefineOptions& options, int measured) {
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured) {
   RefineOptions first = options;
   first.levels = std::min(options.levels, std::max(measured, 1));
-  // Topology and points of the first levels (small); their growth continues below.
-  AdaptiveRefinement refinement(base, first, "<estimate>", std::numeric_limits<size_t>::max());
-  size_t total = refinement.totalFaces();
-  if (first.levels == options.levels) return total;
-  const int last = refinement.levelCount() - 1;
-  const double lastFaces = double(refinement.level(last).mesh.faceCount());
-  const double growth = std::max(1.0, lastFaces / std::max(1.0, double(refinement.level(last - 1).mesh.faceCount())));
-  double faces = lastFaces, sum = double(total);
-  for (int m = last + 1; m <= options.levels && sum < 1e18; ++m) {
-    faces *= growth;
-    sum += 2.0 * faces;  // the level and the copied-out part that made it
+  const AdaptiveRefinement refinement(base, first, "<estimate>", std::numeric_limits<size_t>::max());
+  std::vector<size_t> totals;
+  size_t total = 0;
+  for (int m = 0; m < refinement.levelCount(); ++m) {
+    // A level and the copied-out part of its parent that made it (about as big).
+    total += size_t(refinement.level(m).mesh.faceCount()) * (m == 0 ? 1 : 2);
+    totals.push_back(total);
   }
-  return size_t(std::min(sum, 1e18));
+  const int last = refinement.levelCount() - 1;
+  double faces = double(refinement.level(last).mesh.faceCount());
+  const double growth = last == 0 ? 4.0 : std::max(1.0, faces / std::max(1.0, double(refinement.level(last - 1).mesh.faceCount())));
+  double sum = double(total);
+  for (int m = last + 1; m <= options.levels; ++m) {
+    faces *= growth;
+    sum = std::min(sum + 2.0 * faces, 1e18);
+    totals.push_back(size_t(sum));
+  }
+  return totals;
 }
 
 }  // namespace polarview

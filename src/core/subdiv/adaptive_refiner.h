@@ -60,9 +60,10 @@ class AdaptiveRefinement {
   size_t totalFaces_ = 0;
 };
 
-// Faces an adaptive refinement of `options.levels` levels would hold in all (what
-// AdaptiveRefinement's budget counts): levels up to `measured` are refined (topology only), deeper
-// ones extrapolated with the growth of the last measured level. [O(faces of the measured levels)]
-size_t estimateAdaptiveFaceCount(const PolyMesh& base, const RefineOptions& options, int measured = 5);
+// Faces adaptive refinements of 0..options.levels levels would hold in all (what AdaptiveRefinement's
+// budget counts), one entry per level: levels up to `measured` are refined, deeper ones extrapolated
+// with the growth of the last measured level (C2PS about x2 a level: the polar valence doubles;
+// Catmull-Clark and radial RTS/BPS about +constant). [O(faces of the measured levels)]
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured = 5);
 
 }  // namespace polarview
