@@ -48,6 +48,7 @@ struct CommonOptions {
   size_t memoryBudget = 0;  // --memory-budget SIZE in bytes (0: from the available memory)
   bool uniformFirstStep = false;
   bool json = false;
+  bool adaptive = false, edit = false;  // bench --adaptive [--edit]
 };
 
 // "2G", "500M", "64k", "123456" (bytes; binary units, case-insensitive, optional trailing B).
@@ -168,6 +169,8 @@ CommonOptions parseOptions(const std::string& command, const Args& args, const s
     else if (a == "--memory-budget") o.memoryBudget = parseByteSize(a, next());
     else if (a == "--uniform-first-step") uniformFlag = true;
     else if (a == "--json") o.json = true;
+    else if (a == "--adaptive") o.adaptive = true;
+    else if (a == "--edit") o.edit = true;
     else if (o.input.empty()) o.input = a;
     else throw UsageError{"unexpected argument '" + a + "'"};
   }
@@ -489,11 +492,75 @@ int runPole(const Args& args) {
   return 0;
 }
 
+// Peak resident memory of this process so far (VmHWM), in MiB; 0 where /proc is missing.
+double peakResidentMegabytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+// bench --adaptive: the feature-adaptive path of view, render and export (adaptive_refiner.h).
+// topology_ms = construction - positions; positions_ms = updatePositions; patches_ms = extraction;
+// --edit adds edit_ms: one base vertex moved, then positions and patches recomputed (topology kept).
+int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
+  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
+  std::vector<double> build, positions, patches, edits;
+  size_t patchCount = 0, totalFaces = 0, finestFaces = 0;
+  for (int rep = 0; rep < o.reps; ++rep) {
+    auto t0 = std::chrono::steady_clock::now();
+    AdaptiveRefinement refinement(mesh, options, o.input, budgetFaces);
+    build.push_back(millisecondsSince(t0));
+    t0 = std::chrono::steady_clock::now();
+    refinement.updatePositions(mesh.points);
+    positions.push_back(millisecondsSince(t0));
+    t0 = std::chrono::steady_clock::now();
+    PatchSet set = extractPatches(refinement);
+    patches.push_back(millisecondsSince(t0));
+    patchCount = set.patches.size();
+    totalFaces = refinement.totalFaces();
+    finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
+    if (o.edit) {  // drag vertex 0 by 1% of the first edge's length, as the viewer does per frame
+      std::vector<Point> moved = mesh.points;
+      moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
+      t0 = std::chrono::steady_clock::now();
+      refinement.updatePositions(moved);
+      PatchSet editedSet = extractPatches(refinement);
+      edits.push_back(millisecondsSince(t0));
+    }
+  }
+  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
+  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
+  JsonWriter w(o.input);
+  w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels).field("adaptive", true);
+  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
+  w.field("patches_ms", median(patches)).field("patches", patchCount).field("total_faces", totalFaces);
+  w.field("finest_faces", finestFaces);
+  if (o.edit) w.field("edit_ms", median(edits));
+  w.field("peak_rss_mb", peakResidentMegabytes());
+  w.endObject();
+  if (o.json) {
+    std::cout << w.str() << "\n";
+  } else {
+    std::printf("%s %s level %d (adaptive): topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches, %zu faces in "
+                "all levels; peak RSS %.1f MB\n",
+                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), patchCount, totalFaces,
+                peakResidentMegabytes());
+    if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(edits));
+  }
+  return 0;
+}
+
 int runBench(const Args& args) {
   CommonOptions o = parseOptions("bench", args,
-                                 {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json", "--memory-budget"});
+                                 {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json", "--memory-budget",
+                                  "--adaptive", "--edit"});
   if (o.levels < 0) throw UsageError{"bench needs --levels L"};
+  if (o.edit && !o.adaptive) throw UsageError{"bench: --edit needs --adaptive"};
   PolyMesh mesh = loadInput(o.input);
+  if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   std::vector<double> build, positions, patches;
