@@ -13,6 +13,9 @@ using Args = std::vector<std::string>;
 // polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L
 // (c2ps-u = c2ps --uniform-first-step, rts-u likewise; the flag with another scheme: usage error)
 int runRefine(const Args& args);
+// polarview export IN.obj --scheme S --level L -o OUT.bv [--uniform] [--memory-budget SIZE]: the limit
+// surface in BezierView's .bv format, feature-adaptive (or uniform), written atomically.
+int runExport(const Args& args);
 // polarview info IN.obj [--json]: poles apart from rejected pole candidates (with reasons)
 int runInfo(const Args& args);
 // polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]

@@ -4,18 +4,19 @@
 
 #include <string>
 
-#include "app/cli_commands.h"
+#include "core/spline/bezierview_export.h"
 #include "core/spline/patch_extraction.h"
 
 namespace polarview::cli {
 
-// polarview export IN.obj --scheme S --level L -o OUT.bv [--uniform] [--memory-budget SIZE]
-// Exit codes as cli_commands.h; the output is written atomically (nothing on any error).
-int runExport(const Args& args);
+// The patches `export` writes: feature-adaptive refinement (AdaptiveRefinement, the path of view
+// and render), or with `uniform` every face refined to options.levels (Refinement); both give the
+// same patches (tests/core/adaptive_refiner_test.cpp). Throws InputError for bad meshes and levels
+// over `maxFaces`. [O(output)]
+PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, bool uniform,
+                        size_t maxFaces);
 
-// The patches `export` writes: `uniform` refines every face to options.levels (Refinement) and
-// extracts feature-adaptively (extractPatches); the adaptive path does the same for now.
-// Throws InputError for bad meshes and levels over the refiner's face limit.
-PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, bool uniform);
+// Writes `set` to `path` atomically (nothing is left on any error) and says what was written.
+BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source);
 
 }  // namespace polarview::cli

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "app/cli_commands.h"
-#include "app/export_command.h"
 #ifdef POLARVIEW_HAVE_VIEWER
 #include "app/viewer_app.h"
 #endif

@@ -18,9 +18,13 @@
 
 namespace polarview {
 
-// Faces the finest level may have; above it a level is refused with a message (about 0.5 KB of
-// patch and mesh data per face on the CPU, a fifth of it on the GPU).
-constexpr size_t kDefaultFaceBudget = size_t(1) << 21;
+// Memory one view's surface may take while it is built, and what a face of the feature-adaptive
+// refinement costs there (levels, copied-out parts, patches: peak RSS 447 MB for 989,082 faces,
+// C2PS level 12 on the default model, `bench --adaptive`). The face budget of a level (all its
+// adaptive levels together) follows; above it a level is refused with a message.
+constexpr size_t kViewMemoryBudget = size_t(640) << 20;
+constexpr size_t kBytesPerAdaptiveFace = 450;
+constexpr size_t kDefaultFaceBudget = kViewMemoryBudget / kBytesPerAdaptiveFace;
 
 // What a surface is a function of.
 struct SurfaceKey {
@@ -85,7 +89,7 @@ float weightedSymmetricRange(const std::vector<float>& values, const std::vector
 // the one limit of the level slider, the keys, `view` and `render`. [O(1) per level]
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
 // Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 9 refused: C2PS
-// stops at level 6 on this model (level 7 would make about 2334720 faces, over the budget of 2097152)".
+// stops at level 12 on this model (level 13 would make about 1969490 faces, over the budget of 1491308)".
 std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
 // the total; 0 when there is no weight. [O(n log n)]

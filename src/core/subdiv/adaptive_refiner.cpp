@@ -376,20 +376,30 @@ std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const Refin
   RefineOptions first = options;
   first.levels = std::min(options.levels, std::max(measured, 1));
   const AdaptiveRefinement refinement(base, first, "<estimate>", std::numeric_limits<size_t>::max());
+  // Each level comes with the copied-out part of its parent that made it: count them in the
+  // proportion measured.
+  double levelFaces = 0.0;
+  for (int m = 0; m < refinement.levelCount(); ++m) levelFaces += double(refinement.level(m).mesh.faceCount());
+  const double withParts = double(refinement.totalFaces()) / levelFaces;
   std::vector<size_t> totals;
-  size_t total = 0;
+  double total = 0.0;
   for (int m = 0; m < refinement.levelCount(); ++m) {
-    // A level and the copied-out part of its parent that made it (about as big).
-    total += size_t(refinement.level(m).mesh.faceCount()) * (m == 0 ? 1 : 2);
-    totals.push_back(total);
+    total += double(refinement.level(m).mesh.faceCount()) * (m == 0 ? 1.0 : withParts);
+    totals.push_back(size_t(total));
   }
+  // Beyond: faces(m) = a + b 2^m through the last two measured levels. A pole of C2PS (and RTS/BPS
+  // outside caps and globes, on C2PS's connectivity) doubles its valence, so its rings double a
+  // level (b); Catmull-Clark's extraordinary vertices and radial rings add the same faces each
+  // level (a).
   const int last = refinement.levelCount() - 1;
-  double faces = double(refinement.level(last).mesh.faceCount());
-  const double growth = last == 0 ? 4.0 : std::max(1.0, faces / std::max(1.0, double(refinement.level(last - 1).mesh.faceCount())));
+  const double now = double(refinement.level(last).mesh.faceCount());
+  const double before = last > 0 ? double(refinement.level(last - 1).mesh.faceCount()) : now / 4.0;
+  const double doubling = std::max(0.0, (now - before) / std::ldexp(1.0, std::max(last - 1, 0)));
+  const double constant = std::max(0.0, now - doubling * std::ldexp(1.0, last));
   double sum = double(total);
   for (int m = last + 1; m <= options.levels; ++m) {
-    faces *= growth;
-    sum = std::min(sum + 2.0 * faces, 1e18);
+    const double faces = constant + doubling * std::ldexp(1.0, std::min(m, 1000));
+    sum = std::min(sum + withParts * faces, 1e18);
     totals.push_back(size_t(sum));
   }
   return totals;

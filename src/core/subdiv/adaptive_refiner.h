@@ -62,8 +62,9 @@ class AdaptiveRefinement {
 
 // Faces adaptive refinements of 0..options.levels levels would hold in all (what AdaptiveRefinement's
 // budget counts), one entry per level: levels up to `measured` are refined, deeper ones extrapolated
-// with the growth of the last measured level (C2PS about x2 a level: the polar valence doubles;
-// Catmull-Clark and radial RTS/BPS about +constant). [O(faces of the measured levels)]
-std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured = 5);
+// as faces(m) = a + b 2^m through the last two measured levels (C2PS's poles double their valence
+// each level; Catmull-Clark's extraordinary vertices and radial rings add the same each level).
+// [O(faces of the measured levels)]
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured = 6);
 
 }  // namespace polarview
