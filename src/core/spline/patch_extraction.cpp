@@ -30,12 +30,15 @@ constexpr double kPi = 3.14159265358979323846;
 struct LevelStack {
   std::vector<const RefinedLevel*> levels;
   std::vector<const std::vector<uint8_t>*> needed, exact;  // adaptive only
+  std::vector<const std::vector<uint8_t>*> radialRefined;  // adaptive only: faces refined radially
   bool radial = false;
 
   int count() const { return int(levels.size()); }
   const RefinedLevel& level(int m) const { return *levels[size_t(m)]; }
   bool adaptive() const { return !needed.empty(); }
   bool isNeeded(int m, Index f) const { return !adaptive() || (*needed[size_t(m)])[f]; }
+  // Whether face f of level m was refined radially (its children keep its columns).
+  bool refinedRadially(int m, Index f) const { return adaptive() && (*radialRefined[size_t(m)])[f]; }
   // Throws std::logic_error when a patch of face f at level m reads a vertex that is not exact.
   void checkExact(int m, Index v, Index f) const {
     if (adaptive() && !(*exact[size_t(m)])[v])
@@ -459,12 +462,19 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
       if (across < 0) continue;
       const int32_t q = cover[m][across];
       if (q < 0) {  // refined further: this is the coarse side (the fine sides set the exact jump)
-        patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
+        // unless refined radially: the finer rings keep the columns, so the side meets them whole
+        if (!refinement.refinedRadially(m, across)) patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
         continue;
       }
       Patch& coarse = patches[q];
       const int jump = m - coarse.level;
       if (jump <= 0 || !hasFaceSides(coarse, refinement)) continue;
+      bool keptColumns = true;  // every step from the coarse patch's level to this one radial
+      for (Index face = patch.face, k = m; k > coarse.level && keptColumns; --k) {
+        face = refinement.level(k).faceParent[face];
+        keptColumns = refinement.refinedRadially(k - 1, face);
+      }
+      if (keptColumns) continue;
       patch.edgeLevelDelta[s] = int8_t(-std::min(jump, 127));
       // The ancestor of this face at the coarse level lies across one of the coarse patch's sides.
       Index ancestor = patch.face;
@@ -597,6 +607,7 @@ PatchSet extractPatches(const AdaptiveRefinement& refinement) {
     stack.levels.push_back(&refinement.level(m));
     stack.needed.push_back(&refinement.neededFaces(m));
     stack.exact.push_back(&refinement.exactVertices(m));
+    stack.radialRefined.push_back(&refinement.radiallyRefinedFaces(m));
   }
   stack.radial = refinement.radialOnly();
   return extractFromStack(stack);

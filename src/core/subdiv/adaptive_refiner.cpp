@@ -26,6 +26,13 @@ namespace {
 // stencil exact. Radial steps read up to two rows beyond (the cubic radial rules and (11)): three.
 constexpr int kGenericSupportRings = 2;
 constexpr int kRadialSupportRings = 3;
+// RTS/BPS outside caps and globes run on C2PS's connectivity (the polar valence doubles a level,
+// with points from each pole's own radial grid refined periodically). From this level on a pole's
+// region keeps its columns and is refined radially (the tail): the same surface (periodic
+// refinement is knot insertion), one ring a level, so these schemes go as deep as on caps. Up to
+// it the patches equal the uniform refinement's patch for patch; beyond, a tail ring patch spans
+// 2^(m - kRadialTailLevel) of the uniform level m's.
+constexpr int kRadialTailLevel = 5;
 
 // [SECTION] selecting the faces to refine
 
@@ -122,14 +129,105 @@ PolarConfig truncatedConfig(const PolarConfig& config, const std::vector<uint8_t
 
 }  // namespace
 
+// A part of level m copied out as a mesh of its own, refined one step.
+struct CopiedPart {
+  RefinedLevel sub;               // the selected faces (points gathered on each update)
+  std::vector<Index> subToLevel;  // sub vertex -> level m vertex
+  std::vector<Index> subFaces;    // sub face -> level m face
+  std::vector<RadialRegion> regions, childRegions;  // radial parts: regions of sub and of the child
+  // Per sub vertex: exact at level m, and whether its faces in sub are the uniform level's.
+  std::vector<uint8_t> ok, full;
+};
+
 struct AdaptiveRefinement::Step {
-  RefinedLevel sub;                   // the selected faces of level m as a mesh (points gathered)
-  std::vector<Index> subToLevel;      // sub vertex -> level m vertex
-  std::vector<RadialRegion> regions;  // radial steps: the regions of `sub` and of the child
-  std::vector<RadialRegion> childRegions;
+  CopiedPart generic;  // refined by Catmull-Clark's connectivity (+ C2PS's split pole corners), or
+                       // radially in caps and globes (radial_)
+  // RTS/BPS outside caps and globes, from kRadialTailLevel on: the poles' regions, refined radially
+  // with their columns kept (the tail); their points come from each pole's own radial grid.
+  CopiedPart polar;
+  bool tail = false;
+  Index polarVertexBase = 0;  // first vertex of the polar part in the child level
 };
 
 namespace {
+
+// Copies the selected faces of `level` out (faces in order, vertices numbered by first use), with
+// `poles` mapped and truncated to the links whose rows were selected whole.
+CopiedPart copyOut(const RefinedLevel& level, const std::vector<uint8_t>& selected, const std::vector<PolarConfig>& poles,
+                   bool radial, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete,
+                   const std::string& source) {
+  CopiedPart part;
+  std::vector<Index> toSub(level.mesh.vertexCount(), -1);
+  std::vector<Index> loop;
+  for (Index f = 0; f < level.mesh.faceCount(); ++f) {
+    if (!selected[f]) continue;
+    part.subFaces.push_back(f);
+    loop.assign(level.mesh.face(f), level.mesh.face(f) + level.mesh.faceSize(f));
+    for (Index& v : loop) {
+      if (toSub[v] < 0) {
+        toSub[v] = Index(part.subToLevel.size());
+        part.subToLevel.push_back(v);
+      }
+      v = toSub[v];
+    }
+    part.sub.mesh.addFace(loop.data(), loop.size());
+  }
+  part.sub.mesh.points.assign(part.subToLevel.size(), Point(0.0));
+  part.sub.topology = buildTopology(part.sub.mesh, source);
+  const std::vector<uint8_t> inside = verticesInside(level, selected);
+  for (const PolarConfig& config : poles) part.sub.poles.push_back(truncatedConfig(config, inside, toSub, radial));
+  for (const Index w : part.subToLevel) {
+    part.ok.push_back(exact[w]);
+    part.full.push_back(complete[w] && inside[w]);
+  }
+  return part;
+}
+
+// The faces of rows 0 and 1 of each pole (its fan and the quads at its 1-link): what a pole needs
+// refined at every level.
+std::vector<uint8_t> poleRows(const RefinedLevel& level) {
+  std::vector<uint8_t> rows(level.mesh.faceCount(), 0);
+  auto markFaces = [&](Index v) {
+    for (Index k = level.topology.vertexFaceStart[v]; k < level.topology.vertexFaceStart[v + 1]; ++k)
+      rows[level.topology.vertexFaces[k]] = 1;
+  };
+  for (const PolarConfig& config : level.poles) {
+    markFaces(config.pole);
+    for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
+  }
+  return rows;
+}
+
+// Whether two face selections share a vertex.
+bool selectionsTouch(const RefinedLevel& level, const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  std::vector<uint8_t> used(level.mesh.vertexCount(), 0);
+  for (Index f = 0; f < level.mesh.faceCount(); ++f)
+    if (a[f])
+      for (Index c = level.mesh.faceStart[f]; c < level.mesh.faceStart[f + 1]; ++c) used[level.mesh.faceVerts[c]] = 1;
+  for (Index f = 0; f < level.mesh.faceCount(); ++f)
+    if (b[f])
+      for (Index c = level.mesh.faceStart[f]; c < level.mesh.faceStart[f + 1]; ++c)
+        if (used[level.mesh.faceVerts[c]]) return true;
+  return false;
+}
+
+// Appends `part` (a child level of its own) to `into`: vertices and faces after those there.
+void appendLevel(RefinedLevel& into, const RefinedLevel& part) {
+  const Index vertexBase = into.mesh.vertexCount();
+  for (Index f = 0; f < part.mesh.faceCount(); ++f) {
+    std::vector<Index> loop(part.mesh.face(f), part.mesh.face(f) + part.mesh.faceSize(f));
+    for (Index& v : loop) v += vertexBase;
+    into.mesh.addFace(loop.data(), loop.size());
+    into.faceParent.push_back(part.faceParent[f]);
+  }
+  into.mesh.points.resize(size_t(vertexBase) + part.mesh.points.size());
+  for (PolarConfig config : part.poles) {
+    config.pole += vertexBase;
+    for (Index& v : config.links) v += vertexBase;
+    if (config.oppositePole >= 0) config.oppositePole += vertexBase;
+    into.poles.push_back(std::move(config));
+  }
+}
 
 // [SECTION] which child vertices are exact
 
@@ -169,6 +267,72 @@ void markGenericChildren(const RefinedLevel& sub, const std::vector<uint8_t>& ok
   }
 }
 
+// Refines a copied-out part one step: radially (its regions) or by Catmull-Clark's connectivity
+// with the scheme's polar overrides; the child's faceParent is mapped back to level m, and the
+// exactness and completeness of its vertices follow the rules in adaptive_refiner.h.
+void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::string& source, RefinedLevel& child,
+                std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) {
+  const std::vector<uint8_t>& ok = part.ok;
+  const std::vector<uint8_t>& full = part.full;
+  if (radialPart) {
+    part.regions = findRadialRegions(part.sub);
+    if (part.regions.empty() && part.sub.mesh.faceCount() > 0)
+      throw std::logic_error("adaptive refinement: the selection is not made of polar regions");
+    child = refineRadialTopology(part.regions, part.childRegions, source);
+    childExact.assign(child.mesh.vertexCount(), 0);
+    childComplete.assign(child.mesh.vertexCount(), 0);
+    for (size_t r = 0; r < part.regions.size(); ++r) {
+      const RadialRegion& parent = part.regions[r];
+      const RadialRegion& region = part.childRegions[r];
+      // Parent rows exact in a row (0..K, then B); the last ring of an open region counts when
+      // it is a real boundary (kept in place by the rule) and not a cut.
+      auto rowOk = [&](int row) {
+        const int n = parent.n;
+        for (int j = 0; j < (row == 0 || row == parent.links + 1 ? 1 : n); ++j) {
+          const Index v = parent.vertexIds[row == 0 ? 0 : row == parent.links + 1 ? parent.vertexIds.size() - 1 : 1 + size_t(row - 1) * n + j];
+          if (!ok[v] || (!parent.closed && row == parent.links && !full[v])) return false;
+        }
+        return true;
+      };
+      std::vector<uint8_t> prefixOk(size_t(parent.rowCount()), 0);  // rows 0..r all exact
+      for (int row = 0; row < parent.rowCount(); ++row) prefixOk[row] = rowOk(row) && (row == 0 || prefixOk[row - 1]);
+      const bool realRim = parent.closed || prefixOk[parent.links];
+      for (int row = 0; row < region.rowCount(); ++row) {
+        // A child row reads parent rows up to row / 2 + 2 (a closed region: all of them).
+        const int reads = parent.closed ? parent.rowCount() - 1 : std::min(parent.links, row / 2 + 2);
+        const bool rowExact = prefixOk[reads];
+        const bool rowComplete = parent.closed || row < region.links || realRim;
+        for (int j = 0; j < (row == 0 || row == region.links + 1 ? 1 : region.n); ++j) {
+          childExact[region.vertex(row, j)] = rowExact;
+          childComplete[region.vertex(row, j)] = rowComplete;
+        }
+      }
+    }
+  } else {
+    std::vector<Index> links = cornerLinks(part.sub.mesh, part.sub.topology);
+    child = refineGenericTopology(part.sub, scheme != Scheme::CatmullClark, true, links);
+    markGenericChildren(part.sub, ok, full, child, childExact, childComplete);
+    if (scheme == Scheme::C2PS) {
+      // Rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
+      for (size_t k = 0; k < child.poles.size(); ++k) {
+        const PolarConfig& parent = part.sub.poles[k];
+        bool gridOk = ok[parent.pole];
+        for (size_t i = 0; i < size_t(std::min(2, parent.linkCount)) * parent.valence; ++i) gridOk = gridOk && ok[parent.links[i]];
+        const PolarConfig& config = child.poles[k];
+        childExact[config.pole] = gridOk;
+        for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[config.links[i]] = gridOk;
+      }
+    } else if (scheme == Scheme::RTS || scheme == Scheme::BPS) {
+      // The pole's own radial grid (kept whole to the links used) owns the configuration's links.
+      for (const PolarConfig& config : child.poles) {
+        childExact[config.pole] = 1;
+        for (Index v : config.links) childExact[v] = 1;
+      }
+    }
+  }
+  for (Index& parent : child.faceParent) parent = part.subFaces[parent];
+}
+
 }  // namespace
 
 // [SECTION] AdaptiveRefinement
@@ -190,114 +354,67 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   totalFaces_ = size_t(base.faceCount());
   levels_.push_back(std::move(level0));
 
+  const bool mixedRadialPoles = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !radial_;
   for (int m = 0; m < options.levels; ++m) {
     const RefinedLevel& level = levels_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
-    std::vector<uint8_t> selected = refine;
-    growSelection(level, selected, radial_ ? kRadialSupportRings : kGenericSupportRings);
-    const std::vector<uint8_t> inside = verticesInside(level, selected);
-
-    // The selection copied out: faces in order, vertices numbered by first use.
     Step step;
-    std::vector<Index> toSub(level.mesh.vertexCount(), -1), subFaces;
-    for (Index f = 0; f < level.mesh.faceCount(); ++f) {
-      if (!selected[f]) continue;
-      subFaces.push_back(f);
-      const Index* loop = level.mesh.face(f);
-      std::vector<Index> subLoop(loop, loop + level.mesh.faceSize(f));
-      for (Index& v : subLoop) {
-        if (toSub[v] < 0) {
-          toSub[v] = Index(step.subToLevel.size());
-          step.subToLevel.push_back(v);
-        }
-        v = toSub[v];
-      }
-      step.sub.mesh.addFace(subLoop.data(), subLoop.size());
+    // RTS/BPS outside caps and globes: from kRadialTailLevel on, each pole's region is refined
+    // radially with its columns kept (the tail), once it is apart from the other faces refined.
+    std::vector<uint8_t> generic = refine, polar(refine.size(), 0);
+    if (mixedRadialPoles && !level.poles.empty() && (tail_ || m >= kRadialTailLevel)) {
+      const std::vector<uint8_t> rows = poleRows(level);
+      for (size_t f = 0; f < refine.size(); ++f)
+        if (refine[f] && rows[f]) polar[f] = 1, generic[f] = 0;
+      growSelection(level, polar, kRadialSupportRings);
+      growSelection(level, generic, kGenericSupportRings);
+      step.tail = !selectionsTouch(level, polar, generic);
+      if (!step.tail && tail_) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
+      if (!step.tail) generic = refine;
     }
-    const size_t childFaces = radial_ ? 2 * subFaces.size() : step.sub.mesh.faceVerts.size() * 5 / 4;
-    if (totalFaces_ + subFaces.size() + childFaces > maxFaces)
+    if (!step.tail) growSelection(level, generic, radial_ ? kRadialSupportRings : kGenericSupportRings);
+    tail_ = step.tail;
+
+    size_t subFaces = 0, childFaces = 0;
+    for (size_t f = 0; f < refine.size(); ++f) {
+      subFaces += generic[f] || polar[f];
+      childFaces += generic[f] ? size_t(level.mesh.faceSize(Index(f))) * 5 / 4 + 1 : polar[f] ? 2 : 0;
+    }
+    if (totalFaces_ + subFaces + childFaces > maxFaces)
       throw InputError(sourceName, 0,
                        "level " + std::to_string(options.levels) + " would need more than " + std::to_string(maxFaces) +
                            " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
-    step.sub.mesh.points.assign(step.subToLevel.size(), Point(0.0));
-    step.sub.topology = buildTopology(step.sub.mesh, sourceName);
-    for (const PolarConfig& config : level.poles) step.sub.poles.push_back(truncatedConfig(config, inside, toSub, radial_));
 
-    // Per sub vertex: exact, and whether its faces in sub are the uniform level's.
-    std::vector<uint8_t> ok(step.subToLevel.size()), full(step.subToLevel.size());
-    for (size_t v = 0; v < step.subToLevel.size(); ++v) {
-      const Index w = step.subToLevel[v];
-      ok[v] = exact_[m][w];
-      full[v] = complete[w] && inside[w];
-    }
+    step.generic = copyOut(level, generic, step.tail ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m], complete,
+                           sourceName);
+    if (step.tail) step.polar = copyOut(level, polar, level.poles, true, exact_[m], complete, sourceName);
 
     RefinedLevel child;
     std::vector<uint8_t> childExact, childComplete;
-    if (radial_) {
-      step.regions = findRadialRegions(step.sub);
-      if (step.regions.empty()) throw std::logic_error("adaptive refinement: the selection is not made of polar regions");
-      child = refineRadialTopology(step.regions, step.childRegions, sourceName);
-      childExact.assign(child.mesh.vertexCount(), 0);
-      childComplete.assign(child.mesh.vertexCount(), 0);
-      for (size_t r = 0; r < step.regions.size(); ++r) {
-        const RadialRegion& parent = step.regions[r];
-        const RadialRegion& region = step.childRegions[r];
-        // Parent rows exact in a row (0..K, then B); the last ring of an open region counts when
-        // it is a real boundary (kept in place by the rule) and not a cut.
-        auto rowOk = [&](int row) {
-          const int n = parent.n;
-          for (int j = 0; j < (row == 0 || row == parent.links + 1 ? 1 : n); ++j) {
-            const Index v = parent.vertexIds[row == 0 ? 0 : row == parent.links + 1 ? parent.vertexIds.size() - 1 : 1 + size_t(row - 1) * n + j];
-            if (!ok[v] || (!parent.closed && row == parent.links && !full[v])) return false;
-          }
-          return true;
-        };
-        std::vector<uint8_t> prefixOk(size_t(parent.rowCount()), 0);  // rows 0..r all exact
-        for (int row = 0; row < parent.rowCount(); ++row) prefixOk[row] = rowOk(row) && (row == 0 || prefixOk[row - 1]);
-        const bool realRim = parent.closed || prefixOk[parent.links];
-        for (int row = 0; row < region.rowCount(); ++row) {
-          // A child row reads parent rows up to row / 2 + 2 (a closed region: all of them).
-          const int reads = parent.closed ? parent.rowCount() - 1 : std::min(parent.links, row / 2 + 2);
-          const bool rowExact = prefixOk[reads];
-          const bool rowComplete = parent.closed || row < region.links || realRim;
-          for (int j = 0; j < (row == 0 || row == region.links + 1 ? 1 : region.n); ++j) {
-            childExact[region.vertex(row, j)] = rowExact;
-            childComplete[region.vertex(row, j)] = rowComplete;
-          }
-        }
-      }
-    } else {
-      std::vector<Index> links = cornerLinks(step.sub.mesh, step.sub.topology);
-      child = refineGenericTopology(step.sub, scheme != Scheme::CatmullClark, true, links);
-      markGenericChildren(step.sub, ok, full, child, childExact, childComplete);
-      if (scheme == Scheme::C2PS) {
-        // Rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
-        for (size_t k = 0; k < child.poles.size(); ++k) {
-          const PolarConfig& parent = step.sub.poles[k];
-          bool gridOk = ok[parent.pole];
-          for (size_t i = 0; i < size_t(std::min(2, parent.linkCount)) * parent.valence; ++i) gridOk = gridOk && ok[parent.links[i]];
-          const PolarConfig& config = child.poles[k];
-          childExact[config.pole] = gridOk;
-          for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[config.links[i]] = gridOk;
-        }
-      } else if (scheme == Scheme::RTS || scheme == Scheme::BPS) {
-        // The pole's own radial grid (kept whole to the links used) owns the configuration's links.
-        for (const PolarConfig& config : child.poles) {
-          childExact[config.pole] = 1;
-          for (Index v : config.links) childExact[v] = 1;
-        }
-      }
+    refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childComplete);
+    radialRefined_.push_back(radial_ ? generic : polar);
+    if (step.tail) {
+      RefinedLevel polarChild;
+      std::vector<uint8_t> polarExact, polarComplete;
+      refinePart(step.polar, true, scheme, sourceName, polarChild, polarExact, polarComplete);
+      // The tail's points come from the poles' own (exact) radial grids: every row is exact.
+      std::fill(polarExact.begin(), polarExact.end(), 1);
+      step.polarVertexBase = child.mesh.vertexCount();
+      appendLevel(child, polarChild);
+      child.topology = buildTopology(child.mesh, sourceName);
+      childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
+      childComplete.insert(childComplete.end(), polarComplete.begin(), polarComplete.end());
     }
-    for (Index& parent : child.faceParent) parent = subFaces[parent];
     std::vector<uint8_t> childNeeded(child.mesh.faceCount());
     for (Index f = 0; f < child.mesh.faceCount(); ++f) childNeeded[f] = refine[child.faceParent[f]];
-    totalFaces_ += subFaces.size() + size_t(child.mesh.faceCount());
+    totalFaces_ += subFaces + size_t(child.mesh.faceCount());
     levels_.push_back(std::move(child));
     needed_.push_back(std::move(childNeeded));
     exact_.push_back(std::move(childExact));
     complete = std::move(childComplete);
     steps_.push_back(std::move(step));
   }
+  radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
   updatePositions(base.points);
 }
 
@@ -323,26 +440,28 @@ void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
     Step& step = steps_[m];
     const RefinedLevel& level = levels_[m];
     RefinedLevel& child = levels_[m + 1];
-    std::vector<Point>& subPoints = step.sub.mesh.points;
-    for (size_t v = 0; v < step.subToLevel.size(); ++v) subPoints[v] = level.mesh.points[step.subToLevel[v]];
     const bool uniformStep = options_.uniformFirstStep && m == 0;
+    CopiedPart& part = step.generic;
+    std::vector<Point>& subPoints = part.sub.mesh.points;
+    for (size_t v = 0; v < part.subToLevel.size(); ++v) subPoints[v] = level.mesh.points[part.subToLevel[v]];
+    std::vector<Point>& points = child.mesh.points;
     if (radial_) {
-      for (size_t r = 0; r < step.regions.size(); ++r) {
-        const RadialRegion& region = step.regions[r];
+      for (size_t r = 0; r < part.regions.size(); ++r) {
+        const RadialRegion& region = part.regions[r];
         rows.clear();
         for (Index id : region.vertexIds) rows.push_back(subPoints[id]);
         refineRegionRadially(rows, region, rules, uniformStep, childRows);
-        std::copy(childRows.begin(), childRows.end(), child.mesh.points.begin() + step.childRegions[r].vertexBase);
+        std::copy(childRows.begin(), childRows.end(), points.begin() + part.childRegions[r].vertexBase);
       }
       fillPoleData(child, scheme, nullptr);
       continue;
     }
-    computeCatmullClarkPoints(step.sub.topology, step.sub.mesh, subPoints.data(), child.mesh.points.data());
-    std::vector<Point>& points = child.mesh.points;
+    if (part.sub.mesh.faceCount() > 0)
+      computeCatmullClarkPoints(part.sub.topology, part.sub.mesh, subPoints.data(), points.data());
     for (size_t k = 0; k < child.poles.size(); ++k) {
       const PolarConfig& config = child.poles[k];
       if (scheme == Scheme::C2PS) {
-        const PolarGrid grid = gatherGrid(subPoints, step.sub.poles[k], 2);
+        const PolarGrid grid = gatherGrid(subPoints, part.sub.poles[k], 2);
         const int n2 = config.valence;
         link1.resize(n2);
         link2.resize(n2);
@@ -361,9 +480,13 @@ void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
         grid.links = keep;
         grid.ring.resize(size_t(keep) * grid.n);
         points[config.pole] = grid.pole;
+        // The configuration's columns: the grid's refined periodically (the valence doubled on
+        // C2PS's connectivity each level until the tail, which keeps it).
+        int times = 0;
+        while ((grid.n << times) < config.valence) ++times;
         const int owned = std::min(grid.links - 1, config.linkCount);
         for (int i = 1; i <= owned; ++i) {
-          refinePeriodically(&grid.q(i, 0), grid.n, int(m) + 1, refined, scratch);
+          refinePeriodically(&grid.q(i, 0), grid.n, times, refined, scratch);
           for (int j = 0; j < config.valence; ++j) points[config.links[size_t(i - 1) * config.valence + j]] = refined[j];
         }
       }

@@ -41,6 +41,9 @@ class AdaptiveRefinement {
   const RefinedLevel& level(int m) const { return levels_[m]; }
   const std::vector<uint8_t>& neededFaces(int m) const { return needed_[m]; }
   const std::vector<uint8_t>& exactVertices(int m) const { return exact_[m]; }
+  // Faces of level m whose children keep their columns (radial steps): no level jump in parameter
+  // along the rings across them.
+  const std::vector<uint8_t>& radiallyRefinedFaces(int m) const { return radialRefined_[m]; }
   // True when RTS/BPS refine radially (caps and globes), as Refinement::radialOnly.
   bool radialOnly() const { return radial_; }
   // Faces of all levels and of the copied-out parts (what the budget counts). [O(1)]
@@ -56,15 +59,18 @@ class AdaptiveRefinement {
   bool radial_ = false;
   std::vector<RefinedLevel> levels_;
   std::vector<std::vector<uint8_t>> needed_, exact_;
+  std::vector<std::vector<uint8_t>> radialRefined_;  // per level: faces refined radially into the next
+  bool tail_ = false;  // the poles' regions are refined radially (RTS/BPS tail, adaptive_refiner.cpp)
   std::vector<Step> steps_;
   size_t totalFaces_ = 0;
 };
 
 // Faces adaptive refinements of 0..options.levels levels would hold in all (what AdaptiveRefinement's
-// budget counts), one entry per level: levels up to `measured` are refined, deeper ones extrapolated
+// budget counts), one entry per level: levels up to `measured` are refined (7: two levels past the
+// start of the RTS/BPS tail), deeper ones extrapolated
 // as faces(m) = a + b 2^m through the last two measured levels (C2PS's poles double their valence
 // each level; Catmull-Clark's extraordinary vertices and radial rings add the same each level).
 // [O(faces of the measured levels)]
-std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured = 6);
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured = 7);
 
 }  // namespace polarview
