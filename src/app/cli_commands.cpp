@@ -538,7 +538,8 @@ double peakResidentMegabytes() {
 
 // bench --adaptive: the feature-adaptive path of view, render and export (adaptive_refiner.h).
 // topology_ms = construction - positions; positions_ms = updatePositions; patches_ms = extraction;
-// --edit adds edit_ms: one base vertex moved, then positions and patches recomputed (topology kept).
+// --edit adds edit_ms: one base vertex moved, then the points of every level and the patches'
+// control points recomputed on the kept hierarchy (updatePositions + refreshPatches).
 int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
@@ -552,7 +553,8 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
     refinement.updatePositions(mesh.points);
     positions.push_back(millisecondsSince(t0));
     t0 = std::chrono::steady_clock::now();
-    PatchSet set = extractPatches(refinement);
+    PatchSources sources;
+    PatchSet set = extractPatches(refinement, &sources);
     patches.push_back(millisecondsSince(t0));
     patchCount = set.patches.size();
     totalFaces = refinement.totalFaces();
@@ -562,7 +564,7 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
       moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
       t0 = std::chrono::steady_clock::now();
       refinement.updatePositions(moved);
-      PatchSet editedSet = extractPatches(refinement);
+      refreshPatches(refinement, sources, set);
       edits.push_back(millisecondsSince(t0));
     }
   }

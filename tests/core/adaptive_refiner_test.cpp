@@ -197,3 +197,26 @@ TEST_CASE("adaptive: the same patches as uniform refinement on the shipped model
     checkAgainstUniform(loadObj(path), name, 5);
   }
 }
+
+TEST_CASE("adaptive: live edits: new points on the kept hierarchy, patches refreshed, equal a fresh refinement") {
+  const PolyMesh mushroom = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  for (const PolyMesh& mesh : {mushroom, shapes::globe(8, 5), shapes::cube()})
+    for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS})
+      for (int level : {3, 6}) {
+        const RefineOptions options{scheme, level, false};
+        AdaptiveRefinement kept(mesh, options);
+        PatchSources sources;
+        PatchSet patches = extractPatches(kept, &sources);
+        PolyMesh edited = mesh;
+        for (Index v : {Index(0), Index(5), edited.vertexCount() - 1}) edited.points[size_t(v)] += Point(0.03, -0.02, 0.05);
+        kept.updatePositions(edited.points);
+        refreshPatches(kept, sources, patches);
+        const PatchSet fresh = extractPatches(AdaptiveRefinement(edited, options));
+        INFO(schemeName(scheme) << " level " << level << ", " << mesh.vertexCount() << " vertices");
+        REQUIRE(fresh.patches.size() == patches.patches.size());
+        double worst = 0.0;
+        for (size_t k = 0; k < fresh.patches.size(); ++k)
+          for (int i = 0; i < 16; ++i) worst = std::max(worst, glm::length(fresh.patches[k].cp[i] - patches.patches[k].cp[i]));
+        CHECK(worst <= 1e-12 * modelSize(mesh));
+      }
+}

@@ -501,7 +501,7 @@ int transitionEdgeSegments(int level, int delta, int densityExponent) {
 
 namespace {
 
-PatchSet extractFromStack(const LevelStack& refinement) {
+PatchSet extractFromStack(const LevelStack& refinement, PatchSources* sources) {
   PatchSet set;
   const int finest = refinement.count() - 1;
   LevelClasses parentClasses;
@@ -541,6 +541,12 @@ PatchSet extractFromStack(const LevelStack& refinement) {
       patch.level = uint8_t(std::min(m, 255));
       patch.face = f;
       set.patches.push_back(patch);
+      if (sources) {
+        sources->stencil.resize(set.patches.size());
+        sources->stencil.back() = ids;
+        sources->sidesMissing.resize(set.patches.size());
+        for (int side = 0; side < 4; ++side) sources->sidesMissing.back() |= uint8_t(sideMissing[side]) << side;
+      }
     }
 
     if (m == finest) {
@@ -589,19 +595,44 @@ PatchSet extractFromStack(const LevelStack& refinement) {
   // along whole edges there, so no side is a T-junction.
   if (!refinement.radial) markLevelJumps(refinement, cover, set.patches);
   for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
+  if (sources) {
+    sources->stencil.resize(set.patches.size());
+    sources->sidesMissing.resize(set.patches.size());
+  }
   return set;
 }
 
-}  // namespace
-
-PatchSet extractPatches(const Refinement& refinement) {
-  LevelStack stack;
-  for (int m = 0; m < refinement.levelCount(); ++m) stack.levels.push_back(&refinement.level(m));
-  stack.radial = refinement.radialOnly();
-  return extractFromStack(stack);
+// Control points only, from the levels' current points: every patch made as extractFromStack made
+// it (sources: its stencils), kind, level and level jumps kept.
+void refreshFromStack(const LevelStack& refinement, const PatchSources& sources, PatchSet& set) {
+  if (sources.stencil.size() != set.patches.size())
+    throw std::invalid_argument("refreshPatches: the sources are not those of this patch set");
+  const int finest = refinement.count() - 1;
+  const RefinedLevel& last = refinement.level(finest);
+  LimitFrames limits(last.mesh, last.topology);
+  std::vector<Patch> made;
+  std::array<bool, 4> sideMissing;
+  for (size_t k = 0; k < set.patches.size();) {
+    Patch& patch = set.patches[k];
+    const RefinedLevel& level = refinement.level(patch.level);
+    if (patch.kind == PatchKind::PoleCap || patch.kind == PatchKind::EndCap) {
+      // Caps come in runs (a pole's sectors, a polygon's quads): remake the run, keep the rest.
+      made.clear();
+      if (patch.kind == PatchKind::PoleCap)
+        poleCaps(level.poleGrids[size_t(patch.pole)], level.poleTaylor[size_t(patch.pole)], made, patch.level, patch.pole);
+      else if (level.mesh.faceSize(patch.face) == 4) made.push_back(quadEndCap(last.mesh, patch.face, limits));
+      else polygonEndCaps(last.mesh, patch.face, limits, made);
+      for (size_t i = 0; i < made.size() && k + i < set.patches.size(); ++i) set.patches[k + i].cp = made[i].cp;
+      k += std::max<size_t>(made.size(), 1);
+      continue;
+    }
+    for (int side = 0; side < 4; ++side) sideMissing[side] = (sources.sidesMissing[k] >> side) & 1;
+    fillControlPoints(level.mesh.points, sources.stencil[k], sideMissing, patch.cp);
+    ++k;
+  }
 }
 
-PatchSet extractPatches(const AdaptiveRefinement& refinement) {
+LevelStack stackOf(const AdaptiveRefinement& refinement) {
   LevelStack stack;
   for (int m = 0; m < refinement.levelCount(); ++m) {
     stack.levels.push_back(&refinement.level(m));
@@ -610,7 +641,24 @@ PatchSet extractPatches(const AdaptiveRefinement& refinement) {
     stack.radialRefined.push_back(&refinement.radiallyRefinedFaces(m));
   }
   stack.radial = refinement.radialOnly();
-  return extractFromStack(stack);
+  return stack;
+}
+
+}  // namespace
+
+PatchSet extractPatches(const Refinement& refinement) {
+  LevelStack stack;
+  for (int m = 0; m < refinement.levelCount(); ++m) stack.levels.push_back(&refinement.level(m));
+  stack.radial = refinement.radialOnly();
+  return extractFromStack(stack, nullptr);
+}
+
+PatchSet extractPatches(const AdaptiveRefinement& refinement, PatchSources* sources) {
+  return extractFromStack(stackOf(refinement), sources);
+}
+
+void refreshPatches(const AdaptiveRefinement& refinement, const PatchSources& sources, PatchSet& set) {
+  refreshFromStack(stackOf(refinement), sources, set);
 }
 
 }  // namespace polarview

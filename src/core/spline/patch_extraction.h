@@ -64,6 +64,14 @@ struct PatchSet {
   size_t count(PatchKind kind) const { return kindCounts[size_t(kind)]; }
 };
 
+// How each patch of a PatchSet was made (filled by extractPatches on request): for B-spline
+// patches the 16 stencil vertex ids at the patch's level (-1: mirrored phantom) and which sides
+// are on the boundary (bit s: side s); caps are remade from their face or pole.
+struct PatchSources {
+  std::vector<std::array<Index, 16>> stencil;
+  std::vector<uint8_t> sidesMissing;
+};
+
 // Extracts the patches of every level of `refinement` (rules above), with Patch::edgeLevelDelta
 // filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). [O(faces of all levels)]
 PatchSet extractPatches(const Refinement& refinement);
@@ -71,7 +79,13 @@ PatchSet extractPatches(const Refinement& refinement);
 // and level jumps (adaptive_refiner.h), so the set equals extractPatches of the uniform refinement
 // of the same levels (face ids differ). Throws std::logic_error if a patch would read a vertex that
 // is not exact. [O(faces of all levels)]
-PatchSet extractPatches(const AdaptiveRefinement& refinement);
+// `sources` (optional) receives how each patch was made, for refreshPatches.
+PatchSet extractPatches(const AdaptiveRefinement& refinement, PatchSources* sources = nullptr);
+
+// Live edits: after refinement.updatePositions (topology untouched), recomputes the control points
+// of `set` (made by extractPatches with these `sources`) from the new points; kinds, levels and
+// level jumps stay. Equal to a fresh extractPatches. [O(patches); no classification, no search]
+void refreshPatches(const AdaptiveRefinement& refinement, const PatchSources& sources, PatchSet& set);
 
 // Tessellation segments of a T-junction edge (edgeLevelDelta d != 0) of a patch of `level`, for a
 // per-view density exponent k (2^k segments per level-0 parameter unit); shaders/patch.tesc is its
