@@ -138,22 +138,17 @@ int parseInt(const std::string& flag, const std::string& text, int low, int high
   }
 }
 
-// The scheme names of refine, pole and bench: parseScheme's, plus the viewer's "c2ps-u" and
-// "rts-u" for the paper's Section-6 variant (the same as --uniform-first-step).
+// The scheme names every command takes (the scheme table's, "c2ps-u" and "rts-u" for the paper's
+// Section-6 variant, the same as --uniform-first-step).
 std::optional<Scheme> parseCliScheme(const std::string& name, bool* uniformFirstStep) {
-  *uniformFirstStep = false;
-  for (Scheme s : {Scheme::C2PS, Scheme::RTS})
-    if (name == std::string(schemeName(s)) + "-u") {
-      *uniformFirstStep = true;
-      return s;
-    }
-  return parseScheme(name);
+  const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
+  *uniformFirstStep = variant && variant->uniformFirstStep;
+  if (!variant) return std::nullopt;
+  return variant->scheme;
 }
 
 // The name parseCliScheme reads back: "c2ps-u" for C2PS with the uniform first step.
-std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) {
-  return std::string(schemeName(scheme)) + (uniformFirstStep ? "-u" : "");
-}
+std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) { return schemeVariantName({scheme, uniformFirstStep}); }
 
 CommonOptions parseOptions(const std::string& command, const Args& args, const std::vector<std::string>& allowed) {
   CommonOptions o;
@@ -188,7 +183,7 @@ CommonOptions parseOptions(const std::string& command, const Args& args, const s
   // The Section-6 variant changes the first step's 2-link of C2PS and RTS only; elsewhere the flag
   // would be accepted and do nothing.
   o.uniformFirstStep = uniformFlag || uniformScheme;
-  if (uniformFlag && o.scheme != Scheme::C2PS && o.scheme != Scheme::RTS)
+  if (uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
     throw UsageError{command + ": --uniform-first-step applies to c2ps and rts only"};
   return o;
 }
@@ -225,10 +220,10 @@ std::string schemeAction(Scheme scheme, const PolarConfig& c, bool radialMesh) {
   std::string why;
   if (!schemeRefinesPole(scheme, c, &why))
     return "Catmull-Clark (valence " + std::to_string(c.valence) + " stays; extraordinary vertex)" +
-           (scheme == Scheme::CatmullClark || !c.refinable ? "" : ": " + why);
-  if (scheme == Scheme::C2PS) return "C2PS rules (1)-(5): valence doubles each level";
-  std::string name = scheme == Scheme::RTS ? "RTS" : "BPS";
-  return name + (radialMesh ? " radial refinement of the whole mesh (valence fixed)"
+           (!schemeTraits(scheme).polar() || !c.refinable ? "" : ": " + why);
+  const SchemeTraits& traits = schemeTraits(scheme);
+  if (!traits.keepsValence) return std::string(traits.label) + " rules (1)-(5): valence doubles each level";
+  return std::string(traits.label) + (radialMesh ? " radial refinement of the whole mesh (valence fixed)"
                             : " radial refinement of links 0.." + std::to_string(c.linkCount) +
                                   ", refined periodically to meet Catmull-Clark");
 }
@@ -349,7 +344,7 @@ int runInfo(const Args& args) {
   bool radialMesh = false;
   if (!poles.empty()) {
     try {
-      radialMesh = Refinement(mesh, {Scheme::RTS, 0, false}, o.input).radialOnly();
+      radialMesh = refinesRadially(mesh, Scheme::RTS);
     } catch (const std::exception&) {
     }
   }
@@ -388,7 +383,7 @@ int runInfo(const Args& args) {
       if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
       w.field("refinable", true);
       w.key("schemes").beginObject();
-      for (Scheme s : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) w.field(schemeName(s), schemeAction(s, c, radialMesh));
+      for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, radialMesh));
       w.endObject().endObject();
     }
     w.endArray();
@@ -422,8 +417,9 @@ int runInfo(const Args& args) {
                 c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
     if (c.oppositePole >= 0) std::printf(" %d", c.oppositePole);
     std::printf("\n");
-    for (Scheme s : {Scheme::C2PS, Scheme::RTS, Scheme::BPS, Scheme::CatmullClark})
-      std::printf("    %-4s %s\n", schemeName(s), schemeAction(s, c, radialMesh).c_str());
+    for (const SchemeTraits& s : schemeTable())  // the polar schemes first, Catmull-Clark last
+      if (s.polar()) std::printf("    %-4s %s\n", s.name, schemeAction(s.scheme, c, radialMesh).c_str());
+    std::printf("    %-4s %s\n", schemeName(Scheme::CatmullClark), schemeAction(Scheme::CatmullClark, c, radialMesh).c_str());
   }
   if (!rejected.empty()) {
     std::printf("rejected pole candidates: %zu (reasons:", rejected.size());
@@ -451,10 +447,13 @@ int runInfo(const Args& args) {
 
 int runPole(const Args& args) {
   CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json", "--rings"});
-  if (o.scheme == Scheme::CatmullClark) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
+  if (!schemeTraits(o.scheme).polar()) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
   // RTS is not C2 for finite n: its K keeps depending on the direction. Its text report gives the
   // range over ring 8 at least, rather than one K as if it were defined.
-  const int rings = o.scheme == Scheme::RTS && !o.json ? std::max(o.rings, 8) : o.rings;
+  // Where the curvature depends on the direction (RTS), the text says over which range at ring 8.
+  const SchemeTraits& traits = schemeTraits(o.scheme);
+  const bool directional = traits.taylorOrder == 2 && !traits.curvatureContinuous;
+  const int rings = directional && !o.json ? std::max(o.rings, 8) : o.rings;
   PolyMesh mesh = loadInput(o.input);
   // Level 0 only: the expansion is that of the input's own configuration (the Section-6 variant
   // leaves links 0 and 1, hence p0..p5, unchanged).
@@ -478,7 +477,7 @@ int runPole(const Args& args) {
     if (rings > 0) {
       const PolarGrid& grid = level.poleGrids[k];
       // C2PS doubles the valence each level: keep the last ring's columns within 2^18.
-      if (o.scheme == Scheme::C2PS && (double(grid.n) * std::pow(2.0, rings) > double(1 << 18)))
+      if (!traits.keepsValence && (double(grid.n) * std::pow(2.0, rings) > double(1 << 18)))
         throw UsageError{"pole: --rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
                          std::to_string(level.poles[k].pole) + " (valence " + std::to_string(grid.n) + ")"};
       const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -502,13 +501,14 @@ int runPole(const Args& args) {
     // the tangent plane.
     std::string note;
     if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
-    else if (!d.curvatureDefined && o.scheme == Scheme::BPS) note = " (curvature not defined: BPS is C1 at the pole)";
-    if (o.scheme == Scheme::RTS && d.curvatureDefined && !ringStats.empty()) {
+    else if (!d.curvatureDefined && traits.taylorOrder < 2)
+      note = " (curvature not defined: " + std::string(traits.label) + " is C1 at the pole)";
+    if (directional && d.curvatureDefined && !ringStats.empty()) {
       const RingCurvature& last = ringStats.back();
       char range[200];
       std::snprintf(range, sizeof range,
-                    " (Taylor (32); RTS is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
-                    last.m, last.minK, last.maxK);
+                    " (Taylor (32); %s is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
+                    traits.label, last.m, last.minK, last.maxK);
       note += range;
     }
     std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
@@ -631,7 +631,7 @@ int runBench(const Args& args) {
   std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
   if (!peer) {
     comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
-  } else if (o.scheme != Scheme::CatmullClark && polesRefined > 0) {
+  } else if (schemeTraits(o.scheme).polar() && polesRefined > 0) {
     comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
                  (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
   } else if (peer->outFaces != outFaces) {
@@ -694,11 +694,12 @@ int runSpectrum(const Args& args) {
     else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
   }
   if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc and --valence n (3..64)"};
-  if (*scheme == Scheme::C2PS)
+  if (schemeTraits(*scheme).polar() && !schemeTraits(*scheme).keepsValence)
     throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix; its analysis "
                      "goes through RTS (--scheme rts)"};
-  if ((*scheme == Scheme::RTS || *scheme == Scheme::BPS) && valence < 5)
-    throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= 5 (its weights alias below)"};
+  if (valence < schemeTraits(*scheme).minValence)
+    throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= " +
+                     std::to_string(schemeTraits(*scheme).minValence) + " (its weights alias below)"};
   const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
   const size_t shown = std::min(all.size(), size_t(count));
   const std::string name = cliSchemeName(*scheme, false);
@@ -718,7 +719,7 @@ int runSpectrum(const Args& args) {
     return 0;
   }
   std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", name.c_str(), valence, all.size(),
-              *scheme == Scheme::CatmullClark ? "1-ring matrix" : "matrix (13) on links 0..5, by Fourier block", shown);
+              !schemeTraits(*scheme).polar() ? "1-ring matrix" : "matrix (13) on links 0..5, by Fourier block", shown);
   for (size_t k = 0; k < shown; ++k) {
     const double im = imaginary(all[k].value);
     std::printf("  %2zu  %.15g%s", k + 1, all[k].value.real(), im != 0.0 ? "" : "\n");

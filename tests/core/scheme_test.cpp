@@ -9,3 +9,31 @@ TEST_CASE("scheme names round-trip through the parser") {
     CHECK(parseScheme(schemeName(s)) == s);
   CHECK_FALSE(parseScheme("loop").has_value());
 }
+
+TEST_CASE("scheme table: one row per scheme in enum order; every name and variant reads back") {
+  const std::array<Scheme, 4> all = {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS};
+  int variants = 0;
+  for (Scheme s : all) {
+    const SchemeTraits& traits = schemeTraits(s);
+    CHECK(traits.scheme == s);
+    CHECK(parseScheme(traits.name) == s);
+    // A polar scheme has all four rules; Catmull-Clark none and no Taylor expansion.
+    CHECK(traits.polar() == (traits.refineGrid && traits.refinePole && traits.refineLink1 && traits.refineLink2));
+    CHECK(traits.polar() == (traits.taylorOrder > 0));
+    for (bool uniform : {false, true}) {
+      if (uniform && !traits.hasUniformFirstStep) {
+        CHECK_FALSE(parseSchemeVariant(std::string(traits.name) + "-u"));
+        continue;
+      }
+      const std::optional<SchemeVariant> back = parseSchemeVariant(schemeVariantName({s, uniform}));
+      REQUIRE(back);
+      CHECK(back->scheme == s);
+      CHECK(back->uniformFirstStep == uniform);
+      ++variants;
+    }
+  }
+  CHECK(variants == 6);  // cc, c2ps, c2ps-u, rts, rts-u, bps
+  CHECK(schemeVariantLabel({Scheme::C2PS, true}) == "C2PS-U");
+  CHECK_FALSE(parseSchemeVariant("bps-u"));
+  CHECK_FALSE(parseSchemeVariant("C2PS"));
+}

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -12,8 +13,9 @@
 namespace polarview {
 
 TaylorCoefficients poleTaylorCoefficients(const PolarGrid& grid, Scheme scheme) {
-  if (scheme == Scheme::CatmullClark)
-    throw std::logic_error("poleTaylorCoefficients: Catmull-Clark has no polar Taylor expansion");
+  const SchemeTraits& traits = schemeTraits(scheme);
+  if (traits.taylorOrder == 0)
+    throw std::logic_error("poleTaylorCoefficients: " + std::string(traits.label) + " has no polar Taylor expansion");
   if (grid.n < 3 || grid.links < 1 || grid.ring.size() != size_t(grid.n) * grid.links)
     throw std::invalid_argument("poleTaylorCoefficients: needs valence >= 3 and a 1-link");
 
@@ -22,7 +24,7 @@ TaylorCoefficients poleTaylorCoefficients(const PolarGrid& grid, Scheme scheme) 
   // Tangent directions: w1 = w2 = [0, 2, 0..] (Table 1), the same for all three schemes.
   t.p[1] = 2.0 * sums.cosSum[1];
   t.p[2] = 2.0 * sums.sinSum[1];
-  if (scheme == Scheme::BPS) {
+  if (traits.taylorOrder == 1) {
     // BPS's dominant block [[5/8, 3/8], [3/8, 5/8]] has left eigenvector [1/2, 1/2]; its 1/4
     // eigenvector is not radially quadratic, so only the tangent plane is meaningful.
     t.p[0] = 0.5 * grid.pole + 0.5 * sums.mean;
@@ -75,7 +77,8 @@ PoleDifferential analyzePole(const TaylorCoefficients& t) {
   d.normal = cross / crossLength;
   if (t.order < 2) return d;
 
-  // First and second fundamental forms (SCHEMES.md section 7), of the scaled expansion.
+  // First and second fundamental forms (docs/rings-and-pole.md, Curvature at the pole), of the
+  // scaled expansion.
   double E = glm::dot(jet.x, jet.x), F = glm::dot(jet.x, jet.y), G = glm::dot(jet.y, jet.y);
   double L = glm::dot(jet.xx, d.normal), M = glm::dot(jet.xy, d.normal), N = glm::dot(jet.yy, d.normal);
   double area2 = E * G - F * F;

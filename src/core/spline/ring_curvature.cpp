@@ -35,12 +35,9 @@ std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool un
   std::vector<RingCurvature> out;
   for (int m = 1; m <= rings; ++m) {
     const bool first = uniformFirstStep && m == 1;
-    switch (scheme) {
-      case Scheme::C2PS: grid = c2ps::refineGrid(grid, first); break;
-      case Scheme::RTS: grid = rts::refineGrid(grid, first); break;
-      case Scheme::BPS: grid = bps::refineGrid(grid); break;
-      default: throw std::invalid_argument("ringCurvatures: C2PS, RTS or BPS");
-    }
+    const SchemeTraits& traits = schemeTraits(scheme);
+    if (!traits.polar()) throw std::invalid_argument("ringCurvatures: C2PS, RTS or BPS");
+    grid = traits.refineGrid(grid, first);
     grid = innerLinks(grid);
     // Pole-relative from here on (the rules are affine: K and H do not move): rounding then scales
     // with the ring, not with the model's offset from the origin.

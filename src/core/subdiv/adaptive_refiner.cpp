@@ -12,7 +12,6 @@
 
 #include "core/mesh/input_error.h"
 #include "core/subdiv/catmull_clark.h"
-#include "core/subdiv/c2ps.h"
 #include "core/subdiv/face_regularity.h"
 #include "core/subdiv/refine_steps.h"
 #include "core/subdiv/refine_topology.h"
@@ -310,10 +309,11 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
     }
   } else {
     std::vector<Index> links = cornerLinks(part.sub.mesh, part.sub.topology);
-    child = refineGenericTopology(part.sub, scheme != Scheme::CatmullClark, true, links);
+    const SchemeTraits& traits = schemeTraits(scheme);
+    child = refineGenericTopology(part.sub, traits.polar(), true, links);
     markGenericChildren(part.sub, ok, full, child, childExact, childComplete);
-    if (scheme == Scheme::C2PS) {
-      // Rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
+    if (traits.polar() && !traits.keepsValence) {
+      // C2PS: rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
       for (size_t k = 0; k < child.poles.size(); ++k) {
         const PolarConfig& parent = part.sub.poles[k];
         bool gridOk = ok[parent.pole];
@@ -322,7 +322,7 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
         childExact[config.pole] = gridOk;
         for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[config.links[i]] = gridOk;
       }
-    } else if (scheme == Scheme::RTS || scheme == Scheme::BPS) {
+    } else if (traits.keepsValence) {
       // The pole's own radial grid (kept whole to the links used) owns the configuration's links.
       for (const PolarConfig& config : child.poles) {
         childExact[config.pole] = 1;
@@ -347,14 +347,14 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   level0.topology = buildTopology(base, sourceName);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
-  radial_ = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !findRadialRegions(level0).empty();
+  radial_ = schemeTraits(scheme).keepsValence && !findRadialRegions(level0).empty();
   needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
   exact_.push_back(std::vector<uint8_t>(base.vertexCount(), 1));
   std::vector<uint8_t> complete(base.vertexCount(), 1);
   totalFaces_ = size_t(base.faceCount());
   levels_.push_back(std::move(level0));
 
-  const bool mixedRadialPoles = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !radial_;
+  const bool mixedRadialPoles = schemeTraits(scheme).keepsValence && !radial_;
   for (int m = 0; m < options.levels; ++m) {
     const RefinedLevel& level = levels_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
@@ -428,8 +428,8 @@ void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
                                 std::to_string(levels_[0].mesh.points.size()));
   levels_[0].mesh.points = basePoints;
   const Scheme scheme = options_.scheme;
-  const bool radialPoles = (scheme == Scheme::RTS || scheme == Scheme::BPS) && !radial_;
-  const RadialScheme rules = radialSchemeFor(scheme);
+  const SchemeTraits& rules = schemeTraits(scheme);
+  const bool radialPoles = rules.keepsValence && !radial_;
   std::vector<PolarGrid> radialGrids;  // RTS/BPS in mixed meshes: each pole's own radial grid
   if (radialPoles)
     for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
@@ -460,21 +460,21 @@ void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
       computeCatmullClarkPoints(part.sub.topology, part.sub.mesh, subPoints.data(), points.data());
     for (size_t k = 0; k < child.poles.size(); ++k) {
       const PolarConfig& config = child.poles[k];
-      if (scheme == Scheme::C2PS) {
+      if (!rules.keepsValence) {  // C2PS: rules (1)-(3)
         const PolarGrid grid = gatherGrid(subPoints, part.sub.poles[k], 2);
         const int n2 = config.valence;
         link1.resize(n2);
         link2.resize(n2);
-        c2ps::refineLink1(grid, link1.data());
-        c2ps::refineLink2(grid, link2.data(), uniformStep);
-        points[config.pole] = c2ps::refinePole(grid);
+        rules.refineLink1(grid, link1.data());
+        rules.refineLink2(grid, link2.data(), uniformStep);
+        points[config.pole] = rules.refinePole(grid);
         for (int j = 0; j < n2; ++j) {
           points[config.links[j]] = link1[j];
           if (config.linkCount >= 2) points[config.links[size_t(n2) + j]] = link2[j];
         }
       } else if (radialPoles) {
         PolarGrid& grid = radialGrids[k];
-        grid = rules.grid(grid, uniformStep);
+        grid = rules.refineGrid(grid, uniformStep);
         // Links beyond the ones this and the next level own are never read: keep the grid small.
         const int keep = std::min(grid.links, config.linkCount + 2);
         grid.links = keep;

@@ -243,10 +243,12 @@ bool schemeRefinesPole(Scheme scheme, const PolarConfig& config, std::string* re
     if (reason) *reason = why;
     return false;
   };
-  if (scheme == Scheme::CatmullClark) return refuse("Catmull-Clark has no polar rules");
+  const SchemeTraits& traits = schemeTraits(scheme);
+  if (!traits.polar()) return refuse("Catmull-Clark has no polar rules");
   if (!config.refinable) return refuse(config.reason);
-  if ((scheme == Scheme::RTS || scheme == Scheme::BPS) && config.valence < 5)
-    return refuse(std::string(schemeName(scheme)) + " needs valence >= 5 (its weights alias below)");
+  if (config.valence < traits.minValence)
+    return refuse(std::string(traits.name) + " needs valence >= " + std::to_string(traits.minValence) +
+                  " (its weights alias below)");
   return true;
 }
 

@@ -3,7 +3,6 @@
 // radial step of RTS/BPS regions, and the lookups they share. Internal to core/subdiv.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,14 +11,6 @@
 
 namespace polarview {
 
-// The scheme's radial rules (valence fixed), so RTS and BPS share the level drivers.
-struct RadialScheme {
-  std::function<Point(const PolarGrid&)> pole;
-  std::function<void(const PolarGrid&, Point*)> link1;
-  std::function<void(const PolarGrid&, Point*, bool)> link2;
-  std::function<PolarGrid(const PolarGrid&, bool)> grid;
-};
-RadialScheme radialSchemeFor(Scheme scheme);
 
 // Copies a configuration's points (pole and links 1..linkCount) into a PolarGrid. [O(n links)]
 PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config, int linkCount);
@@ -69,7 +60,7 @@ RefinedLevel refineRadialTopology(const std::vector<RadialRegion>& parentRegions
                                   const std::string& source);
 // One radial step of a region's rows (A, links 1..K, B?) into the child's rows: rules (9)-(12) at
 // each pole, the uniform radial cubic rules between, a boundary ring kept in place. [O(n K)]
-void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& parent, const RadialScheme& rules,
+void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& parent, const SchemeTraits& rules,
                           bool uniformFirstStep, std::vector<Point>& childRows);
 
 }  // namespace polarview

@@ -11,27 +11,17 @@
 #include <stdexcept>
 
 #include "core/mesh/input_error.h"
-#include "core/subdiv/bps.h"
-#include "core/subdiv/c2ps.h"
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_rules.h"
 #include "core/subdiv/refine_steps.h"
 #include "core/subdiv/refine_topology.h"
-#include "core/subdiv/rts.h"
 #include "core/subdiv/table_pool.h"
 
 namespace polarview {
 
 // [SECTION] helpers: grids and lookups
 
-RadialScheme radialSchemeFor(Scheme scheme) {
-  if (scheme == Scheme::BPS)  // BPS's 2-link rule already is the uniform one
-    return {bps::refinePole, bps::refineLink1, [](const PolarGrid& g, Point* out, bool) { bps::refineLink2(g, out); },
-            [](const PolarGrid& g, bool) { return bps::refineGrid(g); }};
-  return {rts::refinePole, rts::refineLink1, rts::refineLink2,
-          [](const PolarGrid& g, bool uniform) { return rts::refineGrid(g, uniform); }};
-}
 
 // Copies a configuration's points (pole and links 1..linkCount) into a PolarGrid.
 PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config, int linkCount) {
@@ -296,7 +286,7 @@ PolarGrid regionGrid(const std::vector<Point>& rows, const RadialRegion& region,
 
 // One radial step of a region's rows (A, links 1..K, B?) into the child's rows: rules (9)-(12) at
 // each pole, the uniform radial cubic rules between, a boundary ring kept in place.
-void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& parent, const RadialScheme& rules,
+void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& parent, const SchemeTraits& rules,
                           bool uniformFirstStep, std::vector<Point>& childRows) {
   const int n = parent.n, K = parent.links;
   const int childLinks = parent.closed ? 2 * K + 1 : 2 * K;
@@ -306,16 +296,16 @@ void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& pa
   refineOuterLinksRadially(&rows[1], n, K, childRow(3));
   // Pole A's rows 0..2.
   PolarGrid a = regionGrid(rows, parent, false);
-  childRows[0] = rules.pole(a);
-  rules.link1(a, childRow(1));
-  rules.link2(a, childRow(2), uniformFirstStep);
+  childRows[0] = rules.refinePole(a);
+  rules.refineLink1(a, childRow(1));
+  rules.refineLink2(a, childRow(2), uniformFirstStep);
   if (parent.closed) {  // pole B's rows, columns reversed back
     PolarGrid b = regionGrid(rows, parent, true);
     std::vector<Point> link(n);
-    childRows.back() = rules.pole(b);
-    rules.link1(b, link.data());
+    childRows.back() = rules.refinePole(b);
+    rules.refineLink1(b, link.data());
     for (int j = 0; j < n; ++j) childRow(childLinks)[(n - j) % n] = link[j];
-    rules.link2(b, link.data(), uniformFirstStep);
+    rules.refineLink2(b, link.data(), uniformFirstStep);
     for (int j = 0; j < n; ++j) childRow(childLinks - 1)[(n - j) % n] = link[j];
   } else {  // the boundary ring stays: radially Catmull-Clark's boundary rule (mirrored phantom) fixes it
     std::copy(&rows[1 + size_t(K - 1) * n], &rows[1 + size_t(K) * n], childRow(childLinks));
@@ -326,7 +316,7 @@ void fillPoleData(RefinedLevel& level, Scheme scheme, const std::vector<PolarGri
   const int gridLinks = 5;  // links kept in poleGrids: enough for ring 0 and the cap
   level.poleGrids.clear();
   level.poleTaylor.clear();
-  if (scheme == Scheme::CatmullClark) return;
+  if (!schemeTraits(scheme).polar()) return;
   for (size_t k = 0; k < level.poles.size(); ++k) {
     const PolarConfig& config = level.poles[k];
     level.poleGrids.push_back(gatherGrid(level.mesh.points, config, std::min(gridLinks, config.linkCount)));
@@ -344,7 +334,7 @@ struct Refinement::Plan {
 };
 
 bool refinesRadially(const PolyMesh& base, Scheme scheme) {
-  if (scheme != Scheme::RTS && scheme != Scheme::BPS) return false;
+  if (!schemeTraits(scheme).keepsValence) return false;
   RefinedLevel level0;
   level0.mesh = base;
   try {
@@ -373,7 +363,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
   // Catmull-Clark growth unless RTS/BPS refine the whole mesh radially (checked below, once the
   // base topology is known): refuse at once what cannot fit either way.
-  const bool mayBeRadial = options.scheme == Scheme::RTS || options.scheme == Scheme::BPS;
+  const bool mayBeRadial = schemeTraits(options.scheme).keepsValence;
   auto refuseOver = [&](size_t estimate) {
     if (estimate > maxFaces)
       throw InputError(sourceName, 0,
@@ -390,7 +380,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   levels_.push_back(std::move(level0));
 
   // RTS/BPS on caps and globes: radial refinement of the whole mesh.
-  if (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS) {
+  if (schemeTraits(options.scheme).keepsValence) {
     std::vector<RadialRegion> regions = findRadialRegions(levels_[0]);
     plan_->radial = !regions.empty();
     if (plan_->radial) plan_->regions.push_back(std::move(regions));
@@ -404,7 +394,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
       levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
       plan_->regions.push_back(std::move(childRegions));
     } else {
-      levels_.push_back(refineGenericTopology(levels_.back(), options.scheme != Scheme::CatmullClark, m == options.levels, links));
+      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links));
     }
   }
   updatePositions(base.points);
@@ -442,7 +432,7 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
 
   if (plan_->radial) {
     // Structured rows per region; level 0 gathers them from the input's ids.
-    RadialScheme rules = radialSchemeFor(scheme);
+    const SchemeTraits& rules = schemeTraits(scheme);
     std::vector<std::vector<Point>> rows;
     for (const RadialRegion& region : plan_->regions[0]) {
       rows.emplace_back();
@@ -464,8 +454,8 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
   }
 
   // Generic levels: Catmull-Clark points, then the polar overrides.
-  const bool radialPoles = scheme == Scheme::RTS || scheme == Scheme::BPS;
-  RadialScheme rules = radialSchemeFor(scheme);
+  const SchemeTraits& rules = schemeTraits(scheme);
+  const bool radialPoles = rules.keepsValence;
   std::vector<PolarGrid> radialGrids;  // RTS/BPS: each pole's own radially refined configuration
   if (radialPoles)
     for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
@@ -481,15 +471,15 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
     for (size_t k = 0; k < level.poles.size(); ++k) {
       const PolarConfig& child = level.poles[k];
       std::vector<Point>& points = level.mesh.points;
-      if (scheme == Scheme::C2PS) {
-        // Rules (1)-(3) override the pole, the new 1-link and the new 2-link.
+      if (!radialPoles) {
+        // C2PS: rules (1)-(3) override the pole, the new 1-link and the new 2-link.
         PolarGrid grid = gatherGrid(parent.mesh.points, parent.poles[k], 2);
         const int n2 = child.valence;
         link1.resize(n2);
         link2.resize(n2);
-        c2ps::refineLink1(grid, link1.data());
-        c2ps::refineLink2(grid, link2.data(), uniformStep);
-        points[child.pole] = c2ps::refinePole(grid);
+        rules.refineLink1(grid, link1.data());
+        rules.refineLink2(grid, link2.data(), uniformStep);
+        points[child.pole] = rules.refinePole(grid);
         for (int j = 0; j < n2; ++j) {
           points[child.links[j]] = link1[j];
           points[child.links[size_t(n2) + j]] = link2[j];
@@ -497,7 +487,7 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
       } else if (radialPoles) {
         // The radially refined configuration, refined m times periodically, owns links 0..K_m-1.
         PolarGrid& grid = radialGrids[k];
-        grid = rules.grid(grid, uniformStep);
+        grid = rules.refineGrid(grid, uniformStep);
         points[child.pole] = grid.pole;
         const int owned = std::min(grid.links - 1, child.linkCount);
         for (int i = 1; i <= owned; ++i) {

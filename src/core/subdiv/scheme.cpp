@@ -1,23 +1,53 @@
 #include "core/subdiv/scheme.h"
 
+#include "core/subdiv/bps.h"
+#include "core/subdiv/c2ps.h"
+#include "core/subdiv/rts.h"
+
 namespace polarview {
 
-const char* schemeName(Scheme s) {
-  switch (s) {
-    case Scheme::CatmullClark: return "cc";
-    case Scheme::C2PS: return "c2ps";
-    case Scheme::RTS: return "rts";
-    case Scheme::BPS: return "bps";
-  }
-  return "?";
-}
+namespace {
+
+const std::array<SchemeTraits, 4> kSchemes = {{
+    {Scheme::CatmullClark, "cc", "CC", 0, false, false, 0, false, nullptr, nullptr, nullptr, nullptr},
+    {Scheme::C2PS, "c2ps", "C2PS", 3, false, true, 2, true, [](const PolarGrid& g, bool u) { return c2ps::refineGrid(g, u); },
+     c2ps::refinePole, c2ps::refineLink1, c2ps::refineLink2},
+    // RTS and BPS need n >= 5: their 1-link weights hold Fourier modes up to 2 (RTS) and 3 (BPS),
+    // which alias for smaller n (BPS at n = 3 is not even affine invariant).
+    {Scheme::RTS, "rts", "RTS", 5, true, true, 2, false, [](const PolarGrid& g, bool u) { return rts::refineGrid(g, u); },
+     rts::refinePole, rts::refineLink1, rts::refineLink2},
+    // BPS's 2-link rule already is the uniform one: no first-step variant.
+    {Scheme::BPS, "bps", "BPS", 5, true, false, 1, false, [](const PolarGrid& g, bool) { return bps::refineGrid(g); },
+     bps::refinePole, bps::refineLink1, [](const PolarGrid& g, Point* out, bool) { bps::refineLink2(g, out); }},
+}};
+
+}  // namespace
+
+const std::array<SchemeTraits, 4>& schemeTable() { return kSchemes; }
+const SchemeTraits& schemeTraits(Scheme scheme) { return kSchemes[size_t(scheme)]; }
+
+const char* schemeName(Scheme s) { return schemeTraits(s).name; }
 
 std::optional<Scheme> parseScheme(const std::string& name) {
-  if (name == "cc") return Scheme::CatmullClark;
-  if (name == "c2ps") return Scheme::C2PS;
-  if (name == "rts") return Scheme::RTS;
-  if (name == "bps") return Scheme::BPS;
+  for (const SchemeTraits& traits : kSchemes)
+    if (name == traits.name) return traits.scheme;
   return std::nullopt;
+}
+
+std::optional<SchemeVariant> parseSchemeVariant(const std::string& name) {
+  for (const SchemeTraits& traits : kSchemes) {
+    if (name == traits.name) return SchemeVariant{traits.scheme, false};
+    if (traits.hasUniformFirstStep && name == std::string(traits.name) + "-u") return SchemeVariant{traits.scheme, true};
+  }
+  return std::nullopt;
+}
+
+std::string schemeVariantName(const SchemeVariant& variant) {
+  return std::string(schemeName(variant.scheme)) + (variant.uniformFirstStep ? "-u" : "");
+}
+
+std::string schemeVariantLabel(const SchemeVariant& variant) {
+  return std::string(schemeTraits(variant.scheme).label) + (variant.uniformFirstStep ? "-U" : "");
 }
 
 }  // namespace polarview

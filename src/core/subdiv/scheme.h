@@ -1,8 +1,14 @@
-// Scheme: which refinement runs at polar configurations (Catmull-Clark runs everywhere else).
+// Scheme: which refinement runs at polar configurations (Catmull-Clark runs everywhere else), and
+// the one table of what each scheme is. Every dispatch on the scheme (refiners, pole detection, the
+// Taylor expansion, spectra, command lines, the viewer) reads SchemeTraits: a scheme is one row
+// here plus its rule file.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+
+#include "core/subdiv/polar_grid.h"
 
 namespace polarview {
 
@@ -13,8 +19,45 @@ enum class Scheme {
   BPS,           // bicubic polar subdivision, Karciauskas & Peters 2007 (weights: see bps.h)
 };
 
-const char* schemeName(Scheme s);                       // "cc", "c2ps", "rts", "bps"
+struct SchemeTraits {
+  Scheme scheme;
+  const char* name;   // command lines and JSON: "c2ps"
+  const char* label;  // titles: "C2PS"
+  int minValence;     // smallest polar valence it refines; 0: no polar rules (Catmull-Clark)
+  // RTS, BPS: the valence stays and a pole's region refines radially (caps and globes wholly;
+  // elsewhere on C2PS's connectivity from the pole's own radial grid). C2PS doubles the valence.
+  bool keepsValence;
+  bool hasUniformFirstStep;  // the paper's Section-6 variant exists (name "-u")
+  int taylorOrder;           // at the pole (32): 2 full quadratic, 1 tangent plane (BPS is C1), 0 none
+  // C2 at the pole: the curvature there is one K and H. RTS has a quadratic expansion but is not C2
+  // for finite n (K depends on the direction of approach).
+  bool curvatureContinuous;
+  // One polar step of links 0..K: the whole grid (K -> 2K - 1 links), the pole, the new 1-link and
+  // 2-link (C2PS writes 2n points each, the others n). Null for Catmull-Clark.
+  PolarGrid (*refineGrid)(const PolarGrid&, bool uniformFirstStep);
+  Point (*refinePole)(const PolarGrid&);
+  void (*refineLink1)(const PolarGrid&, Point*);
+  void (*refineLink2)(const PolarGrid&, Point*, bool uniformFirstStep);
+
+  bool polar() const { return minValence > 0; }
+};
+
+// The table: one row per scheme, in enum order. [O(1)]
+const std::array<SchemeTraits, 4>& schemeTable();
+const SchemeTraits& schemeTraits(Scheme scheme);
+
+const char* schemeName(Scheme s);  // "cc", "c2ps", "rts", "bps"
 std::optional<Scheme> parseScheme(const std::string& name);
+
+// A scheme and its first step: the names every command and the viewer take ("c2ps-u" is C2PS with
+// the uniform first step).
+struct SchemeVariant {
+  Scheme scheme = Scheme::C2PS;
+  bool uniformFirstStep = false;
+};
+std::optional<SchemeVariant> parseSchemeVariant(const std::string& name);  // "cc", ..., "c2ps-u", "rts-u"
+std::string schemeVariantName(const SchemeVariant& variant);               // "c2ps-u"
+std::string schemeVariantLabel(const SchemeVariant& variant);              // "C2PS-U"
 
 struct RefineOptions {
   Scheme scheme = Scheme::C2PS;

@@ -172,7 +172,8 @@ Matrix catmullClarkRingMatrix(int n) {
 
 std::vector<TaggedEigenvalue> schemeSpectrum(Scheme scheme, int n) {
   std::vector<TaggedEigenvalue> all;
-  if (scheme == Scheme::CatmullClark) {
+  const SchemeTraits& traits = schemeTraits(scheme);
+  if (!traits.polar()) {
     const Matrix a = catmullClarkRingMatrix(n);
     ComplexMatrix dense(a.size(), std::vector<Complex>(a.size()));
     for (size_t r = 0; r < a.size(); ++r)
@@ -182,8 +183,8 @@ std::vector<TaggedEigenvalue> schemeSpectrum(Scheme scheme, int n) {
                      [](const TaggedEigenvalue& x, const TaggedEigenvalue& y) { return std::abs(x.value) > std::abs(y.value); });
     return all;
   }
-  if (scheme == Scheme::RTS) return spectrumByFourierBlocks(polarSubdivisionMatrix(n, [](const PolarGrid& g) { return rts::refineGrid(g); }), n);
-  if (scheme == Scheme::BPS) return spectrumByFourierBlocks(polarSubdivisionMatrix(n, [](const PolarGrid& g) { return bps::refineGrid(g); }), n);
+  if (traits.keepsValence)
+    return spectrumByFourierBlocks(polarSubdivisionMatrix(n, [&](const PolarGrid& g) { return traits.refineGrid(g, false); }), n);
   throw std::invalid_argument("schemeSpectrum: C2PS doubles the valence, it has no stationary matrix (use rts)");
 }
 
