@@ -15,6 +15,7 @@
 #include "app/bench_peer.h"
 #include "app/export_command.h"
 #include "app/json_writer.h"
+#include "core/mesh/ev_to_polar.h"
 #include "core/mesh/input_error.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
@@ -52,6 +53,7 @@ struct CommonOptions {
   bool json = false;
   bool adaptive = false, edit = false;  // bench --adaptive [--edit]
   bool uniform = false;                  // export --uniform
+  bool evToPolar = false, pentagons = false;  // convert --ev-to-polar [--pentagons]
 };
 
 // "2G", "500M", "64k", "123456" (bytes; binary units, case-insensitive, optional trailing B).
@@ -176,6 +178,8 @@ CommonOptions parseOptions(const std::string& command, const Args& args, const s
     else if (a == "--adaptive") o.adaptive = true;
     else if (a == "--edit") o.edit = true;
     else if (a == "--uniform") o.uniform = true;
+    else if (a == "--ev-to-polar") o.evToPolar = true;
+    else if (a == "--pentagons") o.pentagons = true;
     else if (o.input.empty()) o.input = a;
     else throw UsageError{"unexpected argument '" + a + "'"};
   }
@@ -263,6 +267,7 @@ const char* usageText() {
          "                 [--wireframe] [--no-poles] [--time N]\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"
          "  polarview export IN.obj -o OUT.bv --scheme S --level L [--uniform] [--memory-budget SIZE]\n"
+         "  polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj   (paper Fig. 14)\n"
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--json]\n"
@@ -325,6 +330,22 @@ int runExport(const Args& args) {
   if (stats.capSectors > 0)
     std::printf("; caps within %.2g of the bounding box (at most %d piece%s a cap sector)", stats.capRelativeDeviation(),
                 stats.maxCapSplit, stats.maxCapSplit == 1 ? "" : "s");
+  std::printf("\n");
+  return 0;
+}
+
+int runConvert(const Args& args) {
+  CommonOptions o = parseOptions("convert", args, {"-o", "--output", "--ev-to-polar", "--pentagons"});
+  if (o.output.empty()) throw UsageError{"convert needs -o OUT.obj"};
+  if (!o.evToPolar) throw UsageError{"convert needs --ev-to-polar (the one conversion polarview offers)"};
+  PolyMesh mesh = loadInput(o.input);
+  const PolarConversion conversion = convertExtraordinaryToPolar(mesh, o.pentagons, o.input);
+  saveObj(o.output, conversion.mesh, o.input);
+  std::printf("%s: %zu extraordinary vertices turned into %s polar configurations (Fig. 14(%s))", o.output.c_str(),
+              conversion.converted.size(), o.pentagons ? "n-valent" : "2n-valent", o.pentagons ? "c" : "a");
+  if (!conversion.skipped.empty())
+    std::printf("; %zu skipped: their regions touch a converted one (first: vertex %d)", conversion.skipped.size(),
+                conversion.skipped.front());
   std::printf("\n");
   return 0;
 }

@@ -16,6 +16,9 @@ int runRefine(const Args& args);
 // polarview export IN.obj --scheme S --level L -o OUT.bv [--uniform] [--memory-budget SIZE]: the limit
 // surface in BezierView's .bv format, feature-adaptive (or uniform), written atomically.
 int runExport(const Args& args);
+// polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj: Fig. 14's conversion of
+// Catmull-Clark extraordinary vertices into polar configurations (core/mesh/ev_to_polar.h)
+int runConvert(const Args& args);
 // polarview info IN.obj [--json]: poles apart from rejected pole candidates (with reasons)
 int runInfo(const Args& args);
 // polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--json]

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   const std::string file = args.empty() ? "" : args[0];
   if (command == "refine") return guarded(file, runRefine, args);
   if (command == "export") return guarded(file, runExport, args);
+  if (command == "convert") return guarded(file, runConvert, args);
   if (command == "info") return guarded(file, runInfo, args);
   if (command == "pole") return guarded(file, runPole, args);
   if (command == "bench") return guarded(file, runBench, args);
