@@ -271,7 +271,8 @@ const char* usageText() {
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--json]\n"
-         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K] -o OUT.obj\n"
+         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K]\n"
+         "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
          "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--json]\n"
          "  polarview help                     this text\n"
          "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
@@ -751,7 +752,7 @@ int runSpectrum(const Args& args) {
 }
 
 int runShape(const Args& args) {
-  std::string name, output;
+  std::string name, output, height;
   int valence = 12, links = 6;
   for (size_t k = 0; k < args.size(); ++k) {
     auto next = [&]() -> const std::string& {
@@ -761,19 +762,25 @@ int runShape(const Args& args) {
     if (args[k] == "-o" || args[k] == "--output") output = next();
     else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20);
     else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16);
+    else if (args[k] == "--height") height = next();
     else if (name.empty() && args[k][0] != '-') name = args[k];
     else throw UsageError{"unexpected argument '" + args[k] + "'"};
   }
   if (output.empty()) throw UsageError{"shape needs -o OUT.obj"};
   PolyMesh mesh;
   if (name == "globe") mesh = shapes::globe(valence, links);
-  else if (name == "cap") mesh = shapes::polarCap(valence, links);
+  else if (name == "cap" && !height.empty()) {
+    const auto function = shapes::paperHeight(height);
+    if (!function) throw UsageError{"unknown height '" + height + "' (paraboloid, saddle, monkey, flat4, saddle4, convex)"};
+    mesh = shapes::heightCap(valence, links, function);
+  } else if (name == "cap") mesh = shapes::polarCap(valence, links);
   else if (name == "mushroom") {
     if (valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
     mesh = shapes::mushroom(valence);
   } else if (name == "cube") mesh = shapes::cube();
   else if (name == "torus") mesh = shapes::torus(valence, links);
   else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus)"};
+  if (!height.empty() && name != "cap") throw UsageError{"--height applies to the cap"};
   saveObj(output, mesh);
   return 0;
 }

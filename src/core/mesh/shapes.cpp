@@ -1,5 +1,6 @@
 #include "core/mesh/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace polarview::shapes {
@@ -47,18 +48,34 @@ PolyMesh globe(int n, int links, double radius) {
 }
 
 PolyMesh polarCap(int n, int links, double radius, double curvature) {
+  return heightCap(n, links, [curvature](double x, double y) { return 0.5 * curvature * (x * x + y * y); }, radius);
+}
+
+PolyMesh heightCap(int n, int links, const std::function<double(double, double)>& height, double radius) {
   PolyMesh mesh;
-  mesh.points.push_back({0.0, 0.0, 0.0});
+  mesh.points.push_back({0.0, 0.0, height(0.0, 0.0)});
   for (int i = 1; i <= links; ++i) {
     double r = radius * i / links;
     for (int j = 0; j < n; ++j) {
       double a = kTwoPi * j / n;
-      mesh.points.push_back({r * std::cos(a), r * std::sin(a), 0.5 * curvature * r * r});
+      const double x = r * std::cos(a), y = r * std::sin(a);
+      mesh.points.push_back({x, y, height(x, y)});
     }
   }
   for (int j = 0; j < n; ++j) mesh.addFace({0, 1 + j, 1 + (j + 1) % n});
   for (int i = 1; i < links; ++i) addRingQuads(mesh, 1 + (i - 1) * n, 1 + i * n, n);
   return mesh;
+}
+
+std::function<double(double, double)> paperHeight(const std::string& name) {
+  if (name == "paraboloid") return [](double x, double y) { return 0.5 * (x * x + y * y); };
+  if (name == "saddle") return [](double x, double y) { return 0.5 * (x * x - y * y); };
+  if (name == "monkey") return [](double x, double y) { return x * x * x - 3.0 * x * y * y; };
+  if (name == "flat4") return [](double x, double y) { return (x * x + y * y) * (x * x + y * y); };
+  if (name == "saddle4") return [](double x, double y) { return x * x * x * x - 6.0 * x * x * y * y + y * y * y * y; };
+  // Fig. 4's convex configuration: a dome steep at its rim, where Catmull-Clark ripples.
+  if (name == "convex") return [](double x, double y) { return 0.5 * std::sqrt(std::max(0.0, 1.0 - 0.95 * (x * x + y * y))); };
+  return nullptr;
 }
 
 PolyMesh mushroom(int n) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "core/mesh/poly_mesh.h"
 
@@ -18,6 +19,14 @@ PolyMesh globe(int n, int links, double radius = 1.0);
 // Open polar cap (like OpenSubdiv's catmark_pole shapes): an n-valent pole ringed by `links` links,
 // the last one an open boundary; the surface is z = curvature/2 * r^2 over a disc.
 PolyMesh polarCap(int n, int links, double radius = 1.0, double curvature = 1.0);
+// The same layout over a height function z = height(x, y) (pole at the origin, links at radii
+// radius * i / links).
+PolyMesh heightCap(int n, int links, const std::function<double(double, double)>& height, double radius = 1.0);
+// The height functions of the paper's test configurations (Figs. 4, 11, 13), by name: "paraboloid"
+// (x^2 + y^2) / 2, "saddle" (x^2 - y^2) / 2, "monkey" x^3 - 3 x y^2, "flat4" (x^2 + y^2)^2 (a flat
+// point), "saddle4" Re (x + i y)^4 (a 4th-order saddle), "convex" a dome steep at the rim (Fig. 4);
+// null for another name.
+std::function<double(double, double)> paperHeight(const std::string& name);
 
 // Mushroom: a polar cap (n-valent pole on top) over a stem whose bottom is closed by a k x k quad
 // grid (n = 4k), which puts four valence-3 extraordinary vertices in a Catmull-Clark region.
