@@ -43,7 +43,7 @@ GraphCurvature graphCurvature(double fx, double fy, double fxx, double fxy, doub
 }
 
 // Reference K, H of a Taylor expansion at its origin from x_x = p1, x_y = p2, x_xx = 2(p3+p4),
-// x_yy = 2(p3-p4), x_xy = 2 p5 (SCHEMES.md section 6), via the fundamental forms.
+// x_yy = 2(p3-p4), x_xy = 2 p5 (docs/rings-and-pole.md, Taylor expansion), via the fundamental forms.
 GraphCurvature taylorCurvature(const std::array<Point, 6>& p) {
   const Point N = glm::normalize(glm::cross(p[1], p[2]));
   const double E = glm::dot(p[1], p[1]), F = glm::dot(p[1], p[2]), G = glm::dot(p[2], p[2]);

@@ -29,7 +29,7 @@ std::vector<Point> refinePeriodicDirectly(const PolarGrid& g, int i) {
 }
 
 // Direct O(n^2) sums of (1)-(3) with b_{h-k/2}, d_{h-k/2}; `shiftHalf` false reads the index as
-// h - k (the misreading SCHEMES.md warns about).
+// h - k (the misreading docs/misprints.md warns about).
 PolarGrid refineDirectly(const PolarGrid& g, bool uniformFirstStep, bool shiftHalf = true) {
   int n = g.n;
   PolarGrid fine(2 * n, 2);

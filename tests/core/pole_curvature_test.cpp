@@ -1,6 +1,7 @@
 // Curvature at the pole, measured on the spline rings (paper (6)-(8)) of refined polar grids:
-// C2PS rings converge to the Taylor expansion's K (Theorem 1, with SCHEMES.md section 6's
-// coefficients), RTS rings keep an angle-dependent curvature for finite valence (section 4).
+// C2PS rings converge to the Taylor expansion's K (Theorem 1, with the coefficients of
+// docs/rings-and-pole.md), RTS rings keep an angle-dependent curvature for finite valence
+// (docs/schemes.md, RTS).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -92,8 +93,9 @@ TEST_CASE("c2ps: ring curvature converges to the pole's Taylor curvature for val
         table += formatRow("  %.0f   %.3e         %.2f\n", m, deviation[m], ratio);
       }
       if (sample == 0) MESSAGE(table);
-      // From m = 6 on every step divides the error by more than 1.9 (SCHEMES.md: about 2.7), and by
-      // m = 8 it is a small fraction of the early rings' deviation.
+      // From m = 6 on every step divides the error by more than 1.9 (measured: about 2.5-2.7,
+      // docs/rings-and-pole.md, Measured convergence), and by m = 8 it is a small fraction of the
+      // early rings' deviation.
       for (int m = 6; m <= kSteps; ++m) CHECK(deviation[m - 1] / deviation[m] > 1.9);
       CHECK(deviation[kSteps] < 0.1 * deviation[4]);
       CHECK(deviation[kSteps] < 0.02 * *std::max_element(deviation.begin(), deviation.end()));

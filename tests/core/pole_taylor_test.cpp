@@ -1,4 +1,4 @@
-// The pole's Taylor expansion (32) with the eigencoefficients of Table 1 (SCHEMES.md section 6):
+// The pole's Taylor expansion (32) with the eigencoefficients of Table 1 (docs/rings-and-pole.md):
 // quadratic reproduction, exact K and H at the pole, invariance under C2PS and RTS steps.
 #include <doctest/doctest.h>
 

@@ -42,7 +42,7 @@ const double kRightRadial[6][6] = {{1, 1, 1, 1, 1, 1},
                                    {-1.0 / 3, 2.0 / 3, 11.0 / 3, 26.0 / 3, 47.0 / 3, 74.0 / 3},
                                    {0, 2.0 / 3, 11.0 / 3, 26.0 / 3, 47.0 / 3, 74.0 / 3},
                                    {0, 2.0 / 3, 11.0 / 3, 26.0 / 3, 47.0 / 3, 74.0 / 3}};
-// Left radial parts normalised so that w_k^T v_k = 1 (Table 1's caption; SCHEMES.md section 6).
+// Left radial parts normalised so that w_k^T v_k = 1 (Table 1's caption; docs/misprints.md, (27)).
 const double kLeftRadial[6][6] = {{2.0 / 3, 1.0 / 3, 0, 0, 0, 0}, {0, 2, 0, 0, 0, 0}, {0, 2, 0, 0, 0, 0},
                                   {-1, 1, 0, 0, 0, 0},           {0, 3, 0, 0, 0, 0}, {0, 3, 0, 0, 0, 0}};
 // The same rows as printed in the paper's (27): p3 with beta = 2/3, p4 and p5 with 1/n.

@@ -25,7 +25,7 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Uniform cubic B-spline basis on the middle knot span, with first and second derivatives
-// (SCHEMES.md section 7).
+// (docs/patches.md, B-spline basis and Bezier form).
 void bsplineBasis(double t, double b[4], double db[4], double ddb[4]) {
   const double s = 1.0 - t, t2 = t * t, t3 = t2 * t;
   b[0] = s * s * s / 6.0;
@@ -42,7 +42,8 @@ void bsplineBasis(double t, double b[4], double db[4], double ddb[4]) {
   ddb[3] = t;
 }
 
-// Normal, K and H from first and second derivatives in any regular parametrisation (section 7).
+// Normal, K and H from first and second derivatives in any regular parametrisation (docs/shading.md,
+// Curvature).
 // A degenerate tangent frame leaves the normal zero and K = H = 0.
 void computeCurvature(const Point& xu, const Point& xv, const Point& xuu, const Point& xuv, const Point& xvv,
                       SurfacePoint& sp) {

@@ -1,5 +1,6 @@
 // Feature-adaptive patch extraction: the limit surface of a Refinement as bicubic patches
-// (SCHEMES.md section 6; Myles & Peters 2009, Section 5.1, (6)-(8)).
+// (docs/patches.md, Extraction; docs/rings-and-pole.md, Spline rings; Myles & Peters 2009, Section 5.1,
+// (6)-(8)).
 //
 // At each level m a patch is emitted for every face whose 4x4 neighbourhood is regular and whose
 // parent face was not (so each piece of surface is covered once, by the coarsest patch that
@@ -23,7 +24,8 @@
 //    They replace the faces between links 0-1 and 1-2.
 //  * EndCap: every other face not covered. Built in Bezier form and converted to the B-spline
 //    control points of patch.h (Bezier -> B-spline per direction: d0 = 6b0 - 7b1 + 2b2,
-//    d1 = 2b1 - b2, d2 = 2b2 - b1, d3 = 6b3 - 7b2 + 2b1, the inverse of SCHEMES.md's map):
+//    d1 = 2b1 - b2, d2 = 2b2 - b1, d3 = 6b3 - 7b2 + 2b1, the inverse of the map in docs/patches.md,
+//    B-spline basis and Bezier form):
 //      - corners: Catmull-Clark limit points (interior valence k: k/(k+5) v + 4/(k(k+5)) sum e +
 //        1/(k(k+5)) sum f; boundary: 2/3 v + 1/6 (a + b));
 //      - each boundary curve: the cubic Hermite curve of the limit points and limit tangents of its

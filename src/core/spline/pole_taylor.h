@@ -5,11 +5,11 @@
 // (for C2PS p_k^m = lambda_k^m p_k, lambda = 1/2, 1/2, 1/4, 1/4, 1/4: Lemma 5).
 //
 // The eigencoefficients are those of Table 1's left eigenvectors normalised as its caption demands
-// (w_k^T v_k = 1), SCHEMES.md section 6:
+// (w_k^T v_k = 1); docs/rings-and-pole.md, Eigencoefficients:
 //   p0 = 2/3 q00 + 1/3 M, p1 = (2/n) sum c_{j/n} q1j, p2 = (2/n) sum s_{j/n} q1j,
 //   p3 = M - q00,        p4 = (3/n) sum c_{2j/n} q1j, p5 = (3/n) sum s_{2j/n} q1j.
 // The printed (27) has p3 = 2/3 (M - q00) and p4, p5 with 1/n: misprints (tests show (34), (35)
-// and the curvature fail with them).
+// and the curvature fail with them; docs/misprints.md, (27)).
 #pragma once
 
 #include <array>
@@ -24,8 +24,9 @@ struct TaylorCoefficients {
   int order = 2;             // 2: full quadratic (C2PS, RTS); 1: limit point and tangent plane only (BPS)
 };
 
-// Eigencoefficients of a polar grid (needs links >= 1, n >= 3). C2PS and RTS: Table 1 / SCHEMES.md
-// section 6, order 2. BPS: limit point 1/2 q00 + 1/2 M and p1, p2 as above, p3..p5 = 0, order 1.
+// Eigencoefficients of a polar grid (needs links >= 1, n >= 3). C2PS and RTS: Table 1
+// (docs/rings-and-pole.md, Eigencoefficients), order 2. BPS: limit point 1/2 q00 + 1/2 M and p1, p2
+// as above, p3..p5 = 0, order 1.
 // Catmull-Clark has no such expansion: throws std::logic_error. [O(n)]
 TaylorCoefficients poleTaylorCoefficients(const PolarGrid& grid, Scheme scheme);
 
@@ -46,9 +47,9 @@ struct PoleDifferential {
 };
 
 // Differential geometry at the pole from x_x = p1, x_y = p2, x_xx = 2(p3+p4), x_yy = 2(p3-p4),
-// x_xy = 2 p5 (SCHEMES.md section 7 formulas). Order 1, or a degenerate tangent plane
-// (p1 x p2 = 0, normal left zero): curvatureDefined = false and K = H = 0. Computed on p1..p5
-// scaled exactly to unit size, so any coefficient size gives finite results. [O(1)]
+// x_xy = 2 p5 (formulas: docs/rings-and-pole.md, Curvature at the pole). Order 1, or a degenerate
+// tangent plane (p1 x p2 = 0, normal left zero): curvatureDefined = false and K = H = 0. Computed
+// on p1..p5 scaled exactly to unit size, so any coefficient size gives finite results. [O(1)]
 PoleDifferential analyzePole(const TaylorCoefficients& t);
 
 }  // namespace polarview

@@ -7,7 +7,7 @@
 // Where the weights come from: the 2007 paper's body could not be read. The weights below are those
 // of the authors' group's public MATLAB code, file polar_subdiv.m in the GitHub repository
 // Leon-Zhaohw/NumericalProjectsCollections, folder Gemotry/c2spline/c2polar_matlab/ (it credits
-// Myles, Karciauskas, Peters), re-read for this implementation (SCHEMES.md section 5):
+// Myles, Karciauskas, Peters), re-read for this implementation (docs/schemes.md, BPS):
 //   beta = 5/8, alpha = beta - 1/4,
 //   q00' = (1 - alpha) q00 + alpha M                        = 5/8 q00 + 3/8 M
 //   q'1j = (1 - beta) q00 + sum_h gamma_{h-j} q1h,  gamma_g = (1/n)(beta - 1/2 + 5/8 c + c^2 + 1/2 c^3),

@@ -1,5 +1,5 @@
 // Catmull-Clark refinement (Catmull & Clark 1978) with OpenSubdiv 3.5's rules and options
-// (SCHEMES.md section 8). The point rules are straight loops over MeshTopology's flat tables.
+// (docs/schemes.md, Catmull-Clark). The point rules are straight loops over MeshTopology's flat tables.
 #include "core/subdiv/catmull_clark.h"
 
 #include <stdexcept>

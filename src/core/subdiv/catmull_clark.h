@@ -1,4 +1,4 @@
-// Catmull-Clark refinement with OpenSubdiv 3.5's conventions (SCHEMES.md section 8): options
+// Catmull-Clark refinement with OpenSubdiv 3.5's conventions (docs/schemes.md, Catmull-Clark): options
 // VTX_BOUNDARY_EDGE_ONLY, CREASE_UNIFORM, TRI_SUB_CATMARK; smooth rules for any valence and any
 // n-gon; boundary edges are midpoints; boundary vertices (valence-2 corners included) are
 // 3/4 v + 1/8 (a + b). Topology and positions are separate so positions can be recomputed cheaply.

@@ -3,7 +3,7 @@
 //    links ((12), (29));
 //  * the discrete Fourier sums of a link. The valence-dependent weights b_g, d_g (paper (4)) and
 //    gamma_g (BPS) hold only Fourier modes 0..3, so every sum over the 1-link collapses to a few
-//    sums computed once: O(n) per link instead of O(n^2) (SCHEMES.md section 1).
+//    sums computed once: O(n) per link instead of O(n^2) (docs/schemes.md, O(n) evaluation).
 // A link is n points q_{i,0..n-1} stored contiguously, index j taken modulo n.
 #pragma once
 

@@ -4,9 +4,9 @@
 // Level m+1 from level m:
 //  * Catmull-Clark everywhere (catmull_clark.h), child vertices ordered
 //    [face points | edge points | vertex points] as in OpenSubdiv.
-//  * C2PS: at each refinable polar configuration the five CC point groups of SCHEMES.md section 2 are
-//    overridden by rules (1)-(3) and each pole-corner quad is split along its diagonal, so the
-//    polar valence doubles.
+//  * C2PS: at each refinable polar configuration the five CC point groups (docs/schemes.md, C2PS
+//    inside Catmull-Clark) are overridden by rules (1)-(3) and each pole-corner quad is split along
+//    its diagonal, so the polar valence doubles.
 //  * RTS / BPS: on meshes made only of polar configurations (caps, globes) the mesh is refined
 //    radially with the valence fixed (Figs 3d, 10): `radialOnly()` is true. Where a polar region
 //    borders Catmull-Clark mesh, level m has C2PS's connectivity (CC elsewhere) and the polar region

@@ -18,7 +18,8 @@ Point refinePole(const PolarGrid& grid);
 void refineLink1(const PolarGrid& grid, Point* out);
 
 // Paper (11): q'_{2j} = 11/12 q_{1j} + 1/12 q_{2j} + sum_h d_{h-j} q_{1h}; or, when uniformFirstStep
-// (paper Section 6, SCHEMES.md section 3: "one step of BPS"), q'_{2j} = 1/8 q00 + 3/4 q_{1j} + 1/8 q_{2j}.
+// (paper Section 6, "one step of BPS"; docs/schemes.md, Section-6 uniform first step),
+// q'_{2j} = 1/8 q00 + 3/4 q_{1j} + 1/8 q_{2j}.
 // Needs links >= 2; writes n points. [O(n)]
 void refineLink2(const PolarGrid& grid, Point* out, bool uniformFirstStep);
 
