@@ -14,8 +14,8 @@
 #include "core/subdiv/refine_topology.h"
 
 #include <algorithm>
-#include <cassert>
 
+#include "core/mesh/check.h"
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/table_pool.h"
 
@@ -183,7 +183,7 @@ class ConnectivityBuilder {
     t.vertexCount = topo_.faceCount + topo_.edgeCount + topo_.vertexCount;
     t.faceCount = C + splitCount_;
     t.edgeCount = 2 * topo_.edgeCount + C + splitCount_;
-    assert(counts_[parts_].newEdges == t.edgeCount);
+    POLARVIEW_CHECK_EQ(counts_[parts_].newEdges, t.edgeCount);
     const size_t corners = size_t(childCorners_), faces = size_t(t.faceCount) + 1, vertices = size_t(t.vertexCount);
     const size_t ringEdges = corners + size_t(counts_[parts_].boundaryLeaders + counts_[parts_].boundaryVertices);
     PolyMesh& mesh = out_.mesh;
@@ -313,7 +313,7 @@ class ConnectivityBuilder {
         }
       }
     }
-    assert(nextEdge == counts_[k + 1].newEdges);
+    POLARVIEW_CHECK_EQ(nextEdge, counts_[k + 1].newEdges);
   }
 
   // Appends (face, corner) to the ring of the cursor's child vertex.
