@@ -17,6 +17,8 @@
 #include <thread>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "app/export_command.h"
+#include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/refiner.h"
 #include "render/gl_context.h"
@@ -64,6 +66,27 @@ void visiblePoles(const std::vector<Point>& poles, const ViewParams& view, const
 // Mixes a value into a running hash (to notice when the colour range inputs changed).
 void hashMix(uint64_t& h, uint64_t value) { h = (h ^ value) * 1099511628211ull; }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A message for the one-line error field: line breaks become spaces.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+std::string absolutePath(const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ignored);
+  return absolute.empty() ? path : absolute.lexically_normal().string();
+}
+
+std::string defaultModelAsset() { return std::string(POLARVIEW_ASSET_DIR) + "/default.obj"; }
+
+constexpr size_t kMaxEditCosts = 10000;
+
 }  // namespace
 
 // [SECTION] Set-up and tear-down
@@ -73,6 +96,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {}
 ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
   if (loadJob_.valid()) loadJob_.wait();
+  if (exportJob_.valid()) exportJob_.wait();
   for (ViewRuntime& view : views_) view.job.wait();
   if (window_) {
     glfwMakeContextCurrent(window_);
@@ -125,8 +149,16 @@ bool ViewerApp::init(std::string* error) {
       app->inputEvents_.push({InputEvent::Kind::Char, int(c)});
   });
   glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int mods) {
-    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w)))
-      app->inputEvents_.push({InputEvent::Kind::MouseButton, button, 0, action, mods});
+    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))) {
+      InputEvent event{InputEvent::Kind::MouseButton, button, 0, action, mods};
+      event.x = app->eventCursor_.first;  // where the cursor was when this event happened
+      event.y = app->eventCursor_.second;
+      app->inputEvents_.push(event);
+    }
+  });
+  // The cursor in event order (glfwGetCursorPos answers for the time it is called, later).
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+    if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))) app->eventCursor_ = {x, y};
   });
   glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
     if (auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(w)))
@@ -272,6 +304,11 @@ void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::str
   }
   model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
   model_.radialForRtsBps = refinesRadially(*model_.mesh, Scheme::RTS);
+  // Editing starts over: the loaded points are what Reset returns to.
+  editor_.start(model_.mesh->points);
+  movedVertices_ = 0;
+  editCosts_.clear();
+  state_.edit.error.clear();
   state_.file.modelName = name;
   state_.file.loadedPath = path;
   if (!path.empty()) state_.file.pathField = path;  // the field names what is shown (after Ctrl+Z too)
@@ -328,7 +365,10 @@ void ViewerApp::replayInputEvents() {
     switch (e.kind) {
       case InputEvent::Kind::Key: ImGui_ImplGlfw_KeyCallback(window_, e.code, e.scancode, e.action, e.mods); break;
       case InputEvent::Kind::Char: ImGui_ImplGlfw_CharCallback(window_, unsigned(e.code)); break;
-      case InputEvent::Kind::MouseButton: ImGui_ImplGlfw_MouseButtonCallback(window_, e.code, e.action, e.mods); break;
+      case InputEvent::Kind::MouseButton:
+        ImGui_ImplGlfw_MouseButtonCallback(window_, e.code, e.action, e.mods);
+        buttonPosition_ = std::pair{float(e.x), float(e.y)};
+        break;
       case InputEvent::Kind::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.dx, e.dy); break;
     }
   }
@@ -382,6 +422,16 @@ void ViewerApp::processRequests() {
   }
   if (r.loadDefault) loadDefaultModel();
   if (r.undoModel) undoModelReplacement();
+  // Ctrl+Z undoes vertex drags first; with none left it goes back to the previous model.
+  if (r.undo) {
+    if (editor_.undoCount() > 0) undoEdit();
+    else undoModelReplacement();
+  }
+  if (r.redo) redoEdit();
+  if (r.resetEdits) resetEdits();
+  if (r.saveEdited) saveEditedMesh();
+  if (r.exportBezierView) startExport(true);
+  if (r.exportRefinedMesh) startExport(false);
   if (r.playlistStep != 0) openPlaylistEntry(state_.file.playlistIndex + r.playlistStep);
   if (r.playlistPick >= 0) openPlaylistEntry(r.playlistPick);
   if (r.frame) frameModel();
@@ -415,7 +465,7 @@ void ViewerApp::processRequests() {
 // [SECTION] Rebuilding what is dirty
 
 SurfaceKey ViewerApp::wantedKey(int v) const {
-  return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level};
+  return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level, model_.points};
 }
 
 void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
@@ -426,19 +476,77 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   view.shown = std::move(surface);
 }
 
+void ViewerApp::refreshEditedViews() {
+  EditCost cost;
+  bool positionsMoved = false;
+  // Each stale surface is refreshed once; views that shared it share the refreshed one.
+  std::vector<std::pair<const BuiltSurface*, std::shared_ptr<const BuiltSurface>>> refreshed;
+  for (int v = 0; v < state_.viewCount; ++v) {
+    ViewRuntime& view = views_[size_t(v)];
+    const SurfaceKey wanted = wantedKey(v);
+    if (!view.shown || !view.shown->refinement || !view.shown->key.sameTopology(wanted)) continue;
+    if (view.refreshFailed && *view.refreshFailed == wanted) continue;
+    const bool pointsStale = view.shown->key.points != wanted.points;
+    const bool samplesStale = !editor_.dragging() && view.shown->samples && view.shown->samples->points != wanted.points;
+    if (!pointsStale && !samplesStale) continue;
+
+    // Positions, patches and (once the drag is over) curvature samples on the kept hierarchy.
+    const auto start = std::chrono::steady_clock::now();
+    RefreshTiming timing;  // stays zero for a view sharing a surface refreshed for another
+    std::shared_ptr<const BuiltSurface> surface;
+    for (const auto& [old, fresh] : refreshed)
+      if (old == view.shown.get()) surface = fresh;
+    if (!surface) {
+      try {
+        surface = refreshSurface(*view.shown, model_, !editor_.dragging(), &timing);
+      } catch (const std::exception& e) {
+        // Not expected (the topology is the one it was built with); the view is rebuilt instead.
+        view.refreshFailed = wanted;
+        state_.status[size_t(v)].message = std::string("positions-only update failed (rebuilding): ") + e.what();
+        continue;
+      }
+      refreshed.emplace_back(view.shown.get(), surface);
+    }
+    const auto uploadStart = std::chrono::steady_clock::now();
+    show(v, surface);
+    const double uploadMs = millisecondsSince(uploadStart);
+    // The per-frame cost of moved points; retaking the curvature samples (once, at the end of a
+    // drag, or with an undo) is not part of it.
+    if (pointsStale) {
+      positionsMoved = true;
+      cost.positionsMs += timing.positionsMs;
+      cost.patchesMs += timing.patchesMs;
+      cost.uploadMs += uploadMs;
+      cost.totalMs += millisecondsSince(start) - timing.samplesMs;
+      ++cost.views;
+    }
+  }
+  if (!positionsMoved) return;
+  if (editCosts_.size() >= kMaxEditCosts) editCosts_.erase(editCosts_.begin());
+  editCosts_.push_back(cost);
+  state_.edit.positionsMs = cost.positionsMs;
+  state_.edit.patchesMs = cost.patchesMs;
+  state_.edit.uploadMs = cost.uploadMs;
+  state_.edit.totalMs = cost.totalMs;
+  state_.edit.updatedViews = cost.views;
+}
+
 void ViewerApp::updateSurfaces() {
   if (!model_.mesh) return;
+  refreshEditedViews();
   for (int v = 0; v < kMaxViews; ++v) {
     ViewRuntime& view = views_[size_t(v)];
     ViewStatus& status = state_.status[size_t(v)];
     const bool visible = v < state_.viewCount;
 
-    // A finished job: show it if it is still wanted, else drop it (a newer request follows).
+    // A finished job: show it if it is still wanted, else drop it (a newer request follows). One
+    // built from points edited since is shown too, then brought up to date by a positions-only
+    // update (the next refreshEditedViews), so a long build is not thrown away by a drag.
     if (std::optional<SurfaceJob::Outcome> outcome = view.job.poll()) {
       if (!outcome->error.empty()) {
         view.failed = outcome->key;
         status.message = outcome->error;
-      } else if (outcome->key == wantedKey(v)) {
+      } else if (outcome->surface->key.sameTopology(wantedKey(v))) {
         show(v, outcome->surface);
         status.message.clear();
       }
@@ -449,11 +557,15 @@ void ViewerApp::updateSurfaces() {
     if (view.failed && *view.failed == wanted && view.shown && view.shown->key.model == wanted.model) {
       state_.views[size_t(v)].scheme = view.shown->key.scheme;
       state_.views[size_t(v)].level = view.shown->key.level;
-      wanted = view.shown->key;
+      wanted = wantedKey(v);
     }
 
     // Start what the settings ask for: reuse another view's surface, else refine in the background.
-    bool dirty = visible && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted);
+    // A surface of this topology at older points waits for its positions-only update instead.
+    const bool refreshable = view.shown && view.shown->refinement && view.shown->key.sameTopology(wanted) &&
+                             !(view.refreshFailed && *view.refreshFailed == wanted);
+    bool dirty = visible && (!view.shown || view.shown->key != wanted) && !refreshable &&
+                 !(view.failed && *view.failed == wanted);
     if (dirty && !view.job.running()) {
       std::shared_ptr<const BuiltSurface> twin;
       for (const ViewRuntime& other : views_) {
@@ -496,7 +608,9 @@ void ViewerApp::updateColourRange() {
   uint64_t signature = 14695981039346656037ull;
   hashMix(signature, uint64_t(mode));
   hashMix(signature, uint64_t(state_.colour.quantile * 1e6f));
-  for (int v = 0; v < state_.viewCount; ++v) hashMix(signature, uint64_t(uintptr_t(views_[size_t(v)].shown.get())));
+  // The samples, not the surfaces: a drag makes new surfaces every frame with the same samples.
+  for (int v = 0; v < state_.viewCount; ++v)
+    if (views_[size_t(v)].shown) hashMix(signature, uint64_t(uintptr_t(views_[size_t(v)].shown->samples.get())));
   if (signature != colourRangeSignature_) {
     colourRangeSignature_ = signature;
     collectColourSamples();
@@ -519,14 +633,14 @@ void ViewerApp::collectColourSamples() {
   values.clear();
   weights.clear();
   for (int v = 0; v < state_.viewCount; ++v) {
-    if (!views_[size_t(v)].shown) continue;
-    const BuiltSurface& s = *views_[size_t(v)].shown;
-    const std::vector<float>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussianSamples : s.meanSamples;
+    if (!views_[size_t(v)].shown || !views_[size_t(v)].shown->samples) continue;
+    const CurvatureSamples& s = *views_[size_t(v)].shown->samples;
+    const std::vector<float>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussian : s.mean;
     double area = 0.0;
-    for (float a : s.sampleAreas) area += a;
+    for (float a : s.areas) area += a;
     if (!(area > 0.0)) continue;
     values.insert(values.end(), samples.begin(), samples.end());
-    for (float a : s.sampleAreas) weights.push_back(float(a / area));
+    for (float a : s.areas) weights.push_back(float(a / area));
   }
   if (values.empty()) return;
   state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
@@ -540,26 +654,251 @@ void ViewerApp::collectColourSamples() {
 }
 
 bool ViewerApp::busy() const {
-  if (loadJob_.valid()) return true;
+  if (loadJob_.valid() || exportJob_.valid()) return true;
   for (int v = 0; v < state_.viewCount; ++v) {
     const ViewRuntime& view = views_[size_t(v)];
     if (view.job.running()) return true;
     SurfaceKey wanted = wantedKey(v);
     if (model_.mesh && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted)) return true;
+    // Curvature samples still to be retaken after a drag.
+    if (view.shown && view.shown->samples && view.shown->samples->points != model_.points && !editor_.dragging() &&
+        !(view.refreshFailed && *view.refreshFailed == wanted))
+      return true;
   }
   return false;
 }
 
 void ViewerApp::waitUntilIdle() {
   while (busy()) {
-    if (loadJob_.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (loadJob_.valid() || exportJob_.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     pollLoad();
+    pollExport();
     for (ViewRuntime& view : views_) {
       if (view.job.running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     updateSurfaces();
   }
   updateColourRange();
+}
+
+// [SECTION] Editing the control mesh
+
+ViewTransform ViewerApp::viewTransform(int v, const ScreenRect& rect) const {
+  // The matrices drawViews gives the renderer (near and far from the model's box).
+  const glm::dvec3 centre = 0.5 * (modelMin_ + modelMax_);
+  const double radius = 0.5 * glm::length(modelMax_ - modelMin_);
+  const OrbitCamera& camera = state_.camera(v);
+  ViewTransform transform;
+  transform.rect = rect;
+  // The view matrix in double (OrbitCamera::viewMatrix's lookAt before its cast to float), so a
+  // close-up far from the origin still picks and drags to the pixel.
+  transform.viewProjection =
+      glm::dmat4(camera.projectionMatrix(double(rect.w) / std::max(double(rect.h), 1.0), centre, radius)) *
+      glm::lookAt(camera.eye(), camera.target, camera.up());
+  return transform;
+}
+
+ViewTransform ViewerApp::viewTransform(int v) const {
+  const std::vector<ScreenRect> rects = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f));
+  return viewTransform(v, rects[size_t(std::clamp(v, 0, int(rects.size()) - 1))]);
+}
+
+bool ViewerApp::beginVertexDrag(int v, const ScreenRect& rect, float x, float y) {
+  if (!model_.mesh) return false;
+  const ViewTransform transform = viewTransform(v, rect);
+  const int vertex = pickVertex(editor_.points(), transform, x, y);
+  if (vertex < 0) return false;
+  return editor_.beginDrag(vertex, transform, state_.camera(v).forward(), x, y);
+}
+
+void ViewerApp::applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects) {
+  if (drag.view >= 0 && drag.view < int(rects.size()) &&
+      editor_.dragTo(viewTransform(drag.view, rects[size_t(drag.view)]), drag.x, drag.y))
+    commitEditedPoints();
+  if (drag.released) editor_.endDrag();  // one undo step; the samples are retaken next
+}
+
+void ViewerApp::commitEditedPoints() {
+  if (!model_.mesh || editor_.points().size() != model_.mesh->points.size()) return;
+  // A new mesh object (a background job may still read the old one), the same faces.
+  auto mesh = std::make_shared<PolyMesh>(*model_.mesh);
+  mesh->points = editor_.points();
+  modelMin_ = modelMax_ = mesh->points.front();
+  for (const Point& p : mesh->points) {
+    modelMin_ = glm::min(modelMin_, p);
+    modelMax_ = glm::max(modelMax_, p);
+  }
+  model_.mesh = std::move(mesh);
+  ++model_.points;
+  movedVertices_ = editor_.movedVertexCount();
+}
+
+void ViewerApp::undoEdit() {
+  const std::string what = editor_.undoLabel();
+  if (!editor_.undo()) {
+    state_.notice = "nothing to undo";
+    return;
+  }
+  commitEditedPoints();
+  state_.notice = "undone: " + what;
+}
+
+void ViewerApp::redoEdit() {
+  const std::string what = editor_.redoLabel();
+  if (!editor_.redo()) {
+    state_.notice = "nothing to redo";
+    return;
+  }
+  commitEditedPoints();
+  state_.notice = "redone: " + what;
+}
+
+void ViewerApp::resetEdits() {
+  if (!editor_.resetToLoaded()) {
+    state_.notice = "no control vertex has moved";
+    return;
+  }
+  commitEditedPoints();
+  state_.notice = "every control vertex is back where the file had it (Ctrl+Z undoes the reset)";
+}
+
+void ViewerApp::saveEditedMesh() {
+  if (!model_.mesh) return;
+  const std::string path = state_.edit.savePath.empty() ? state_.edit.defaultSavePath : state_.edit.savePath;
+  try {
+    saveObj(path, *model_.mesh, model_.name);  // atomic: a failure leaves no file
+  } catch (const std::exception& e) {
+    state_.edit.error = oneLine(std::string("could not save: ") + e.what());
+    state_.notice = state_.edit.error;
+    return;
+  }
+  state_.edit.error.clear();
+  state_.notice = "saved the edited mesh to " + absolutePath(path) + " (" + std::to_string(movedVertices_) +
+                  (movedVertices_ == 1 ? " vertex" : " vertices") + " moved)";
+}
+
+void ViewerApp::startExport(bool bezierView) {
+  if (!model_.mesh) return;
+  if (exportJob_.valid()) {
+    state_.notice = "still writing " + exportTarget_;
+    return;
+  }
+  // What the active view shows: its scheme and level, on the model's current points.
+  const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
+  const BuiltSurface* shown = views_[size_t(v)].shown.get();
+  if (!shown || shown->key.model != model_.generation) {
+    state_.edit.error = "view " + std::to_string(v + 1) + " shows no surface of this model yet";
+    state_.notice = state_.edit.error;
+    return;
+  }
+  const SchemeChoice scheme = shown->key.scheme;
+  const int level = shown->key.level;
+  const RefineOptions options = refineOptionsFor(scheme, level);
+  const Model model = model_;  // the mesh is immutable: the worker keeps this version
+  std::string path;
+  if (bezierView) {
+    path = state_.edit.bvPath.empty() ? state_.edit.defaultBvPath : state_.edit.bvPath;
+    // The view's own refinement path and limit (the shown level is within it).
+    const size_t maxFaces = 2 * options_.faceBudget;
+    exportJob_ = std::async(std::launch::async, [model, options, path, maxFaces, scheme, level] {
+      const PatchSet set = cli::exportPatchSet(*model.mesh, options, model.name, false, maxFaces);
+      const BezierViewStats stats = cli::writeBezierViewFile(path, set, model.name);
+      return "wrote " + absolutePath(path) + ": " + std::to_string(stats.total()) + " Bezier patches (" +
+             schemeChoiceLabel(scheme) + " level " + std::to_string(level) + ", feature-adaptive)";
+    });
+  } else {
+    path = state_.edit.refinedObjPath.empty() ? state_.edit.defaultRefinedObjPath : state_.edit.refinedObjPath;
+    // Uniform refinement: every face x4 a level (x2 where RTS/BPS refine radially); refused at once
+    // when its estimate exceeds what a view may take.
+    const size_t budget = options_.faceBudget * kBytesPerAdaptiveFace / kBytesPerUniformFace;
+    const bool radial = model.radialForRtsBps && (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS);
+    auto facesAt = [&](int l) {
+      RefineOptions o = options;
+      o.levels = l;
+      return estimateFaceCount(*model.mesh, o, radial);
+    };
+    if (facesAt(level) > budget) {
+      int fits = level;
+      while (fits > 0 && facesAt(fits) > budget) --fits;
+      state_.edit.error = std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
+                          std::to_string(level) + " would have about " + std::to_string(facesAt(level)) +
+                          " faces, over the budget of " + std::to_string(budget) + " (level " + std::to_string(fits) +
+                          " fits)";
+      state_.notice = state_.edit.error;
+      return;
+    }
+    exportJob_ = std::async(std::launch::async, [model, options, path, budget, scheme, level] {
+      const Refinement refinement(*model.mesh, options, model.name, budget);
+      const PolyMesh& refined = refinement.finest().mesh;
+      saveObj(path, refined, model.name);
+      return "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
+             " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +
+             std::to_string(refined.vertexCount()) + " vertices)";
+    });
+  }
+  exportTarget_ = path;
+  state_.notice = "writing " + path + "...";
+}
+
+void ViewerApp::pollExport() {
+  if (!exportJob_.valid() || exportJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  try {
+    state_.notice = exportJob_.get();
+    state_.edit.error.clear();
+  } catch (const std::exception& e) {
+    // Bad levels, a full disk, an unwritable folder: the atomic writers left nothing behind.
+    state_.edit.error = oneLine(std::string("could not write ") + exportTarget_ + ": " + e.what());
+    state_.notice = state_.edit.error;
+  }
+  exportTarget_.clear();
+}
+
+void ViewerApp::updateEditState() {
+  EditSettings& edit = state_.edit;
+  edit.selectedVertex = editor_.selected();
+  if (edit.selectedVertex >= 0) edit.selectedPosition = editor_.points()[size_t(edit.selectedVertex)];
+  edit.dragging = editor_.dragging();
+  edit.undoSteps = int(editor_.undoCount());
+  edit.redoSteps = int(editor_.redoCount());
+  edit.undoLabel = editor_.undoLabel();
+  edit.redoLabel = editor_.redoLabel();
+  edit.movedVertices = movedVertices_;
+  edit.exporting = exportJob_.valid() ? exportTarget_ : std::string();
+
+  // Default outputs: beside the model file, or in the current directory for the built-in model.
+  namespace fs = std::filesystem;
+  const std::string& loaded = state_.file.loadedPath;
+  const bool builtIn = loaded.empty() || loaded == defaultModelAsset();
+  const fs::path folder = builtIn ? fs::path() : fs::path(loaded).parent_path();
+  const std::string stem = builtIn ? (state_.file.modelName.rfind("default", 0) == 0 ? "default" : "model")
+                                   : fs::path(loaded).stem().string();
+  edit.defaultSavePath = (folder / (stem + "_edited.obj")).string();
+  // The exports write what the active view shows (its settings until it shows something).
+  const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
+  const BuiltSurface* shown = views_[size_t(v)].shown.get();
+  const SchemeChoice scheme = shown ? shown->key.scheme : state_.views[size_t(v)].scheme;
+  const int level = shown ? shown->key.level : state_.views[size_t(v)].level;
+  const std::string tag = std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
+  edit.defaultBvPath = (folder / (stem + tag + ".bv")).string();
+  edit.defaultRefinedObjPath = (folder / (stem + tag + "_refined.obj")).string();
+}
+
+std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>& rects) const {
+  std::vector<VertexMarker> markers;
+  if (!state_.display.controlNet || !model_.mesh) return markers;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  for (size_t v = 0; v < rects.size(); ++v) {
+    if (!views_[v].shown) continue;
+    const ViewTransform transform = viewTransform(int(v), rects[v]);
+    auto mark = [&](int vertex, bool selected) {
+      if (vertex < 0 || size_t(vertex) >= editor_.points().size()) return;
+      const std::optional<glm::dvec3> at = transform.project(editor_.points()[size_t(vertex)]);
+      if (at && rects[v].contains(float(at->x), float(at->y))) markers.push_back({float(at->x), float(at->y), selected});
+    };
+    mark(editor_.selected(), true);
+    if (rects[v].contains(mouse.x, mouse.y)) mark(state_.edit.hoveredVertex, false);
+  }
+  return markers;
 }
 
 // [SECTION] Drawing
@@ -626,6 +965,17 @@ void ViewerApp::runFrame() {
   replayInputEvents();
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (pointerOverride_) {  // in place of what the backend just read from the system mouse
+    ImGuiIO& pointerIo = ImGui::GetIO();
+    pointerIo.MousePos = ImVec2(pointerOverride_->x, pointerOverride_->y);
+    pointerIo.MouseDown[0] = pointerOverride_->left;
+    pointerIo.MouseDown[1] = pointerOverride_->right;
+    pointerIo.MouseDown[2] = pointerOverride_->middle;
+  }
+  // A press or release this frame happens where the cursor was then, not where the backend just
+  // found it (it may have moved on within the frame); the next frame sees the rest of the motion.
+  if (buttonPosition_) ImGui::GetIO().MousePos = ImVec2(buttonPosition_->first, buttonPosition_->second);
+  buttonPosition_.reset();
   ImGui::NewFrame();
 
   // Panels and input edit the state; requests and dirty views are handled right after.
@@ -635,7 +985,18 @@ void ViewerApp::runFrame() {
   float pixelScale = io.DisplaySize.x > 0 ? float(fbWidth) / io.DisplaySize.x : 1.0f;
   ScreenRect frame = viewArea();
   std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
-  std::optional<PivotPick> pick = input_.handle(state_, rects);
+  const InputResult input = input_.handle(state_, rects, [this, &rects](int v, float x, float y) {
+    return beginVertexDrag(v, rects[size_t(v)], x, y);
+  });
+  if (input.vertexDrag) applyVertexDrag(*input.vertexDrag, rects);
+  if (input.deselect) editor_.select(-1);
+  // The vertex a click would pick: ringed while the net is shown and nothing is dragged.
+  state_.edit.hoveredVertex = -1;
+  if (state_.display.controlNet && !editor_.dragging() && input.hoveredView >= 0 && model_.mesh) {
+    state_.edit.hoveredVertex = pickVertex(editor_.points(), viewTransform(input.hoveredView, rects[size_t(input.hoveredView)]),
+                                           io.MousePos.x, io.MousePos.y);
+  }
+  std::optional<PivotPick> pick = input.pivot;
   if (!pick && pendingPivot_) pick = pendingPivot_;
   pendingPivot_.reset();
   drawViewerPanels(state_);
@@ -650,8 +1011,10 @@ void ViewerApp::runFrame() {
   processRequests();
   expireNotice();
   pollLoad();
+  pollExport();
   updateSurfaces();
   updateColourRange();
+  updateEditState();
 
   // Draw the views, then the overlay and the UI over them.
   glViewport(0, 0, fbWidth, fbHeight);
@@ -662,7 +1025,8 @@ void ViewerApp::runFrame() {
     poles = drawViews(rects, pixelScale, fbHeight);
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
-  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles);
+  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles,
+                  vertexMarkers(rects));
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   glFinish();  // frame time includes the GPU work (not the swap's wait for vsync)

@@ -4,6 +4,8 @@
 //
 // Frame order (Dear ImGui's example): poll events, new frame, panels + input, requests, rebuild
 // what is dirty (finished jobs are uploaded, new jobs started), draw the views, overlay + UI, swap.
+// Editing: a drag on a control vertex (viewer_edit.h) changes the model's points; the same frame
+// each view recomputes its kept refinement's points and patches (refreshSurface) and uploads them.
 #pragma once
 
 #include <array>
@@ -16,6 +18,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "app/viewer_edit.h"
 #include "app/viewer_surface.h"
 #include "render/framebuffer_capture.h"
 #include "ui/input_events.h"
@@ -31,6 +34,21 @@ constexpr float kBackground[3] = {0.17f, 0.18f, 0.20f};
 
 class PatchRenderer;
 class ShaderLibrary;
+
+// What one positions-only update of the shown views cost after control points moved (ms): the
+// refinements' positions, patch extraction (with pole markers) and the upload, every view
+// together (a surface two views share is updated once, uploaded twice).
+struct EditCost {
+  double positionsMs = 0.0, patchesMs = 0.0, uploadMs = 0.0, totalMs = 0.0;
+  int views = 0;
+};
+
+// The mouse as ImGui sees it (window coordinates, buttons left / right / middle), replacing the
+// system pointer: for tests and `view --edit`, which drive the real input path without a person.
+struct PointerState {
+  float x = 0, y = 0;
+  bool left = false, right = false, middle = false;
+};
 
 // `polarview` / `polarview view FILE.obj`: opens the viewer (empty path: the default model).
 int runViewer(const std::string& objPathOrEmpty);
@@ -95,6 +113,19 @@ class ViewerApp {
   // The next frame also writes the whole window (panels included) to `path` as a PNG.
   void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
 
+  // From the next frame on, ImGui reads `pointer` instead of the system mouse (nullopt: the system
+  // mouse again). Every gesture then runs as with a real mouse (picking, drags, orbiting).
+  void overridePointer(std::optional<PointerState> pointer) { pointerOverride_ = pointer; }
+
+  // [Editing] The base control mesh's points as edited, the selection and the history.
+  const ControlMeshEditor& editor() const { return editor_; }
+  // View v as drawn now (its camera, its rectangle of the current layout), for picking and tests.
+  ViewTransform viewTransform(int v) const;
+  // Every positions-only update since the model was loaded (the last 10000).
+  const std::vector<EditCost>& editCosts() const { return editCosts_; }
+  // True while a save or export runs in the background.
+  bool exporting() const { return exportJob_.valid(); }
+
   // The part of the window the views tile (window coordinates): right of the panel column.
   ScreenRect viewArea() const;
   // Points every view's camera (or the shared one) at the model so that all its control points
@@ -119,6 +150,7 @@ class ViewerApp {
     std::shared_ptr<const BuiltSurface> shown;
     SurfaceJob job;
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
+    std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
@@ -138,7 +170,29 @@ class ViewerApp {
   // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
   void expireNotice();
   void updateSurfaces();
+  // Positions-only updates of the visible views whose surface has the model's topology but older
+  // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
+  void refreshEditedViews();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
+  // [Editing] A press at (x, y) in view v: picks the control vertex there and starts dragging it.
+  bool beginVertexDrag(int v, const ScreenRect& rect, float x, float y);
+  void applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects);
+  // The editor's points become the model's (same faces, new points revision); the views follow in
+  // refreshEditedViews.
+  void commitEditedPoints();
+  void undoEdit();
+  void redoEdit();
+  void resetEdits();
+  // Ctrl+S: the edited mesh as OBJ (atomic; a failure leaves no file and shows one line).
+  void saveEditedMesh();
+  // Export .bv / refined control mesh of the active view, written on a worker thread.
+  void startExport(bool bezierView);
+  void pollExport();
+  // The control vertices to mark in the overlay (selected, under the cursor), per view.
+  std::vector<VertexMarker> vertexMarkers(const std::vector<ScreenRect>& rects) const;
+  // Fills state_.edit: selection, history, default output paths.
+  void updateEditState();
+  ViewTransform viewTransform(int v, const ScreenRect& rect) const;
   void updateColourRange();
   // The curvature samples of the shown views (mode K or H) and the automatic ranges from them.
   void collectColourSamples();
@@ -175,6 +229,14 @@ class ViewerApp {
   std::string windowCapturePath_;
   std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
+  std::optional<PointerState> pointerOverride_;
+  std::pair<double, double> eventCursor_{0.0, 0.0};  // the cursor as of the last event GLFW delivered
+  std::optional<std::pair<float, float>> buttonPosition_;  // where this frame's mouse button changed (window coordinates)
+  ControlMeshEditor editor_;
+  int movedVertices_ = 0;  // editor_.movedVertexCount(), counted when points change
+  std::vector<EditCost> editCosts_;
+  std::future<std::string> exportJob_;  // the notice to show when done; throws on failure
+  std::string exportTarget_;
   static constexpr std::chrono::seconds kNoticeLifetime{8};
   std::string shownNotice_;
   std::chrono::steady_clock::time_point noticeSince_;

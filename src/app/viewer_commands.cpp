@@ -29,7 +29,7 @@ const char* kRenderUsage =
     "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
+    "[--frames N [--stats] [--edit] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
 
 // Walks the argument list; values of options are taken with value().
 class ArgCursor {
@@ -124,8 +124,30 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// {"frames":N,"views":k,"schemes":[...],"level":L,"size":[w,h],"patches":[...],"median_ms":...}
-std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& frameMs, int width, int height) {
+// The medians of the positions-only updates `costs` (view --edit) as a JSON object: every view
+// together per frame, ms.
+std::string editStatsJson(const std::vector<EditCost>& costs) {
+  std::vector<double> total, positions, patches, upload;
+  int views = 0;
+  for (const EditCost& c : costs) {
+    total.push_back(c.totalMs);
+    positions.push_back(c.positionsMs);
+    patches.push_back(c.patchesMs);
+    upload.push_back(c.uploadMs);
+    views = std::max(views, c.views);
+  }
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "{\"frames\":%zu,\"views\":%d,\"median_ms\":%.3f,\"positions_ms\":%.3f,\"patches_ms\":%.3f,"
+                "\"upload_ms\":%.3f}",
+                costs.size(), views, median(total), median(positions), median(patches), median(upload));
+  return text;
+}
+
+// {"frames":N,"views":k,"schemes":[...],"level":L,"size":[w,h],"patches":[...],"median_ms":...}, and
+// with `edit` "edit":{...} (editStatsJson).
+std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& frameMs, int width, int height,
+                           const std::vector<EditCost>* edit = nullptr) {
   const ViewerState& state = app.state();
   std::ostringstream json;
   json << "{\"frames\":" << frameMs.size() << ",\"views\":" << state.viewCount << ",\"schemes\":[";
@@ -150,8 +172,10 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << range
        << ",\"range_min\":" << -rangeBelow << ",\"range_max\":" << range;
   char numbers[160];
-  std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f}", medianMs, minMs, maxMs);
+  std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f", medianMs, minMs, maxMs);
   json << numbers;
+  if (edit) json << ",\"edit\":" << editStatsJson(*edit);
+  json << "}";
   return json.str();
 }
 
@@ -345,6 +369,7 @@ struct ViewRequest {
   int width = 1600, height = 900;
   int frames = 0;
   bool stats = false, hidden = false, showHelp = false;
+  bool edit = false;    // the frames drag a control vertex (positions-only updates every frame)
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
 };
 
@@ -359,6 +384,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
     else if (arg == "--frames") r.frames = parseInt(cursor.value(arg), arg, 1, 100000);
     else if (arg == "--stats") r.stats = true;
+    else if (arg == "--edit") r.edit = true;
     else if (arg == "--hidden") r.hidden = true;
     else if (arg == "--capture") r.capture = cursor.value(arg);
     else if (arg == "--show-help") r.showHelp = true;
@@ -366,7 +392,60 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (r.input.empty()) r.input = arg;
     else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
   }
+  if (r.edit && r.frames == 0) throw UsageError("--edit needs --frames N");
   return r;
+}
+
+// The control vertex a --edit benchmark drags: the one whose projection lies nearest the first
+// view's centre (in front when several do); -1 when none is on screen.
+int centralVertex(const ViewerApp& app) {
+  const ViewTransform view = app.viewTransform(0);
+  const std::vector<Point>& points = app.editor().points();
+  const float cx = view.rect.x + 0.5f * view.rect.w, cy = view.rect.y + 0.5f * view.rect.h;
+  int best = -1;
+  double bestDistance = 1e300;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::optional<glm::dvec3> at = view.project(points[i]);
+    if (!at || !view.rect.contains(float(at->x), float(at->y))) continue;
+    const double d = std::hypot(at->x - cx, at->y - cy);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = int(i);
+    }
+  }
+  return best;
+}
+
+// --frames N --edit: N frames of a mouse drag of a control vertex through the real input path
+// (pick, drag in the view plane, positions-only update of every view, upload); returns the frame
+// times. The vertex goes round a circle of radius 12 pixels and is released where it ends.
+std::vector<double> runEditFrames(ViewerApp& app, int frames) {
+  ViewerState& state = app.state();
+  state.display.controlNet = true;
+  app.runFrame();
+  const int vertex = centralVertex(app);
+  if (vertex < 0) throw std::runtime_error("view --edit: no control vertex on screen to drag");
+  const std::optional<glm::dvec3> at = app.viewTransform(0).project(app.editor().points()[size_t(vertex)]);
+  const float x0 = float(at->x), y0 = float(at->y);
+  app.overridePointer(PointerState{x0, y0, false});
+  app.runFrame();
+  app.overridePointer(PointerState{x0, y0, true});  // the press picks the vertex
+  app.runFrame();
+  std::vector<double> frameMs;
+  float x = x0, y = y0;
+  for (int f = 0; f < frames && !app.shouldClose(); ++f) {
+    const double angle = 2.0 * 3.14159265358979 * double(f + 1) / double(std::max(frames, 8));
+    x = x0 + 12.0f * float(std::sin(angle));
+    y = y0 - 12.0f * float(1.0 - std::cos(angle));
+    app.overridePointer(PointerState{x, y, true});
+    app.runFrame();
+    frameMs.push_back(state.frameMs);
+  }
+  app.overridePointer(PointerState{x, y, false});  // released where it is: one undo step
+  app.runFrame();
+  app.overridePointer(std::nullopt);
+  if (app.editCosts().empty()) throw std::runtime_error("view --edit: the drag moved no control vertex");
+  return frameMs;
 }
 
 int viewWithApp(const ViewRequest& r) {
@@ -394,15 +473,20 @@ int viewWithApp(const ViewRequest& r) {
   app.runFrame();
   app.waitUntilIdle();
   std::vector<double> frameMs;
-  for (int f = 0; f < r.frames && !app.shouldClose(); ++f) {
-    app.runFrame();
-    frameMs.push_back(state.frameMs);
+  if (r.edit) {
+    frameMs = runEditFrames(app, r.frames);
+    app.waitUntilIdle();  // the curvature samples retaken after the drag
+  } else {
+    for (int f = 0; f < r.frames && !app.shouldClose(); ++f) {
+      app.runFrame();
+      frameMs.push_back(state.frameMs);
+    }
   }
   if (!r.capture.empty()) {
     app.captureWindowNextFrame(r.capture);
     app.runFrame();
   }
-  if (r.stats) std::cout << frameStatsJson(app, frameMs, r.width, r.height) << "\n";
+  if (r.stats) std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.editCosts() : nullptr) << "\n";
   return 0;
 }
 

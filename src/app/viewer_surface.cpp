@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -41,11 +42,6 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
   return poles;
 }
 
-// K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
-// End caps are skipped when other patches exist: at a Catmull-Clark extraordinary vertex K is
-// unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
-// shape's curvature scale and, at a valence-3 corner, would stretch the range until the rest of the
-// model is one colour. They still saturate visibly in the picture.
 // Polar configurations the scheme refines, and those Catmull-Clark refines instead (RTS and BPS
 // below valence 5), with the reason, so the view's title can say so.
 void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme scheme) {
@@ -62,26 +58,38 @@ void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme 
   }
 }
 
-void sampleCurvatures(BuiltSurface& surface, int s) {
-  const bool onlyEndCaps = std::all_of(surface.patches.begin(), surface.patches.end(),
-                                       [](const Patch& p) { return p.kind == PatchKind::EndCap; });
-  size_t count = surface.patches.size() * size_t(s) * size_t(s);
-  surface.gaussianSamples.reserve(count);
-  surface.meanSamples.reserve(count);
-  surface.sampleAreas.reserve(count);
-  for (const Patch& patch : surface.patches) {
+// K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
+// End caps are skipped when other patches exist: at a Catmull-Clark extraordinary vertex K is
+// unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
+// shape's curvature scale and, at a valence-3 corner, would stretch the range until the rest of the
+// model is one colour. They still saturate visibly in the picture.
+std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch>& patches, int s, uint64_t points) {
+  auto samples = std::make_shared<CurvatureSamples>();
+  samples->points = points;
+  const bool onlyEndCaps =
+      std::all_of(patches.begin(), patches.end(), [](const Patch& p) { return p.kind == PatchKind::EndCap; });
+  size_t count = patches.size() * size_t(s) * size_t(s);
+  samples->gaussian.reserve(count);
+  samples->mean.reserve(count);
+  samples->areas.reserve(count);
+  for (const Patch& patch : patches) {
     if (patch.kind == PatchKind::EndCap && !onlyEndCaps) continue;
     for (int j = 0; j < s; ++j) {
       for (int i = 0; i < s; ++i) {
         SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
         double area = glm::length(glm::cross(p.du, p.dv)) / double(s * s);
         if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
-        surface.gaussianSamples.push_back(float(p.gaussian));
-        surface.meanSamples.push_back(float(p.mean));
-        surface.sampleAreas.push_back(float(area));
+        samples->gaussian.push_back(float(p.gaussian));
+        samples->mean.push_back(float(p.mean));
+        samples->areas.push_back(float(area));
       }
     }
   }
+  return samples;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -200,24 +208,71 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   auto start = std::chrono::steady_clock::now();
   auto surface = std::make_shared<BuiltSurface>();
   surface->key = key;
+  surface->key.points = model.points;
 
   // Refine feature-adaptively and extract the limit patches. The level limit (deepestLevel) comes
   // from the estimate; the refiner's own hard limit leaves it room (the estimate is an upper bound
-  // at the measured levels, an extrapolation beyond).
+  // at the measured levels, an extrapolation beyond). The refinement stays with the surface for
+  // positions-only updates while the user drags a control point.
   const std::string refusal = levelRefusal(model, key.scheme, key.level, faceBudget);
   if (!refusal.empty()) throw InputError(model.name, 0, refusal);
-  AdaptiveRefinement refinement(*model.mesh, refineOptionsFor(key.scheme, key.level), model.name, 2 * faceBudget);
-  PatchSet patchSet = extractPatches(refinement);
+  surface->refinement = std::make_shared<AdaptiveRefinement>(*model.mesh, refineOptionsFor(key.scheme, key.level),
+                                                             model.name, 2 * faceBudget);
+  const AdaptiveRefinement& refinement = *surface->refinement;
+  auto sources = std::make_shared<PatchSources>();
+  PatchSet patchSet = extractPatches(refinement, sources.get());
+  surface->sources = std::move(sources);
   surface->patches = std::move(patchSet.patches);
   surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
   surface->poles = polePositions(surface->patches, refinement.level(refinement.levelCount() - 1));
   countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
-  surface->refineMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  surface->refineMs = millisecondsSince(start);
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).
   for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
-  sampleCurvatures(*surface, curvatureSamplesPerPatch(surface->patches.size()));
+  surface->samples = sampleCurvatures(surface->patches, curvatureSamplesPerPatch(surface->patches.size()), model.points);
   return surface;
+}
+
+std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, const Model& model, bool resample,
+                                                   RefreshTiming* timing) {
+  if (surface.key.model != model.generation || !surface.refinement)
+    throw std::invalid_argument("refreshSurface: the surface was not built from this model's topology");
+  RefreshTiming measured;
+  auto refreshed = std::make_shared<BuiltSurface>();
+  refreshed->key = surface.key;
+  refreshed->key.points = model.points;
+
+  // Positions of every level from the new base points; the levels' meshes and tables stay.
+  auto start = std::chrono::steady_clock::now();
+  AdaptiveRefinement& refinement = *surface.refinement;
+  refinement.updatePositions(model.mesh->points);
+  measured.positionsMs = millisecondsSince(start);
+
+  // The patches and pole markers of the moved points; counts and fallbacks are the topology's.
+  start = std::chrono::steady_clock::now();
+  PatchSet patchSet;
+  patchSet.patches = surface.patches;
+  refreshPatches(refinement, *surface.sources, patchSet);
+  refreshed->patches = std::move(patchSet.patches);
+  refreshed->poles = polePositions(refreshed->patches, refinement.level(refinement.levelCount() - 1));
+  measured.patchesMs = millisecondsSince(start);
+  refreshed->controlMesh = *model.mesh;
+  refreshed->patchesPerKind = surface.patchesPerKind;
+  refreshed->polesByScheme = surface.polesByScheme;
+  refreshed->polesByCatmullClark = surface.polesByCatmullClark;
+  refreshed->fallbackReason = surface.fallbackReason;
+  refreshed->refineMs = surface.refineMs;
+  refreshed->refinement = surface.refinement;
+  refreshed->sources = surface.sources;
+
+  start = std::chrono::steady_clock::now();
+  refreshed->samples = resample ? sampleCurvatures(refreshed->patches, curvatureSamplesPerPatch(refreshed->patches.size()),
+                                                   model.points)
+                                : surface.samples;
+  measured.samplesMs = resample ? millisecondsSince(start) : 0.0;
+  if (timing) *timing = measured;
+  return refreshed;
 }
 
 SurfaceJob::~SurfaceJob() {

@@ -1,6 +1,8 @@
 // Building what a view shows, off the GL thread: refine the model with one scheme to one level,
 // extract the limit patches, count them and sample their curvature for the shared colour range.
 // SurfaceJobs keeps one job per view in flight (std::async) so the window never waits on it.
+// A built surface keeps its refinement hierarchy, so that moving control points (live editing)
+// recomputes positions and patches only (refreshSurface), never the topology.
 #pragma once
 
 #include <array>
@@ -14,9 +16,12 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
+#include "core/spline/patch_extraction.h"
 #include "ui/viewer_state.h"
 
 namespace polarview {
+
+class AdaptiveRefinement;
 
 // Memory one view's surface may take while it is built, and what a face of the feature-adaptive
 // refinement costs there (levels, copied-out parts, patches: peak RSS 447 MB for 989,082 faces,
@@ -25,27 +30,48 @@ namespace polarview {
 constexpr size_t kViewMemoryBudget = size_t(640) << 20;
 constexpr size_t kBytesPerAdaptiveFace = 450;
 constexpr size_t kDefaultFaceBudget = kViewMemoryBudget / kBytesPerAdaptiveFace;
+// What a face of the finest level of a uniform refinement costs (`refine`'s measure: 236-248 bytes
+// of peak memory a face, Catmull-Clark on a cube): the viewer's "refined control mesh" export
+// refuses levels whose uniform mesh would not fit the view's memory budget.
+constexpr size_t kBytesPerUniformFace = 300;
 
 // What a surface is a function of.
 struct SurfaceKey {
-  uint64_t model = 0;  // model generation (bumped on every load)
+  uint64_t model = 0;  // model generation (bumped on every load; the topology)
   SchemeChoice scheme = SchemeChoice::C2PS;
   int level = 0;
-  bool operator==(const SurfaceKey& o) const { return model == o.model && scheme == o.scheme && level == o.level; }
+  uint64_t points = 0;  // revision of the model's points (bumped by every edit)
+  bool operator==(const SurfaceKey& o) const { return sameTopology(o) && points == o.points; }
   bool operator!=(const SurfaceKey& o) const { return !(*this == o); }
+  // Same model, scheme and level: the surfaces differ at most in their points, so one is the other
+  // after refreshSurface.
+  bool sameTopology(const SurfaceKey& o) const { return model == o.model && scheme == o.scheme && level == o.level; }
+};
+
+// Curvature samples for the automatic colour range, each with the surface area it stands for
+// (small patches crowd around extraordinary points; unweighted they would dominate the range).
+// End-cap patches (Catmull-Clark extraordinary vertices, where K is unbounded or forced to 0
+// except at valence 4) are left out unless there is nothing else.
+struct CurvatureSamples {
+  std::vector<float> gaussian, mean, areas;
+  uint64_t points = 0;  // the points revision they were taken at
 };
 
 struct BuiltSurface {
   SurfaceKey key;
   std::vector<Patch> patches;
-  PolyMesh controlMesh;              // the refined control mesh of `level`
+  PolyMesh controlMesh;              // the base cage the view draws as its control net (the model)
   std::vector<Point> poles;          // limit positions of the poles (markers)
   std::array<int, kPatchKindCount> patchesPerKind{};
-  // Curvature samples for the automatic colour range, each with the surface area it stands for
-  // (small patches crowd around extraordinary points; unweighted they would dominate the range).
-  // End-cap patches (Catmull-Clark extraordinary vertices, where K is unbounded or forced to 0
-  // except at valence 4) are left out unless there is nothing else.
-  std::vector<float> gaussianSamples, meanSamples, sampleAreas;
+  // Shared between a surface and its refreshed successors while a drag goes on (sampling every
+  // frame would cost more than the edit); retaken when the drag ends.
+  std::shared_ptr<const CurvatureSamples> samples;
+  // The refinement the patches came from, kept for positions-only updates (refreshSurface). Only
+  // the thread that owns the surface touches it (the worker while building, then the GL thread).
+  std::shared_ptr<AdaptiveRefinement> refinement;
+  // How each patch was made (stencils), shared the same way: a refresh recomputes control points
+  // only (refreshPatches), no classification.
+  std::shared_ptr<const PatchSources> sources;
   double refineMs = 0.0;             // refinement + patch extraction
   // Polar configurations of the model refined by the scheme / by Catmull-Clark instead (RTS and
   // BPS need valence >= 5), and why; both 0 for Catmull-Clark itself.
@@ -53,11 +79,13 @@ struct BuiltSurface {
   std::string fallbackReason;
 };
 
-// The model every view refines: the mesh and where it came from.
+// The model every view refines: the mesh and where it came from. An edit replaces `mesh` by a copy
+// with new points (the faces stay) and bumps `points`; a load bumps `generation`.
 struct Model {
   std::shared_ptr<const PolyMesh> mesh;
   std::string name;        // file path or "default: ..."
   uint64_t generation = 0;
+  uint64_t points = 0;     // revision of mesh->points within this generation
   bool radialForRtsBps = false;  // RTS/BPS refine the whole mesh radially (faces x2 a level, not x4)
 };
 
@@ -79,6 +107,21 @@ std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
 // Refines and extracts (worker-thread safe: touches no shared state). Throws InputError when the
 // level is over `faceBudget` or the mesh cannot be refined. [O(output)]
 std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);
+
+// What one positions-only update cost (milliseconds).
+struct RefreshTiming {
+  double positionsMs = 0.0;  // AdaptiveRefinement::updatePositions
+  double patchesMs = 0.0;    // refreshPatches and the pole markers
+  double samplesMs = 0.0;    // curvature samples (when retaken)
+};
+
+// `surface` for the model's current points: updatePositions on its refinement (topology untouched),
+// refreshPatches (control points from the recorded stencils), pole markers; the curvature samples are retaken when `resample`, else shared with
+// `surface`. The key takes the model's points revision. `surface.key` must have the model's
+// generation (std::invalid_argument otherwise). Mutates the shared refinement: call from the thread
+// that owns the surface. [O(faces of all levels)]
+std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, const Model& model, bool resample,
+                                                   RefreshTiming* timing = nullptr);
 
 // The symmetric colour range max(-P(1 - quantile), P(quantile)) of the weighted percentiles P of
 // the signed values (quantile 0.95: the 5th and 95th percentiles), so each tail may saturate on at

@@ -20,6 +20,10 @@ struct InputEvent {
   int action = 0;     // Key / MouseButton: GLFW_PRESS, GLFW_RELEASE or GLFW_REPEAT
   int mods = 0;       // Key / MouseButton: modifier bits
   double dx = 0, dy = 0;  // Scroll offsets
+  // MouseButton: the cursor (window coordinates) when the button changed. ImGui 1.86 reads the
+  // cursor once a frame, so a press followed by motion within one frame would otherwise land
+  // where the cursor went, not where it was pressed (a quick drag would miss a control vertex).
+  double x = 0, y = 0;
 };
 
 class InputEventQueue {

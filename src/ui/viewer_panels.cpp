@@ -101,10 +101,10 @@ void drawFilePanel(ViewerState& state) {
   ImGui::SameLine();
   const bool canUndo = !file.previousModelName.empty();
   if (!canUndo) ImGui::BeginDisabled();
-  if (ImGui::Button("Undo (Ctrl+Z)")) state.requests.undoModel = true;
+  if (ImGui::Button("Previous model")) state.requests.undoModel = true;
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("back to %s", file.previousModelName.c_str());
+    ImGui::SetTooltip("back to %s (also Ctrl+Z when no vertex drag is left to undo)", file.previousModelName.c_str());
   ImGui::TextWrapped("Model: %s (%d vertices, %d faces)", file.modelName.c_str(), file.modelVertices,
                      file.modelFaces);
   ImGui::TextDisabled("Or drop .obj files on the window.");
@@ -133,6 +133,59 @@ void drawFilePanel(ViewerState& state) {
     }
     ImGui::TreePop();
   }
+}
+
+// A path field whose empty value stands for `fallback` (shown greyed as the hint), and a button.
+bool pathFieldAndButton(const char* id, std::string& path, const std::string& fallback, const char* button) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize(button).x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
+  bool pressed = ImGui::InputTextWithHint(id, fallback.c_str(), &path, ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  pressed = ImGui::Button(button) || pressed;
+  return pressed;
+}
+
+void drawEditPanel(ViewerState& state) {
+  EditSettings& edit = state.edit;
+  // Buttons first, at fixed places; text that changes length below them.
+  const bool canUndo = edit.undoSteps > 0, canRedo = edit.redoSteps > 0;
+  if (!canUndo) ImGui::BeginDisabled();
+  if (ImGui::Button("Undo (Ctrl+Z)")) state.requests.undo = true;
+  if (!canUndo) ImGui::EndDisabled();
+  if (canUndo && ImGui::IsItemHovered()) ImGui::SetTooltip("undo: %s", edit.undoLabel.c_str());
+  ImGui::SameLine();
+  if (!canRedo) ImGui::BeginDisabled();
+  if (ImGui::Button("Redo (Ctrl+Y)")) state.requests.redo = true;
+  if (!canRedo) ImGui::EndDisabled();
+  if (canRedo && ImGui::IsItemHovered()) ImGui::SetTooltip("redo: %s", edit.redoLabel.c_str());
+  ImGui::SameLine();
+  const bool edited = edit.movedVertices > 0;
+  if (!edited) ImGui::BeginDisabled();
+  if (ImGui::Button("Reset")) state.requests.resetEdits = true;
+  if (!edited) ImGui::EndDisabled();
+  if (edited && ImGui::IsItemHovered()) ImGui::SetTooltip("every control vertex back where the file had it (Ctrl+Z undoes it)");
+  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, "Save OBJ (Ctrl+S)"))
+    state.requests.saveEdited = true;
+  if (pathFieldAndButton("##bvPath", edit.bvPath, edit.defaultBvPath, "Export .bv")) state.requests.exportBezierView = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive) for BezierView");
+  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "Export refined mesh"))
+    state.requests.exportRefinedMesh = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");
+
+  if (!state.display.controlNet) {
+    ImGui::TextDisabled("Show the control net (N) to pick and drag its vertices.");
+  } else if (edit.selectedVertex >= 0) {
+    ImGui::Text("Vertex %d: (%.4g, %.4g, %.4g)%s", edit.selectedVertex, edit.selectedPosition.x, edit.selectedPosition.y,
+                edit.selectedPosition.z, edit.dragging ? " moving" : "");
+  } else {
+    ImGui::TextDisabled("Click a control vertex to select it; drag it to move it.");
+  }
+  if (edited)
+    ImGui::Text("%d %s moved, %d undo step%s", edit.movedVertices, edit.movedVertices == 1 ? "vertex" : "vertices",
+                edit.undoSteps, edit.undoSteps == 1 ? "" : "s");
+  if (!edit.exporting.empty()) wrappedColoredText(ImVec4(0.5f, 0.8f, 1.0f, 1.0f), "writing " + edit.exporting + "...");
+  if (!edit.error.empty()) wrappedColoredText(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), edit.error);
 }
 
 void drawViewsPanel(ViewerState& state) {
@@ -303,6 +356,12 @@ void drawScreenshotPanel(ViewerState& state) {
 
 void drawStatsPanel(const ViewerState& state) {
   ImGui::Text("Frame: %.1f ms", state.frameMs);
+  const EditSettings& edit = state.edit;
+  if (edit.updatedViews > 0) {
+    ImGui::TextWrapped("Last edit: %.1f ms for %d view%s (positions %.1f, patches %.1f, upload %.1f)", edit.totalMs,
+                       edit.updatedViews, edit.updatedViews == 1 ? "" : "s", edit.positionsMs, edit.patchesMs,
+                       edit.uploadMs);
+  }
   for (int v = 0; v < state.viewCount; ++v) {
     const ViewStatus& s = state.status[v];
     if (!s.hasSurface) {
@@ -378,7 +437,10 @@ void applyHotkey(ViewerState& state, int key, int mods) {
     if (key == GLFW_KEY_C) state.requests.copyCamera = true;
     if (key == GLFW_KEY_V) state.requests.pasteCamera = true;
     if (key == GLFW_KEY_R) state.requests.reload = true;
-    if (key == GLFW_KEY_Z) state.requests.undoModel = true;
+    if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT)) state.requests.redo = true;
+    else if (key == GLFW_KEY_Z) state.requests.undo = true;
+    if (key == GLFW_KEY_Y) state.requests.redo = true;
+    if (key == GLFW_KEY_S) state.requests.saveEdited = true;
     return;
   }
   if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) requestLevel(state, key - GLFW_KEY_0);
@@ -425,6 +487,7 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"Right / middle drag, Shift+left drag", "pan"},
       {"Wheel", "zoom towards the point under the cursor"},
       {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
+      {"Left drag on a control vertex", "with the control net shown (N): move the vertex in the view plane; every view follows"},
       {"O", "orthographic / perspective projection"},
       {"Double-click", "set the pivot to the surface point under the cursor"},
       {"F", "frame the model"},
@@ -440,7 +503,9 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"U / N / B / P / W", "limit surface / control net / patch boundaries / pole markers / wireframe"},
       {"X", "screenshot polarview_NNNN.png (colour bar and labels included)"},
       {"Ctrl+R", "reload the model file"},
-      {"Ctrl+Z", "back to the previous model (after Open, Default model, a drop)"},
+      {"Ctrl+Z", "undo the last vertex drag; with none left, back to the previous model (after Open, Default model, a drop)"},
+      {"Ctrl+Shift+Z / Ctrl+Y", "redo the vertex drag undone last"},
+      {"Ctrl+S", "save the edited control mesh as OBJ (path in the Edit panel)"},
       {"PageDown / PageUp", "next / previous of several dropped files"},
       {"Tab", "hide / show the panels"},
       {"?", "this help"},
@@ -557,6 +622,7 @@ void drawViewerPanels(ViewerState& state) {
     ImGui::PushItemWidth(-120.0f);
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(state);
     if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(state);
+    if (ImGui::CollapsingHeader("Edit and export")) drawEditPanel(state);
     if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(state);
     if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) drawShadingPanel(state);
     if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(state);
@@ -569,7 +635,8 @@ void drawViewerPanels(ViewerState& state) {
 }
 
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
-                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles) {
+                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles,
+                     const std::vector<VertexMarker>& vertices) {
   const float fontSize = 15.0f * scale;
   const ImU32 text = IM_COL32(255, 255, 255, 255);
   const ImU32 box = IM_COL32(20, 20, 24, 190);
@@ -610,6 +677,18 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
     if (underLabel) continue;
     list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
     list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
+  }
+
+  // Control vertices: the selected one filled (orange on a dark rim), the one under the cursor ringed.
+  for (const VertexMarker& vertex : vertices) {
+    const ImVec2 centre(vertex.x, vertex.y);
+    if (vertex.selected) {
+      list->AddCircleFilled(centre, 6.0f * scale, IM_COL32(0, 0, 0, 220), 20);
+      list->AddCircleFilled(centre, 4.5f * scale, IM_COL32(255, 150, 30, 255), 20);
+    } else {
+      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(0, 0, 0, 200), 20, 3.0f * scale);
+      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(255, 200, 80, 255), 20, 1.5f * scale);
+    }
   }
 
   // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
@@ -688,8 +767,9 @@ void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float 
   state.camera(v).zoomAt(notches, ndcX, ndcY, double(view.w) / std::max(double(view.h), 1.0));
 }
 
-std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views) {
+InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex) {
   ImGuiIO& io = ImGui::GetIO();
+  InputResult result;
   // Every press since the last frame, in order (a press shorter than a frame still counts); while
   // a text field has the keyboard they were typing, not shortcuts.
   if (!io.WantCaptureKeyboard) {
@@ -700,13 +780,43 @@ std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vect
   pendingKeys_.clear();
   state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
 
+  // A vertex drag follows the cursor wherever it goes until the left button comes up.
+  if (vertexDrag_) {
+    const bool released = !ImGui::IsMouseDown(0);
+    if (released || ImGui::IsMousePosValid()) {
+      result.vertexDrag = VertexDragEvent{dragView_, io.MousePos.x, io.MousePos.y, released};
+    }
+    if (released) {
+      vertexDrag_ = false;
+      dragView_ = -1;
+    }
+    return result;
+  }
+
+  // A click on a view that picked nothing and did not drag clears the selection.
+  if (pressedOnEmpty_ && ImGui::IsMouseReleased(0)) {
+    result.deselect = io.MouseDragMaxDistanceSqr[0] < 9.0f;
+    pressedOnEmpty_ = false;
+  }
   bool anyDown = ImGui::IsMouseDown(0) || ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2);
   if (!anyDown) dragView_ = -1;
-  if (io.WantCaptureMouse) return std::nullopt;
+  if (io.WantCaptureMouse) return result;
 
   int hovered = -1;
   for (size_t v = 0; v < views.size(); ++v) {
     if (views[v].contains(io.MousePos.x, io.MousePos.y)) hovered = int(v);
+  }
+  result.hoveredView = hovered;
+  // A plain left press on a control vertex (net shown) edits it instead of orbiting.
+  if (dragView_ < 0 && hovered >= 0 && ImGui::IsMouseClicked(0) && !io.KeyCtrl && !io.KeyShift) {
+    if (state.display.controlNet && pickVertex && pickVertex(hovered, io.MousePos.x, io.MousePos.y)) {
+      vertexDrag_ = true;
+      dragView_ = hovered;
+      state.activeView = hovered;
+      result.vertexDrag = VertexDragEvent{hovered, io.MousePos.x, io.MousePos.y, false};
+      return result;
+    }
+    pressedOnEmpty_ = true;
   }
   if (dragView_ < 0 && hovered >= 0 && (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2))) {
     dragView_ = hovered;
@@ -724,11 +834,12 @@ std::optional<PivotPick> ViewerInput::handle(ViewerState& state, const std::vect
   }
   if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) {
     if (io.MouseWheel != 0.0f) zoomTowardsCursor(state, views[size_t(hovered)], hovered, io.MouseWheel);
-    return PivotPick{hovered, io.MousePos.x, io.MousePos.y};
+    result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y};
+    return result;
   }
   // The wheel zooms towards the surface point under the cursor: the app reads the depth there.
-  if (hovered >= 0 && io.MouseWheel != 0.0f) return PivotPick{hovered, io.MousePos.x, io.MousePos.y, io.MouseWheel};
-  return std::nullopt;
+  if (hovered >= 0 && io.MouseWheel != 0.0f) result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y, io.MouseWheel};
+  return result;
 }
 
 }  // namespace polarview

@@ -2,6 +2,7 @@
 // They read and write a ViewerState only: no GL calls, no GPU objects.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,12 +51,23 @@ struct PoleMarker {
   float x = 0, y = 0;
 };
 
-// View labels ("C2PS · 3"), refining / loading indicators, pole rings, and the colour bar with
-// numeric ticks (curvature modes) or a legend of the light lines (highlight / reflection modes),
-// drawn into `list` (the background list on screen, a private list for screenshots). `scale`
-// multiplies sizes (supersampled screenshots).
+// How close (window pixels) a click must come to a control vertex's projection to pick it.
+constexpr float kPickRadiusPixels = 8.0f;
+
+// A control vertex marked in the overlay: the selected one (filled) or the one a click would pick
+// (a ring), in the overlay's coordinates.
+struct VertexMarker {
+  float x = 0, y = 0;
+  bool selected = false;
+};
+
+// View labels ("C2PS · 3"), refining / loading indicators, pole rings, marked control vertices, and
+// the colour bar with numeric ticks (curvature modes) or a legend of the light lines (highlight /
+// reflection modes), drawn into `list` (the background list on screen, a private list for
+// screenshots). `scale` multiplies sizes (supersampled screenshots).
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
-                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles = {});
+                     const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles = {},
+                     const std::vector<VertexMarker>& vertices = {});
 
 // The one-line legend of highlight / reflection lines: light direction, spacing and width, e.g.
 // "highlight lines: light (1, 0, 0), spacing 0.25 x model radius, dark 30%"; empty in other modes.
@@ -69,19 +81,42 @@ struct PivotPick {
   float zoomNotches = 0.0f;
 };
 
+// A left drag that began on a control vertex: where the cursor is now (window coordinates), for the
+// app to move the vertex; `released` on the frame the button comes up (the drag ends there).
+struct VertexDragEvent {
+  int view = 0;
+  float x = 0, y = 0;
+  bool released = false;
+};
+
+// What the mouse asked for this frame beyond the camera moves handle() makes itself.
+struct InputResult {
+  std::optional<PivotPick> pivot;            // double-click or wheel: the app reads the depth there
+  std::optional<VertexDragEvent> vertexDrag;  // a control vertex being dragged
+  bool deselect = false;                      // a click (no drag) on a view away from any vertex
+  int hoveredView = -1;                       // the view under the cursor, -1 over panels or outside
+};
+
+// Asked on a plain left press in view `view` at (x, y) while the control net is shown: true when
+// it picked a control vertex there (the drag then edits it instead of orbiting).
+using VertexPicker = std::function<bool(int view, float x, float y)>;
+
 // Hotkeys and mouse camera control. Keys are ignored while ImGui wants the keyboard and the mouse
 // while it wants the mouse (io.WantCaptureKeyboard / WantCaptureMouse). Keeps which view a drag
 // started in, so a drag that crosses into another view keeps turning the first one.
 class ViewerInput {
  public:
-  // Call after ImGui::NewFrame. Returns a double-click position to resolve, if any.
-  std::optional<PivotPick> handle(ViewerState& state, const std::vector<ScreenRect>& views);
+  // Call after ImGui::NewFrame. A left press on a control vertex (pickVertex says so) starts a
+  // vertex drag; elsewhere left drags orbit as always.
+  InputResult handle(ViewerState& state, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex = {});
   // A key press from the window's key callback (GLFW key and modifier bits); handle() applies the
   // presses queued since the last frame, so none is lost however short or slow the frame.
   void queueKeyPress(int key, int mods) { pendingKeys_.emplace_back(key, mods); }
 
  private:
   int dragView_ = -1;
+  bool vertexDrag_ = false;    // the left drag in dragView_ moves a control vertex
+  bool pressedOnEmpty_ = false;  // the left press hit no vertex (a release without drag deselects)
   std::vector<std::pair<int, int>> pendingKeys_;
 };
 

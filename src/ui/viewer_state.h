@@ -108,12 +108,42 @@ struct ScreenshotSettings {
   std::string lastPath;      // last written file
 };
 
+// Live editing of the base control mesh, saving it, and exports of what a view shows. The app
+// writes the read-only parts; the panel edits the paths.
+struct EditSettings {
+  int selectedVertex = -1;          // the picked control vertex (-1: none)
+  glm::dvec3 selectedPosition{0.0};
+  int hoveredVertex = -1;           // the vertex a click would pick now (-1: none)
+  bool dragging = false;            // a drag that started on a vertex is moving it
+  int undoSteps = 0, redoSteps = 0;
+  std::string undoLabel, redoLabel; // "move vertex 12", "reset"
+  int movedVertices = 0;            // vertices away from their loaded position
+  // Output paths; empty means the default beside it (written by the app): <model>_edited.obj,
+  // <model>_<scheme>_<level>.bv and <model>_<scheme>_<level>_refined.obj next to the model file,
+  // or in the current directory for the built-in model.
+  std::string savePath, defaultSavePath;
+  std::string bvPath, defaultBvPath;
+  std::string refinedObjPath, defaultRefinedObjPath;
+  std::string error;                // the last failed save or export, one line
+  std::string exporting;            // what a background export is writing ("" when none)
+  // Cost of the last positions-only update of the views (every view together, ms): the
+  // refinement's positions, patch extraction (with pole markers), upload, and all of it.
+  double positionsMs = 0.0, patchesMs = 0.0, uploadMs = 0.0, totalMs = 0.0;
+  int updatedViews = 0;
+};
+
 // One-shot actions panels and hotkeys ask the app for; the app clears them when done.
 struct ViewerRequests {
   bool load = false;          // load file.pathField
   bool reload = false;        // reload file.loadedPath
   bool loadDefault = false;   // the built-in default model
-  bool undoModel = false;     // Ctrl+Z: back to the model shown before the last replacement
+  bool undoModel = false;     // back to the model shown before the last replacement
+  bool undo = false;          // Ctrl+Z: undo the last edit, or (none left) undoModel
+  bool redo = false;          // Ctrl+Shift+Z, Ctrl+Y
+  bool resetEdits = false;    // every control vertex back where the file had it
+  bool saveEdited = false;    // Ctrl+S: the edited mesh as OBJ
+  bool exportBezierView = false;   // the active view's surface as .bv
+  bool exportRefinedMesh = false;  // the active view's uniform refined control mesh as OBJ
   int playlistStep = 0;       // +1 / -1: next / previous file of the playlist (PageDown / PageUp)
   int playlistPick = -1;      // open this playlist entry
   bool screenshot = false;
@@ -136,6 +166,7 @@ struct ViewerState {
   ColourRangeSettings colour;
   FileSettings file;
   ScreenshotSettings screenshot;
+  EditSettings edit;
   ViewerRequests requests;
 
   bool showPanels = true;      // Tab

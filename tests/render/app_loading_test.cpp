@@ -270,7 +270,7 @@ TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, value
   CHECK(weightedPercentile(values, weights, 1.0f) == 3.0f);
 }
 
-TEST_CASE("asymmetric colour range: each side from its own percentile; switching automatic off keeps both") {
+TEST_CASE("asymmetric colour range: each side from its own percentile, switching automatic off keeps both") {
   auto app = makeHiddenApp(480, 320);
   app->loadDefaultModel();
   ViewerState& state = app->state();
@@ -319,12 +319,12 @@ TEST_CASE("curvature samples for the range come from every patch except the end 
       CAPTURE(level);
       REQUIRE(endCaps > 0);
       REQUIRE(counted > 0);
-      const size_t samples = surface->gaussianSamples.size();
+      const size_t samples = surface->samples->gaussian.size();
       CHECK(samples % counted == 0);
       const size_t perPatch = samples / counted;
       const size_t side = size_t(std::lround(std::sqrt(double(perPatch))));
       CHECK(side * side == perPatch);
-      CHECK(surface->sampleAreas.size() == samples);
+      CHECK(surface->samples->areas.size() == samples);
     }
   }
 }

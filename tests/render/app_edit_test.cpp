@@ -1,0 +1,487 @@
+// Live editing of the base control mesh, driven through the real input path (the pointer ImGui
+// reads, ViewerApp::overridePointer): a click near a control vertex picks it, a drag moves it in
+// the view plane under the cursor while every view follows from a positions-only update of its
+// kept refinement, undo / redo / reset work over whole drags, Ctrl+S saves the edited mesh, and
+// the Export entries write the shown surface (.bv) and the uniform refined control mesh (OBJ).
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+
+#include "app/export_command.h"
+#include "app/viewer_app.h"
+#include "app/viewer_edit.h"
+#include "app/viewer_surface.h"
+#include "core/mesh/obj_io.h"
+#include "core/subdiv/adaptive_refiner.h"
+#include "core/subdiv/refiner.h"
+
+#include <doctest/doctest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace polarview {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<ViewerApp> makeEditApp(int width = 800, int height = 600, size_t faceBudget = kDefaultFaceBudget) {
+  ViewerOptions options;
+  options.width = width;
+  options.height = height;
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  options.faceBudget = faceBudget;
+  auto app = std::make_unique<ViewerApp>(options);
+  std::string error;
+  REQUIRE_MESSAGE(app->init(&error), error);
+  return app;
+}
+
+// The default model at `level`, control net shown, panels hidden (the views fill the window).
+std::unique_ptr<ViewerApp> makeEditingApp(int level, int views = 1) {
+  auto app = makeEditApp();
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.showPanels = false;
+  state.display.controlNet = true;
+  state.viewCount = views;
+  requestLevel(state, level);
+  app->waitUntilIdle();
+  app->runFrame();
+  app->waitUntilIdle();
+  return app;
+}
+
+// The pointer ImGui sees, one frame per call.
+void pointer(ViewerApp& app, float x, float y, bool left) {
+  app.overridePointer(PointerState{x, y, left});
+  app.runFrame();
+}
+
+// A drag with the left button from (x0, y0) to (x1, y1) in `steps` frames, then the release.
+void drag(ViewerApp& app, float x0, float y0, float x1, float y1, int steps = 4) {
+  pointer(app, x0, y0, false);
+  pointer(app, x0, y0, true);
+  for (int i = 1; i <= steps; ++i) {
+    const float t = float(i) / float(steps);
+    pointer(app, x0 + t * (x1 - x0), y0 + t * (y1 - y0), true);
+  }
+  pointer(app, x1, y1, false);
+}
+
+// The control vertex whose projection is nearest the middle of view 0, and where it appears.
+struct ScreenVertex {
+  int vertex = -1;
+  float x = 0, y = 0;
+};
+ScreenVertex centralVertex(const ViewerApp& app, int view = 0) {
+  const ViewTransform transform = app.viewTransform(view);
+  const float cx = transform.rect.x + 0.5f * transform.rect.w, cy = transform.rect.y + 0.5f * transform.rect.h;
+  ScreenVertex best;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  const std::vector<Point>& points = app.editor().points();
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto at = transform.project(points[i]);
+    if (!at) continue;
+    const double d = std::hypot(at->x - cx, at->y - cy);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = {int(i), float(at->x), float(at->y)};
+    }
+  }
+  return best;
+}
+
+// Every patch of `a` equals the one at the same place in `b` to `tolerance` (positions and cap data).
+void checkSamePatches(const std::vector<Patch>& a, const std::vector<Patch>& b, double tolerance) {
+  REQUIRE(a.size() == b.size());
+  double worst = 0.0;
+  size_t kindsDiffer = 0;
+  for (size_t p = 0; p < a.size(); ++p) {
+    kindsDiffer += a[p].kind != b[p].kind;
+    for (int k = 0; k < 16; ++k) worst = std::max(worst, glm::length(a[p].cp[k] - b[p].cp[k]));
+  }
+  CHECK(kindsDiffer == 0);
+  CHECK(worst <= tolerance);
+}
+
+bool noTemporariesIn(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".tmp") return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("vertex picking: within the radius the vertex nearest the eye wins, outside it none") {
+  OrbitCamera camera;
+  camera.target = glm::dvec3(0.0);
+  camera.distance = 5.0;
+  ViewTransform view;
+  view.rect = ScreenRect{100, 50, 400, 300};
+  view.viewProjection = glm::dmat4(camera.projectionMatrix(400.0 / 300.0, glm::dvec3(0.0), 2.0)) *
+                        glm::lookAt(camera.eye(), camera.target, camera.up());
+  // Three points on one line of sight (same pixel) at different depths, and one off to the side.
+  const glm::dvec3 toEye = glm::normalize(camera.eye() - camera.target);
+  std::vector<Point> points = {Point(0.0) - 0.5 * toEye, Point(0.0) + 0.5 * toEye, Point(0.0),
+                               Point(0.0) + 1.5 * camera.right()};
+  const auto centre = view.project(points[2]);
+  REQUIRE(centre);
+  CHECK(centre->x == doctest::Approx(300.0).epsilon(1e-9));
+  CHECK(centre->y == doctest::Approx(200.0).epsilon(1e-9));
+  CHECK(pickVertex(points, view, 303.0f, 196.0f) == 1);  // 5 px off: the one nearest the eye
+  CHECK(pickVertex(points, view, 300.0f, 209.0f) == -1);  // 9 px off: none
+  const auto side = view.project(points[3]);
+  REQUIRE(side);
+  CHECK(pickVertex(points, view, float(side->x) - 7.0f, float(side->y)) == 3);
+  // A point on the drag plane through a vertex projects back under the cursor.
+  const auto onPlane = view.pointOnPlane(321.5f, 187.25f, points[3], camera.forward());
+  REQUIRE(onPlane);
+  const auto back = view.project(*onPlane);
+  CHECK(back->x == doctest::Approx(321.5).epsilon(1e-9));
+  CHECK(back->y == doctest::Approx(187.25).epsilon(1e-9));
+  CHECK(std::abs(glm::dot(*onPlane - points[3], camera.forward())) < 1e-12);
+}
+
+TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on empty space still orbits") {
+  auto app = makeEditingApp(2);
+  ViewerState& state = app->state();
+  const ScreenVertex target = centralVertex(*app);
+  REQUIRE(target.vertex >= 0);
+  // The expected pick: among the vertices within 8 px of the click, the one nearest the eye.
+  const float clickX = target.x + 3.0f, clickY = target.y - 2.0f;
+  const ViewTransform transform = app->viewTransform(0);
+  int expected = -1;
+  double nearest = 2.0;
+  for (size_t i = 0; i < app->editor().points().size(); ++i) {
+    const auto at = transform.project(app->editor().points()[i]);
+    if (at && std::hypot(at->x - clickX, at->y - clickY) <= 8.0 && at->z < nearest) {
+      nearest = at->z;
+      expected = int(i);
+    }
+  }
+  REQUIRE(expected >= 0);
+  const OrbitCamera before = state.sharedCamera;
+  pointer(*app, clickX, clickY, false);
+  pointer(*app, clickX, clickY, true);
+  CHECK(app->editor().selected() == expected);
+  CHECK(state.edit.selectedVertex == expected);
+  pointer(*app, clickX, clickY, false);
+  CHECK(app->editor().selected() == expected);
+  CHECK(app->editor().undoCount() == 0);  // a click without motion moves nothing
+  CHECK(cameraToJson(state.sharedCamera) == cameraToJson(before));
+
+  // A drag from a spot far from every vertex orbits, and keeps the selection.
+  const float emptyX = transform.rect.x + 12.0f, emptyY = transform.rect.y + transform.rect.h - 12.0f;
+  REQUIRE(pickVertex(app->editor().points(), transform, emptyX, emptyY) == -1);
+  drag(*app, emptyX, emptyY, emptyX + 60.0f, emptyY - 20.0f);
+  CHECK(state.sharedCamera.yawDeg != doctest::Approx(before.yawDeg));
+  CHECK(app->editor().selected() == expected);
+  CHECK(app->editor().points() == app->editor().loadedPoints());
+  // A click (no drag) there clears the selection; with the net hidden a press never picks.
+  const ViewTransform turned = app->viewTransform(0);
+  REQUIRE(pickVertex(app->editor().points(), turned, emptyX + 40.0f, emptyY - 40.0f) == -1);
+  pointer(*app, emptyX + 40.0f, emptyY - 40.0f, false);
+  pointer(*app, emptyX + 40.0f, emptyY - 40.0f, true);
+  pointer(*app, emptyX + 40.0f, emptyY - 40.0f, false);
+  CHECK(app->editor().selected() == -1);
+  state.display.controlNet = false;
+  const ScreenVertex again = centralVertex(*app);
+  pointer(*app, again.x, again.y, false);
+  pointer(*app, again.x, again.y, true);
+  pointer(*app, again.x, again.y, false);
+  CHECK(app->editor().selected() == -1);
+}
+
+TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the cursor, the topology is never rebuilt") {
+  auto app = makeEditingApp(3, 2);
+  ViewerState& state = app->state();
+  state.views[1].scheme = SchemeChoice::CatmullClark;
+  app->waitUntilIdle();
+  app->runFrame();
+  const ScreenVertex target = centralVertex(*app);
+  REQUIRE(target.vertex >= 0);
+  const Point start = app->model().mesh->points[size_t(target.vertex)];
+  const std::vector<Index> faces = app->model().mesh->faceVerts;
+  const std::vector<Point> loaded = app->model().mesh->points;
+  const glm::dvec3 forward = state.sharedCamera.forward();
+  const AdaptiveRefinement* refinements[2] = {app->shownSurface(0)->refinement.get(), app->shownSurface(1)->refinement.get()};
+  const int patches[2] = {state.status[0].patchCount, state.status[1].patchCount};
+  const uint64_t generation = app->modelGeneration();
+
+  // Press on the vertex, then move frame by frame: every frame each view shows the new points.
+  pointer(*app, target.x, target.y, false);
+  pointer(*app, target.x, target.y, true);
+  REQUIRE(app->editor().dragging());
+  for (int step = 1; step <= 5; ++step) {
+    const float x = target.x + 6.0f * float(step), y = target.y + 4.0f * float(step);
+    pointer(*app, x, y, true);
+    CAPTURE(step);
+    const Point moved = app->model().mesh->points[size_t(target.vertex)];
+    const auto at = app->viewTransform(0).project(moved);
+    REQUIRE(at);
+    CHECK(at->x == doctest::Approx(x).epsilon(1e-6));
+    CHECK(at->y == doctest::Approx(y).epsilon(1e-6));
+    CHECK(std::abs(glm::dot(moved - start, forward)) < 1e-9 * glm::length(moved - start) + 1e-15);
+    for (int v = 0; v < 2; ++v) {
+      CAPTURE(v);
+      const BuiltSurface* shown = app->shownSurface(v);
+      CHECK(shown->key.points == app->model().points);
+      CHECK(shown->refinement.get() == refinements[v]);  // same hierarchy: topology not rebuilt
+      CHECK(int(shown->patches.size()) == patches[v]);
+      CHECK(shown->controlMesh.points[size_t(target.vertex)] == moved);
+      CHECK(state.status[size_t(v)].patchCount == patches[v]);
+    }
+  }
+  pointer(*app, target.x + 30.0f, target.y + 20.0f, false);
+  CHECK_FALSE(app->editor().dragging());
+  CHECK(app->editor().undoCount() == 1);
+  // Only that vertex moved; faces, model generation and face counts are as loaded.
+  for (size_t i = 0; i < loaded.size(); ++i)
+    if (int(i) != target.vertex) CHECK(app->model().mesh->points[i] == loaded[i]);
+  CHECK(app->model().mesh->faceVerts == faces);
+  CHECK(app->modelGeneration() == generation);
+  CHECK(app->editCosts().size() >= 5);
+  CHECK(state.edit.updatedViews == 2);
+  // After the release the curvature samples are retaken for the new points.
+  app->waitUntilIdle();
+  CHECK(app->shownSurface(0)->samples->points == app->model().points);
+}
+
+TEST_CASE("vertex editing: a press and a quick move within one frame still grab the vertex where it was pressed") {
+  auto app = makeEditingApp(2);
+  const ScreenVertex target = centralVertex(*app);
+  REQUIRE(target.vertex >= 0);
+  // The window's callbacks, as GLFW calls them: the cursor at the vertex, the press there, and by
+  // the time the frame reads the mouse the cursor is already 30 px away.
+  GLFWcursorposfun cursor = glfwSetCursorPosCallback(app->window(), nullptr);
+  glfwSetCursorPosCallback(app->window(), cursor);
+  GLFWmousebuttonfun button = glfwSetMouseButtonCallback(app->window(), nullptr);
+  glfwSetMouseButtonCallback(app->window(), button);
+  REQUIRE(bool(cursor));
+  REQUIRE(bool(button));
+  const float x1 = target.x + 24.0f, y1 = target.y + 18.0f;
+  pointer(*app, target.x, target.y, false);
+  cursor(app->window(), target.x, target.y);
+  button(app->window(), GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0);
+  cursor(app->window(), x1, y1);
+  pointer(*app, x1, y1, true);
+  CHECK(app->editor().dragging());
+  CHECK(app->editor().selected() == target.vertex);
+  pointer(*app, x1, y1, true);
+  const auto at = app->viewTransform(0).project(app->model().mesh->points[size_t(target.vertex)]);
+  REQUIRE(at);
+  CHECK(at->x == doctest::Approx(x1).epsilon(1e-6));
+  CHECK(at->y == doctest::Approx(y1).epsilon(1e-6));
+  button(app->window(), GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0);
+  pointer(*app, x1, y1, false);
+  CHECK_FALSE(app->editor().dragging());
+  CHECK(app->editor().undoCount() == 1);
+}
+
+TEST_CASE("vertex editing: after a drag every view's patches equal a fresh build of the edited mesh") {
+  auto app = makeEditingApp(3, 3);
+  ViewerState& state = app->state();
+  state.views[1].scheme = SchemeChoice::CatmullClark;
+  state.views[2].scheme = SchemeChoice::BPS;
+  app->waitUntilIdle();
+  app->runFrame();
+  const ScreenVertex target = centralVertex(*app);
+  REQUIRE(target.vertex >= 0);
+  drag(*app, target.x, target.y, target.x - 25.0f, target.y + 18.0f);
+  // And a second vertex, picked in another view.
+  const ScreenVertex other = centralVertex(*app, 1);
+  REQUIRE(other.vertex >= 0);
+  drag(*app, other.x, other.y, other.x + 10.0f, other.y - 30.0f);
+  app->waitUntilIdle();
+  REQUIRE(app->editor().undoCount() == 2);
+  const double scale = glm::length(app->modelMax() - app->modelMin());
+  for (int v = 0; v < 3; ++v) {
+    CAPTURE(v);
+    const BuiltSurface* shown = app->shownSurface(v);
+    auto fresh = buildSurface(app->model(), shown->key, kDefaultFaceBudget);
+    checkSamePatches(shown->patches, fresh->patches, 1e-12 * scale);
+    REQUIRE(shown->poles.size() == fresh->poles.size());
+    for (size_t p = 0; p < shown->poles.size(); ++p) CHECK(glm::length(shown->poles[p] - fresh->poles[p]) <= 1e-12 * scale);
+    CHECK(shown->samples->gaussian.size() == fresh->samples->gaussian.size());
+  }
+}
+
+TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reapplies, Reset returns to the file") {
+  auto app = makeEditingApp(2);
+  ViewerState& state = app->state();
+  const std::vector<Point> loaded = app->model().mesh->points;
+  const std::vector<Patch> loadedPatches = app->shownSurface(0)->patches;
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  REQUIRE(bool(key));
+  auto press = [&](int k, int mods) {
+    key(app->window(), k, 0, GLFW_PRESS, mods);
+    key(app->window(), k, 0, GLFW_RELEASE, mods);
+    app->runFrame();
+  };
+
+  const ScreenVertex first = centralVertex(*app);
+  drag(*app, first.x, first.y, first.x + 20.0f, first.y);
+  const std::vector<Point> afterFirst = app->model().mesh->points;
+  drag(*app, first.x + 20.0f, first.y, first.x + 20.0f, first.y - 25.0f);  // the same vertex again
+  const std::vector<Point> afterSecond = app->model().mesh->points;
+  REQUIRE(afterFirst != loaded);
+  REQUIRE(afterSecond != afterFirst);
+  CHECK(app->editor().undoCount() == 2);
+
+  press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
+  CHECK(app->model().mesh->points == afterFirst);
+  press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
+  CHECK(app->model().mesh->points == loaded);
+  CHECK(state.edit.movedVertices == 0);
+  app->waitUntilIdle();
+  checkSamePatches(app->shownSurface(0)->patches, loadedPatches, 1e-13 * glm::length(app->modelMax() - app->modelMin()));
+  press(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
+  CHECK(app->model().mesh->points == afterFirst);
+  press(GLFW_KEY_Y, GLFW_MOD_CONTROL);
+  CHECK(app->model().mesh->points == afterSecond);
+  CHECK(app->editor().redoCount() == 0);
+  CHECK(state.edit.movedVertices == 1);
+
+  // Reset (the panel's button): back to the file's points, itself undoable.
+  state.requests.resetEdits = true;
+  app->runFrame();
+  CHECK(app->model().mesh->points == loaded);
+  press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
+  CHECK(app->model().mesh->points == afterSecond);
+  // A new drag after an undo drops the redo steps.
+  press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
+  REQUIRE(app->editor().redoCount() > 0);
+  const ScreenVertex again = centralVertex(*app);
+  drag(*app, again.x, again.y, again.x - 15.0f, again.y);
+  CHECK(app->editor().redoCount() == 0);
+}
+
+TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back to the edited points, a failed save leaves nothing") {
+  auto app = makeEditingApp(2);
+  ViewerState& state = app->state();
+  CHECK(state.edit.defaultSavePath == "default_edited.obj");  // the built-in model: the current directory
+  const ScreenVertex target = centralVertex(*app);
+  drag(*app, target.x, target.y, target.x + 17.0f, target.y + 9.0f);
+  REQUIRE(app->editor().undoCount() == 1);
+
+  const fs::path dir = fs::temp_directory_path() / "polarview_edit_save";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  state.edit.savePath = (dir / "edited.obj").string();
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  key(app->window(), GLFW_KEY_S, 0, GLFW_PRESS, GLFW_MOD_CONTROL);
+  key(app->window(), GLFW_KEY_S, 0, GLFW_RELEASE, GLFW_MOD_CONTROL);
+  app->runFrame();
+  CAPTURE(state.notice);
+  CHECK(state.edit.error.empty());
+  PolyMesh saved = loadObj((dir / "edited.obj").string());
+  CHECK(saved.points == app->model().mesh->points);  // 17 significant digits: exact
+  CHECK(saved.faceVerts == app->model().mesh->faceVerts);
+  CHECK(saved.faceStart == app->model().mesh->faceStart);
+
+  // A folder that does not exist: one line of error, no file, no temporary.
+  state.edit.savePath = (dir / "missing" / "edited.obj").string();
+  state.requests.saveEdited = true;
+  app->runFrame();
+  CHECK_FALSE(state.edit.error.empty());
+  CHECK(state.edit.error.find('\n') == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "missing" / "edited.obj"));
+  CHECK(noTemporariesIn(dir));
+
+  // A model opened from a file saves beside it.
+  saveObj((dir / "cage.obj").string(), *app->model().mesh);
+  REQUIRE(app->loadFile((dir / "cage.obj").string()));
+  app->runFrame();
+  CHECK(state.edit.defaultSavePath == (dir / "cage_edited.obj").string());
+  CHECK(app->editor().undoCount() == 0);  // a new model starts a new history
+  fs::remove_all(dir);
+}
+
+TEST_CASE("export from the viewer: .bv of the shown surface as the export command writes it, the refined control mesh as OBJ") {
+  auto app = makeEditingApp(2);
+  ViewerState& state = app->state();
+  const ScreenVertex target = centralVertex(*app);
+  drag(*app, target.x, target.y, target.x + 12.0f, target.y - 12.0f);
+  app->waitUntilIdle();
+  const fs::path dir = fs::temp_directory_path() / "polarview_edit_export";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+
+  // .bv: the same bytes as exportPatchSet + writeBezierViewFile of the edited mesh.
+  CHECK(state.edit.defaultBvPath == "default_c2ps_2.bv");
+  state.edit.bvPath = (dir / "view.bv").string();
+  state.requests.exportBezierView = true;
+  app->runFrame();
+  app->waitUntilIdle();
+  CAPTURE(state.notice);
+  CHECK(state.edit.error.empty());
+  const RefineOptions options = refineOptionsFor(SchemeChoice::C2PS, 2);
+  const PatchSet set = cli::exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
+  cli::writeBezierViewFile((dir / "cli.bv").string(), set, app->model().name);
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  CHECK(bytes(dir / "view.bv").size() > 1000);
+  CHECK(bytes(dir / "view.bv") == bytes(dir / "cli.bv"));
+  CHECK(state.notice.find("wrote ") == 0);
+
+  // Refined control mesh: the uniform refinement's finest mesh of the edited points.
+  state.edit.refinedObjPath = (dir / "refined.obj").string();
+  state.requests.exportRefinedMesh = true;
+  app->runFrame();
+  app->waitUntilIdle();
+  CHECK(state.edit.error.empty());
+  const Refinement refinement(*app->model().mesh, options);
+  const PolyMesh refined = loadObj((dir / "refined.obj").string());
+  CHECK(refined.faceVerts == refinement.finest().mesh.faceVerts);
+  CHECK(refined.points == refinement.finest().mesh.points);
+
+  // An unwritable path: one line of error and no file.
+  state.edit.bvPath = (dir / "missing" / "view.bv").string();
+  state.requests.exportBezierView = true;
+  app->runFrame();
+  app->waitUntilIdle();
+  CHECK_FALSE(state.edit.error.empty());
+  CHECK(state.edit.error.find('\n') == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "missing"));
+  CHECK(noTemporariesIn(dir));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("export from the viewer: a refined control mesh over the budget is refused with a message and writes nothing") {
+  const size_t budget = 20000;  // adaptive faces; the uniform budget is 20000 * 450 / 300
+  auto app = makeEditApp(640, 400, budget);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.showPanels = false;
+  const int deepest = deepestLevel(app->model(), SchemeChoice::C2PS, budget);
+  requestLevel(state, deepest);
+  app->waitUntilIdle();
+  app->runFrame();
+  REQUIRE(app->shownSurface(0)->key.level == deepest);
+  const size_t uniformBudget = budget * kBytesPerAdaptiveFace / kBytesPerUniformFace;
+  REQUIRE(estimateFaceCount(*app->model().mesh, refineOptionsFor(SchemeChoice::C2PS, deepest)) > uniformBudget);
+  const fs::path out = fs::temp_directory_path() / "polarview_refused_refined.obj";
+  fs::remove(out);
+  state.edit.refinedObjPath = out.string();
+  state.requests.exportRefinedMesh = true;
+  app->runFrame();
+  app->waitUntilIdle();
+  CAPTURE(state.edit.error);
+  CHECK(state.edit.error.find("refined control mesh refused: C2PS level " + std::to_string(deepest)) == 0);
+  CHECK(state.edit.error.find("over the budget of " + std::to_string(uniformBudget)) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+}  // namespace polarview
