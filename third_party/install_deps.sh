@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(cmake ninja-build pkg-config g++
           libglfw3-dev libglm-dev libimgui-dev python3-glad libtinyobjloader-dev doctest-dev libstb-dev
           libosd-dev
+          clang-14 libclang-rt-14-dev
           xvfb xauth mesa-utils libgl1-mesa-dri)
 missing=()
 for p in "${packages[@]}"; do

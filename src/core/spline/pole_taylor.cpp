@@ -81,10 +81,16 @@ PoleDifferential analyzePole(const TaylorCoefficients& t) {
   // scaled expansion.
   double E = glm::dot(jet.x, jet.x), F = glm::dot(jet.x, jet.y), G = glm::dot(jet.y, jet.y);
   double L = glm::dot(jet.xx, d.normal), M = glm::dot(jet.xy, d.normal), N = glm::dot(jet.yy, d.normal);
-  double area2 = E * G - F * F;
-  // Curvature scales as 1/length (H) and 1/length^2 (K).
-  d.gaussian = std::ldexp((L * N - M * M) / area2, -2 * exponent);
-  d.mean = std::ldexp((E * N - 2.0 * F * M + G * L) / (2.0 * area2), -exponent);
+  // E G - F^2 = |x_x x x_y|^2 (Lagrange's identity), without the cancellation of the difference
+  // (nearly parallel p1, p2 made it 0: K and H came out inf with the normal defined; found by
+  // tests/fuzz).
+  const double area2 = crossLength * crossLength;
+  // Curvature scales as 1/length (H) and 1/length^2 (K); beyond a double it is left undefined.
+  const double K = std::ldexp((L * N - M * M) / area2, -2 * exponent);
+  const double H = std::ldexp((E * N - 2.0 * F * M + G * L) / (2.0 * area2), -exponent);
+  if (!std::isfinite(K) || !std::isfinite(H)) return d;
+  d.gaussian = K;
+  d.mean = H;
   d.curvatureDefined = true;
   return d;
 }

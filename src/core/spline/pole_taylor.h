@@ -49,7 +49,8 @@ struct PoleDifferential {
 // Differential geometry at the pole from x_x = p1, x_y = p2, x_xx = 2(p3+p4), x_yy = 2(p3-p4),
 // x_xy = 2 p5 (formulas: docs/rings-and-pole.md, Curvature at the pole). Order 1, or a degenerate
 // tangent plane (p1 x p2 = 0, normal left zero): curvatureDefined = false and K = H = 0. Computed
-// on p1..p5 scaled exactly to unit size, so any coefficient size gives finite results. [O(1)]
+// on p1..p5 scaled exactly to unit size; a K or H beyond a double (a model 1e-200 across) is left
+// undefined (curvatureDefined = false, K = H = 0). [O(1)]
 PoleDifferential analyzePole(const TaylorCoefficients& t);
 
 }  // namespace polarview
