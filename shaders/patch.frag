@@ -26,7 +26,7 @@ uniform int u_colormap;
 uniform float u_range;       // positive side of the colour range
 uniform float u_rangeBelow;  // negative side (equal to u_range when symmetric)
 uniform float u_curvatureLighting;
-uniform vec3 u_eye;             // relative to the model centre
+uniform vec3 u_eye;             // relative to the model centre (highlight lines are placed there)
 uniform vec3 u_keyLight;        // unit, world axes
 uniform vec3 u_surfaceColor;
 // Light lines: direction B, in-plane normal E (stripe coordinate), plane normal W, plane point A0.
@@ -67,8 +67,8 @@ float reflectionStripe(vec3 toEye, vec3 N) {
 }
 
 void main() {
-  vec3 P = FRAG_IN.position;
-  vec3 toEye = normalize(u_eye - P);
+  vec3 P = FRAG_IN.position;  // relative to the eye
+  vec3 toEye = normalize(-P);
   vec3 N = normalize(FRAG_IN.normal);
   vec3 n = facingNormal(N, toEye);
   vec2 light = lightSurface(n, toEye, u_keyLight);
@@ -78,7 +78,7 @@ void main() {
   vec3 base = curvatureColor(u_colormap, value, u_range, u_rangeBelow);
   vec3 color = mix(base, base * light.x + vec3(light.y), u_curvatureLighting);
 #elif SHADING_MODE == 3
-  vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), highlightStripe(P, N));
+  vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), highlightStripe(P + u_eye, N));
 #elif SHADING_MODE == 4
   vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), reflectionStripe(toEye, n));
 #else

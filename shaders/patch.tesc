@@ -6,34 +6,43 @@
 // their levels come from integers only (transitionEdgeSegments in patch_extraction.h, mirrored
 // here): 2^clamp(k - level, d, 6) on the coarse side, 2^clamp(k - level, 0, 6 + d) on a fine side,
 // k = u_transitionDensity. With equal spacing the fine vertices are then exactly the coarse ones.
+// Levels and culling use the control points relative to the eye (vc_fromEye, the same bits in
+// every patch that shares them); evaluation gets them in the patch's frame (patch_frame.glsl).
 #include "common/patch_eval.glsl"
+#include "common/patch_frame.glsl"
 
 layout(vertices = 16) out;
 
 in vec3 vc_controlPoint[];
-// x packs (patch_renderer.cpp): bits 0-7 PatchKind, 8-15 level, then Patch::edgeLevelDelta of
-// edges 0..3 (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) as signed 4-bit fields at
-// bits 16 + 4s. The evaluation stages get the plain kind. y: ring index.
-flat in ivec2 vc_kindRing[];
+in vec3 vc_fromEye[];
 flat in int vc_patchIndex[];
 out vec3 tc_controlPoint[];
-flat out ivec2 tc_kindRing[];
+out vec3 tc_fromEye[];
+// (kind, ring index) of the patch. The per-patch texel's x (patch_frame.glsl's patchKindRing)
+// packs (patch_renderer.cpp): bits 0-7 PatchKind, 8-15 level, then Patch::edgeLevelDelta of edges
+// 0..3 (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) as signed 4-bit fields at bits 16 + 4s.
+// The evaluation stages get the plain kind.
+patch out ivec2 tc_kindRing;
 patch out int tc_patchIndex;
+patch out vec3 tc_originFromEye;  // the patch's frame (PatchFrame) for patch.tese
+patch out mat3 tc_axes;
 
-uniform mat4 u_modelViewProjection;  // model = translation by the model centre
 uniform vec2 u_viewportSize;         // pixels
 uniform float u_tessPixels;          // target edge length in pixels
 uniform float u_maxTessLevel;
 uniform float u_fixedTessLevel;      // > 0: use this level everywhere (probes, comparisons)
 uniform int u_transitionDensity;     // k: 2^k segments per level-0 parameter unit on T-junctions
+uniform float u_nearDepth;           // the near plane's distance (perspective), w's floor below
 
 // Projected points are clamped to a frame half a viewport beyond each border, so an edge's level
 // follows its length on and near the screen: in close-ups, the parts of patches beside or behind
-// the eye (w <= 0 is clamped to a tiny w, then to the frame) do not all go to the highest level.
+// the eye (w below the near plane's distance is clamped to it, then to the frame; an absolute
+// floor would flatten close-ups of deep poles, 1e-6 from the eye, to level 1) do not all go to the
+// highest level.
 // The clamp is per point, so two patches sharing an edge still measure it alike.
-vec2 toPixels(vec3 p) {
-  vec4 clip = u_modelViewProjection * vec4(p, 1.0);
-  float w = max(clip.w, 1e-4);
+vec2 toPixels(vec3 fromEye) {
+  vec4 clip = u_viewRotationProjection * vec4(fromEye, 1.0);
+  float w = max(clip.w, u_nearDepth);
   return clamp(clip.xy / w, vec2(-2.0), vec2(2.0)) * 0.5 * u_viewportSize;
 }
 
@@ -50,7 +59,7 @@ float projectedCurveLength(vec3 e0, vec3 e1, vec3 e2, vec3 e3) {
 // B-spline control point k of the curve along a patch edge: the surface's B-spline at the edge
 // knot, a row/column average (a + c) + 4 b in the same order from both neighbouring patches.
 vec3 edgePoint(int a, int b, int c) {
-  return ((vc_controlPoint[a] + vc_controlPoint[c]) + 4.0 * vc_controlPoint[b]) / 6.0;
+  return ((vc_fromEye[a] + vc_fromEye[c]) + 4.0 * vc_fromEye[b]) / 6.0;
 }
 
 float levelFor(float pixels) {
@@ -75,7 +84,7 @@ float edgeLevel(float pixels, int level, int d) {
 bool outsideFrustum() {
   ivec3 below = ivec3(0), above = ivec3(0);
   for (int k = 0; k < 16; ++k) {
-    vec4 clip = u_modelViewProjection * vec4(vc_controlPoint[k], 1.0);
+    vec4 clip = u_viewRotationProjection * vec4(vc_fromEye[k], 1.0);
     below += ivec3(lessThan(clip.xyz, vec3(-clip.w)));
     above += ivec3(greaterThan(clip.xyz, vec3(clip.w)));
   }
@@ -84,10 +93,12 @@ bool outsideFrustum() {
 
 void main() {
   tc_controlPoint[gl_InvocationID] = vc_controlPoint[gl_InvocationID];
-  int kindLevelJumps = vc_kindRing[gl_InvocationID].x;
-  int kind = kindLevelJumps & 0xFF, level = (kindLevelJumps >> 8) & 0xFF;
-  tc_kindRing[gl_InvocationID] = ivec2(kind, vc_kindRing[gl_InvocationID].y);
+  tc_fromEye[gl_InvocationID] = vc_fromEye[gl_InvocationID];
   if (gl_InvocationID != 0) return;
+  ivec2 kindRing = patchKindRing(vc_patchIndex[0]);
+  int kindLevelJumps = kindRing.x;
+  int kind = kindLevelJumps & 0xFF, level = (kindLevelJumps >> 8) & 0xFF;
+  tc_kindRing = ivec2(kind, kindRing.y);
   tc_patchIndex = vc_patchIndex[0];
 
   // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
@@ -95,14 +106,13 @@ void main() {
   if (kind == kPatchPoleCap) {
     // Pole edge u = 0 is a point; the radial edges v = 0, 1 run from p0 to the boundary curve's
     // ends; the edge u = 1 is the boundary curve b0..b3 shared with the innermost ring.
-    vec3 start = ((vc_controlPoint[6] + vc_controlPoint[8]) + 4.0 * vc_controlPoint[7]) / 6.0;
-    vec3 end = ((vc_controlPoint[7] + vc_controlPoint[9]) + 4.0 * vc_controlPoint[8]) / 6.0;
-    vec2 pole = toPixels(vc_controlPoint[0]);
+    vec3 start = ((vc_fromEye[6] + vc_fromEye[8]) + 4.0 * vc_fromEye[7]) / 6.0;
+    vec3 end = ((vc_fromEye[7] + vc_fromEye[9]) + 4.0 * vc_fromEye[8]) / 6.0;
+    vec2 pole = toPixels(vc_fromEye[0]);
     outer0 = 1.0;
     outer1 = levelFor(1.5 * distance(pole, toPixels(start)));
     outer3 = levelFor(1.5 * distance(pole, toPixels(end)));
-    outer2 = levelFor(projectedCurveLength(vc_controlPoint[6], vc_controlPoint[7],
-                                           vc_controlPoint[8], vc_controlPoint[9]));
+    outer2 = levelFor(projectedCurveLength(vc_fromEye[6], vc_fromEye[7], vc_fromEye[8], vc_fromEye[9]));
   } else if (u_fixedTessLevel <= 0.0 && outsideFrustum()) {
     outer0 = outer1 = outer2 = outer3 = 0.0;  // discards the patch
   } else {
@@ -118,6 +128,12 @@ void main() {
                                             edgePoint(2, 6, 10), edgePoint(3, 7, 11)), level, jump[0]);
     outer3 = edgeLevel(projectedCurveLength(edgePoint(4, 8, 12), edgePoint(5, 9, 13),
                                             edgePoint(6, 10, 14), edgePoint(7, 11, 15)), level, jump[2]);
+  }
+  // The frame, for the evaluation, only for patches that are drawn (close-ups cull most).
+  if (outer0 > 0.0) {
+    PatchFrame frame = patchFrame(vc_patchIndex[0]);
+    tc_originFromEye = frame.originFromEye;
+    tc_axes = frame.axes;
   }
   gl_TessLevelOuter[0] = outer0;
   gl_TessLevelOuter[1] = outer1;

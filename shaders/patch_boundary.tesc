@@ -1,18 +1,26 @@
 #version 410 core
 // Patch boundaries: 4 isolines (one per edge) with a fixed number of segments.
+#include "common/patch_frame.glsl"
+
 layout(vertices = 16) out;
 
 in vec3 vc_controlPoint[];
-flat in ivec2 vc_kindRing[];
+flat in int vc_patchIndex[];
 out vec3 tc_controlPoint[];
-flat out ivec2 tc_kindRing[];
+patch out ivec2 tc_kindRing;  // (kind, ring index)
+patch out vec3 tc_originFromEye;  // the patch's frame (patch_frame.glsl)
+patch out mat3 tc_axes;
 uniform float u_boundarySegments;
 
 void main() {
   tc_controlPoint[gl_InvocationID] = vc_controlPoint[gl_InvocationID];
-  // x packs the kind with the level and edge jumps (patch.tesc): keep the kind only.
-  tc_kindRing[gl_InvocationID] = ivec2(vc_kindRing[gl_InvocationID].x & 0xFF, vc_kindRing[gl_InvocationID].y);
   if (gl_InvocationID == 0) {
+    // x packs the kind with the level and edge jumps (patch.tesc): keep the kind only.
+    ivec2 kindRing = patchKindRing(vc_patchIndex[0]);
+    tc_kindRing = ivec2(kindRing.x & 0xFF, kindRing.y);
+    PatchFrame frame = patchFrame(vc_patchIndex[0]);
+    tc_originFromEye = frame.originFromEye;
+    tc_axes = frame.axes;
     gl_TessLevelOuter[0] = 4.0;  // number of isolines
     gl_TessLevelOuter[1] = u_boundarySegments;
   }

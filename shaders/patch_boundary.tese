@@ -1,14 +1,17 @@
 #version 410 core
 // Patch boundaries as isolines: line k = 0..3 of the isoline tessellation is the edge
-// v = 0, u = 1, v = 1, u = 0 respectively, evaluated with the same patch_eval.glsl.
+// v = 0, u = 1, v = 1, u = 0 respectively, evaluated with the same patch_eval.glsl in the patch's
+// frame and placed relative to the eye (patch_frame.glsl).
 #include "common/patch_eval.glsl"
+#include "common/patch_frame.glsl"
 
 layout(isolines, equal_spacing) in;
 
 in vec3 tc_controlPoint[];
-flat in ivec2 tc_kindRing[];
+patch in ivec2 tc_kindRing;
+patch in vec3 tc_originFromEye;
+patch in mat3 tc_axes;
 flat out ivec2 be_kindRing;
-uniform mat4 u_modelViewProjection;
 
 void main() {
   vec3 cp[16];
@@ -18,7 +21,7 @@ void main() {
   float t = gl_TessCoord.x;
   vec2 uv = edge == 0 ? vec2(t, 0.0) : edge == 1 ? vec2(1.0, t) : edge == 2 ? vec2(t, 1.0)
                                                                               : vec2(0.0, t);
-  SurfacePoint s = evaluatePatchLocally(cp, tc_kindRing[0].x, uv.x, uv.y);
-  be_kindRing = tc_kindRing[0];
-  gl_Position = u_modelViewProjection * vec4(s.position, 1.0);
+  SurfacePoint s = evaluatePatch(cp, tc_kindRing.x, uv.x, uv.y);
+  be_kindRing = tc_kindRing;
+  gl_Position = u_viewRotationProjection * vec4(tc_originFromEye + tc_axes * s.position, 1.0);
 }

@@ -3,7 +3,11 @@
 // once, in src/core/spline/patch.h: cp[4*j + i], i along u, j along v; PoleCap cp[0..5] = p0..p5,
 // cp[6..9] = boundary B-spline b_{j-1..j+2}, cp[10] = (tau0, dtau, R), cp[11] = (taylorOrder,0,0),
 // cp[12..15] = cross-boundary derivative B-spline e_{j-1..j+2}.
-// Positions arrive relative to the model centre; p1..p5, cp[10..15] are vectors and not shifted.
+// The renderer uploads each patch in a GPU form (patch_renderer.cpp, "Precision") that these
+// functions evaluate with the same steps: in the patch's own frame (positions moved and rotated,
+// vectors rotated), B-spline control points as forward differences (c0, D c0, D^2 c0, D^3 c0) along
+// each direction (a patch: cp[4 b + a] = D_u^a D_v^b c_00; a cap: cp[6..9] and cp[12..15]), and a
+// cap's sector starting at angle 0 (tau0 = 0, p1 p2 and p4 p5 turned to match).
 
 const int kPatchRegular = 0;
 const int kPatchBoundary = 1;
@@ -22,12 +26,14 @@ struct SurfacePoint {
   float mean;      // H, positive where the surface bends towards the normal
 };
 
-// Uniform cubic B-spline basis and its first and second derivatives (SCHEMES.md section 7).
+// Uniform cubic B-spline basis (SCHEMES.md section 7) for control points given as forward
+// differences (c0, D c0, D^2 c0, D^3 c0), with first and second derivatives: the B-spline basis
+// summed as c_i = sum_a binomial(i, a) D^a c0, i.e. sum over i >= a of binomial(i, a) B_i(t)
+// (1, t + 1, (3t^2 + 3t + 1) / 6, t^3 / 6). A k-th derivative uses differences of order >= k only.
 void bsplineBasis(float t, out vec4 b, out vec4 d, out vec4 dd) {
-  float s = 1.0 - t, t2 = t * t, t3 = t2 * t;
-  b = vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
-  d = vec4(-s * s, 3.0 * t2 - 4.0 * t, -3.0 * t2 + 2.0 * t + 1.0, t2) * 0.5;
-  dd = vec4(s, 3.0 * t - 2.0, -3.0 * t + 1.0, t);
+  b = vec4(1.0, t + 1.0, ((3.0 * t + 3.0) * t + 1.0) / 6.0, t * t * t / 6.0);
+  d = vec4(0.0, 1.0, t + 0.5, 0.5 * t * t);
+  dd = vec4(0.0, 0.0, 1.0, t);
 }
 
 // Normal, K and H from the first and second derivatives (SCHEMES.md section 7). EG - F^2 is
@@ -48,7 +54,8 @@ void computeCurvature(inout SurfacePoint s) {
   s.mean = (E * N2 - 2.0 * F * M + G * L) / (2.0 * area2);
 }
 
-// Tensor-product uniform bicubic B-spline over the middle knot span (u,v) in [0,1]^2.
+// Tensor-product uniform bicubic B-spline over the middle knot span (u,v) in [0,1]^2 (cp: the
+// forward-difference table D_u^a D_v^b c_00 at cp[4 b + a]).
 SurfacePoint evaluateBSplinePatch(vec3 cp[16], float u, float v) {
   vec4 bu, du, duu, bv, dv, dvv;
   bsplineBasis(u, bu, du, duu);
@@ -147,18 +154,4 @@ SurfacePoint evaluatePoleCap(vec3 cp[16], float u, float v) {
 SurfacePoint evaluatePatch(vec3 cp[16], int kind, float u, float v) {
   if (kind == kPatchPoleCap) return evaluatePoleCap(cp, u, v);
   return evaluateBSplinePatch(cp, u, v);
-}
-
-// GPU only, for float precision: evaluates relative to a point of the patch (cp[5], or p0 of a
-// cap) so that derivatives are differences of small numbers, then moves the position back.
-SurfacePoint evaluatePatchLocally(vec3 cp[16], int kind, float u, float v) {
-  int originSlot = kind == kPatchPoleCap ? 0 : 5;
-  vec3 origin = cp[originSlot];
-  for (int k = 0; k < 16; ++k) {
-    bool isPosition = kind != kPatchPoleCap || k == 0 || (k >= 6 && k <= 9);
-    if (isPosition) cp[k] -= origin;
-  }
-  SurfacePoint s = evaluatePatch(cp, kind, u, v);
-  s.position += origin;
-  return s;
 }

@@ -924,7 +924,7 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
                                  int(r.w * pixelScale), int(r.h * pixelScale));
     params.view = camera.viewMatrix();
     params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
-    params.eye = glm::vec3(camera.eye());
+    params.eye = camera.eye();  // double: the renderer draws relative to the eye
     views_[v].renderer->draw(params, shading, display);
     if (state_.display.poleMarkers) {
       visiblePoles(views_[v].shown->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);

@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "render/shader_library.h"
 
@@ -24,7 +25,151 @@ bool isPositionSlot(PatchKind kind, int slot) {
   return slot == 0 || (slot >= 6 && slot <= 9);  // p0 and the boundary curve b_{j-1..j+2}
 }
 
-// The kind attribute's x as patch.tesc unpacks it: bits 0-7 PatchKind, 8-15 level, then
+// [SECTION] Precision: each patch in its own frame, as differences
+//
+// Deep levels (RTS/BPS reach 24 on a globe, the innermost ring ~2^-L of the model; C2PS reaches 12
+// with ring patches 1.5e4 times longer than wide) are beyond what float world coordinates resolve:
+// at level 20 a ring of 1e-6 is a few float steps wide (6e-8 near 1), its curvature (heights of
+// ~1e-12 over it) is gone, and a camera 1e-6 away cannot be placed. So the GPU gets each patch in a
+// form computed here in double:
+//  - in its own frame: origin at the patch, z along its normal, so coordinates keep float's 24 bits
+//    relative to the patch's size and the heights above the tangent plane, which curvature comes
+//    from, keep them relative to themselves;
+//  - as forward differences: B-spline control points c_0..c_3 along a direction become
+//    (c_0, D c_0, D^2 c_0, D^3 c_0) (a table D_u^a D_v^b c_00 for a patch, shaders/common/
+//    patch_eval.glsl evaluates it in the matching basis), so a second derivative is made of second
+//    and third differences only, each rounded to float relative to itself. Taking them on the GPU
+//    from rounded points instead cancels: across a deep C2PS ring the second difference is ~1e-4
+//    of the points' spread in the frame (1e-8 of it in world axes), below float's 6e-8;
+//  - a pole cap's angle measured from its sector's start (tau0 = 0; p1, p2 and p4, p5 turned to
+//    match), so that a sector of 2^-17 turns (C2PS level 12) is not rounded against a whole turn.
+// The origin goes to the GPU as a double split into float hi + lo, from which common/patch_frame.glsl
+// subtracts the eye's hi and lo: positions relative to the eye, precise to a float of their own
+// size, projected by the view's rotation only. The control points go up the same way, shared by
+// the patches that share them: tessellation levels and the positions of B-spline patches come from
+// those (so both sides of an edge get the same levels and place it alike); normals, K and H from
+// the frame.
+
+constexpr int kFrameTexelsPerPatch = 5;  // origin hi, origin lo, axes x, y, z (patch_frame.glsl)
+constexpr int kFrameTextureUnit = 3;     // texture units of u_patchFrames and u_patchKinds
+constexpr int kKindTextureUnit = 4;
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// A double vector rounded to float. Through a volatile: GCC 12.2 at -O2 and -O3 vectorises
+// double(float(x)) back to x (seen: the lo of splitHiLo came out 0 in y and z, a level-20 cap
+// then sat 3e-8 off its ring).
+glm::vec3 roundToFloat(const glm::dvec3& value) {
+  glm::vec3 rounded;
+  for (int c = 0; c < 3; ++c) {
+    volatile float component = static_cast<float>(value[c]);
+    rounded[c] = component;
+  }
+  return rounded;
+}
+
+// A double vector as float hi + lo: hi + lo = value to ~2^-48 of it.
+void splitHiLo(const glm::dvec3& value, float* hi, float* lo) {
+  const glm::vec3 rounded = roundToFloat(value);
+  const glm::vec3 rest(value - glm::dvec3(rounded));
+  for (int c = 0; c < 3; ++c) {
+    hi[c] = rounded[c];
+    lo[c] = rest[c];
+  }
+}
+
+// A patch's frame: world = origin + axes * local. axes is a rotation rounded to float (what the GPU
+// uses); toLocal is its inverse in double, so that round trips are exact to double precision.
+struct PatchFrameCpu {
+  glm::dvec3 origin{0.0};
+  glm::mat3 axes{1.0f};
+  glm::dmat3 toLocal{1.0};
+};
+
+// Frame with z along `normal` and x along `tangent` (projected); axis-aligned fallbacks where
+// either is degenerate.
+PatchFrameCpu frameAt(const glm::dvec3& origin, const glm::dvec3& tangent, const glm::dvec3& normal) {
+  PatchFrameCpu frame;
+  frame.origin = origin;
+  const double normalLength = glm::length(normal);
+  const glm::dvec3 z = normalLength > 0.0 && std::isfinite(normalLength) ? normal / normalLength : glm::dvec3(0, 0, 1);
+  glm::dvec3 x = tangent - glm::dot(tangent, z) * z;
+  if (!(glm::length(x) > 1e-6 * glm::length(tangent)) || !std::isfinite(glm::length(x))) {
+    x = std::abs(z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    x -= glm::dot(x, z) * z;
+  }
+  x = glm::normalize(x);
+  const glm::dvec3 y = glm::cross(z, x);  // right-handed: x cross y = z
+  frame.axes = glm::mat3(roundToFloat(x), roundToFloat(y), roundToFloat(z));
+  frame.toLocal = glm::inverse(glm::dmat3(frame.axes));
+  return frame;
+}
+
+// (c0, c1, c2, c3) -> (c0, D c0, D^2 c0, D^3 c0), in place, for entries first, first + stride, ...
+void toForwardDifferences(std::array<glm::dvec3, 16>& c, int first, int stride) {
+  glm::dvec3& c0 = c[first];
+  glm::dvec3& c1 = c[first + stride];
+  glm::dvec3& c2 = c[first + 2 * stride];
+  glm::dvec3& c3 = c[first + 3 * stride];
+  const glm::dvec3 d3 = ((c3 - c0) - 3.0 * (c2 - c1)), d2 = ((c2 - c1) - (c1 - c0)), d1 = c1 - c0;
+  c1 = d1;
+  c2 = d2;
+  c3 = d3;
+}
+
+// A patch as the GPU evaluates it (see the section's top), with its frame.
+struct GpuPatch {
+  PatchFrameCpu frame;
+  std::array<glm::dvec3, 16> cp{};
+};
+
+GpuPatch gpuForm(const Patch& patch) {
+  GpuPatch out;
+  if (patch.kind == PatchKind::PoleCap) {
+    // The sector's start angle theta0 moves into the coefficients: T's terms in (x, y) are
+    // p1 cos + p2 sin (turned by theta0) and p4 cos 2 + p5 sin 2 (turned by 2 theta0).
+    const double theta0 = kTwoPi * patch.cp[10].x;
+    const double c1 = std::cos(theta0), s1 = std::sin(theta0), c2 = std::cos(2.0 * theta0), s2 = std::sin(2.0 * theta0);
+    std::array<glm::dvec3, 16> cp = patch.cp;
+    cp[1] = c1 * patch.cp[1] + s1 * patch.cp[2];
+    cp[2] = -s1 * patch.cp[1] + c1 * patch.cp[2];
+    cp[4] = c2 * patch.cp[4] + s2 * patch.cp[5];
+    cp[5] = -s2 * patch.cp[4] + c2 * patch.cp[5];
+    out.frame = frameAt(cp[0], cp[1], glm::cross(cp[1], cp[2]));
+    const PatchFrameCpu& f = out.frame;
+    out.cp[0] = glm::dvec3(0.0);  // p0 is the origin
+    for (int k = 1; k <= 5; ++k) out.cp[k] = f.toLocal * cp[k];
+    for (int k = 6; k <= 9; ++k) out.cp[k] = f.toLocal * (cp[k] - f.origin);
+    out.cp[10] = glm::dvec3(0.0, cp[10].y, cp[10].z);
+    out.cp[11] = cp[11];
+    for (int k = 12; k <= 15; ++k) out.cp[k] = f.toLocal * cp[k];
+    toForwardDifferences(out.cp, 6, 1);   // boundary curve b_{j-1..j+2}
+    toForwardDifferences(out.cp, 12, 1);  // cross-boundary derivative e_{j-1..j+2}
+    return out;
+  }
+  // B-spline patch: frame at the centre of the parameter square (limit point, du, du x dv; the
+  // uniform cubic basis at 1/2 is (1, 23, 23, 1) / 48, its derivative (-1, -5, 5, 1) / 8); a patch
+  // that is not finite there keeps world axes at its cp[5].
+  static constexpr double kB[4] = {1.0 / 48, 23.0 / 48, 23.0 / 48, 1.0 / 48}, kD[4] = {-0.125, -0.625, 0.625, 0.125};
+  glm::dvec3 centre(0.0), du(0.0), dv(0.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const glm::dvec3& c = patch.cp[4 * j + i];
+      centre += (kB[i] * kB[j]) * c;
+      du += (kD[i] * kB[j]) * c;
+      dv += (kB[i] * kD[j]) * c;
+    }
+  if (std::isfinite(glm::dot(centre, centre) + glm::dot(du, du) + glm::dot(dv, dv)))
+    out.frame = frameAt(centre, du, glm::cross(du, dv));
+  else
+    out.frame = frameAt(patch.cp[5], glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1));
+  for (int k = 0; k < 16; ++k) out.cp[k] = out.frame.toLocal * (patch.cp[k] - out.frame.origin);
+  for (int j = 0; j < 4; ++j) toForwardDifferences(out.cp, 4 * j, 1);  // along u, each row
+  for (int i = 0; i < 4; ++i) toForwardDifferences(out.cp, i, 4);      // then along v
+  return out;
+}
+
+
+// The per-patch kind texel's x as patch.tesc unpacks it: bits 0-7 PatchKind, 8-15 level, then
 // Patch::edgeLevelDelta of edges 0..3 as signed 4-bit fields at bits 16 + 4s (jumps beyond
 // [-8, 7] get the same tessellation as those ends, see transitionEdgeSegments).
 int32_t packKindLevelJumps(const Patch& patch) {
@@ -233,7 +378,10 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, flo
 
 struct PatchRenderer::Impl {
   std::shared_ptr<ShaderLibrary> shaders;
-  GLuint patchVao = 0, patchPositions = 0, patchKindRings = 0;
+  // Per control point (patch.vert): its GPU form, world hi, world lo (interleaved).
+  GLuint patchVao = 0, patchPositions = 0;
+  // Per patch (patch_frame.glsl's texels): frame; kind, level, jumps and ring.
+  GLuint frameBuffer = 0, frameTexture = 0, kindBuffer = 0, kindTexture = 0;
   double transitionUnitLength = 0.0;  // see transitionUnitLength(): sets the transition density
   GLuint netVao = 0, netBuffer = 0;
   GLuint poleVao = 0, poleBuffer = 0;
@@ -243,23 +391,26 @@ struct PatchRenderer::Impl {
   GLsizei netVertexCount = 0, poleCount = 0;
   std::vector<Point> netPointsWorld, polesWorld;  // kept to re-centre when patches change
 
+  // Overlay vertices (overlay.vert): position hi, lo (relative to the centre), colour.
   void uploadOverlay(GLuint vao, GLuint buffer, const std::vector<Point>& points,
                      const glm::vec3& color, const glm::dvec3& center) {
-    std::vector<float> data;
-    data.reserve(points.size() * 6);
-    for (const Point& p : points) {
-      const glm::vec3 q(p - center);
-      data.insert(data.end(), {q.x, q.y, q.z, color.x, color.y, color.z});
+    std::vector<float> data(points.size() * 9);
+    for (size_t k = 0; k < points.size(); ++k) {
+      float* vertex = data.data() + 9 * k;
+      splitHiLo(points[k] - center, vertex, vertex + 3);
+      for (int c = 0; c < 3; ++c) vertex[6 + c] = color[c];
     }
+    constexpr GLsizei kStride = 9 * sizeof(float);
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)),
                  data.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
-                          reinterpret_cast<void*>(3 * sizeof(float)));
+    // Attribute location and float offset in the vertex: 0 hi at 0, 2 lo at 3, 1 colour at 6.
+    const std::pair<GLuint, size_t> attributes[] = {{0, 0}, {2, 3}, {1, 6}};
+    for (const auto& [location, offset] : attributes) {
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, kStride, reinterpret_cast<void*>(offset * sizeof(float)));
+    }
     glBindVertexArray(0);
   }
 };
@@ -272,8 +423,10 @@ PatchRenderer::~PatchRenderer() {
   glDeleteVertexArrays(1, &g.patchVao);
   glDeleteVertexArrays(1, &g.netVao);
   glDeleteVertexArrays(1, &g.poleVao);
-  const GLuint buffers[] = {g.patchPositions, g.patchKindRings, g.netBuffer, g.poleBuffer};
-  glDeleteBuffers(4, buffers);
+  const GLuint buffers[] = {g.patchPositions, g.kindBuffer, g.frameBuffer, g.netBuffer, g.poleBuffer};
+  glDeleteBuffers(5, buffers);
+  const GLuint textures[] = {g.frameTexture, g.kindTexture};
+  glDeleteTextures(2, textures);
   glDeleteQueries(2, g.timerQueries);
 }
 
@@ -296,7 +449,10 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
   if (!g.patchVao) {
     glGenVertexArrays(1, &g.patchVao);
     glGenBuffers(1, &g.patchPositions);
-    glGenBuffers(1, &g.patchKindRings);
+    glGenBuffers(1, &g.kindBuffer);
+    glGenBuffers(1, &g.frameBuffer);
+    glGenTextures(1, &g.frameTexture);
+    glGenTextures(1, &g.kindTexture);
     glGenVertexArrays(1, &g.netVao);
     glGenBuffers(1, &g.netBuffer);
     glGenVertexArrays(1, &g.poleVao);
@@ -339,32 +495,56 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches) {
   center_ = 0.5 * (lo + hi);
   radius_ = std::max(0.5 * glm::length(hi - lo), 1e-12);
 
-  std::vector<float> positions;
-  std::vector<int32_t> kindRings;
-  positions.reserve(patches.size() * kControlPointsPerPatch * 3);
-  kindRings.reserve(patches.size() * kControlPointsPerPatch * 2);
-  for (const Patch& patch : patches) {
-    const int32_t kindLevelJumps = packKindLevelJumps(patch);
-    for (int k = 0; k < kControlPointsPerPatch; ++k) {
-      const glm::vec3 p(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : patch.cp[k]);
-      positions.insert(positions.end(), {p.x, p.y, p.z});
-      kindRings.insert(kindRings.end(), {kindLevelJumps, patch.ring});
+  // Per patch: its frame; per control point: the GPU form (see "Precision") and the world point
+  // as hi + lo (for positions and tessellation levels), interleaved. Written in place (this runs
+  // every frame of a vertex drag).
+  constexpr size_t kFloatsPerPoint = 9, kFloatsPerFrame = 3 * kFrameTexelsPerPatch;
+  const size_t pointFloats = patches.size() * kControlPointsPerPatch * kFloatsPerPoint;
+  const std::unique_ptr<float[]> positions(new float[pointFloats]);  // every float written below
+  std::vector<float> frameTexels(patches.size() * kFloatsPerFrame);
+  std::vector<int32_t> kindRings(patches.size() * 2);
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const Patch& patch = patches[p];
+    const GpuPatch gpu = gpuForm(patch);
+    const PatchFrameCpu& frame = gpu.frame;
+    float* texels = frameTexels.data() + p * kFloatsPerFrame;
+    splitHiLo(frame.origin - center_, texels, texels + 3);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
+    kindRings[2 * p] = packKindLevelJumps(patch);
+    kindRings[2 * p + 1] = patch.ring;
+    float* point = positions.get() + p * kControlPointsPerPatch * kFloatsPerPoint;
+    for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
+      const glm::vec3 local(gpu.cp[k]);
+      point[0] = local.x, point[1] = local.y, point[2] = local.z;
+      splitHiLo(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : glm::dvec3(0.0), point + 3, point + 6);
     }
   }
   impl_->transitionUnitLength = transitionUnitLength(patches);
 
   glBindVertexArray(g.patchVao);
   glBindBuffer(GL_ARRAY_BUFFER, g.patchPositions);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(positions.size() * sizeof(float)),
-               positions.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, g.patchKindRings);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(kindRings.size() * sizeof(int32_t)),
-               kindRings.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(1);
-  glVertexAttribIPointer(1, 2, GL_INT, 0, nullptr);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pointFloats * sizeof(float)), positions.get(),
+               GL_STATIC_DRAW);
+  // Locations 0 GPU form, 2 world hi, 3 world lo, at floats 0, 3, 6 of 9.
+  for (const auto& [location, offset] : {std::pair<GLuint, size_t>{0, 0}, {2, 3}, {3, 6}}) {
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), reinterpret_cast<void*>(offset * sizeof(float)));
+  }
   glBindVertexArray(0);
+
+  glBindBuffer(GL_TEXTURE_BUFFER, g.frameBuffer);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(frameTexels.size() * sizeof(float)),
+               frameTexels.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, g.kindBuffer);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(kindRings.size() * sizeof(int32_t)),
+               kindRings.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_BUFFER, g.frameTexture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, g.frameBuffer);
+  glBindTexture(GL_TEXTURE_BUFFER, g.kindTexture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, g.kindBuffer);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
 
   // Overlays are stored relative to the centre too: re-upload them.
   g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
@@ -397,20 +577,35 @@ void PatchRenderer::setPoleMarkers(const std::vector<Point>& poles) {
 
 // [SECTION] Drawing
 
-glm::mat4 PatchRenderer::modelViewProjection(const ViewParams& view) const {
-  // Model matrix = translation to the centre, composed in double to keep precision.
-  const glm::dmat4 model = glm::translate(glm::dmat4(1.0), center_);
-  return glm::mat4(glm::dmat4(view.proj) * glm::dmat4(view.view) * model);
+void PatchRenderer::setEyeUniforms(unsigned program, const ViewParams& view) const {
+  // Projection times the view's rotation (its translation is the eye, applied in patch_frame.glsl
+  // from the double eye as hi + lo).
+  const glm::dmat4 rotation(glm::dmat3(glm::dmat4(view.view)));
+  setUniform(program, "u_viewRotationProjection", glm::mat4(glm::dmat4(view.proj) * rotation));
+  glm::vec3 eyeHi, eyeLo;
+  splitHiLo(view.eye - center_, glm::value_ptr(eyeHi), glm::value_ptr(eyeLo));
+  setUniform(program, "u_eyeHi", eyeHi);
+  setUniform(program, "u_eyeLo", eyeLo);
+  setUniform(program, "u_patchFrames", kFrameTextureUnit);
+  setUniform(program, "u_patchKinds", kKindTextureUnit);
+  glActiveTexture(GL_TEXTURE0 + kFrameTextureUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, impl_->frameTexture);
+  glActiveTexture(GL_TEXTURE0 + kKindTextureUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, impl_->kindTexture);
+  glActiveTexture(GL_TEXTURE0);
 }
 
 void PatchRenderer::setTessellationUniforms(unsigned program, const ViewParams& view,
                                             const ShadingParams& shading) const {
-  setUniform(program, "u_modelViewProjection", modelViewProjection(view));
+  setEyeUniforms(program, view);
   setUniform(program, "u_viewportSize", glm::vec2(view.viewport.z, view.viewport.w));
   setUniform(program, "u_tessPixels", std::max(shading.tessPixels, 0.5f));
   setUniform(program, "u_maxTessLevel", static_cast<float>(std::clamp(shading.maxTessLevel, 1, 64)));
   setUniform(program, "u_fixedTessLevel", static_cast<float>(std::min(shading.fixedTessLevel, 64)));
   setUniform(program, "u_transitionDensity", transitionDensity(view, shading));
+  // Perspective: w = depth, near = P[3][2] / (P[2][2] - 1); orthographic: w = 1.
+  const double near = view.proj[2][3] < -0.5 ? double(view.proj[3][2]) / (double(view.proj[2][2]) - 1.0) : 1.0;
+  setUniform(program, "u_nearDepth", float(std::isfinite(near) && near > 0.0 ? near : 1e-30));
 }
 
 int PatchRenderer::transitionDensity(const ViewParams& view, const ShadingParams& shading) const {
@@ -432,8 +627,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glDisable(GL_CULL_FACE);  // two-sided surfaces
   glDisable(GL_BLEND);
 
-  const glm::mat4 mvp = modelViewProjection(view);
-  const glm::vec3 eye(glm::dvec3(view.eye) - center_);
+  const glm::vec3 eye(view.eye - center_);  // for highlight lines, placed relative to the centre
 
   // GPU time of the previous use of this query slot (non-blocking when available).
   const int slot = g.timerIndex;
@@ -492,7 +686,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
 
   if (patchCount_ > 0 && flags.patchBoundaries) {
     const GLuint program = g.shaders->program(kBoundaryProgram);
-    setUniform(program, "u_modelViewProjection", mvp);
+    setEyeUniforms(program, view);
     setUniform(program, "u_boundarySegments", 16.0f);
     setUniform(program, "u_colorByRing", flags.boundaryColor == DisplayFlags::BoundaryColor::Ring);
     glm::vec3 kindColors[5], ringColors[8];
@@ -510,7 +704,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   }
 
   const GLuint overlay = g.shaders->program(kOverlayProgram);
-  setUniform(overlay, "u_modelViewProjection", mvp);
+  setEyeUniforms(overlay, view);
   setUniform(overlay, "u_alpha", 1.0f);
   setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
   if (flags.controlNet && g.netVertexCount > 0) {
@@ -615,8 +809,9 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
     s.v = d[1];
     s.gaussian = d[2];
     s.mean = d[3];
-    s.position = glm::dvec3(d[4], d[5], d[6]) + center_;
     s.patch = static_cast<int>(d[7]);
+    // Where draw() places the vertex, relative to the eye: back to world coordinates in double.
+    s.position = view.eye + glm::dvec3(d[4], d[5], d[6]);
   }
   return samples;
 }

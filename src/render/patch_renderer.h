@@ -68,10 +68,13 @@ struct DisplayFlags {
 
 // Camera for one draw. view/proj map world coordinates (the Patch coordinates) to clip space;
 // viewport is (x, y, width, height) in framebuffer pixels, bottom-left origin as glViewport.
+// The renderer draws relative to the eye (see "Precision" in patch_renderer.cpp): it takes the
+// rotation from `view` and the translation from `eye`, which must therefore be the eye of `view`,
+// given in double (a float eye would move the camera by its rounding, ~6e-8 of its coordinates).
 struct ViewParams {
   glm::mat4 view{1.0f}, proj{1.0f};
   glm::ivec4 viewport{0, 0, 1, 1};
-  glm::vec3 eye{0.0f, 0.0f, 1.0f};  // camera position in world coordinates
+  glm::dvec3 eye{0.0, 0.0, 1.0};  // camera position in world coordinates
 };
 
 // Statistics of the last draw() (GPU time via a timer query, read back one draw later).
@@ -110,7 +113,9 @@ class PatchRenderer {
   // Re-reads the shader files; on failure keeps the previous programs and returns the log.
   bool reloadShaders(std::string* error);
 
-  // Uploads the patches (positions are stored relative to their bounding-box centre in float),
+  // Uploads the patches: each in its own frame (origin at the patch, z along its normal, computed
+  // in double) for evaluation, and its control points as double hi + lo floats for the levels, so
+  // that deep patches (level 20: 1e-6 of the model) keep float precision relative to their size;
   // with their levels and edge level jumps (Patch::edgeLevelDelta) packed beside the kind, from
   // which patch.tesc gives T-junction edges the same vertices on both sides. [O(patches)]
   void setPatches(const std::vector<Patch>& patches);
@@ -128,6 +133,8 @@ class PatchRenderer {
 
   // Runs the tessellation evaluation shader at a fixed level (every (i/level, j/level) of every
   // patch; caps have one vertex at the pole) and reads position, K, H back by transform feedback.
+  // Positions are where draw() places the vertices (relative to the eye, so as precise as floats
+  // of their distance to it; ViewParams{}'s eye is (0, 0, 1)), returned in world coordinates.
   std::vector<SurfaceProbe> probeSurface(int tessLevel);
   // The same with the tessellation draw() would use for this view and shading (adaptive levels
   // unless shading.fixedTessLevel > 0): exposes the levels, e.g. to check shared edges match.
@@ -146,8 +153,9 @@ class PatchRenderer {
 
  private:
   struct Impl;
-  glm::mat4 modelViewProjection(const ViewParams& view) const;
   unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe);
+  // Sets the relative-to-eye uniforms of common/patch_frame.glsl and binds the patch frames.
+  void setEyeUniforms(unsigned program, const ViewParams& view) const;
   void setTessellationUniforms(unsigned program, const ViewParams& view,
                                const ShadingParams& shading) const;
   // Per-view density exponent k of T-junction edges (patch.tesc): 2^k segments per level-0

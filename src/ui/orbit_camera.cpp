@@ -19,6 +19,11 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxPitchDeg = 89.0;  // keeps +z up without a roll flip at the poles of the orbit
 constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerNotch = 0.85;
+// Closest zoom, relative to the target's distance from the origin (at least 1e-12 absolute): far
+// below the innermost ring of a level-24 radial refinement (~6e-8 of the model), and still 1e4
+// times the double rounding of the eye position.
+constexpr double kMinDistanceRelative = 1e-12;
+constexpr double kNearPerDistance = 1e-2;  // perspective near plane floor, times the distance
 
 double radians(double deg) { return deg * kPi / 180.0; }
 double degrees(double rad) { return rad * 180.0 / kPi; }
@@ -120,7 +125,10 @@ glm::mat4 OrbitCamera::projectionMatrix(double aspect, const glm::dvec3& sceneCe
     const double halfWidth = halfHeight * std::max(aspect, 1e-6);
     return glm::mat4(glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, centreDepth - 1.5 * radius, farPlane));
   }
-  double nearPlane = std::max(centreDepth - 1.5 * radius, farPlane * 1e-4);
+  // The floor is also at most a hundredth of the distance to the target, so close-ups of a deep
+  // pole (the eye 1e-6 of the model away or less) are not clipped; the surface is drawn relative to
+  // the eye (patch_renderer.cpp), so its depth keeps float precision that near.
+  double nearPlane = std::max(centreDepth - 1.5 * radius, std::min(farPlane * 1e-4, distance * kNearPerDistance));
   return glm::mat4(glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane));
 }
 
@@ -136,7 +144,8 @@ void OrbitCamera::pan(double dxPixels, double dyPixels, double viewportHeightPix
 }
 
 void OrbitCamera::zoom(double wheelNotches) {
-  distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), 1e-6, 1e9);
+  const double closest = kMinDistanceRelative * std::max(glm::length(target), 1.0);
+  distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), closest, 1e9);
 }
 
 void OrbitCamera::zoomTowards(const glm::dvec3& point, double wheelNotches) {

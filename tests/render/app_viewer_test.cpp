@@ -388,7 +388,7 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
   CHECK(viewTitle(state.status[0]) == "RTS \xC2\xB7 2");
 }
 
-TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames; a preset shows the whole model again") {
+TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a preset shows the whole model again") {
   auto app = makeApp(1280, 720);
   app->loadDefaultModel();
   app->waitUntilIdle();

@@ -3,6 +3,7 @@
 // of many finely tessellated patches lost whole wedges of them (patch_renderer.cpp draws runs).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -24,14 +25,15 @@ std::vector<Patch> capPatches(Scheme scheme, int levels) {
 }
 
 // Perspective eye straight above `target` (a hair off vertical, as the viewer's pitch 89),
-// `distance` away, with the viewer's near-plane floor (1e-4 of far).
+// `distance` away, with the viewer's near-plane floor (orbit_camera.cpp: 1e-4 of far, or distance
+// / 100 when that is nearer).
 ViewParams lookDownAt(const glm::dvec3& target, double distance, int width, int height) {
   ViewParams view;
-  const glm::vec3 t(target);
-  view.eye = t + glm::vec3(0.0f, -float(distance) * 0.0175f, float(distance));
-  view.view = glm::lookAt(view.eye, t, glm::vec3(0, 1, 0));
-  const float farPlane = float(distance) + 4.0f;
-  view.proj = glm::perspective(glm::radians(35.0f), float(width) / float(height), farPlane * 1e-4f, farPlane);
+  view.eye = target + glm::dvec3(0.0, -distance * 0.0175, distance);
+  view.view = glm::mat4(glm::lookAt(view.eye, target, glm::dvec3(0, 1, 0)));
+  const double farPlane = distance + 4.0;
+  view.proj = glm::mat4(glm::perspective(glm::radians(35.0), double(width) / height,
+                                         std::min(farPlane * 1e-4, distance * 1e-2), farPlane));
   view.viewport = {0, 0, width, height};
   return view;
 }

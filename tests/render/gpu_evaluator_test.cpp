@@ -200,8 +200,8 @@ TEST_CASE("tessellation: neighbouring patches get equal levels on their shared e
       nx, ny, -4.0, -4.0, 1.0);
   renderer->setPatches(patches);
   ViewParams view;
-  view.eye = glm::vec3(-1.0f, -9.0f, 2.5f);
-  view.view = glm::lookAt(view.eye, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+  view.eye = glm::dvec3(-1.0, -9.0, 2.5);
+  view.view = glm::mat4(glm::lookAt(view.eye, glm::dvec3(0.0), glm::dvec3(0, 0, 1)));
   view.proj = glm::perspective(0.9f, 1.5f, 0.1f, 100.0f);
   view.viewport = {0, 0, 900, 600};
   for (float pixels : {3.0f, 7.0f, 20.0f}) {

@@ -112,9 +112,8 @@ inline std::vector<Patch> paraboloidCap(int n, double R, double boundaryScale = 
 // Orthographic camera looking down -z at `center`, showing [-half, half]^2 around it.
 inline ViewParams topView(const glm::dvec3& center, double half, glm::ivec4 viewport) {
   ViewParams view;
-  const glm::vec3 c(center);
-  view.eye = c + glm::vec3(0, 0, 10.0f * float(half));
-  view.view = glm::lookAt(view.eye, c, glm::vec3(0, 1, 0));
+  view.eye = center + glm::dvec3(0, 0, 10.0 * half);
+  view.view = glm::mat4(glm::lookAt(view.eye, center, glm::dvec3(0, 1, 0)));
   const float aspect = float(viewport.z) / float(viewport.w);
   view.proj = glm::ortho(-float(half) * aspect, float(half) * aspect, -float(half), float(half),
                          0.1f, 40.0f * float(half));

@@ -33,9 +33,9 @@ ViewParams orbitView(const PatchRenderer& renderer, double yaw, double pitch, do
   const double a = glm::radians(yaw), b = glm::radians(pitch);
   const glm::dvec3 dir(std::cos(b) * std::cos(a), std::cos(b) * std::sin(a), std::sin(b));
   ViewParams view;
-  const glm::vec3 center(renderer.center());
-  view.eye = center + glm::vec3(dir * (distanceFactor * renderer.boundingRadius()));
-  view.view = glm::lookAt(view.eye, center, glm::vec3(0, 0, 1));
+  const glm::dvec3 center = renderer.center();
+  view.eye = center + dir * (distanceFactor * renderer.boundingRadius());
+  view.view = glm::mat4(glm::lookAt(view.eye, center, glm::dvec3(0, 0, 1)));
   view.proj = glm::perspective(glm::radians(35.0f), float(width) / float(height),
                                float(kNear * renderer.boundingRadius()), float(kFar * renderer.boundingRadius()));
   view.viewport = {0, 0, width, height};
