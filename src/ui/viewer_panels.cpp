@@ -445,6 +445,11 @@ void applyHotkey(ViewerState& state, int key, int mods) {
   }
   if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) requestLevel(state, key - GLFW_KEY_0);
   if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) requestLevel(state, key - GLFW_KEY_KP_0);
+  // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
+  if (key == GLFW_KEY_RIGHT_BRACKET || key == GLFW_KEY_PAGE_UP || key == GLFW_KEY_KP_ADD)
+    requestLevel(state, state.views[size_t(state.activeView)].level + 1);
+  if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_PAGE_DOWN || key == GLFW_KEY_KP_SUBTRACT)
+    requestLevel(state, state.views[size_t(state.activeView)].level - 1);
   switch (key) {
     case GLFW_KEY_S: cycleScheme(state, state.activeView, (mods & GLFW_MOD_SHIFT) ? -1 : 1); break;
     case GLFW_KEY_V: state.viewCount = state.viewCount % kMaxViews + 1; break;
@@ -494,6 +499,7 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
       {"Ctrl+C / Ctrl+V", "copy / paste the camera as JSON"},
       {"0 - 9", "subdivision level (all views when levels are linked, else the active one)"},
+      {"] [  PgUp PgDn", "one level deeper / shallower (levels past 9, to the model's limit)"},
       {"S / Shift+S", "next / previous scheme of the active view (CC, C2PS, C2PS-U, RTS, RTS-U, BPS)"},
       {"V", "number of views 1..4"},
       {"K", "link / unlink the cameras of the views"},

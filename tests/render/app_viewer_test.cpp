@@ -460,4 +460,33 @@ TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and
   CHECK(cameraToJson(app->state().sharedCamera) == cameraToJson(before));
 }
 
+
+TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's limit") {
+  auto app = makeApp();
+  app->loadDefaultModel();
+  app->waitUntilIdle();
+  GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
+  glfwSetKeyCallback(app->window(), key);
+  REQUIRE(bool(key));
+  auto tap = [&](int k) {
+    key(app->window(), k, 0, GLFW_PRESS, 0);
+    key(app->window(), k, 0, GLFW_RELEASE, 0);
+    app->runFrame();
+  };
+  ViewerState& state = app->state();
+  state.views[0].scheme = SchemeChoice::BPS;
+  app->runFrame();  // the status (deepest level) follows the scheme
+  requestLevel(state, 9);
+  for (int k = 0; k < 3; ++k) tap(GLFW_KEY_RIGHT_BRACKET);
+  CHECK(state.views[0].level == 12);
+  tap(GLFW_KEY_LEFT_BRACKET);
+  CHECK(state.views[0].level == 11);
+  const int deepest = state.status[0].deepestLevel;
+  REQUIRE(deepest >= 12);
+  requestLevel(state, deepest);
+  tap(GLFW_KEY_RIGHT_BRACKET);
+  CHECK(state.views[0].level == deepest);
+  CHECK(state.notice.find("refused") != std::string::npos);
+}
+
 }  // namespace polarview
