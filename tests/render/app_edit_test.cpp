@@ -6,6 +6,7 @@
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
+#include "app_test_support.h"
 #include "app/export_command.h"
 #include "app/viewer_app.h"
 #include "app/viewer_edit.h"
@@ -28,23 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<ViewerApp> makeEditApp(int width = 800, int height = 600, size_t faceBudget = kDefaultFaceBudget) {
-  ViewerOptions options;
-  options.width = width;
-  options.height = height;
-  options.hidden = true;
-  options.persistRecent = false;
-  options.vsync = false;
-  options.faceBudget = faceBudget;
-  auto app = std::make_unique<ViewerApp>(options);
-  std::string error;
-  REQUIRE_MESSAGE(app->init(&error), error);
-  return app;
-}
 
 // The default model at `level`, control net shown, panels hidden (the views fill the window).
 std::unique_ptr<ViewerApp> makeEditingApp(int level, int views = 1) {
-  auto app = makeEditApp();
+  auto app = makeHiddenApp(800, 600);
   app->loadDefaultModel();
   ViewerState& state = app->state();
   state.showPanels = false;
@@ -461,7 +449,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
 
 TEST_CASE("export from the viewer: a refined control mesh over the budget is refused with a message and writes nothing") {
   const size_t budget = 20000;  // adaptive faces; the uniform budget is 20000 * 450 / 300
-  auto app = makeEditApp(640, 400, budget);
+  auto app = makeHiddenApp(640, 400, budget);
   app->loadDefaultModel();
   ViewerState& state = app->state();
   state.showPanels = false;

@@ -5,6 +5,7 @@
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
+#include "app_test_support.h"
 #include "app/viewer_app.h"
 #include "app/viewer_surface.h"
 #include "ui/viewer_panels.h"
@@ -23,18 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<ViewerApp> makeHiddenApp(int width, int height) {
-  ViewerOptions options;
-  options.width = width;
-  options.height = height;
-  options.hidden = true;
-  options.persistRecent = false;
-  options.vsync = false;
-  auto app = std::make_unique<ViewerApp>(options);
-  std::string error;
-  REQUIRE_MESSAGE(app->init(&error), error);
-  return app;
-}
 
 // An open polar cap z = (x^2 - y^2) / 2 over `links` rings of `n` vertices (a saddle pole), as an
 // OBJ file; returns its face count.

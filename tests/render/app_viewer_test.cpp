@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "app_test_support.h"
 #include "app/viewer_app.h"
 #include "app/viewer_surface.h"
 
@@ -23,19 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<ViewerApp> makeApp(int width = 640, int height = 400, size_t faceBudget = kDefaultFaceBudget) {
-  ViewerOptions options;
-  options.width = width;
-  options.height = height;
-  options.hidden = true;
-  options.persistRecent = false;
-  options.vsync = false;
-  options.faceBudget = faceBudget;
-  auto app = std::make_unique<ViewerApp>(options);
-  std::string error;
-  REQUIRE_MESSAGE(app->init(&error), error);
-  return app;
-}
 
 void runFrames(ViewerApp& app, int frames) {
   for (int f = 0; f < frames; ++f) app.runFrame();
@@ -83,7 +71,7 @@ std::pair<int, int> pngSize(const std::string& path) {
 }  // namespace
 
 TEST_CASE("viewer app: a file that fails to load leaves the model shown and the error in the state") {
-  auto app = makeApp();
+  auto app = makeHiddenApp();
   app->loadDefaultModel();
   app->waitUntilIdle();
   REQUIRE(showsWanted(*app, 0));
@@ -108,7 +96,7 @@ TEST_CASE("viewer app: a file that fails to load leaves the model shown and the 
 }
 
 TEST_CASE("viewer app: after many quick scheme and level changes every view shows the last request") {
-  auto app = makeApp();
+  auto app = makeHiddenApp();
   app->loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 3;
@@ -137,7 +125,7 @@ TEST_CASE("viewer app: after many quick scheme and level changes every view show
 }
 
 TEST_CASE("viewer app: resizing the window keeps every view drawn at the new size") {
-  auto app = makeApp(640, 400);
+  auto app = makeHiddenApp(640, 400);
   app->loadDefaultModel();
   app->state().viewCount = 2;
   app->waitUntilIdle();
@@ -162,7 +150,7 @@ TEST_CASE("viewer app: resizing the window keeps every view drawn at the new siz
 }
 
 TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps running") {
-  auto app = makeApp();
+  auto app = makeHiddenApp();
   REQUIRE(app->loadMesh(fanWithOneRing(1024), "fan-1024"));
   ViewerState& state = app->state();
   state.viewCount = 2;
@@ -182,7 +170,7 @@ TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps r
 }
 
 TEST_CASE("viewer app: a level over the face budget is refused with a message and the view keeps its level") {
-  auto app = makeApp(640, 400, 20000);
+  auto app = makeHiddenApp(640, 400, 20000);
   app->loadDefaultModel();
   requestLevel(app->state(), 1);
   app->waitUntilIdle();
@@ -210,7 +198,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
 }
 
 TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with labels and the colour bar") {
-  auto app = makeApp(720, 360);
+  auto app = makeHiddenApp(720, 360);
   app->loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 2;
@@ -259,7 +247,7 @@ TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with label
 }
 
 TEST_CASE("viewer app: the X screenshot shows the views exactly as the window does (4 views in a 2 x 2 grid)") {
-  auto app = makeApp(1280, 720);
+  auto app = makeHiddenApp(1280, 720);
   app->loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 4;
@@ -311,7 +299,7 @@ TEST_CASE("viewer app: the X screenshot shows the views exactly as the window do
 }
 
 TEST_CASE("viewer app: every key press counts, even several within one frame") {
-  auto app = makeApp(640, 400);
+  auto app = makeHiddenApp(640, 400);
   app->loadDefaultModel();
   app->waitUntilIdle();
   runFrames(*app, 2);
@@ -358,7 +346,7 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
 }
 
 TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stats that Catmull-Clark refined it") {
-  auto app = makeApp(640, 400);
+  auto app = makeHiddenApp(640, 400);
   REQUIRE(app->loadMesh(fanWithOneRing(4), "valence-4 fan"));
   ViewerState& state = app->state();
   state.viewCount = 3;
@@ -389,7 +377,7 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
 }
 
 TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a preset shows the whole model again") {
-  auto app = makeApp(1280, 720);
+  auto app = makeHiddenApp(1280, 720);
   app->loadDefaultModel();
   app->waitUntilIdle();
   runFrames(*app, 1);
@@ -414,7 +402,7 @@ TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a 
 }
 
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
-  auto app = makeApp();
+  auto app = makeHiddenApp();
   app->loadDefaultModel();
   app->waitUntilIdle();
   ViewerState& state = app->state();
@@ -434,7 +422,7 @@ TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON 
 }
 
 TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and keeps the eye") {
-  auto app = makeApp(600, 600);
+  auto app = makeHiddenApp(600, 600);
   app->state().showPanels = false;
   app->loadDefaultModel();
   app->waitUntilIdle();
@@ -462,7 +450,7 @@ TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and
 
 
 TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's limit") {
-  auto app = makeApp();
+  auto app = makeHiddenApp();
   app->loadDefaultModel();
   app->waitUntilIdle();
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
