@@ -1,7 +1,9 @@
 #include "ui/viewer_state.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <utility>
 
 namespace polarview {
 namespace {
@@ -13,29 +15,27 @@ std::string lowercase(std::string s) {
 
 }  // namespace
 
-const char* schemeChoiceLabel(SchemeChoice scheme) {
-  switch (scheme) {
-    case SchemeChoice::CatmullClark: return "CC";
-    case SchemeChoice::C2PS: return "C2PS";
-    case SchemeChoice::C2PSUniformFirstStep: return "C2PS-U";
-    case SchemeChoice::RTS: return "RTS";
-    case SchemeChoice::RTSUniformFirstStep: return "RTS-U";
-    case SchemeChoice::BPS: return "BPS";
-  }
-  return "?";
-}
+namespace {
+// The viewer's schemes in menu order, each a row of the scheme table (core/subdiv/scheme.h) and a
+// first step: the labels, names and refine options below all come from there.
+constexpr SchemeVariant kChoiceVariants[kSchemeChoiceCount] = {
+    {Scheme::CatmullClark, false}, {Scheme::C2PS, false}, {Scheme::C2PS, true},
+    {Scheme::RTS, false},          {Scheme::RTS, true},   {Scheme::BPS, false}};
 
-const char* schemeChoiceCliName(SchemeChoice scheme) {
-  switch (scheme) {
-    case SchemeChoice::CatmullClark: return "cc";
-    case SchemeChoice::C2PS: return "c2ps";
-    case SchemeChoice::C2PSUniformFirstStep: return "c2ps-u";
-    case SchemeChoice::RTS: return "rts";
-    case SchemeChoice::RTSUniformFirstStep: return "rts-u";
-    case SchemeChoice::BPS: return "bps";
-  }
-  return "?";
+// Label and name of every choice, made once (the functions hand out C strings).
+const std::array<std::pair<std::string, std::string>, kSchemeChoiceCount>& choiceTexts() {
+  static const auto texts = [] {
+    std::array<std::pair<std::string, std::string>, kSchemeChoiceCount> out;
+    for (int i = 0; i < kSchemeChoiceCount; ++i)
+      out[size_t(i)] = {schemeVariantLabel(kChoiceVariants[i]), schemeVariantName(kChoiceVariants[i])};
+    return out;
+  }();
+  return texts;
 }
+}  // namespace
+
+const char* schemeChoiceLabel(SchemeChoice scheme) { return choiceTexts()[size_t(scheme)].first.c_str(); }
+const char* schemeChoiceCliName(SchemeChoice scheme) { return choiceTexts()[size_t(scheme)].second.c_str(); }
 
 std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
   std::string key = lowercase(name);
@@ -50,19 +50,8 @@ std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
 }
 
 RefineOptions refineOptionsFor(SchemeChoice scheme, int level) {
-  RefineOptions options;
-  options.levels = level;
-  options.uniformFirstStep =
-      scheme == SchemeChoice::C2PSUniformFirstStep || scheme == SchemeChoice::RTSUniformFirstStep;
-  switch (scheme) {
-    case SchemeChoice::CatmullClark: options.scheme = Scheme::CatmullClark; break;
-    case SchemeChoice::C2PS:
-    case SchemeChoice::C2PSUniformFirstStep: options.scheme = Scheme::C2PS; break;
-    case SchemeChoice::RTS:
-    case SchemeChoice::RTSUniformFirstStep: options.scheme = Scheme::RTS; break;
-    case SchemeChoice::BPS: options.scheme = Scheme::BPS; break;
-  }
-  return options;
+  const SchemeVariant variant = kChoiceVariants[int(scheme)];
+  return RefineOptions{variant.scheme, level, variant.uniformFirstStep};
 }
 
 const char* shadeModeName(ShadingParams::Mode mode) {
