@@ -139,13 +139,11 @@ struct CopiedPart {
 };
 
 struct AdaptiveRefinement::Step {
-  CopiedPart generic;  // refined by Catmull-Clark's connectivity (+ C2PS's split pole corners), or
-                       // radially in caps and globes (radial_)
-  // RTS/BPS outside caps and globes, from kRadialTailLevel on: the poles' regions, refined radially
-  // with their columns kept (the tail); their points come from each pole's own radial grid.
-  CopiedPart polar;
-  bool tail = false;
-  Index polarVertexBase = 0;  // first vertex of the polar part in the child level
+  // Refined by Catmull-Clark's connectivity (+ C2PS's split pole corners), or radially in caps and
+  // globes (radial_). In a tail step (RTS/BPS outside caps and globes, from kRadialTailLevel on) the
+  // poles' regions were refined radially apart; their points come from each pole's own radial
+  // grid, so the step keeps nothing of them.
+  CopiedPart generic;
 };
 
 namespace {
@@ -355,25 +353,27 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   levels_.push_back(std::move(level0));
 
   const bool mixedRadialPoles = schemeTraits(scheme).keepsValence && !radial_;
+  bool tail = false;  // the poles' regions are refined radially (once begun, to the last level)
   for (int m = 0; m < options.levels; ++m) {
     const RefinedLevel& level = levels_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
     Step step;
+    bool tailStep = false;
     // RTS/BPS outside caps and globes: from kRadialTailLevel on, each pole's region is refined
     // radially with its columns kept (the tail), once it is apart from the other faces refined.
     std::vector<uint8_t> generic = refine, polar(refine.size(), 0);
-    if (mixedRadialPoles && !level.poles.empty() && (tail_ || m >= kRadialTailLevel)) {
+    if (mixedRadialPoles && !level.poles.empty() && (tail || m >= kRadialTailLevel)) {
       const std::vector<uint8_t> rows = poleRows(level);
       for (size_t f = 0; f < refine.size(); ++f)
         if (refine[f] && rows[f]) polar[f] = 1, generic[f] = 0;
       growSelection(level, polar, kRadialSupportRings);
       growSelection(level, generic, kGenericSupportRings);
-      step.tail = !selectionsTouch(level, polar, generic);
-      if (!step.tail && tail_) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
-      if (!step.tail) generic = refine;
+      tailStep = !selectionsTouch(level, polar, generic);
+      if (!tailStep && tail) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
+      if (!tailStep) generic = refine;
     }
-    if (!step.tail) growSelection(level, generic, radial_ ? kRadialSupportRings : kGenericSupportRings);
-    tail_ = step.tail;
+    if (!tailStep) growSelection(level, generic, radial_ ? kRadialSupportRings : kGenericSupportRings);
+    tail = tailStep;
 
     size_t subFaces = 0, childFaces = 0;
     for (size_t f = 0; f < refine.size(); ++f) {
@@ -385,21 +385,20 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
                        "level " + std::to_string(options.levels) + " would need more than " + std::to_string(maxFaces) +
                            " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
 
-    step.generic = copyOut(level, generic, step.tail ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m], complete,
+    step.generic = copyOut(level, generic, tailStep ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m], complete,
                            sourceName);
-    if (step.tail) step.polar = copyOut(level, polar, level.poles, true, exact_[m], complete, sourceName);
 
     RefinedLevel child;
     std::vector<uint8_t> childExact, childComplete;
     refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childComplete);
     radialRefined_.push_back(radial_ ? generic : polar);
-    if (step.tail) {
+    if (tailStep) {
+      CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], complete, sourceName);
       RefinedLevel polarChild;
       std::vector<uint8_t> polarExact, polarComplete;
-      refinePart(step.polar, true, scheme, sourceName, polarChild, polarExact, polarComplete);
+      refinePart(polarPart, true, scheme, sourceName, polarChild, polarExact, polarComplete);
       // The tail's points come from the poles' own (exact) radial grids: every row is exact.
       std::fill(polarExact.begin(), polarExact.end(), 1);
-      step.polarVertexBase = child.mesh.vertexCount();
       appendLevel(child, polarChild);
       child.topology = buildTopology(child.mesh, sourceName);
       childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());

@@ -60,7 +60,6 @@ class AdaptiveRefinement {
   std::vector<RefinedLevel> levels_;
   std::vector<std::vector<uint8_t>> needed_, exact_;
   std::vector<std::vector<uint8_t>> radialRefined_;  // per level: faces refined radially into the next
-  bool tail_ = false;  // the poles' regions are refined radially (RTS/BPS tail, adaptive_refiner.cpp)
   std::vector<Step> steps_;
   size_t totalFaces_ = 0;
 };
