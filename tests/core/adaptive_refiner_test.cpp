@@ -220,3 +220,84 @@ TEST_CASE("adaptive: live edits: new points on the kept hierarchy, patches refre
         CHECK(worst <= 1e-12 * modelSize(mesh));
       }
 }
+
+namespace {
+
+// Two patch sets of the same refinement path: identical, patch for patch (bits, not round-off:
+// the same arithmetic made both), with the same sources.
+void requireIdentical(const PatchSet& expected, const PatchSources& expectedSources, const PatchSet& got,
+                      const PatchSources& gotSources, const std::string& what) {
+  INFO(what);
+  REQUIRE(expected.patches.size() == got.patches.size());
+  CHECK(expected.kindCounts == got.kindCounts);
+  size_t differ = 0;
+  for (size_t k = 0; k < expected.patches.size(); ++k) {
+    const Patch& a = expected.patches[k];
+    const Patch& b = got.patches[k];
+    bool same = a.kind == b.kind && a.level == b.level && a.ring == b.ring && a.pole == b.pole && a.face == b.face &&
+                a.edgeLevelDelta == b.edgeLevelDelta;
+    for (int i = 0; i < 16; ++i) same = same && a.cp[i] == b.cp[i];
+    same = same && expectedSources.stencil[k] == gotSources.stencil[k] &&
+           expectedSources.sidesMissing[k] == gotSources.sidesMissing[k];
+    differ += !same;
+  }
+  CHECK(differ == 0);
+}
+
+}  // namespace
+
+TEST_CASE("adaptive: a refinement extended level by level, and a level cache stepping up and down, equal fresh ones") {
+  const PolyMesh mushroom = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  const std::vector<std::pair<std::string, PolyMesh>> meshes = {
+      {"default.obj", mushroom}, {"globe", shapes::globe(8, 5)}, {"cube", shapes::cube()}, {"cap", shapes::polarCap(6, 3)}};
+  for (const auto& [name, mesh] : meshes)
+    for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
+      const int deepest = 7;  // past RTS/BPS's tail start (level 5) on the default model
+      std::vector<PatchSet> fresh(deepest + 1);
+      std::vector<PatchSources> freshSources(deepest + 1);
+      for (int level = 0; level <= deepest; ++level)
+        fresh[size_t(level)] = extractPatches(AdaptiveRefinement(mesh, RefineOptions{scheme, level, false}),
+                                              &freshSources[size_t(level)]);
+      // Up one level at a time from 1, the cache visiting each level as it goes.
+      AdaptiveRefinement stepped(mesh, RefineOptions{scheme, 1, false});
+      LevelPatchCache cache;
+      PatchSources sources;
+      for (int level = 1; level <= deepest; ++level) {
+        if (level > 1) stepped.extend(1);
+        CHECK(stepped.levelCount() == level + 1);
+        const PatchSet set = cache.patchSet(stepped, level, &sources);
+        requireIdentical(fresh[size_t(level)], freshSources[size_t(level)], set, sources,
+                         name + " " + schemeName(scheme) + " up to level " + std::to_string(level));
+      }
+      CHECK(stepped.totalFaces() == AdaptiveRefinement(mesh, RefineOptions{scheme, deepest, false}).totalFaces());
+      // Down and up again on the deepest refinement, in an order that skips levels.
+      for (int level : {3, 0, 6, 2, 7, 5}) {
+        const PatchSet set = cache.patchSet(stepped, level, &sources);
+        requireIdentical(fresh[size_t(level)], freshSources[size_t(level)], set, sources,
+                         name + " " + schemeName(scheme) + " back to level " + std::to_string(level));
+      }
+      // The two sets share their regular patches of the shallower level, first.
+      const PatchSet four = cache.patchSet(stepped, 4), six = cache.patchSet(stepped, 6);
+      const size_t shared = cache.sharedPrefix(4, 6);
+      REQUIRE(shared <= std::min(four.patches.size(), six.patches.size()));
+      for (size_t k = 0; k < shared; ++k) REQUIRE(four.patches[k].cp == six.patches[k].cp);
+      // Truncated to 3 and extended to 6 in one step: the fresh level 6 again.
+      stepped.truncate(3);
+      CHECK(stepped.levelCount() == 4);
+      stepped.extend(3);
+      LevelPatchCache again;
+      requireIdentical(fresh[6], freshSources[6], again.patchSet(stepped, 6, &sources), sources,
+                       name + " " + schemeName(scheme) + " truncated to 3, extended to 6");
+    }
+}
+
+TEST_CASE("adaptive: an extension over the face budget is refused and leaves the refinement as it was") {
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  AdaptiveRefinement refinement(mesh, RefineOptions{Scheme::C2PS, 3, false});
+  const size_t faces = refinement.totalFaces();
+  CHECK_THROWS_WITH(refinement.extend(6, faces + 1000), doctest::Contains("is the deepest that fits"));
+  CHECK(refinement.levelCount() == 4);
+  CHECK(refinement.totalFaces() == faces);
+  const PatchSet before = extractPatches(AdaptiveRefinement(mesh, RefineOptions{Scheme::C2PS, 3, false}));
+  CHECK(extractPatches(refinement).patches.size() == before.patches.size());
+}

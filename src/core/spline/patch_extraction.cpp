@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <cmath>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 
@@ -33,12 +34,14 @@ struct LevelStack {
   std::vector<const std::vector<uint8_t>*> radialRefined;  // adaptive only: faces refined radially
   bool radial = false;
 
+  // Levels 0..count()-1; an adaptive refinement may hold deeper ones, which this stack ignores.
   int count() const { return int(levels.size()); }
   const RefinedLevel& level(int m) const { return *levels[size_t(m)]; }
   bool adaptive() const { return !needed.empty(); }
   bool isNeeded(int m, Index f) const { return !adaptive() || (*needed[size_t(m)])[f]; }
   // Whether face f of level m was refined radially (its children keep its columns).
-  bool refinedRadially(int m, Index f) const { return adaptive() && (*radialRefined[size_t(m)])[f]; }
+  // The finest level of the stack refines nothing.
+  bool refinedRadially(int m, Index f) const { return adaptive() && m + 1 < count() && (*radialRefined[size_t(m)])[f]; }
   // Throws std::logic_error when a patch of face f at level m reads a vertex that is not exact.
   void checkExact(int m, Index v, Index f) const {
     if (adaptive() && !(*exact[size_t(m)])[v])
@@ -501,105 +504,158 @@ int transitionEdgeSegments(int level, int delta, int densityExponent) {
 
 namespace {
 
-PatchSet extractFromStack(const LevelStack& refinement, PatchSources* sources) {
+// What level m contributes: its regular (boundary, polar-ring) patches whose parent was not
+// regular, level jumps not yet set, with their sources.
+struct LevelRegularPatches {
+  std::vector<Patch> patches;
+  std::vector<std::array<Index, 16>> stencil;
+  std::vector<uint8_t> sidesMissing;
+  std::vector<uint8_t> faceRegular;  // per face of the level (classifyLevel)
+};
+
+void extractRegular(const LevelStack& refinement, int m, const LevelClasses& classes, const LevelClasses& parentClasses,
+                    LevelRegularPatches& out) {
+  const RefinedLevel& level = refinement.level(m);
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  const RingMembership rings = markRingLinks(level);
+  std::array<Index, 16> ids;
+  std::array<bool, 4> sideMissing;
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    if (!classes.faceRegular[f]) continue;
+    if (!refinement.adaptive() && m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
+    gatherStencil(mesh, topo, f, ids, sideMissing);
+    for (Index id : ids)
+      if (id >= 0) refinement.checkExact(m, id, f);
+    Patch patch;
+    fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
+    const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
+    patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
+    for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
+      if (candidate < 0) continue;
+      bool inRing = true;
+      for (Index id : ids) inRing = inRing && (id < 0 || rings.holds(id, candidate));
+      if (!inRing) continue;
+      patch.kind = PatchKind::PolarRing;
+      patch.ring = m;
+      patch.pole = candidate;
+      break;
+    }
+    patch.level = uint8_t(std::min(m, 255));
+    patch.face = f;
+    out.patches.push_back(patch);
+    out.stencil.push_back(ids);
+    uint8_t missing = 0;
+    for (int side = 0; side < 4; ++side) missing |= uint8_t(sideMissing[side]) << side;
+    out.sidesMissing.push_back(missing);
+  }
+}
+
+// What the finest level adds: pole caps (replacing the faces around each pole and its 1-link,
+// `holeFaces`, with the index in `patches` of the pole's first cap) and end caps for every other
+// needed face that is not regular.
+struct FinestLevelCaps {
+  std::vector<Patch> patches;
+  std::vector<std::pair<Index, int32_t>> holeFaces;
+};
+
+void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>& faceRegular, FinestLevelCaps& out) {
+  const RefinedLevel& level = refinement.level(m);
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  std::vector<uint8_t> inHole(mesh.faceCount(), 0);
+  for (size_t p = 0; p < level.poles.size(); ++p) {
+    if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
+    const PolarConfig& pole = level.poles[p];
+    refinement.checkExact(m, pole.pole, -1);
+    for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) refinement.checkExact(m, pole.links[size_t(k)], -1);
+    const int32_t firstCap = int32_t(out.patches.size());
+    poleCaps(level.poleGrids[p], level.poleTaylor[p], out.patches, m, int(p));
+    auto markFaces = [&](Index v) {
+      for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
+        inHole[topo.vertexFaces[k]] = 1;
+        out.holeFaces.emplace_back(topo.vertexFaces[k], firstCap);  // same level as ring L: no level jump
+      }
+    };
+    markFaces(pole.pole);
+    for (int j = 0; j < pole.valence; ++j) markFaces(pole.links[j]);
+  }
+  // End caps for everything else not covered.
+  LimitFrames limits(mesh, topo);
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    if (faceRegular[f] || inHole[f] || !refinement.isNeeded(m, f)) continue;
+    if (refinement.adaptive())  // the limit frames read the faces around each corner
+      for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+        for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {
+          const Index g = topo.vertexFaces[k];
+          for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d) refinement.checkExact(m, mesh.faceVerts[d], f);
+        }
+    const size_t first = out.patches.size();
+    if (mesh.faceSize(f) == 4) out.patches.push_back(quadEndCap(mesh, f, limits));
+    else polygonEndCaps(mesh, f, limits, out.patches);
+    for (size_t k = first; k < out.patches.size(); ++k) {
+      out.patches[k].kind = PatchKind::EndCap;
+      out.patches[k].level = uint8_t(std::min(m, 255));
+      out.patches[k].face = f;
+    }
+  }
+}
+
+// The patch set of the stack's levels: each level's regular patches, then the finest level's caps
+// (in that order: PatchSet's), level jumps marked over the whole. [O(patches + faces of all levels)]
+template <class RegularOfLevel>
+PatchSet assembleSet(const LevelStack& refinement, RegularOfLevel regularOf, const FinestLevelCaps& caps,
+                     PatchSources* sources) {
   PatchSet set;
   const int finest = refinement.count() - 1;
-  LevelClasses parentClasses;
-  // Per level and face: the covering patch (markLevelJumps); here only the pole caps' hole faces.
-  std::vector<std::vector<int32_t>> cover(size_t(finest) + 1);
-  for (int m = 0; m <= finest; ++m) {
-    const RefinedLevel& level = refinement.level(m);
-    const PolyMesh& mesh = level.mesh;
-    const MeshTopology& topo = level.topology;
-    LevelClasses classes = classifyLevel(refinement, m, parentClasses);
-    const RingMembership rings = markRingLinks(level);
-    cover[m].assign(mesh.faceCount(), -1);
-
-    // Regular (and boundary, polar-ring) patches whose parent was not regular.
-    std::array<Index, 16> ids;
-    std::array<bool, 4> sideMissing;
-    for (Index f = 0; f < mesh.faceCount(); ++f) {
-      if (!classes.faceRegular[f]) continue;
-      if (!refinement.adaptive() && m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
-      gatherStencil(mesh, topo, f, ids, sideMissing);
-      for (Index id : ids)
-        if (id >= 0) refinement.checkExact(m, id, f);
-      Patch patch;
-      fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
-      const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
-      patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
-      for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
-        if (candidate < 0) continue;
-        bool inRing = true;
-        for (Index id : ids) inRing = inRing && (id < 0 || rings.holds(id, candidate));
-        if (!inRing) continue;
-        patch.kind = PatchKind::PolarRing;
-        patch.ring = m;
-        patch.pole = candidate;
-        break;
-      }
-      patch.level = uint8_t(std::min(m, 255));
-      patch.face = f;
-      set.patches.push_back(patch);
-      if (sources) {
-        sources->stencil.resize(set.patches.size());
-        sources->stencil.back() = ids;
-        sources->sidesMissing.resize(set.patches.size());
-        for (int side = 0; side < 4; ++side) sources->sidesMissing.back() |= uint8_t(sideMissing[side]) << side;
-      }
-    }
-
-    if (m == finest) {
-      // Pole caps replace the faces around the pole and its 1-link.
-      std::vector<uint8_t> inHole(mesh.faceCount(), 0);
-      for (size_t p = 0; p < level.poles.size(); ++p) {
-        if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
-        const PolarConfig& pole = level.poles[p];
-        refinement.checkExact(m, pole.pole, -1);
-        for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) refinement.checkExact(m, pole.links[size_t(k)], -1);
-        const int32_t firstCap = int32_t(set.patches.size());
-        poleCaps(level.poleGrids[p], level.poleTaylor[p], set.patches, m, int(p));
-        const PolarConfig& config = level.poles[p];
-        auto markFaces = [&](Index v) {
-          for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
-            inHole[topo.vertexFaces[k]] = 1;
-            cover[m][topo.vertexFaces[k]] = firstCap;  // same level as ring L: no level jump
-          }
-        };
-        markFaces(config.pole);
-        for (int j = 0; j < config.valence; ++j) markFaces(config.links[j]);
-      }
-      // End caps for everything else not covered.
-      LimitFrames limits(mesh, topo);
-      for (Index f = 0; f < mesh.faceCount(); ++f) {
-        if (classes.faceRegular[f] || inHole[f] || !refinement.isNeeded(m, f)) continue;
-        if (refinement.adaptive())  // the limit frames read the faces around each corner
-          for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
-            for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {
-              const Index g = topo.vertexFaces[k];
-              for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d) refinement.checkExact(m, mesh.faceVerts[d], f);
-            }
-        const size_t first = set.patches.size();
-        if (mesh.faceSize(f) == 4) set.patches.push_back(quadEndCap(mesh, f, limits));
-        else polygonEndCaps(mesh, f, limits, set.patches);
-        for (size_t k = first; k < set.patches.size(); ++k) {
-          set.patches[k].kind = PatchKind::EndCap;
-          set.patches[k].level = uint8_t(std::min(m, 255));
-          set.patches[k].face = f;
-        }
-      }
-    }
-    parentClasses = std::move(classes);
+  size_t total = caps.patches.size();
+  for (int m = 0; m <= finest; ++m) total += regularOf(m).patches.size();
+  set.patches.reserve(total);
+  if (sources) {
+    sources->stencil.clear();
+    sources->sidesMissing.clear();
+    sources->stencil.reserve(total);
+    sources->sidesMissing.reserve(total);
   }
+  for (int m = 0; m <= finest; ++m) {
+    const LevelRegularPatches& level = regularOf(m);
+    set.patches.insert(set.patches.end(), level.patches.begin(), level.patches.end());
+    if (sources) {
+      sources->stencil.insert(sources->stencil.end(), level.stencil.begin(), level.stencil.end());
+      sources->sidesMissing.insert(sources->sidesMissing.end(), level.sidesMissing.begin(), level.sidesMissing.end());
+    }
+  }
+  const int32_t capsStart = int32_t(set.patches.size());
+  set.patches.insert(set.patches.end(), caps.patches.begin(), caps.patches.end());
   // Radial levels (RTS/BPS caps and globes) keep the columns: patches of different levels meet
   // along whole edges there, so no side is a T-junction.
-  if (!refinement.radial) markLevelJumps(refinement, cover, set.patches);
+  if (!refinement.radial) {
+    // Per level and face: the covering patch (markLevelJumps); here only the pole caps' hole faces.
+    std::vector<std::vector<int32_t>> cover(size_t(finest) + 1);
+    for (int m = 0; m <= finest; ++m) cover[m].assign(refinement.level(m).mesh.faceCount(), -1);
+    for (const auto& [face, firstCap] : caps.holeFaces) cover[finest][face] = capsStart + firstCap;
+    markLevelJumps(refinement, cover, set.patches);
+  }
   for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
-  if (sources) {
+  if (sources) {  // caps are remade from their face or pole
     sources->stencil.resize(set.patches.size());
     sources->sidesMissing.resize(set.patches.size());
   }
   return set;
+}
+
+PatchSet extractFromStack(const LevelStack& refinement, PatchSources* sources) {
+  const int finest = refinement.count() - 1;
+  std::vector<LevelRegularPatches> regular(size_t(finest) + 1);
+  LevelClasses parentClasses;
+  for (int m = 0; m <= finest; ++m) {
+    LevelClasses classes = classifyLevel(refinement, m, parentClasses);
+    extractRegular(refinement, m, classes, parentClasses, regular[size_t(m)]);
+    parentClasses = std::move(classes);
+  }
+  FinestLevelCaps caps;
+  extractCaps(refinement, finest, parentClasses.faceRegular, caps);
+  return assembleSet(refinement, [&](int m) -> const LevelRegularPatches& { return regular[size_t(m)]; }, caps, sources);
 }
 
 // Control points only, from the levels' current points: every patch made as extractFromStack made
@@ -607,9 +663,8 @@ PatchSet extractFromStack(const LevelStack& refinement, PatchSources* sources) {
 void refreshFromStack(const LevelStack& refinement, const PatchSources& sources, PatchSet& set) {
   if (sources.stencil.size() != set.patches.size())
     throw std::invalid_argument("refreshPatches: the sources are not those of this patch set");
-  const int finest = refinement.count() - 1;
-  const RefinedLevel& last = refinement.level(finest);
-  LimitFrames limits(last.mesh, last.topology);
+  std::unique_ptr<LimitFrames> limits;  // of the end caps' level (the set's finest)
+  int limitsLevel = -1;
   std::vector<Patch> made;
   std::array<bool, 4> sideMissing;
   for (size_t k = 0; k < set.patches.size();) {
@@ -618,10 +673,14 @@ void refreshFromStack(const LevelStack& refinement, const PatchSources& sources,
     if (patch.kind == PatchKind::PoleCap || patch.kind == PatchKind::EndCap) {
       // Caps come in runs (a pole's sectors, a polygon's quads): remake the run, keep the rest.
       made.clear();
-      if (patch.kind == PatchKind::PoleCap)
+      if (patch.kind == PatchKind::PoleCap) {
         poleCaps(level.poleGrids[size_t(patch.pole)], level.poleTaylor[size_t(patch.pole)], made, patch.level, patch.pole);
-      else if (level.mesh.faceSize(patch.face) == 4) made.push_back(quadEndCap(last.mesh, patch.face, limits));
-      else polygonEndCaps(last.mesh, patch.face, limits, made);
+      } else {
+        if (limitsLevel != patch.level) limits = std::make_unique<LimitFrames>(level.mesh, level.topology);
+        limitsLevel = patch.level;
+        if (level.mesh.faceSize(patch.face) == 4) made.push_back(quadEndCap(level.mesh, patch.face, *limits));
+        else polygonEndCaps(level.mesh, patch.face, *limits, made);
+      }
       for (size_t i = 0; i < made.size() && k + i < set.patches.size(); ++i) set.patches[k + i].cp = made[i].cp;
       k += std::max<size_t>(made.size(), 1);
       continue;
@@ -632,9 +691,11 @@ void refreshFromStack(const LevelStack& refinement, const PatchSources& sources,
   }
 }
 
-LevelStack stackOf(const AdaptiveRefinement& refinement) {
+// Levels 0..finest of `refinement` (-1: all).
+LevelStack stackOf(const AdaptiveRefinement& refinement, int finest = -1) {
   LevelStack stack;
-  for (int m = 0; m < refinement.levelCount(); ++m) {
+  const int count = finest < 0 ? refinement.levelCount() : std::min(finest + 1, refinement.levelCount());
+  for (int m = 0; m < count; ++m) {
     stack.levels.push_back(&refinement.level(m));
     stack.needed.push_back(&refinement.neededFaces(m));
     stack.exact.push_back(&refinement.exactVertices(m));
@@ -659,6 +720,54 @@ PatchSet extractPatches(const AdaptiveRefinement& refinement, PatchSources* sour
 
 void refreshPatches(const AdaptiveRefinement& refinement, const PatchSources& sources, PatchSet& set) {
   refreshFromStack(stackOf(refinement), sources, set);
+}
+
+struct LevelPatchCache::Impl {
+  std::vector<LevelRegularPatches> regular;   // levels extracted so far (0..size-1)
+  std::vector<std::unique_ptr<FinestLevelCaps>> caps;  // per level, made when it was a set's finest
+};
+
+LevelPatchCache::LevelPatchCache() : impl_(std::make_unique<Impl>()) {}
+LevelPatchCache::~LevelPatchCache() = default;
+LevelPatchCache::LevelPatchCache(LevelPatchCache&&) noexcept = default;
+LevelPatchCache& LevelPatchCache::operator=(LevelPatchCache&&) noexcept = default;
+
+PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources) {
+  if (finest < 0 || finest >= refinement.levelCount())
+    throw std::invalid_argument("LevelPatchCache: level " + std::to_string(finest) + " of a refinement of " +
+                                std::to_string(refinement.levelCount() - 1) + " levels");
+  const LevelStack stack = stackOf(refinement, finest);
+  Impl& cache = *impl_;
+  LevelClasses parentClasses;  // unused by adaptive stacks (no inheritance)
+  for (int m = int(cache.regular.size()); m <= finest; ++m) {
+    const LevelClasses classes = classifyLevel(stack, m, parentClasses);
+    LevelRegularPatches level;
+    extractRegular(stack, m, classes, parentClasses, level);
+    level.faceRegular = classes.faceRegular;
+    cache.regular.push_back(std::move(level));
+  }
+  if (cache.caps.size() <= size_t(finest)) cache.caps.resize(size_t(finest) + 1);
+  if (!cache.caps[size_t(finest)]) {
+    auto caps = std::make_unique<FinestLevelCaps>();
+    extractCaps(stack, finest, cache.regular[size_t(finest)].faceRegular, *caps);
+    cache.caps[size_t(finest)] = std::move(caps);
+  }
+  return assembleSet(stack, [&](int m) -> const LevelRegularPatches& { return cache.regular[size_t(m)]; },
+                     *cache.caps[size_t(finest)], sources);
+}
+
+size_t LevelPatchCache::sharedPrefix(int a, int b) const {
+  size_t count = 0;
+  for (int m = 0; m <= std::min(a, b) && m < int(impl_->regular.size()); ++m) count += impl_->regular[size_t(m)].patches.size();
+  return count;
+}
+
+int LevelPatchCache::extractedLevels() const { return int(impl_->regular.size()); }
+
+void LevelPatchCache::forget(int fromLevel) {
+  const size_t keep = size_t(std::max(fromLevel, 0));
+  if (impl_->regular.size() > keep) impl_->regular.resize(keep);
+  if (impl_->caps.size() > keep) impl_->caps.resize(keep);
 }
 
 }  // namespace polarview

@@ -50,6 +50,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/spline/patch.h"
@@ -88,6 +89,34 @@ PatchSet extractPatches(const AdaptiveRefinement& refinement, PatchSources* sour
 // of `set` (made by extractPatches with these `sources`) from the new points; kinds, levels and
 // level jumps stay. Equal to a fresh extractPatches. [O(patches); no classification, no search]
 void refreshPatches(const AdaptiveRefinement& refinement, const PatchSources& sources, PatchSet& set);
+
+// Patch sets of one AdaptiveRefinement at any of its levels, each level's patches extracted once
+// (level m's regular patches do not depend on the finest level; the finest adds its caps): a viewer
+// stepping the level on one refinement (AdaptiveRefinement::extend) assembles instead of
+// re-extracting, and uploads only what is not shared with the set it showed (sharedPrefix).
+class LevelPatchCache {
+ public:
+  LevelPatchCache();
+  ~LevelPatchCache();
+  LevelPatchCache(LevelPatchCache&&) noexcept;
+  LevelPatchCache& operator=(LevelPatchCache&&) noexcept;
+
+  // The patch set of `refinement` cut at level `finest` (0..levelCount()-1, else
+  // std::invalid_argument): equal, patch for patch and with its sources, to extractPatches of a
+  // refinement made to that level. [O(patches of the set + faces of new levels)]
+  PatchSet patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources = nullptr);
+  // How many patches the sets of levels a and b begin with in common (the regular patches of
+  // levels 0..min(a, b); level jumps may differ). [O(levels)]
+  size_t sharedPrefix(int a, int b) const;
+  // Levels whose regular patches are kept.
+  int extractedLevels() const;
+  // Drops what levels >= fromLevel gave (their points or topology changed). [O(1)]
+  void forget(int fromLevel = 0);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Tessellation segments of a T-junction edge (edgeLevelDelta d != 0) of a patch of `level`, for a
 // per-view density exponent k (2^k segments per level-0 parameter unit); shaders/patch.tesc is its

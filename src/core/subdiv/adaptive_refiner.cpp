@@ -335,9 +335,15 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
 
 // [SECTION] AdaptiveRefinement
 
+struct AdaptiveRefinement::LevelState {
+  bool tail = false;                   // the poles' regions are refined radially apart (from here on)
+  std::vector<uint8_t> complete;       // per vertex: its faces at this level are the uniform level's
+  std::vector<PolarGrid> radialGrids;  // RTS/BPS in mixed meshes: each pole's own radial grid
+};
+
 AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName,
                                        size_t maxFaces)
-    : options_(options) {
+    : options_(options), sourceName_(sourceName) {
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
   const Scheme scheme = options.scheme;
   RefinedLevel level0;
@@ -348,32 +354,76 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   radial_ = schemeTraits(scheme).keepsValence && !findRadialRegions(level0).empty();
   needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
   exact_.push_back(std::vector<uint8_t>(base.vertexCount(), 1));
-  std::vector<uint8_t> complete(base.vertexCount(), 1);
+  states_.emplace_back();
+  states_.back().complete.assign(base.vertexCount(), 1);
   totalFaces_ = size_t(base.faceCount());
+  totalFacesAt_.push_back(totalFaces_);
   levels_.push_back(std::move(level0));
+  radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
+  options_.levels = 0;
+  addLevels(options.levels, maxFaces);
+  updatePositions(base.points);
+}
 
+AdaptiveRefinement::~AdaptiveRefinement() = default;
+AdaptiveRefinement::AdaptiveRefinement(AdaptiveRefinement&&) noexcept = default;
+AdaptiveRefinement& AdaptiveRefinement::operator=(AdaptiveRefinement&&) noexcept = default;
+
+void AdaptiveRefinement::extend(int levels, size_t maxFaces) {
+  if (levels <= 0) return;
+  const size_t firstStep = steps_.size();
+  try {
+    addLevels(levels, maxFaces);
+  } catch (...) {
+    truncate(int(firstStep));  // the levels made before the refusal go: unchanged
+    throw;
+  }
+  computePoints(firstStep);
+}
+
+void AdaptiveRefinement::truncate(int levels) {
+  if (levels < 0 || levels >= levelCount()) return;
+  const size_t count = size_t(levels) + 1;
+  levels_.resize(count);
+  needed_.resize(count);
+  exact_.resize(count);
+  states_.resize(count);
+  totalFacesAt_.resize(count);
+  radialRefined_.resize(count);
+  radialRefined_.back().assign(levels_.back().mesh.faceCount(), 0);  // the finest level refines nothing
+  steps_.resize(size_t(levels));
+  totalFaces_ = totalFacesAt_.back();
+  options_.levels = levels;
+}
+
+// Topology of `count` more levels (their points: computePoints). Level m+1 from level m: the
+// needed faces that are not regular, grown by the support rings, copied out and refined one step
+// (adaptive_refiner.h).
+void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
+  const Scheme scheme = options_.scheme;
+  const std::string& sourceName = sourceName_;
   const bool mixedRadialPoles = schemeTraits(scheme).keepsValence && !radial_;
-  bool tail = false;  // the poles' regions are refined radially (once begun, to the last level)
-  for (int m = 0; m < options.levels; ++m) {
+  const int target = options_.levels + count;
+  for (int m = options_.levels; m < target; ++m) {
     const RefinedLevel& level = levels_[m];
+    const LevelState& state = states_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
     Step step;
     bool tailStep = false;
     // RTS/BPS outside caps and globes: from kRadialTailLevel on, each pole's region is refined
     // radially with its columns kept (the tail), once it is apart from the other faces refined.
     std::vector<uint8_t> generic = refine, polar(refine.size(), 0);
-    if (mixedRadialPoles && !level.poles.empty() && (tail || m >= kRadialTailLevel)) {
+    if (mixedRadialPoles && !level.poles.empty() && (state.tail || m >= kRadialTailLevel)) {
       const std::vector<uint8_t> rows = poleRows(level);
       for (size_t f = 0; f < refine.size(); ++f)
         if (refine[f] && rows[f]) polar[f] = 1, generic[f] = 0;
       growSelection(level, polar, kRadialSupportRings);
       growSelection(level, generic, kGenericSupportRings);
       tailStep = !selectionsTouch(level, polar, generic);
-      if (!tailStep && tail) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
+      if (!tailStep && state.tail) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
       if (!tailStep) generic = refine;
     }
     if (!tailStep) growSelection(level, generic, radial_ ? kRadialSupportRings : kGenericSupportRings);
-    tail = tailStep;
 
     size_t subFaces = 0, childFaces = 0;
     for (size_t f = 0; f < refine.size(); ++f) {
@@ -382,18 +432,20 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
     }
     if (totalFaces_ + subFaces + childFaces > maxFaces)
       throw InputError(sourceName, 0,
-                       "level " + std::to_string(options.levels) + " would need more than " + std::to_string(maxFaces) +
+                       "level " + std::to_string(target) + " would need more than " + std::to_string(maxFaces) +
                            " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
 
-    step.generic = copyOut(level, generic, tailStep ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m], complete,
-                           sourceName);
+    step.generic = copyOut(level, generic, tailStep ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m],
+                           state.complete, sourceName);
 
     RefinedLevel child;
-    std::vector<uint8_t> childExact, childComplete;
-    refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childComplete);
-    radialRefined_.push_back(radial_ ? generic : polar);
+    LevelState childState;
+    childState.tail = tailStep;
+    std::vector<uint8_t> childExact;
+    refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childState.complete);
+    radialRefined_[m] = radial_ ? generic : polar;
     if (tailStep) {
-      CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], complete, sourceName);
+      CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], state.complete, sourceName);
       RefinedLevel polarChild;
       std::vector<uint8_t> polarExact, polarComplete;
       refinePart(polarPart, true, scheme, sourceName, polarChild, polarExact, polarComplete);
@@ -402,43 +454,50 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
       appendLevel(child, polarChild);
       child.topology = buildTopology(child.mesh, sourceName);
       childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
-      childComplete.insert(childComplete.end(), polarComplete.begin(), polarComplete.end());
+      childState.complete.insert(childState.complete.end(), polarComplete.begin(), polarComplete.end());
     }
     std::vector<uint8_t> childNeeded(child.mesh.faceCount());
     for (Index f = 0; f < child.mesh.faceCount(); ++f) childNeeded[f] = refine[child.faceParent[f]];
     totalFaces_ += subFaces + size_t(child.mesh.faceCount());
+    totalFacesAt_.push_back(totalFaces_);
+    radialRefined_.push_back(std::vector<uint8_t>(child.mesh.faceCount(), 0));
     levels_.push_back(std::move(child));
     needed_.push_back(std::move(childNeeded));
     exact_.push_back(std::move(childExact));
-    complete = std::move(childComplete);
+    states_.push_back(std::move(childState));
     steps_.push_back(std::move(step));
+    options_.levels = m + 1;
   }
-  radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
-  updatePositions(base.points);
 }
-
-AdaptiveRefinement::~AdaptiveRefinement() = default;
-AdaptiveRefinement::AdaptiveRefinement(AdaptiveRefinement&&) noexcept = default;
-AdaptiveRefinement& AdaptiveRefinement::operator=(AdaptiveRefinement&&) noexcept = default;
 
 void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
   if (basePoints.size() != levels_[0].mesh.points.size())
     throw std::invalid_argument("updatePositions: " + std::to_string(basePoints.size()) + " points for a mesh of " +
                                 std::to_string(levels_[0].mesh.points.size()));
   levels_[0].mesh.points = basePoints;
+  computePoints(0);
+}
+
+// Points of levels firstStep+1.. from level firstStep's (and its state's radial grids).
+void AdaptiveRefinement::computePoints(size_t firstStep) {
   const Scheme scheme = options_.scheme;
   const SchemeTraits& rules = schemeTraits(scheme);
   const bool radialPoles = rules.keepsValence && !radial_;
-  std::vector<PolarGrid> radialGrids;  // RTS/BPS in mixed meshes: each pole's own radial grid
-  if (radialPoles)
-    for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
-  fillPoleData(levels_[0], scheme, radialPoles ? &radialGrids : nullptr);
+  if (firstStep == 0) {
+    std::vector<PolarGrid>& grids = states_[0].radialGrids;
+    grids.clear();
+    if (radialPoles)
+      for (const PolarConfig& config : levels_[0].poles) grids.push_back(gatherGrid(levels_[0].mesh.points, config, config.linkCount));
+    fillPoleData(levels_[0], scheme, radialPoles ? &grids : nullptr);
+  }
 
   std::vector<Point> rows, childRows, link1, link2, refined, scratch;
-  for (size_t m = 0; m < steps_.size(); ++m) {
+  for (size_t m = firstStep; m < steps_.size(); ++m) {
     Step& step = steps_[m];
     const RefinedLevel& level = levels_[m];
     RefinedLevel& child = levels_[m + 1];
+    std::vector<PolarGrid>& radialGrids = states_[m + 1].radialGrids;
+    radialGrids = states_[m].radialGrids;
     const bool uniformStep = options_.uniformFirstStep && m == 0;
     CopiedPart& part = step.generic;
     std::vector<Point>& subPoints = part.sub.mesh.points;

@@ -53,14 +53,30 @@ class AdaptiveRefinement {
   // std::invalid_argument); topology untouched. [O(faces of all levels)]
   void updatePositions(const std::vector<Point>& basePoints);
 
+  // Level m does not depend on how deep the refinement goes, so a viewer stepping the level keeps
+  // one refinement: extend() makes `levels` more levels from the finest (topology and points of
+  // the new levels only; the same InputError as the constructor when they would exceed
+  // `maxFaces`, the refinement then unchanged), truncate() drops the levels beyond `levels`.
+  // Either way the result equals a refinement made to that level at once. [O(new faces)], [O(1)]
+  void extend(int levels, size_t maxFaces = size_t(1) << 26);
+  void truncate(int levels);
+
  private:
   struct Step;  // what makes level m+1 from level m
+  // Per level: what a further step starts from (whether the poles' regions refine radially apart,
+  // which vertices see all their uniform faces, RTS/BPS's own radial grids of mixed meshes).
+  struct LevelState;
+  void addLevels(int count, size_t maxFaces);
+  void computePoints(size_t firstStep);
   RefineOptions options_;
+  std::string sourceName_;
   bool radial_ = false;
   std::vector<RefinedLevel> levels_;
   std::vector<std::vector<uint8_t>> needed_, exact_;
   std::vector<std::vector<uint8_t>> radialRefined_;  // per level: faces refined radially into the next
   std::vector<Step> steps_;
+  std::vector<LevelState> states_;
+  std::vector<size_t> totalFacesAt_;  // totalFaces() of the refinement ending at each level
   size_t totalFaces_ = 0;
 };
 
