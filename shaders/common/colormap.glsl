@@ -7,10 +7,15 @@ const int kColorMapCoolWarm = 1;
 const int kColorMapViridis = 2;
 const int kColorMapMagnitude = 3;
 
-// The paper's Fig. 13 map: green at zero, blue negative, red positive (hue 240 -> 120 -> 0 degrees,
-// through cyan and yellow), saturating beyond the range.
+// Half-width of the paper map's green band, as a fraction of the range.
+const float kPaperGreenBand = 0.1;
+
+// The paper's Fig. 13 map: "the green range straddles Gauss zero curvature, while negative
+// curvature is blue and positive is red": |t| <= kPaperGreenBand is green, beyond it the hue runs
+// on to blue (t = -1) or red (t = 1) through cyan and yellow, saturating beyond the range.
 vec3 paperColorMap(float t) {
-  float hue = (1.0 - t) * 2.0;  // in units of 60 degrees: 0 red, 2 green, 4 blue
+  float s = sign(t) * max(abs(t) - kPaperGreenBand, 0.0) / (1.0 - kPaperGreenBand);
+  float hue = (1.0 - s) * 2.0;  // in units of 60 degrees: 0 red, 2 green, 4 blue
   vec3 rgb = clamp(abs(mod(hue + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
   return 0.95 * rgb;
 }

@@ -18,6 +18,7 @@
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/input_error.h"
 #include "core/mesh/obj_io.h"
+#include "core/mesh/figure_shapes.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
@@ -258,20 +259,23 @@ const char* usageText() {
   return "usage:\n"
          "  polarview                          open the viewer on the built-in model\n"
          "  polarview view [FILE.obj] [--scheme S[,S...]] [--level L] [--shade MODE] [--size WxH]\n"
-         "                 [--frames N [--stats] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
+         "                 [--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
          "  polarview render FILE.obj -o OUT.png [--scheme S[,S...] (1 to 4 views)] [--level L]\n"
-         "                 [--shade gaussian|mean|highlight|reflection|shaded] [--size WxH]\n"
+         "                 [--shade MODE[,MODE...]] (gaussian|mean|highlight|reflection|shaded: one, or one\n"
+         "                 per view) [--size WxH]\n"
          "                 [--range R | --range MIN:MAX | --percentile P [--asymmetric]]\n"
          "                 [--colormap paper|coolwarm|viridis|magnitude] [--camera JSON] [--preset front|top|side|iso]\n"
          "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
          "                 [--wireframe] [--no-poles] [--time N]\n"
+         "  polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
+         "                 the paper's figures as DIR/figNN.png (all: and the gallery DIR/README.md)\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"
          "  polarview export IN.obj -o OUT.bv --scheme S --level L [--uniform] [--memory-budget SIZE]\n"
          "  polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj   (paper Fig. 14)\n"
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--json]\n"
-         "  polarview shape globe|cap|mushroom|cube|torus [--valence N] [--links K]\n"
+         "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
          "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
          "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--json]\n"
          "  polarview help                     this text\n"
@@ -562,10 +566,13 @@ double peakResidentMegabytes() {
 // topology_ms = construction - positions; positions_ms = updatePositions; patches_ms = extraction;
 // --edit adds edit_ms: one base vertex moved, then the points of every level and the patches'
 // control points recomputed on the kept hierarchy (updatePositions + refreshPatches).
+// The viewer's level steps on one kept refinement and LevelPatchCache (levels >= 1):
+// level_up_ms = level L-1 shown, extend(1) + the patch set of L; level_down_ms = back to L-1;
+// level_up_again_ms = to L once more (all of it cached).
 int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
-  std::vector<double> build, positions, patches, edits;
+  std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain;
   size_t patchCount = 0, totalFaces = 0, finestFaces = 0;
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
@@ -589,6 +596,22 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
       refreshPatches(refinement, sources, set);
       edits.push_back(millisecondsSince(t0));
     }
+    if (o.levels >= 1) {
+      AdaptiveRefinement stepped(mesh, RefineOptions{o.scheme, o.levels - 1, o.uniformFirstStep}, o.input, budgetFaces);
+      LevelPatchCache cache;
+      PatchSources stepSources;
+      cache.patchSet(stepped, o.levels - 1, &stepSources);  // what the view showed
+      t0 = std::chrono::steady_clock::now();
+      stepped.extend(1, budgetFaces);
+      cache.patchSet(stepped, o.levels, &stepSources);
+      levelUp.push_back(millisecondsSince(t0));
+      t0 = std::chrono::steady_clock::now();
+      cache.patchSet(stepped, o.levels - 1, &stepSources);
+      levelDown.push_back(millisecondsSince(t0));
+      t0 = std::chrono::steady_clock::now();
+      cache.patchSet(stepped, o.levels, &stepSources);
+      levelUpAgain.push_back(millisecondsSince(t0));
+    }
   }
   const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
   const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
@@ -598,6 +621,8 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   w.field("patches_ms", median(patches)).field("patches", patchCount).field("total_faces", totalFaces);
   w.field("finest_faces", finestFaces);
   if (o.edit) w.field("edit_ms", median(edits));
+  if (o.levels >= 1)
+    w.field("level_up_ms", median(levelUp)).field("level_down_ms", median(levelDown)).field("level_up_again_ms", median(levelUpAgain));
   w.field("peak_rss_mb", peakResidentMegabytes());
   w.endObject();
   if (o.json) {
@@ -608,6 +633,9 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
                 o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), patchCount, totalFaces,
                 peakResidentMegabytes());
     if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(edits));
+    if (o.levels >= 1)
+      std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
+                  o.levels, median(levelUp), median(levelDown), median(levelUpAgain));
   }
   return 0;
 }
@@ -754,14 +782,15 @@ int runSpectrum(const Args& args) {
 int runShape(const Args& args) {
   std::string name, output, height;
   int valence = 12, links = 6;
+  bool sized = false;  // --valence or --links given
   for (size_t k = 0; k < args.size(); ++k) {
     auto next = [&]() -> const std::string& {
       if (k + 1 >= args.size()) throw UsageError{args[k] + " needs a value"};
       return args[++k];
     };
     if (args[k] == "-o" || args[k] == "--output") output = next();
-    else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20);
-    else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16);
+    else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20), sized = true;
+    else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16), sized = true;
     else if (args[k] == "--height") height = next();
     else if (name.empty() && args[k][0] != '-') name = args[k];
     else throw UsageError{"unexpected argument '" + args[k] + "'"};
@@ -779,7 +808,11 @@ int runShape(const Args& args) {
     mesh = shapes::mushroom(valence);
   } else if (name == "cube") mesh = shapes::cube();
   else if (name == "torus") mesh = shapes::torus(valence, links);
-  else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus)"};
+  else if (name == "valence20" || name == "fingertips") {
+    // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
+    if (sized) throw UsageError{"--valence and --links do not apply to " + name};
+    mesh = name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
+  } else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus, valence20, fingertips)"};
   if (!height.empty() && name != "cap") throw UsageError{"--height applies to the cap"};
   saveObj(output, mesh);
   return 0;

@@ -27,7 +27,8 @@ int runPole(const Args& args);
 // peer only where both computed the same (Catmull-Clark) surface
 int runBench(const Args& args);
 
-// polarview shape globe|cap|mushroom|cube|torus [--valence n] [--links k] -o OUT.obj
+// polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence n] [--links k]
+// [--height NAME] -o OUT.obj (valence20, fingertips: the paper's Figs. 12 and 2c, fixed)
 int runShape(const Args& args);
 // `polarview spectrum --scheme rts|bps|cc --valence n [--count k] [--json]`: the leading eigenvalues
 // of the scheme's subdivision matrix at valence n (Table 1 for RTS).

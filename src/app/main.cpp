@@ -7,6 +7,7 @@
 
 #include "app/cli_commands.h"
 #ifdef POLARVIEW_HAVE_VIEWER
+#include "app/figure_command.h"
 #include "app/viewer_app.h"
 #endif
 
@@ -31,8 +32,9 @@ int main(int argc, char** argv) {
   if (command.empty()) return polarview::runViewer("");
   if (command == "view") return polarview::runViewerCommand(args);
   if (command == "render") return polarview::runRenderCommand(args);
+  if (command == "figure") return polarview::runFigureCommand(args);
 #else
-  if (command.empty() || command == "view" || command == "render") {
+  if (command.empty() || command == "view" || command == "render" || command == "figure") {
     std::cerr << "polarview: built without the viewer (POLARVIEW_BUILD_VIEWER=OFF)\n";
     return 2;
   }

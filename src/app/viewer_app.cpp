@@ -39,27 +39,46 @@ std::string recentFilePath() {
   return std::string(home) + "/.config/polarview/recent.txt";
 }
 
+// Window coordinates (x, y in pixels, z the depth in [0, 1]) of `world`, and back, in double and
+// relative to the eye: at a deep pole the points differ from the eye by 1e-6 of their coordinates,
+// which float (glm::project's) would round away. `rotation`: the view matrix without translation.
+glm::dvec3 windowOf(const glm::dvec3& world, const glm::dvec3& eye, const glm::dmat4& rotation, const glm::dmat4& proj,
+                    const glm::dvec4& viewport) {
+  const glm::dvec4 clip = proj * rotation * glm::dvec4(world - eye, 1.0);
+  const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+  return {viewport.x + (ndc.x + 1.0) * 0.5 * viewport.z, viewport.y + (ndc.y + 1.0) * 0.5 * viewport.w, (ndc.z + 1.0) * 0.5};
+}
+glm::dvec3 worldOf(const glm::dvec3& window, const glm::dvec3& eye, const glm::dmat4& rotation, const glm::dmat4& proj,
+                   const glm::dvec4& viewport) {
+  const glm::dvec4 ndc(2.0 * (window.x - viewport.x) / viewport.z - 1.0, 2.0 * (window.y - viewport.y) / viewport.w - 1.0,
+                       2.0 * window.z - 1.0, 1.0);
+  const glm::dvec4 fromEye = glm::inverse(proj * rotation) * ndc;
+  return eye + glm::dvec3(fromEye) / fromEye.w;
+}
+glm::dmat4 rotationOf(const glm::mat4& view) { return glm::dmat4(glm::dmat3(glm::dmat4(view))); }
+
 // Appends the poles the surface does not hide to `out`: each is projected into `view`, and kept when
 // the depth buffer there (the surface just drawn) is not nearer the eye than the pole by more than
 // `tolerance` (world units). A few poles per view, so one 1-pixel read each.
 void visiblePoles(const std::vector<Point>& poles, const ViewParams& view, const glm::dvec3& eye, double tolerance,
                   float pixelScale, int framebufferHeight, std::vector<PoleMarker>* out) {
   constexpr size_t kMaxMarkers = 64;
-  const glm::vec4 viewport(view.viewport);
+  const glm::dvec4 viewport(view.viewport);
+  const glm::dmat4 rotation = rotationOf(view.view), proj(view.proj);
   for (size_t i = 0; i < poles.size() && i < kMaxMarkers; ++i) {
-    glm::vec3 window = glm::project(glm::vec3(poles[i]), view.view, view.proj, viewport);
+    const glm::dvec3 window = windowOf(poles[i], eye, rotation, proj, viewport);
     int px = int(std::floor(window.x)), py = int(std::floor(window.y));
-    if (window.z <= 0.0f || window.z >= 1.0f || px < view.viewport.x || py < view.viewport.y ||
+    if (!(window.z > 0.0 && window.z < 1.0) || px < view.viewport.x || py < view.viewport.y ||
         px >= view.viewport.x + view.viewport.z || py >= view.viewport.y + view.viewport.w) {
       continue;
     }
     float depth = 1.0f;
     glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
     if (depth < 1.0f) {
-      glm::vec3 surface = glm::unProject(glm::vec3(float(px) + 0.5f, float(py) + 0.5f, depth), view.view, view.proj, viewport);
-      if (glm::length(glm::dvec3(surface) - eye) < glm::length(poles[i] - eye) - tolerance) continue;  // hidden
+      const glm::dvec3 surface = worldOf({px + 0.5, py + 0.5, depth}, eye, rotation, proj, viewport);
+      if (glm::length(surface - eye) < glm::length(poles[i] - eye) - tolerance) continue;  // hidden
     }
-    out->push_back({window.x / pixelScale, (float(framebufferHeight) - window.y) / pixelScale});
+    out->push_back({float(window.x) / pixelScale, (float(framebufferHeight) - float(window.y)) / pixelScale});
   }
 }
 
@@ -97,7 +116,10 @@ ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
   if (loadJob_.valid()) loadJob_.wait();
   if (exportJob_.valid()) exportJob_.wait();
-  for (ViewRuntime& view : views_) view.job.wait();
+  for (ViewRuntime& view : views_) {
+    view.job.wait();
+    if (view.prepare.valid()) view.prepare.wait();
+  }
   if (window_) {
     glfwMakeContextCurrent(window_);
     for (ViewRuntime& view : views_) view.renderer.reset();
@@ -470,7 +492,11 @@ SurfaceKey ViewerApp::wantedKey(int v) const {
 
 void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   ViewRuntime& view = views_[size_t(v)];
-  view.renderer->setPatches(surface->patches);
+  // A level step on the same hierarchy keeps the patches both levels share on the GPU.
+  const auto start = std::chrono::steady_clock::now();
+  view.renderer->setPatches(surface->patches, surface->stamp, surface->regularCount);
+  view.keptPatches = view.renderer->lastReusedPatches();
+  view.uploadMs = millisecondsSince(start);
   view.renderer->setControlMesh(surface->controlMesh);
   view.renderer->setPoleMarkers(surface->poles);
   view.shown = std::move(surface);
@@ -577,12 +603,16 @@ void ViewerApp::updateSurfaces() {
         view.failed = wanted;
         status.message = refusal;
       } else {
-        view.job.start(model_, wanted, options_.faceBudget);
+        // The view's own hierarchy (same model and scheme) is stepped to the new level.
+        const bool reusable = view.shown && view.shown->hierarchy && view.shown->key.model == wanted.model &&
+                              view.shown->key.scheme == wanted.scheme;
+        view.job.start(model_, wanted, options_.faceBudget, reusable ? view.shown->hierarchy : nullptr);
       }
     }
 
     // Report.
     status.deepestLevel = deepestLevel(model_, state_.views[size_t(v)].scheme, options_.faceBudget);
+    prepareNextLevel(v, wanted);
     status.levelLimit = levelRefusal(model_, state_.views[size_t(v)].scheme, status.deepestLevel + 1,
                                      options_.faceBudget);
     status.refining = view.job.running();
@@ -595,6 +625,12 @@ void ViewerApp::updateSurfaces() {
       status.patchesPerKind = view.shown->patchesPerKind;
       status.controlFaces = view.shown->controlMesh.faceCount();
       status.refineMs = view.shown->refineMs;
+      status.refineOnlyMs = view.shown->refineOnlyMs;
+      status.patchesMs = view.shown->patchesMs;
+      status.samplesMs = view.shown->samplesMs;
+      status.uploadMs = view.uploadMs;
+      status.patchLevel = view.shown->patchLevel;
+      status.keptPatches = int(view.keptPatches);
       status.polesByScheme = view.shown->polesByScheme;
       status.polesByCatmullClark = view.shown->polesByCatmullClark;
       status.fallbackReason = view.shown->fallbackReason;
@@ -653,11 +689,37 @@ void ViewerApp::collectColourSamples() {
   state_.colour.histogram.clear();  // recomputed for the new samples
 }
 
+void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
+  ViewRuntime& view = views_[size_t(v)];
+  if (view.prepare.valid()) {
+    if (view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    view.prepare.get();
+  }
+  if (!options_.prepareNextLevel || v >= state_.viewCount || view.job.running() || editor_.dragging() || !view.shown ||
+      !view.shown->hierarchy || view.shown->key != wanted)
+    return;
+  if (wanted.level + 1 > state_.status[size_t(v)].deepestLevel) return;
+  const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);
+  if (view.shown->hierarchy->deepestMade.load() >= next) return;
+  // All views' levels and the one made ahead within one view's budget (memory stays bounded).
+  size_t faces = estimatedLevelFaces(model_, wanted.scheme, next);
+  for (int w = 0; w < state_.viewCount; ++w)
+    faces += estimatedLevelFaces(model_, state_.views[size_t(w)].scheme,
+                                 patchLevelFor(model_, state_.views[size_t(w)].scheme, state_.views[size_t(w)].level,
+                                               options_.faceBudget));
+  if (faces > options_.faceBudget) return;
+  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, points = model_.points, next,
+                                                 budget = options_.faceBudget] {
+    prepareLevel(*hierarchy, points, next, budget);
+  });
+}
+
 bool ViewerApp::busy() const {
   if (loadJob_.valid() || exportJob_.valid()) return true;
   for (int v = 0; v < state_.viewCount; ++v) {
     const ViewRuntime& view = views_[size_t(v)];
     if (view.job.running()) return true;
+    if (view.prepare.valid() && view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return true;
     SurfaceKey wanted = wantedKey(v);
     if (model_.mesh && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted)) return true;
     // Curvature samples still to be retaken after a drag.
@@ -674,7 +736,7 @@ void ViewerApp::waitUntilIdle() {
     pollLoad();
     pollExport();
     for (ViewRuntime& view : views_) {
-      if (view.job.running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      if (view.job.running() || view.prepare.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     updateSurfaces();
   }
@@ -948,9 +1010,11 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
   OrbitCamera& camera = state_.camera(pick.view);
   glm::dvec3 centre = 0.5 * (modelMin_ + modelMax_);
   double radius = 0.5 * glm::length(modelMax_ - modelMin_);
-  glm::vec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale, r.h * pixelScale);
-  glm::vec3 world = glm::unProject(glm::vec3(float(x) + 0.5f, float(y) + 0.5f, depth), camera.viewMatrix(),
-                                   camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius), viewport);
+  const glm::dvec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale,
+                           r.h * pixelScale);
+  const glm::dvec3 world =
+      worldOf({x + 0.5, y + 0.5, depth}, camera.eye(), rotationOf(camera.viewMatrix()),
+              glm::dmat4(camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius)), viewport);
   if (pick.zoomNotches != 0.0f) {
     camera.zoomTowards(glm::dvec3(world), pick.zoomNotches);
     return;

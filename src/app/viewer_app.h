@@ -65,6 +65,9 @@ struct ViewerOptions {
   bool persistRecent = true;   // keep recent files in ~/.config/polarview/recent.txt
   bool vsync = true;
   size_t faceBudget = kDefaultFaceBudget;
+  // While a view is idle, make its next level ahead (prepareLevel) when all views' levels and it
+  // together fit one view's face budget: the key press that asks for it then only assembles.
+  bool prepareNextLevel = true;
 };
 
 class ViewerApp {
@@ -151,6 +154,9 @@ class ViewerApp {
     SurfaceJob job;
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
     std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
+    std::future<void> prepare;  // the next level made ahead (prepareLevel), if running
+    double uploadMs = 0.0;  // the last show(): packing + upload
+    size_t keptPatches = 0;  // patches of it that stayed on the GPU
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
@@ -170,6 +176,8 @@ class ViewerApp {
   // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
   void expireNotice();
   void updateSurfaces();
+  // Starts making view v's next level ahead when it is idle (ViewerOptions::prepareNextLevel).
+  void prepareNextLevel(int v, const SurfaceKey& wanted);
   // Positions-only updates of the visible views whose surface has the model's topology but older
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
   void refreshEditedViews();

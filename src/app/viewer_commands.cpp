@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "app/viewer_styles.h"
 #include "core/mesh/input_error.h"
 
 namespace polarview {
@@ -24,12 +26,12 @@ struct UsageError : std::runtime_error {
 
 const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
-    "[--shade gaussian|mean|highlight|reflection|shaded] [--size WxH] [--range R | --range MIN:MAX | --percentile P [--asymmetric]] [--camera JSON] "
+    "[--shade MODE[,MODE...] (gaussian|mean|highlight|reflection|shaded: one, or one per view)] [--size WxH] [--range R | --range MIN:MAX | --percentile P [--asymmetric]] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
     "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats] [--edit] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
+    "[--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
 
 // Walks the argument list; values of options are taken with value().
 class ArgCursor {
@@ -84,6 +86,16 @@ ShadingParams::Mode parseShade(const std::string& text) {
   std::optional<ShadingParams::Mode> mode = parseShadeMode(text);
   if (!mode) throw UsageError("unknown --shade '" + text + "' (gaussian, mean, highlight, reflection, shaded)");
   return *mode;
+}
+
+// --shade MODE[,MODE...]: one mode for every view or one per view (checked against the views later).
+std::vector<ShadingParams::Mode> parseShadeList(const std::string& text) {
+  std::vector<ShadingParams::Mode> modes;
+  std::stringstream list(text);
+  std::string name;
+  while (std::getline(list, name, ',')) modes.push_back(parseShade(name));
+  if (modes.empty() || int(modes.size()) > kMaxViews) throw UsageError("--shade takes 1 to 4 modes");
+  return modes;
 }
 
 // Puts one view per scheme, all at `level`.
@@ -147,7 +159,7 @@ std::string editStatsJson(const std::vector<EditCost>& costs) {
 // {"frames":N,"views":k,"schemes":[...],"level":L,"size":[w,h],"patches":[...],"median_ms":...}, and
 // with `edit` "edit":{...} (editStatsJson).
 std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& frameMs, int width, int height,
-                           const std::vector<EditCost>* edit = nullptr) {
+                           const std::vector<EditCost>* edit = nullptr, const std::string& levelSteps = {}) {
   const ViewerState& state = app.state();
   std::ostringstream json;
   json << "{\"frames\":" << frameMs.size() << ",\"views\":" << state.viewCount << ",\"schemes\":[";
@@ -169,12 +181,15 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (double number : {range, rangeBelow, medianMs, minMs, maxMs})
     if (!std::isfinite(number))
       throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large or degenerate");
-  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"range\":" << range
+  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"shades\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << shadeModeName(state.viewShade(v)) << '"';
+  json << "],\"range\":" << range
        << ",\"range_min\":" << -rangeBelow << ",\"range_max\":" << range;
   char numbers[160];
   std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f", medianMs, minMs, maxMs);
   json << numbers;
   if (edit) json << ",\"edit\":" << editStatsJson(*edit);
+  if (!levelSteps.empty()) json << ",\"level_steps\":" << levelSteps;
   json << "}";
   return json.str();
 }
@@ -185,7 +200,7 @@ struct RenderRequest {
   std::string input, output;
   std::vector<SchemeChoice> schemes{SchemeChoice::C2PS};
   int level = 3;
-  ShadingParams::Mode shade = ShadingParams::Mode::Gaussian;
+  std::vector<ShadingParams::Mode> shades{ShadingParams::Mode::Gaussian};  // one, or one per view
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
   std::optional<float> range;
@@ -206,7 +221,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     if (arg == "-o" || arg == "--output") r.output = cursor.value(arg);
     else if (arg == "--scheme" || arg == "--schemes") r.schemes = parseSchemes(cursor.value(arg));
     else if (arg == "--level") r.level = parseInt(cursor.value(arg), arg, 0, kMaxLevel);
-    else if (arg == "--shade") r.shade = parseShade(cursor.value(arg));
+    else if (arg == "--shade") r.shades = parseShadeList(cursor.value(arg));
     else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
     else if (arg == "--camera") r.cameraJson = cursor.value(arg);
     else if (arg == "--supersample") {
@@ -261,6 +276,13 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     }
   }
   if (r.output.empty() && r.timeFrames == 0) throw UsageError("missing -o OUT.png");
+  if (r.shades.size() != 1 && r.shades.size() != r.schemes.size())
+    throw UsageError("--shade takes one mode, or one per --scheme view (" + std::to_string(r.schemes.size()) + "), got " +
+                     std::to_string(r.shades.size()));
+  // One colour bar per image: Gaussian and mean curvature cannot share it.
+  const auto has = [&](ShadingParams::Mode m) { return std::count(r.shades.begin(), r.shades.end(), m) > 0; };
+  if (has(ShadingParams::Mode::Gaussian) && has(ShadingParams::Mode::Mean))
+    throw UsageError("--shade: gaussian and mean in one image would need two colour bars");
   return r;
 }
 
@@ -288,6 +310,7 @@ int renderWithApp(const RenderRequest& r) {
   options.hidden = true;
   options.persistRecent = false;
   options.vsync = false;
+  options.prepareNextLevel = false;  // one picture: no level steps to come
   ViewerApp app(options);
   ViewerState& state = app.state();
   if (!openModelAndWindow(app, r.input)) return 1;
@@ -302,7 +325,9 @@ int renderWithApp(const RenderRequest& r) {
   setViews(state, r.schemes, r.level);
   state.linkCameras = true;
   state.showPanels = false;
-  state.shading.mode = r.shade;
+  state.shading.mode = r.shades.front();
+  if (r.shades.size() > 1)
+    for (size_t v = 0; v < r.shades.size(); ++v) state.views[v].shade = r.shades[v];
   if (r.colormap) state.shading.colormap = *r.colormap;
   if (r.percentile) state.colour.quantile = *r.percentile / 100.0f;
   if (r.range) {
@@ -344,7 +369,7 @@ int renderWithApp(const RenderRequest& r) {
   try {
     for (int f = 0; f < frames; ++f) {
       auto start = std::chrono::steady_clock::now();
-      image = app.renderImage(r.width, r.height, r.supersample, r.transparent);
+      image = renderStyledImage(app, r.width, r.height, r.supersample, r.transparent);
       frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     // The statistics before the image: a refused number leaves no file behind.
@@ -370,6 +395,7 @@ struct ViewRequest {
   int frames = 0;
   bool stats = false, hidden = false, showHelp = false;
   bool edit = false;    // the frames drag a control vertex (positions-only updates every frame)
+  bool levelSteps = false;  // first view: level L-1, then L (deeper), L-1, L again, each step timed
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
 };
 
@@ -385,6 +411,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (arg == "--frames") r.frames = parseInt(cursor.value(arg), arg, 1, 100000);
     else if (arg == "--stats") r.stats = true;
     else if (arg == "--edit") r.edit = true;
+    else if (arg == "--level-steps") r.levelSteps = true;
     else if (arg == "--hidden") r.hidden = true;
     else if (arg == "--capture") r.capture = cursor.value(arg);
     else if (arg == "--show-help") r.showHelp = true;
@@ -393,7 +420,38 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
   }
   if (r.edit && r.frames == 0) throw UsageError("--edit needs --frames N");
+  if (r.levelSteps && (r.frames == 0 || !r.level || *r.level < 1))
+    throw UsageError("--level-steps needs --frames N and --level L >= 1");
   return r;
+}
+
+// --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does; per
+// step the CPU split of what the new frame waited for (refinement, patch set, samples off the GL
+// thread; packing + upload on it), how many patches stayed on the GPU, and the first frame's time
+// (upload and draw). As JSON: [{"from":..,"to":..,"refine_ms":..,...}, ...].
+std::string runLevelSteps(ViewerApp& app, int level) {
+  ViewerState& state = app.state();
+  std::ostringstream json;
+  json << "[";
+  int from = state.views[0].level;
+  const int targets[] = {level, level - 1, level};
+  for (size_t k = 0; k < std::size(targets); ++k) {
+    requestLevel(state, targets[k]);
+    app.runFrame();  // starts the job
+    app.waitUntilIdle();
+    app.runFrame();  // shows it: upload + draw
+    const ViewStatus& status = state.status[0];
+    char entry[400];
+    std::snprintf(entry, sizeof entry,
+                  "%s{\"from\":%d,\"to\":%d,\"shown\":%d,\"refine_ms\":%.2f,\"patches_ms\":%.2f,\"samples_ms\":%.2f,"
+                  "\"upload_ms\":%.2f,\"cpu_ms\":%.2f,\"kept_patches\":%d,\"patches\":%d,\"frame_ms\":%.2f}",
+                  k ? "," : "", from, targets[k], status.shownLevel, status.refineOnlyMs, status.patchesMs, status.samplesMs,
+                  status.uploadMs, status.refineMs + status.uploadMs, status.keptPatches, status.patchCount, state.frameMs);
+    json << entry;
+    from = targets[k];
+  }
+  json << "]";
+  return json.str();
 }
 
 // The control vertex a --edit benchmark drags: the one whose projection lies nearest the first
@@ -458,8 +516,10 @@ int viewWithApp(const ViewRequest& r) {
   ViewerApp app(options);
   ViewerState& state = app.state();
   if (!openModelAndWindow(app, r.input)) return 1;
-  if (!r.schemes.empty()) setViews(state, r.schemes, r.level.value_or(state.views[0].level));
-  else if (r.level) requestLevel(state, *r.level);
+  // --level-steps starts one level above the one it steps to.
+  const std::optional<int> firstLevel = r.levelSteps ? std::optional<int>(*r.level - 1) : r.level;
+  if (!r.schemes.empty()) setViews(state, r.schemes, firstLevel.value_or(state.views[0].level));
+  else if (firstLevel) requestLevel(state, *firstLevel);
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
@@ -473,6 +533,8 @@ int viewWithApp(const ViewRequest& r) {
   app.runFrame();
   app.waitUntilIdle();
   std::vector<double> frameMs;
+  std::string levelSteps;
+  if (r.levelSteps) levelSteps = runLevelSteps(app, *r.level);
   if (r.edit) {
     frameMs = runEditFrames(app, r.frames);
     app.waitUntilIdle();  // the curvature samples retaken after the drag
@@ -486,7 +548,8 @@ int viewWithApp(const ViewRequest& r) {
     app.captureWindowNextFrame(r.capture);
     app.runFrame();
   }
-  if (r.stats) std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.editCosts() : nullptr) << "\n";
+  if (r.stats)
+    std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.editCosts() : nullptr, levelSteps) << "\n";
   return 0;
 }
 

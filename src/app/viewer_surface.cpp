@@ -1,6 +1,7 @@
 #include "app/viewer_surface.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -58,6 +59,8 @@ void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme 
   }
 }
 
+constexpr size_t kMostSampledPatches = 60000;
+
 // K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
 // End caps are skipped when other patches exist: at a Catmull-Clark extraordinary vertex K is
 // unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
@@ -68,16 +71,20 @@ std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch
   samples->points = points;
   const bool onlyEndCaps =
       std::all_of(patches.begin(), patches.end(), [](const Patch& p) { return p.kind == PatchKind::EndCap; });
-  size_t count = patches.size() * size_t(s) * size_t(s);
+  // Deep levels hold hundreds of thousands of patches: every stride-th one is sampled, standing
+  // for the area of `stride` patches (the percentiles are of the area, the patches come level by level).
+  const size_t stride = std::max<size_t>(1, patches.size() / kMostSampledPatches);
+  size_t count = patches.size() / stride * size_t(s) * size_t(s);
   samples->gaussian.reserve(count);
   samples->mean.reserve(count);
   samples->areas.reserve(count);
-  for (const Patch& patch : patches) {
+  for (size_t k = 0; k < patches.size(); k += stride) {
+    const Patch& patch = patches[k];
     if (patch.kind == PatchKind::EndCap && !onlyEndCaps) continue;
     for (int j = 0; j < s; ++j) {
       for (int i = 0; i < s; ++i) {
         SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
-        double area = glm::length(glm::cross(p.du, p.dv)) / double(s * s);
+        double area = glm::length(glm::cross(p.du, p.dv)) * double(stride) / double(s * s);
         if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
         samples->gaussian.push_back(float(p.gaussian));
         samples->mean.push_back(float(p.mean));
@@ -179,6 +186,36 @@ size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level) {
 }
 }  // namespace
 
+size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level) { return estimatedFaces(model, scheme, level); }
+
+namespace {
+// Whether `scheme` refines some polar configuration of the model (once per model and scheme).
+bool refinesPoles(const Model& model, Scheme scheme) {
+  static std::mutex mutex;
+  static std::map<std::pair<uint64_t, int>, bool> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto [at, added] = cache.try_emplace({model.generation, int(scheme)}, false);
+  if (added) {
+    try {
+      const MeshTopology topology = buildTopology(*model.mesh, model.name);
+      for (const PolarConfig& config : findPolarConfigs(*model.mesh, topology))
+        at->second = at->second || schemeRefinesPole(scheme, config);
+    } catch (const std::exception&) {
+      // not refinable: building says why
+    }
+  }
+  return at->second;
+}
+}  // namespace
+
+int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
+  const Scheme refined = refineOptionsFor(scheme, level).scheme;
+  const SchemeTraits& traits = schemeTraits(refined);
+  if (!traits.polar() || traits.curvatureContinuous || level >= kNonC2CapLevel || !model.mesh || !refinesPoles(model, refined))
+    return level;
+  return std::max(level, std::min(kNonC2CapLevel, deepestLevel(model, scheme, faceBudget)));
+}
+
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget) {
   int level = 0;
   while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1) <= faceBudget) ++level;
@@ -204,7 +241,16 @@ std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t fa
   return levelRefusal(model, key.scheme, key.level, faceBudget);
 }
 
-std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget) {
+SurfaceHierarchy::SurfaceHierarchy(std::unique_ptr<AdaptiveRefinement> made) : refinement(std::move(made)) { renewStamp(); }
+SurfaceHierarchy::~SurfaceHierarchy() = default;
+
+void SurfaceHierarchy::renewStamp() {
+  static std::atomic<uint64_t> next{1};
+  stamp = next.fetch_add(1);
+}
+
+std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget,
+                                                 std::shared_ptr<SurfaceHierarchy> reuse) {
   auto start = std::chrono::steady_clock::now();
   auto surface = std::make_shared<BuiltSurface>();
   surface->key = key;
@@ -213,40 +259,78 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   // Refine feature-adaptively and extract the limit patches. The level limit (deepestLevel) comes
   // from the estimate; the refiner's own hard limit leaves it room (the estimate is an upper bound
   // at the measured levels, an extrapolation beyond). The refinement stays with the surface for
-  // positions-only updates while the user drags a control point.
+  // positions-only updates while the user drags a control point, and for the next level step.
   const std::string refusal = levelRefusal(model, key.scheme, key.level, faceBudget);
   if (!refusal.empty()) throw InputError(model.name, 0, refusal);
-  surface->refinement = std::make_shared<AdaptiveRefinement>(*model.mesh, refineOptionsFor(key.scheme, key.level),
-                                                             model.name, 2 * faceBudget);
-  const AdaptiveRefinement& refinement = *surface->refinement;
+  if (!reuse || reuse->model != model.generation || reuse->scheme != key.scheme) {
+    reuse = std::make_shared<SurfaceHierarchy>(std::make_unique<AdaptiveRefinement>(
+        *model.mesh, refineOptionsFor(key.scheme, key.level), model.name, 2 * faceBudget));
+    reuse->model = model.generation;
+    reuse->scheme = key.scheme;
+    reuse->points = model.points;
+  }
+  SurfaceHierarchy& hierarchy = *reuse;
+  const std::lock_guard<std::mutex> lock(hierarchy.mutex);
+  AdaptiveRefinement& refinement = *hierarchy.refinement;
+  if (hierarchy.points != model.points) {  // built before the last edits: their points first
+    refinement.updatePositions(model.mesh->points);
+    hierarchy.cache.forget();
+    hierarchy.renewStamp();
+    hierarchy.points = model.points;
+  }
+  const int level = patchLevelFor(model, key.scheme, key.level, faceBudget);
+  surface->patchLevel = level;
+  if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
+  hierarchy.deepestShown = std::max(hierarchy.deepestShown, level);
+  hierarchy.deepestMade = refinement.levelCount() - 1;
+  surface->refineOnlyMs = millisecondsSince(start);
+  const auto patchesStart = std::chrono::steady_clock::now();
   auto sources = std::make_shared<PatchSources>();
-  PatchSet patchSet = extractPatches(refinement, sources.get());
+  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get());
+  surface->regularCount = hierarchy.cache.sharedPrefix(level, level);
+  surface->stamp = hierarchy.stamp;
   surface->sources = std::move(sources);
   surface->patches = std::move(patchSet.patches);
   surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
-  surface->poles = polePositions(surface->patches, refinement.level(refinement.levelCount() - 1));
+  surface->poles = polePositions(surface->patches, refinement.level(level));
   countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
-  surface->refineMs = millisecondsSince(start);
+  surface->refinement = std::shared_ptr<AdaptiveRefinement>(reuse, hierarchy.refinement.get());
+  surface->hierarchy = std::move(reuse);
+  surface->patchesMs = millisecondsSince(patchesStart);
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).
+  const auto samplesStart = std::chrono::steady_clock::now();
   for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
   surface->samples = sampleCurvatures(surface->patches, curvatureSamplesPerPatch(surface->patches.size()), model.points);
+  surface->samplesMs = millisecondsSince(samplesStart);
+  surface->refineMs = millisecondsSince(start);
   return surface;
 }
 
 std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, const Model& model, bool resample,
                                                    RefreshTiming* timing) {
-  if (surface.key.model != model.generation || !surface.refinement)
+  if (surface.key.model != model.generation || !surface.hierarchy)
     throw std::invalid_argument("refreshSurface: the surface was not built from this model's topology");
   RefreshTiming measured;
   auto refreshed = std::make_shared<BuiltSurface>();
   refreshed->key = surface.key;
   refreshed->key.points = model.points;
 
-  // Positions of every level from the new base points; the levels' meshes and tables stay.
+  // Positions of every level from the new base points; the levels' meshes and tables stay. The
+  // hierarchy may be shared with surfaces of other levels: whichever comes first moves its points.
+  SurfaceHierarchy& hierarchy = *surface.hierarchy;
+  const std::lock_guard<std::mutex> lock(hierarchy.mutex);
   auto start = std::chrono::steady_clock::now();
-  AdaptiveRefinement& refinement = *surface.refinement;
-  refinement.updatePositions(model.mesh->points);
+  AdaptiveRefinement& refinement = *hierarchy.refinement;
+  if (hierarchy.points != model.points) {
+    // Levels made ahead would only slow every drag frame down: gone (made again when asked for).
+    if (refinement.levelCount() - 1 > hierarchy.deepestShown) refinement.truncate(hierarchy.deepestShown);
+    hierarchy.deepestMade = refinement.levelCount() - 1;
+    refinement.updatePositions(model.mesh->points);
+    hierarchy.cache.forget();  // its patches are of the old points
+    hierarchy.renewStamp();
+    hierarchy.points = model.points;
+  }
   measured.positionsMs = millisecondsSince(start);
 
   // The patches and pole markers of the moved points; counts and fallbacks are the topology's.
@@ -255,16 +339,23 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   patchSet.patches = surface.patches;
   refreshPatches(refinement, *surface.sources, patchSet);
   refreshed->patches = std::move(patchSet.patches);
-  refreshed->poles = polePositions(refreshed->patches, refinement.level(refinement.levelCount() - 1));
+  refreshed->poles = polePositions(refreshed->patches, refinement.level(surface.patchLevel));
   measured.patchesMs = millisecondsSince(start);
   refreshed->controlMesh = *model.mesh;
   refreshed->patchesPerKind = surface.patchesPerKind;
   refreshed->polesByScheme = surface.polesByScheme;
   refreshed->polesByCatmullClark = surface.polesByCatmullClark;
   refreshed->fallbackReason = surface.fallbackReason;
+  refreshed->patchLevel = surface.patchLevel;
   refreshed->refineMs = surface.refineMs;
+  refreshed->refineOnlyMs = surface.refineOnlyMs;
+  refreshed->patchesMs = surface.patchesMs;
+  refreshed->samplesMs = surface.samplesMs;
   refreshed->refinement = surface.refinement;
   refreshed->sources = surface.sources;
+  refreshed->hierarchy = surface.hierarchy;
+  refreshed->stamp = hierarchy.stamp;  // new points: nothing on the GPU is theirs
+  refreshed->regularCount = surface.regularCount;
 
   start = std::chrono::steady_clock::now();
   refreshed->samples = resample ? sampleCurvatures(refreshed->patches, curvatureSamplesPerPatch(refreshed->patches.size()),
@@ -275,6 +366,19 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   return refreshed;
 }
 
+void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_t faceBudget) noexcept {
+  try {
+    const std::lock_guard<std::mutex> lock(hierarchy.mutex);
+    AdaptiveRefinement& refinement = *hierarchy.refinement;
+    if (hierarchy.points != points) return;
+    if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
+    hierarchy.deepestMade = refinement.levelCount() - 1;
+    hierarchy.cache.prepare(refinement, level);
+  } catch (...) {
+    // Over the budget, or out of memory: the level is made (or refused) when the user asks for it.
+  }
+}
+
 SurfaceJob::~SurfaceJob() {
   if (future_.valid()) future_.wait();
 }
@@ -283,11 +387,12 @@ double SurfaceJob::runningSeconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
 }
 
-void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget) {
+void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse) {
   if (running()) return;
   key_ = key;
   started_ = std::chrono::steady_clock::now();
-  future_ = std::async(std::launch::async, [model, key, faceBudget] { return buildSurface(model, key, faceBudget); });
+  future_ = std::async(std::launch::async,
+                       [model, key, faceBudget, reuse] { return buildSurface(model, key, faceBudget, reuse); });
 }
 
 std::optional<SurfaceJob::Outcome> SurfaceJob::poll() {

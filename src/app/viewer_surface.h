@@ -6,10 +6,12 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +25,35 @@ namespace polarview {
 
 class AdaptiveRefinement;
 
+// One model's feature-adaptive refinement with one scheme, kept while a view steps its level:
+// deeper levels are added to it (AdaptiveRefinement::extend), shallower ones assembled from its
+// LevelPatchCache, and the GPU keeps the patches two levels share (PatchRenderer::setPatches'
+// prefix). Shared by the surfaces built from it; `mutex` guards it (jobs extend it off the GL
+// thread, edits move its points on the GL thread).
+struct SurfaceHierarchy {
+  explicit SurfaceHierarchy(std::unique_ptr<AdaptiveRefinement> refinement);
+  ~SurfaceHierarchy();
+  std::mutex mutex;
+  uint64_t model = 0;   // model generation
+  SchemeChoice scheme = SchemeChoice::C2PS;
+  uint64_t points = 0;  // the model's points revision its levels were computed at
+  std::unique_ptr<AdaptiveRefinement> refinement;
+  LevelPatchCache cache;
+  // Names the cache's sequence of regular patches for PatchRenderer::setPatches: unique among all
+  // hierarchies, renewed whenever the cache is dropped (points moved).
+  uint64_t stamp = 0;
+  void renewStamp();
+  // The deepest level a surface was built at (edits keep the levels up to it; deeper ones were
+  // made ahead and are dropped), and the deepest made (read without the mutex by the GL thread).
+  int deepestShown = 0;
+  std::atomic<int> deepestMade{0};
+};
+
+// Makes level `level` of `hierarchy` ahead of the user (extend + LevelPatchCache::prepare) when it
+// is still at the model's points revision `points`; a refusal (budget) or
+// any failure leaves it as it was and is not reported. [O(new levels)]
+void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_t faceBudget) noexcept;
+
 // Memory one view's surface may take while it is built, and what a face of the feature-adaptive
 // refinement costs there (levels, copied-out parts, patches: peak RSS 447 MB for 989,082 faces,
 // C2PS level 12 on the default model, `bench --adaptive`). The face budget of a level (all its
@@ -34,6 +65,13 @@ constexpr size_t kDefaultFaceBudget = kViewMemoryBudget / kBytesPerAdaptiveFace;
 // of peak memory a face, Catmull-Clark on a cube): the viewer's "refined control mesh" export
 // refuses levels whose uniform mesh would not fit the view's memory budget.
 constexpr size_t kBytesPerUniformFace = 300;
+
+// RTS and BPS are not C2 at the pole, so their Taylor cap (docs/rings-and-pole.md) has a curvature of
+// its own, and its seam with the last ring shows as a ring in curvature maps at shallow levels. The
+// views close their holes at this level at the least: the rings in between are exact pieces of the
+// limit surface (RTS/BPS refine radially: a ring a level), and the cap there spans ~3e-5 of the
+// first ring, below a pixel unless the user zooms in (then a deeper level moves it further in).
+constexpr int kNonC2CapLevel = 16;
 
 // What a surface is a function of.
 struct SurfaceKey {
@@ -59,6 +97,7 @@ struct CurvatureSamples {
 
 struct BuiltSurface {
   SurfaceKey key;
+  int patchLevel = 0;  // the level whose patch set is shown (patchLevelFor: key.level, or deeper)
   std::vector<Patch> patches;
   PolyMesh controlMesh;              // the base cage the view draws as its control net (the model)
   std::vector<Point> poles;          // limit positions of the poles (markers)
@@ -72,7 +111,15 @@ struct BuiltSurface {
   // How each patch was made (stencils), shared the same way: a refresh recomputes control points
   // only (refreshPatches), no classification.
   std::shared_ptr<const PatchSources> sources;
-  double refineMs = 0.0;             // refinement + patch extraction
+  // What `refinement` belongs to, and where the patches came from in it: the first
+  // `regularCount` patches are the regular patches of levels 0..key.level of the sequence that
+  // LevelPatchCache kept under `stamp` (PatchRenderer::setPatches keeps them on the GPU).
+  std::shared_ptr<SurfaceHierarchy> hierarchy;
+  uint64_t stamp = 0;
+  size_t regularCount = 0;
+  // Building it: refinement (made, or stepped: extend / new points), patch set (extracted or
+  // assembled, pole markers), curvature samples; refineMs is all three.
+  double refineMs = 0.0, refineOnlyMs = 0.0, patchesMs = 0.0, samplesMs = 0.0;
   // Polar configurations of the model refined by the scheme / by Catmull-Clark instead (RTS and
   // BPS need valence >= 5), and why; both 0 for Catmull-Clark itself.
   int polesByScheme = 0, polesByCatmullClark = 0;
@@ -104,9 +151,12 @@ LoadedModel readModelFile(const std::string& path);
 // error message, empty when usable. [O(mesh)]
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
 
-// Refines and extracts (worker-thread safe: touches no shared state). Throws InputError when the
-// level is over `faceBudget` or the mesh cannot be refined. [O(output)]
-std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget);
+// Refines and extracts (worker-thread safe: touches no shared state but `reuse`, under its mutex).
+// With `reuse` of the same model and scheme, the surface comes from it: extended to a deeper level,
+// assembled for a shallower one (points brought to the model's first). Throws InputError when the
+// level is over `faceBudget` or the mesh cannot be refined. [O(output); O(new levels + patches) with reuse]
+std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget,
+                                                 std::shared_ptr<SurfaceHierarchy> reuse = nullptr);
 
 // What one positions-only update cost (milliseconds).
 struct RefreshTiming {
@@ -128,6 +178,12 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
 // most 1 - quantile of the weight; 1 when there is no weight or the range would be 0. [O(n log n)]
 float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
 
+// The faces the feature-adaptive refinement of `scheme` holds at `level` on the model (all levels
+// together; the estimate deepestLevel uses). [O(1) after the first call per model and scheme]
+size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level);
+// The level whose patches a view of `scheme` at `level` shows: `level`, or kNonC2CapLevel for
+// schemes that are not C2 at the pole when the model has poles they refine (within the budget).
+int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The deepest level of `scheme` on `mesh` whose estimated faces fit `faceBudget`, at most kMaxLevel:
 // the one limit of the level slider, the keys, `view` and `render`. [O(1) per level]
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
@@ -152,8 +208,8 @@ class SurfaceJob {
   bool running() const { return future_.valid(); }
   const SurfaceKey& runningKey() const { return key_; }
   double runningSeconds() const;
-  // Starts building `key` (only when nothing is running).
-  void start(const Model& model, const SurfaceKey& key, size_t faceBudget);
+  // Starts building `key` (only when nothing is running), from `reuse` where it fits (buildSurface).
+  void start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse = nullptr);
   // The finished result, or nullopt while running / idle. On failure: the error message.
   struct Outcome {
     std::shared_ptr<const BuiltSurface> surface;

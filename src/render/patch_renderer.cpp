@@ -2,6 +2,8 @@
 // overlays (see patch_renderer.h). Shaders: shaders/patch.*, patch_boundary.*, overlay.*.
 #include "render/patch_renderer.h"
 
+#include "core/subdiv/parallel_for.h"
+
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -256,15 +258,17 @@ int patchesPerRun(int maxLevel) {
   return std::max(1, kMaxVerticesPerDraw / perPatch);
 }
 
-void drawPatchRuns(int patchCount, int maxLevel) {
-  const int run = patchesPerRun(maxLevel);
+// Draws the patches in `ranges` of slots, in runs of at most patchesPerRun(maxLevel) patches.
+void drawPatchRuns(const std::vector<PatchRenderer::DrawRange>& ranges, int maxLevel) {
+  const size_t run = size_t(patchesPerRun(maxLevel));
   std::vector<GLint> firsts;
   std::vector<GLsizei> counts;
-  for (int first = 0; first < patchCount; first += run) {
-    firsts.push_back(first * kControlPointsPerPatch);
-    counts.push_back(std::min(run, patchCount - first) * kControlPointsPerPatch);
-  }
-  glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
+  for (const PatchRenderer::DrawRange& range : ranges)
+    for (size_t first = 0; first < range.count; first += run) {
+      firsts.push_back(static_cast<GLint>((range.firstSlot + first) * kControlPointsPerPatch));
+      counts.push_back(static_cast<GLsizei>(std::min(run, range.count - first) * kControlPointsPerPatch));
+    }
+  if (!firsts.empty()) glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
 }
 
 // The largest tessellation level patch.tesc can emit with these settings: T-junction edges reach
@@ -363,8 +367,10 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, flo
     }
     case ShadingParams::ColorMap::Paper:
     default: {
-      // Hue 240 (blue) at -range, 120 (green) at 0, 0 (red) at +range; full saturation.
-      const float hue = (1.0f - t) * 2.0f;
+      // Hue 240 (blue) at -range, 120 (green) on |t| <= kPaperGreenBand, 0 (red) at +range.
+      constexpr float kPaperGreenBand = 0.1f;
+      const float s = std::copysign(std::max(std::abs(t) - kPaperGreenBand, 0.0f), t) / (1.0f - kPaperGreenBand);
+      const float hue = (1.0f - s) * 2.0f;
       glm::vec3 rgb;
       const float offsets[3] = {0.0f, 4.0f, 2.0f};
       for (int c = 0; c < 3; ++c)
@@ -382,6 +388,7 @@ struct PatchRenderer::Impl {
   GLuint patchVao = 0, patchPositions = 0;
   // Per patch (patch_frame.glsl's texels): frame; kind, level, jumps and ring.
   GLuint frameBuffer = 0, frameTexture = 0, kindBuffer = 0, kindTexture = 0;
+  size_t positionsCapacity = 0, frameCapacity = 0, kindCapacity = 0;  // bytes allocated in each
   double transitionUnitLength = 0.0;  // see transitionUnitLength(): sets the transition density
   GLuint netVao = 0, netBuffer = 0;
   GLuint poleVao = 0, poleBuffer = 0;
@@ -477,78 +484,150 @@ unsigned PatchRenderer::surfaceProgram(ShadingParams::Mode mode, bool wireframe)
 
 // [SECTION] Uploads
 
-void PatchRenderer::setPatches(const std::vector<Patch>& patches) {
-  Impl& g = *impl_;
-  patchCount_ = static_cast<int>(patches.size());
+namespace {
 
-  // Bounding box of the position-valued control points; the centre keeps float precision.
+// Makes `buffer` hold at least `bytes` (capacity `*capacity`), keeping its first `keepBytes`:
+// a grown buffer is a new one with the kept part copied on the GPU (glCopyBufferSubData); one far
+// larger than needed with nothing kept is given back. Returns the buffer to use.
+GLuint reserveBuffer(GLuint buffer, size_t* capacity, size_t keepBytes, size_t bytes) {
+  if (bytes <= *capacity && !(keepBytes == 0 && bytes < *capacity / 4)) return buffer;
+  GLuint grown = 0;
+  glGenBuffers(1, &grown);
+  const size_t wanted = keepBytes > 0 ? bytes + bytes / 4 : bytes;  // stepping deeper: room for the next level
+  glBindBuffer(GL_COPY_WRITE_BUFFER, grown);
+  glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(wanted), nullptr, GL_STATIC_DRAW);
+  if (keepBytes > 0) {
+    glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, static_cast<GLsizeiptr>(keepBytes));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+  }
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  glDeleteBuffers(1, &buffer);
+  *capacity = wanted;
+  return grown;
+}
+
+// Writes `count` elements of `size` bytes from `data` at element `first` of `buffer`.
+void writeBuffer(GLenum target, GLuint buffer, size_t first, size_t count, size_t size, const void* data) {
+  if (count == 0) return;
+  glBindBuffer(target, buffer);
+  glBufferSubData(target, static_cast<GLintptr>(first * size), static_cast<GLsizeiptr>(count * size), data);
+  glBindBuffer(target, 0);
+}
+
+}  // namespace
+
+void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stableStamp, size_t stableCount) {
+  Impl& g = *impl_;
+  // Slots: the stable sequence from slot 0 (slots uploaded under the same stamp stay valid, also
+  // past this set's part of it), then the rest of the set after every valid slot.
+  stableCount = stableStamp != 0 ? std::min(stableCount, patches.size()) : 0;
+  const bool sameSequence = stableStamp != 0 && stableStamp == stableStamp_;
+  const size_t validBefore = sameSequence ? stableOnGpu_ : 0;
+  const size_t reused = std::min(validBefore, stableCount);
+  const size_t stableSlots = std::max(validBefore, stableCount);
+  const size_t tailCount = patches.size() - stableCount, totalSlots = stableSlots + tailCount;
+  stableStamp_ = stableStamp;
+  stableOnGpu_ = stableSlots;
+  reusedPatches_ = reused;
+  patchCount_ = static_cast<int>(patches.size());
+  drawRanges_.clear();
+  if (stableCount > 0) drawRanges_.push_back({0, stableCount, 0});
+  if (tailCount > 0) drawRanges_.push_back({stableSlots, tailCount, stableCount});
+
+  // Bounding box of the position-valued control points; the centre keeps float precision. Over a
+  // sequence kept on the GPU the centre stays (its slots were stored relative to it) and the box
+  // takes in the new patches only.
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const Patch& patch : patches)
+  if (sameSequence) lo = boundsMin_, hi = boundsMax_;
+  for (size_t p = reused; p < patches.size(); ++p)
     for (int k = 0; k < kControlPointsPerPatch; ++k)
-      if (isPositionSlot(patch.kind, k)) {
-        lo = glm::min(lo, patch.cp[k]);
-        hi = glm::max(hi, patch.cp[k]);
+      if (isPositionSlot(patches[p].kind, k)) {
+        lo = glm::min(lo, patches[p].cp[k]);
+        hi = glm::max(hi, patches[p].cp[k]);
       }
   if (patches.empty()) lo = hi = glm::dvec3(0.0);
   boundsMin_ = lo;
   boundsMax_ = hi;
-  center_ = 0.5 * (lo + hi);
+  if (!sameSequence) center_ = 0.5 * (lo + hi);
   radius_ = std::max(0.5 * glm::length(hi - lo), 1e-12);
 
   // Per patch: its frame; per control point: the GPU form (see "Precision") and the world point
   // as hi + lo (for positions and tessellation levels), interleaved. Written in place (this runs
-  // every frame of a vertex drag).
+  // every frame of a vertex drag); only the patches not already on the GPU.
   constexpr size_t kFloatsPerPoint = 9, kFloatsPerFrame = 3 * kFrameTexelsPerPatch;
-  const size_t pointFloats = patches.size() * kControlPointsPerPatch * kFloatsPerPoint;
-  const std::unique_ptr<float[]> positions(new float[pointFloats]);  // every float written below
-  std::vector<float> frameTexels(patches.size() * kFloatsPerFrame);
-  std::vector<int32_t> kindRings(patches.size() * 2);
-  for (size_t p = 0; p < patches.size(); ++p) {
-    const Patch& patch = patches[p];
-    const GpuPatch gpu = gpuForm(patch);
-    const PatchFrameCpu& frame = gpu.frame;
-    float* texels = frameTexels.data() + p * kFloatsPerFrame;
-    splitHiLo(frame.origin - center_, texels, texels + 3);
-    for (int axis = 0; axis < 3; ++axis)
-      for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
-    kindRings[2 * p] = packKindLevelJumps(patch);
-    kindRings[2 * p + 1] = patch.ring;
-    float* point = positions.get() + p * kControlPointsPerPatch * kFloatsPerPoint;
-    for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
-      const glm::vec3 local(gpu.cp[k]);
-      point[0] = local.x, point[1] = local.y, point[2] = local.z;
-      splitHiLo(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : glm::dvec3(0.0), point + 3, point + 6);
+  constexpr size_t kFloatsPerPatch = kControlPointsPerPatch * kFloatsPerPoint;
+  const size_t added = patches.size() - reused;
+  const std::unique_ptr<float[]> positions(new float[added * kFloatsPerPatch]);  // every float written below
+  std::vector<float> frameTexels(added * kFloatsPerFrame);
+  // Kinds and level jumps by slot (the jumps change with the level: all of them).
+  std::vector<int32_t> kindRings(totalSlots * 2, 0);
+  for (const DrawRange& range : drawRanges_)
+    for (size_t k = 0; k < range.count; ++k) {
+      const Patch& patch = patches[range.firstIndex + k];
+      kindRings[2 * (range.firstSlot + k)] = packKindLevelJumps(patch);
+      kindRings[2 * (range.firstSlot + k) + 1] = patch.ring;
     }
-  }
+  // Each patch's frame and forward differences are computed in double: split over the cores.
+  const unsigned parts = threadsFor(added * 8);
+  runParts(parts, [&](unsigned part) {
+    const size_t end = reused + size_t(partBound(Index(added), parts, part + 1));
+    for (size_t p = reused + size_t(partBound(Index(added), parts, part)); p < end; ++p) {
+      const Patch& patch = patches[p];
+      const GpuPatch gpu = gpuForm(patch);
+      const PatchFrameCpu& frame = gpu.frame;
+      float* texels = frameTexels.data() + (p - reused) * kFloatsPerFrame;
+      splitHiLo(frame.origin - center_, texels, texels + 3);
+      for (int axis = 0; axis < 3; ++axis)
+        for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
+      float* point = positions.get() + (p - reused) * kFloatsPerPatch;
+      for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
+        const glm::vec3 local(gpu.cp[k]);
+        point[0] = local.x, point[1] = local.y, point[2] = local.z;
+        splitHiLo(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : glm::dvec3(0.0), point + 3, point + 6);
+      }
+    }
+  });
   impl_->transitionUnitLength = transitionUnitLength(patches);
+
+  // The new stable patches go after the valid ones, the rest after every stable slot.
+  const size_t newStable = stableCount - reused;
+  const size_t pointBytes = kFloatsPerPatch * sizeof(float), frameBytes = kFloatsPerFrame * sizeof(float);
+  g.patchPositions = reserveBuffer(g.patchPositions, &g.positionsCapacity, validBefore * pointBytes, totalSlots * pointBytes);
+  writeBuffer(GL_ARRAY_BUFFER, g.patchPositions, reused, newStable, pointBytes, positions.get());
+  writeBuffer(GL_ARRAY_BUFFER, g.patchPositions, stableSlots, tailCount, pointBytes, positions.get() + newStable * kFloatsPerPatch);
+  g.frameBuffer = reserveBuffer(g.frameBuffer, &g.frameCapacity, validBefore * frameBytes, totalSlots * frameBytes);
+  writeBuffer(GL_TEXTURE_BUFFER, g.frameBuffer, reused, newStable, frameBytes, frameTexels.data());
+  writeBuffer(GL_TEXTURE_BUFFER, g.frameBuffer, stableSlots, tailCount, frameBytes, frameTexels.data() + newStable * kFloatsPerFrame);
+  g.kindBuffer = reserveBuffer(g.kindBuffer, &g.kindCapacity, 0, kindRings.size() * sizeof(int32_t));
+  writeBuffer(GL_TEXTURE_BUFFER, g.kindBuffer, 0, kindRings.size(), sizeof(int32_t), kindRings.data());
 
   glBindVertexArray(g.patchVao);
   glBindBuffer(GL_ARRAY_BUFFER, g.patchPositions);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pointFloats * sizeof(float)), positions.get(),
-               GL_STATIC_DRAW);
   // Locations 0 GPU form, 2 world hi, 3 world lo, at floats 0, 3, 6 of 9.
   for (const auto& [location, offset] : {std::pair<GLuint, size_t>{0, 0}, {2, 3}, {3, 6}}) {
     glEnableVertexAttribArray(location);
     glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), reinterpret_cast<void*>(offset * sizeof(float)));
   }
   glBindVertexArray(0);
-
-  glBindBuffer(GL_TEXTURE_BUFFER, g.frameBuffer);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(frameTexels.size() * sizeof(float)),
-               frameTexels.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_TEXTURE_BUFFER, g.kindBuffer);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(kindRings.size() * sizeof(int32_t)),
-               kindRings.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindTexture(GL_TEXTURE_BUFFER, g.frameTexture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, g.frameBuffer);
   glBindTexture(GL_TEXTURE_BUFFER, g.kindTexture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, g.kindBuffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
 
-  // Overlays are stored relative to the centre too: re-upload them.
-  g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
-  g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {1.0f, 0.85f, 0.1f}, center_);
+  // Overlays are stored relative to the centre too: re-upload them when it moved.
+  if (!sameSequence) {
+    g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
+    g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {1.0f, 0.85f, 0.1f}, center_);
+  }
+}
+
+size_t PatchRenderer::slotsInUse() const {
+  size_t slots = 0;
+  for (const DrawRange& range : drawRanges_) slots = std::max(slots, range.firstSlot + range.count);
+  return slots;
 }
 
 void PatchRenderer::setControlMesh(const PolyMesh& mesh) {
@@ -641,7 +720,6 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   g.timerIndex = 1 - slot;
   stats_.patchCount = patchCount_;
 
-  const GLsizei patchVertices = patchCount_ * kControlPointsPerPatch;
   if (patchCount_ > 0 && (flags.surface || flags.wireframe)) {
     const GLuint program = surfaceProgram(shading.mode, flags.wireframe);
     // Light lines: direction B, across E = W x B, plane normal W = B x E (SCHEMES.md section 7).
@@ -680,7 +758,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     // Push the surface back a little so boundary curves and markers on it stay visible.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 2.0f);
-    drawPatchRuns(patchCount_, largestTessLevel(shading));
+    drawPatchRuns(drawRanges_, largestTessLevel(shading));
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
@@ -700,7 +778,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     glUseProgram(program);
     glBindVertexArray(g.patchVao);
     glPatchParameteri(GL_PATCH_VERTICES, kControlPointsPerPatch);
-    glDrawArrays(GL_PATCHES, 0, patchVertices);
+    drawPatchRuns(drawRanges_, 1);
   }
 
   const GLuint overlay = g.shaders->program(kOverlayProgram);
@@ -785,7 +863,7 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
   glBeginTransformFeedback(GL_POINTS);
-  drawPatchRuns(patchCount_, largestTessLevel(shading));
+  drawPatchRuns(drawRanges_, largestTessLevel(shading));
   glEndTransformFeedback();
   glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   glDisable(GL_RASTERIZER_DISCARD);
@@ -809,7 +887,7 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
     s.v = d[1];
     s.gaussian = d[2];
     s.mean = d[3];
-    s.patch = static_cast<int>(d[7]);
+    s.patch = patchIndexOfSlot(size_t(d[7]));
     // Where draw() places the vertex, relative to the eye: back to world coordinates in double.
     s.position = view.eye + glm::dvec3(d[4], d[5], d[6]);
   }

@@ -117,8 +117,21 @@ class PatchRenderer {
   // in double) for evaluation, and its control points as double hi + lo floats for the levels, so
   // that deep patches (level 20: 1e-6 of the model) keep float precision relative to their size;
   // with their levels and edge level jumps (Patch::edgeLevelDelta) packed beside the kind, from
-  // which patch.tesc gives T-junction edges the same vertices on both sides. [O(patches)]
-  void setPatches(const std::vector<Patch>& patches);
+  // which patch.tesc gives T-junction edges the same vertices on both sides.
+  // Level steps: the first `stableCount` patches are a prefix of a sequence that stays the same
+  // across calls with the same `stableStamp` (non-zero; LevelPatchCache's regular patches, level by
+  // level): the ones of it already on the GPU, even beyond this set's part (a deeper level shown
+  // before), stay there and only the others are packed and uploaded; the rest of the set goes after
+  // them. [O(patches not on the GPU) + O(patches) for the level jumps]
+  void setPatches(const std::vector<Patch>& patches, uint64_t stableStamp = 0, size_t stableCount = 0);
+  // Patches the last setPatches found on the GPU (not packed, not uploaded). [O(1)]
+  size_t lastReusedPatches() const { return reusedPatches_; }
+  // Slots of the GPU buffers the set occupies (>= patchCount(): a kept deeper level's). [O(1)]
+  size_t slotsInUse() const;
+  // Where the patches of the set lie in the GPU buffers (slots), in set order.
+  struct DrawRange {
+    size_t firstSlot = 0, count = 0, firstIndex = 0;  // firstIndex: of the first patch in the set
+  };
   // Uploads the control mesh drawn by DisplayFlags::controlNet (its edges). [O(edges)]
   void setControlMesh(const PolyMesh& mesh);
   // Uploads the pole positions drawn by DisplayFlags::poleMarkers.
@@ -165,6 +178,15 @@ class PatchRenderer {
   glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0}, center_{0.0};
   double radius_ = 1.0;
   int patchCount_ = 0;
+  std::vector<DrawRange> drawRanges_;
+  uint64_t stableStamp_ = 0;  // setPatches' sequence on the GPU, and how many of its slots are valid
+  size_t stableOnGpu_ = 0;
+  size_t reusedPatches_ = 0;
+  int patchIndexOfSlot(size_t slot) const {
+    for (const DrawRange& range : drawRanges_)
+      if (slot >= range.firstSlot && slot < range.firstSlot + range.count) return int(range.firstIndex + slot - range.firstSlot);
+    return -1;
+  }
   DrawStats stats_;
   std::string lastError_;
 };

@@ -368,9 +368,16 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
     }
-    ImGui::Text("View %d: %s level %d, refine %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
-                s.refineMs);
+    ImGui::Text("View %d: %s level %d, built in %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
+                s.refineMs + s.uploadMs);
     ImGui::Indent();
+    ImGui::Text("refine %.1f, patches %.1f, samples %.1f, upload %.1f ms", s.refineOnlyMs, s.patchesMs, s.samplesMs,
+                s.uploadMs);
+    if (s.keptPatches > 0) ImGui::Text("(a level step: %d patches stayed on the GPU)", s.keptPatches);
+    if (s.patchLevel > s.shownLevel)
+      ImGui::TextWrapped("Poles closed at level %d: %s is not C2 there, so its cap at level %d would show a curvature "
+                         "of its own; the rings between are the limit surface.",
+                         s.patchLevel, schemeChoiceLabel(s.shownScheme), s.shownLevel);
     ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
     if (s.polesByCatmullClark > 0) {
       wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f),
@@ -535,9 +542,17 @@ float viewTitleHeight(float scale) { return 34.0f * scale; }
 
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
 
+namespace {
+// The strip under the views: a line legend (if a view shows light lines) above the colour bar (if
+// one shows a curvature map).
+float lineLegendReserve(const ViewerState& state, float scale) { return state.lineShade() ? 30.0f * scale : 0.0f; }
+float colourBarOnlyReserve(const ViewerState& state, float scale) {
+  return state.showsColourBar() ? (64.0f + kHistogramHeight + 4.0f) * scale : 0.0f;
+}
+}  // namespace
+
 float colourBarReserve(const ViewerState& state, float scale) {
-  if (state.showsColourBar()) return (64.0f + kHistogramHeight + 4.0f) * scale;
-  return lineLegend(state.shading).empty() ? 0.0f : 30.0f * scale;
+  return lineLegendReserve(state, scale) + colourBarOnlyReserve(state, scale);
 }
 
 std::string lineLegend(const ShadingParams& shading) {
@@ -654,6 +669,8 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
     const ViewStatus& status = state.status[v];
     const ViewSettings& wanted = state.views[v];
     std::string label = viewTitle(status);
+    if (!wanted.caption.empty()) label = wanted.caption;
+    else if (wanted.shade) label += " \xC2\xB7 " + std::string(shadeModeName(*wanted.shade));
     if (status.refining) {
       label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
                std::to_string(wanted.level) + "...";
@@ -699,7 +716,9 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
 
   // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
   // still say what they show.
-  if (std::string legend = lineLegend(state.shading); !legend.empty()) {
+  ShadingParams lines = state.shading;
+  lines.mode = state.lineShade().value_or(ShadingParams::Mode::Shaded);
+  if (std::string legend = lineLegend(lines); !legend.empty()) {
     const float legendSize = fontSize * 0.9f;
     // Wraps in a narrow window; extra lines grow the box upwards over the views' bottom edge.
     const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
@@ -717,16 +736,17 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   const float range = state.colourRange(), below = state.colourRangeBelow();
   const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
   const float barHeight = 14.0f * scale;
-  const float reserve = colourBarReserve(state, scale);
+  const float reserve = colourBarOnlyReserve(state, scale);
   const float left = frame.x + 0.5f * (frame.w - barWidth);
   const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
-  std::string title = state.shading.mode == ShadingParams::Mode::Gaussian ? "Gaussian curvature K" : "mean curvature H";
+  const bool gaussian = state.curvatureShade() == ShadingParams::Mode::Gaussian;
+  std::string title = gaussian ? "Gaussian curvature K" : "mean curvature H";
   const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
   ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
   if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
     title = fullTitle;
   } else {  // a narrow window: the short form fits on the one line the strip has
-    title = std::string(state.shading.mode == ShadingParams::Mode::Gaussian ? "K" : "H") + " (" +
+    title = std::string(gaussian ? "K" : "H") + " (" +
             colourMapName(state.shading.colormap) + ")";
     titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
   }

@@ -42,6 +42,13 @@ struct ViewSettings {
   SchemeChoice scheme = SchemeChoice::C2PS;
   int level = 3;
   OrbitCamera camera;  // used when the cameras are not linked
+  // Per-view styles of `render --shade a,b` and `figure` (the viewer leaves them unset): this view's
+  // shading mode and what it draws instead of ViewerState::shading.mode / display, and a caption in
+  // place of its title ("(c) C2PS · 4"). The app draws every view in one style; renderStyledImage
+  // (app/viewer_styles.h) renders one image per style and takes each view from its own.
+  std::optional<ShadingParams::Mode> shade;
+  std::optional<DisplayFlags> display;
+  std::string caption;
 };
 
 // What the app reports about one view (read-only for panels).
@@ -54,7 +61,14 @@ struct ViewStatus {
   int patchCount = 0;
   std::array<int, kPatchKindCount> patchesPerKind{};
   int controlFaces = 0;            // faces of the shown level's control mesh
-  double refineMs = 0.0;           // refinement + patch extraction of the shown result
+  double refineMs = 0.0;           // building the shown result: all of it (off the GL thread), of which
+  double refineOnlyMs = 0.0;       //   refinement (made, or stepped from the view's kept one),
+  double patchesMs = 0.0;          //   patch set (extracted, or assembled from cached levels),
+  double samplesMs = 0.0;          //   curvature samples for the colour range;
+  double uploadMs = 0.0;           // then packing + upload on the GL thread,
+  int keptPatches = 0;             //   where this many patches stayed on the GPU (a level step)
+  int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
+                                   //   RTS/BPS close them deeper, app/viewer_surface.h kNonC2CapLevel)
   int polesByScheme = 0;           // polar configurations the shown scheme refines
   int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
   std::string fallbackReason;      // why (empty when none)
@@ -189,10 +203,33 @@ struct ViewerState {
     if (colour.symmetric) return colourRange();
     return colour.automatic ? colour.autoBelow : colour.typedBelow;
   }
-  // True when the shading is a curvature map (then the colour bar is shown).
-  bool showsColourBar() const {
-    return display.surface &&
-           (shading.mode == ShadingParams::Mode::Gaussian || shading.mode == ShadingParams::Mode::Mean);
+  // View v's shading mode and what it draws (its own style, or the shared one).
+  ShadingParams::Mode viewShade(int v) const { return views[size_t(v)].shade.value_or(shading.mode); }
+  const DisplayFlags& viewDisplay(int v) const {
+    return views[size_t(v)].display ? *views[size_t(v)].display : display;
+  }
+  // The curvature map (Gaussian or mean) a visible surface is shaded with, if any: the first view's
+  // that has one (one image holds one colour bar).
+  std::optional<ShadingParams::Mode> curvatureShade() const {
+    return firstSurfaceShade([](ShadingParams::Mode m) {
+      return m == ShadingParams::Mode::Gaussian || m == ShadingParams::Mode::Mean;
+    });
+  }
+  // The light lines (highlight or reflection) a visible surface shows, if any: they get a legend.
+  std::optional<ShadingParams::Mode> lineShade() const {
+    return firstSurfaceShade([](ShadingParams::Mode m) {
+      return m == ShadingParams::Mode::Highlight || m == ShadingParams::Mode::Reflection;
+    });
+  }
+  // True when a view shows a curvature map (then the colour bar is shown).
+  bool showsColourBar() const { return curvatureShade().has_value(); }
+
+ private:
+  template <class Predicate>
+  std::optional<ShadingParams::Mode> firstSurfaceShade(Predicate wanted) const {
+    for (int v = 0; v < viewCount; ++v)
+      if (viewDisplay(v).surface && wanted(viewShade(v))) return viewShade(v);
+    return std::nullopt;
   }
 };
 

@@ -122,6 +122,18 @@ check_file duplicate 7 "duplicate face"
 printf "${tri}v 1 1 0\nf 1 2 3\nf 2 3 4\n" > "$work/orientation.obj"
 check_file orientation 6 "inconsistent orientation"
 
+# Bad `t` tags (OpenSubdiv's crease/corner/hole syntax, 0-based ids): counts, values, ids.
+printf "${tri}f 1 2 3\nt crease 2/1/0 0 1\n" > "$work/tagcount.obj"
+check_file tagcount 5 "tag 'crease' has 2 values, its counts 2/1/0 say 3"
+printf "${tri}f 1 2 3\nt crease 2/1/0 0 1 -2\n" > "$work/tagsharp.obj"
+check_file tagsharp 5 "sharpness -2 is negative"
+printf "t corner 1/1/0 3 1\n${tri}f 1 2 3\n" > "$work/tagrange.obj"
+check_file tagrange 1 "vertex id 3 out of range (3 vertices; tag ids are 0-based)"
+
+# A file of NUL bytes is refused at its first chunk, naming line 1 (it used to be read whole first).
+head -c 33554432 /dev/zero > "$work/zeros.obj"
+check_file zeros 1 "binary data (NUL byte)"
+
 # A missing file fails the same way (no line).
 expect_error missing "" "" -- "$exe" info "$work/missing.obj"
 

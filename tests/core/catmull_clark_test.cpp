@@ -12,6 +12,7 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
+#include "core/subdiv/refiner.h"
 
 using namespace polarview;
 
@@ -264,4 +265,84 @@ TEST_CASE("catmull-clark: face points are centroids, boundary edges midpoints, u
   const Index unused = m.vertexCount() - 1;
   REQUIRE_FALSE(t.vertexUsed[unused]);
   CHECK(child.points[ccVertexPoint(t, unused)] == m.points[unused]);
+}
+
+// [SECTION] creases and corners (OpenSubdiv's CREASE_UNIFORM rules; osd_oracle_test compares them)
+
+namespace {
+
+// The edge between a and b of `mesh` as a crease tag.
+CreaseEdge creaseTag(Index a, Index b, double sharpness) { return {std::min(a, b), std::max(a, b), sharpness}; }
+
+// Level-1 points of `mesh` refined by Catmull-Clark with its tags.
+std::vector<Point> refinedOnce(const PolyMesh& mesh) {
+  return Refinement(mesh, {Scheme::CatmullClark, 1, false}).finest().mesh.points;
+}
+
+}  // namespace
+
+TEST_CASE("catmull-clark: an infinitely sharp crease refines as a cubic B-spline curve, whatever lies off it") {
+  // Row j = 3 of a 6 x 6 grid, boundary to boundary: its inner vertices take the crease rule, its
+  // ends (three sharp edges) the corner rule, so the curve depends on its own points only.
+  ControlGrid g = randomGrid(6, 5);
+  for (int i = 0; i < 6; ++i) g.mesh.tags.creases.push_back(creaseTag(g.at(i, 3), g.at(i + 1, 3), kInfiniteSharpness));
+  PolyMesh moved = g.mesh;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> shift(-0.3, 0.3);
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i <= 6; ++i)
+      if (j != 3) moved.points[g.at(i, j)] += Point(shift(rng), shift(rng), shift(rng));
+  constexpr int kLevels = 3;
+  const Refinement a(g.mesh, {Scheme::CatmullClark, kLevels, false}), b(moved, {Scheme::CatmullClark, kLevels, false});
+  const std::vector<Point>& pa = a.finest().mesh.points;
+  const std::vector<Point>& pb = b.finest().mesh.points;
+  const long unchanged = std::count_if(pa.begin(), pa.end(), [&](const Point& p) { return pb[size_t(&p - pa.data())] == p; });
+  CHECK(unchanged == 6 * (1 << kLevels) + 1);  // exactly the points of the crease curve
+  // The finest level still carries the crease, infinitely sharp, on all its 6 * 2^L edges.
+  CHECK(a.finest().mesh.tags.creases.size() == size_t(6 * (1 << kLevels)));
+}
+
+TEST_CASE("catmull-clark: semi-sharp tags lose 1 a level until the crease is smooth") {
+  PolyMesh m = shapes::cube();
+  m.tags.creases = {creaseTag(m.face(0)[0], m.face(0)[1], 2.5)};
+  m.tags.corners = {{m.face(0)[2], 1.5}};
+  const Refinement r(m, {Scheme::CatmullClark, 3, false});
+  CHECK_FALSE(r.level(0).sharpness.empty());
+  const SubdivTags& level1 = r.level(1).mesh.tags;
+  REQUIRE(level1.creases.size() == 2);  // the edge's two halves
+  for (const CreaseEdge& c : level1.creases) CHECK(c.sharpness == 1.5);
+  CHECK(level1.corners == std::vector<CornerVertex>{{ccVertexPoint(r.level(0).topology, m.face(0)[2]), 0.5}});
+  const SubdivTags& level2 = r.level(2).mesh.tags;
+  CHECK(level2.creases.size() == 4);
+  for (const CreaseEdge& c : level2.creases) CHECK(c.sharpness == 0.5);
+  CHECK(level2.corners.empty());
+  CHECK(r.level(3).mesh.tags.creases.empty());
+  CHECK(r.level(3).sharpness.empty());  // smooth from here: the fast rules apply
+}
+
+TEST_CASE("catmull-clark: sharpness s in (0, 1) blends s of the sharp rule with 1 - s of the smooth one") {
+  const PolyMesh smoothMesh = shapes::torus(6, 5);
+  const MeshTopology t = buildTopology(smoothMesh);
+  const std::vector<Point> smooth = refinedOnce(smoothMesh);
+  constexpr double s = 0.375;  // exact in float, as OpenSubdiv stores it
+  const Index e = 7, v = 11;
+  const Index a = t.edgeVerts[2 * e], b = t.edgeVerts[2 * e + 1];
+  REQUIRE(v != a);
+  REQUIRE(v != b);
+
+  PolyMesh creased = smoothMesh;
+  creased.tags.creases = {creaseTag(a, b, s)};
+  const std::vector<Point> withCrease = refinedOnce(creased);
+  const Point midpoint = 0.5 * (smoothMesh.points[a] + smoothMesh.points[b]);
+  CHECK(glm::length(withCrease[ccEdgePoint(t, e)] - (s * midpoint + (1 - s) * smooth[ccEdgePoint(t, e)])) < 1e-14);
+  // Its ends are darts (one sharp edge): smooth rule.
+  CHECK(withCrease[ccVertexPoint(t, a)] == smooth[ccVertexPoint(t, a)]);
+
+  // A corner of sharpness s: s of the vertex itself (corner rule), 1 - s of the smooth point.
+  PolyMesh cornered = smoothMesh;
+  cornered.tags.corners = {{v, s}};
+  const std::vector<Point> withCorner = refinedOnce(cornered);
+  CHECK(glm::length(withCorner[ccVertexPoint(t, v)] - (s * smoothMesh.points[v] + (1 - s) * smooth[ccVertexPoint(t, v)])) < 1e-14);
+  for (Index w = 0; w < t.vertexCount; ++w)
+    if (w != v) CHECK(withCorner[ccVertexPoint(t, w)] == smooth[ccVertexPoint(t, w)]);
 }

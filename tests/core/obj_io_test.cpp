@@ -1,7 +1,9 @@
 // OBJ reading and writing: exact round trips, one precise error per kind of bad input.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "temp_dir.h"
 #include "core/mesh/obj_io.h"
@@ -24,7 +27,7 @@ struct TempDir : test::TempDir {
 };
 
 // Parses `text`; returns the InputError's line (or -1 when it parsed) and its message.
-int errorLine(const std::string& text, std::string* message = nullptr) {
+int64_t errorLine(const std::string& text, std::string* message = nullptr) {
   try {
     parseObjText(text, "bad.obj");
   } catch (const InputError& e) {
@@ -78,7 +81,7 @@ TEST_CASE("obj: faces record their line, texture and normal parts are ignored") 
       "ok.obj", &warnings);
   CHECK(m.vertexCount() == 4);
   CHECK(m.faceCount() == 2);
-  CHECK(m.faceLine == std::vector<int>{13, 14});
+  CHECK(m.faceLine == std::vector<int64_t>{13, 14});
   CHECK(m.faceVerts == std::vector<Index>{0, 1, 2, 0, 2, 3});
   CHECK(m.points[3] == Point(0, 1, 0));
   CHECK(warnings.size() == 3);  // one each for 'l', 'p' and 't'
@@ -198,7 +201,7 @@ TEST_CASE("obj: a UTF-8 byte-order mark is skipped; LF, CRLF and a lone CR all e
   const char* kBom = "\xEF\xBB\xBF";
   PolyMesh bom = parseObjText(std::string(kBom) + kTwoQuads, "bom.obj");
   CHECK(bom.faceCount() == 2);
-  CHECK(bom.faceLine == std::vector<int>{8, 9});
+  CHECK(bom.faceLine == std::vector<int64_t>{8, 9});
   CHECK(parseObjText(std::string(kBom) + "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n", "bom.obj").faceCount() == 1);
   // Only at the very start: elsewhere the bytes are not a statement.
   CHECK(errorLine(std::string("v 0 0 0\n") + kBom + "v 1 0 0\n") == 2);
@@ -224,7 +227,7 @@ TEST_CASE("obj: a UTF-8 byte-order mark is skipped; LF, CRLF and a lone CR all e
   CHECK(errorLine("v 0 0 0\rv 1 0 0\r\x01\rf 1 2 3\r") == 3);
   CHECK(errorLine("v 0 0 0\r\nv 1 0 0\r\n\x01\r\nf 1 2 3\r\n") == 3);
   // A continuation backslash works across CR-only lines too.
-  CHECK(parseObjText("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 \\\r2 3\r", "cont.obj").faceLine == std::vector<int>{4});
+  CHECK(parseObjText("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 \\\r2 3\r", "cont.obj").faceLine == std::vector<int64_t>{4});
 }
 
 TEST_CASE("obj: random corruption of a valid file never crashes the reader") {
@@ -345,4 +348,265 @@ TEST_CASE("obj: a million-face grid parses quickly and completely") {
   CHECK(m.vertexCount() == (n + 1) * (n + 1));
   CHECK(m.faceLine.back() == (n + 1) * (n + 1) + n * n);
   CHECK(m.points.back() == Point(1, 1, 0));
+}
+
+// [SECTION] t tags (OpenSubdiv's crease, corner, hole and option tags)
+
+namespace {
+
+// kTwoQuads' edges: 0-1, 1-2, 2-3, 3-0, 1-4, 4-5, 5-2 (0-based, as tags number them); 0-2 is a diagonal.
+constexpr int kTwoQuadsLines = 9;
+
+}  // namespace
+
+TEST_CASE("obj: t tags give creases, corners, holes and options, merged as OpenSubdiv applies them") {
+  std::vector<std::string> warnings;
+  const PolyMesh m = parseObjText(std::string(kTwoQuads) +
+                                      "t crease 2/1/0 1 0 2.5\n"
+                                      "t crease 4/1/0 1 2 4 5 10\n"           // two edges, one sharpness
+                                      "t crease 4/2/0 2 3 \\\n 5 2 0.1 7\n"   // one sharpness per edge, continued
+                                      "t crease 2/1/0 2 1 0.75   # a later tag overrides\n"
+                                      "t crease 2/1/0 4 5 0\n"                // sharpness 0: no crease
+                                      "t corner 2/1/0 3 0 1.5\n"
+                                      "t corner 2/2/0 4 3 +3 1e-3\n"
+                                      "t hole 2/0/0 1 1\n"
+                                      "t interpolateboundary 1/0/0 1\n"
+                                      "t creasemethod 0/0/1 chaikin\n"
+                                      "t smoothtriangles 0/0/1 smooth\n",
+                                  "tags.obj", &warnings);
+  CHECK(m.faceCount() == 2);
+  CHECK(m.tags.creases == std::vector<CreaseEdge>{{0, 1, 2.5}, {1, 2, 0.75}, {2, 3, 0.1}, {2, 5, 7.0}});
+  CHECK(m.tags.corners == std::vector<CornerVertex>{{0, 1.5}, {3, 1e-3}, {4, 3.0}});
+  CHECK(m.tags.holes == std::vector<Index>{1});
+  CHECK(m.tags.boundary == BoundaryInterpolation::EdgeAndCorner);
+  CHECK(m.tags.creaseMethod == CreaseMethod::Chaikin);
+  CHECK(m.tags.triangles == TriangleSubdivision::Smooth);
+  CAPTURE(warnings);
+  REQUIRE(warnings.size() == 4);  // creasemethod applies with the creases
+  CHECK(warnings[0] == "4 crease edges and 3 corners ('t' tags): only Catmull-Clark's refinement of the control mesh "
+                       "(refine --scheme cc) applies them; the polar schemes and the limit surface (view, render, export, "
+                       "pole) treat them as smooth");
+  CHECK(warnings[1].find("'t interpolateboundary 1' (sharp corners): only Catmull-Clark's") == 0);
+  CHECK(warnings[2].find("1 hole faces") == 0);
+
+  // OpenSubdiv's own options are the defaults; tags it has but polarview cannot use are named.
+  warnings.clear();
+  const PolyMesh plain = parseObjText(std::string(kTwoQuads) +
+                                          "t interpolateboundary 1/0/0 2\nt facevaryinginterpolateboundary 1/0/0 1\n"
+                                          "t vertexedit 1/0/1 0 add\nt sparkle 0/1/0 3\n",
+                                      "plain.obj", &warnings);
+  CHECK(plain.tags.empty());
+  CHECK(warnings == std::vector<std::string>{"1 face-varying 't' tags ignored (polarview has no face-varying data)",
+                                             "1 hierarchical-edit 't' tags ignored (OpenSubdiv 3 does not apply them either)",
+                                             "1 't' tags of unknown kind ignored (the first: 'sparkle' on line 13)"});
+}
+
+TEST_CASE("obj: each kind of bad t tag names its line") {
+  struct Bad {
+    const char* tag;
+    const char* words;
+  };
+  const Bad cases[] = {
+      {"t\n", "tag without a name"},
+      {"t crease\n", "tag 'crease': malformed counts ''"},
+      {"t crease 2/1 0 1 2\n", "malformed counts '2/1'"},
+      {"t crease 2/1/0/0 0 1 2\n", "malformed counts"},
+      {"t crease 2/-1/0 0 1\n", "malformed counts"},
+      {"t crease 2/1/0 0 1\n", "tag 'crease' has 2 values, its counts 2/1/0 say 3"},
+      {"t crease 2/1/0 0 1 2 3\n", "has 4 values"},
+      {"t crease 99999999999999999999/1/0 0 1 2\n", "has 3 values"},
+      {"t crease 3/1/0 0 1 2 1\n", "tag 'crease' with counts 3/1/0: expected 2k/1/0 or 2k/k/0"},
+      {"t crease 4/3/0 0 1 1 2 1 1 1\n", "expected 2k/1/0 or 2k/k/0"},
+      {"t crease 2/1/1 0 1 1 x\n", "expected 2k/1/0"},
+      {"t crease 2/1/0 0 x 1\n", "tag 'crease': malformed vertex id 'x'"},
+      {"t crease 2/1/0 0 -1 1\n", "vertex id -1 is negative (tag ids are 0-based)"},
+      {"t crease 2/1/0 0 3000000000 1\n", "vertex id 3000000000 is too large"},
+      {"t crease 2/1/0 0 1 abc\n", "malformed number 'abc'"},
+      {"t crease 2/1/0 0 1 -1\n", "tag 'crease': sharpness -1 is negative"},
+      {"t crease 2/1/0 0 1 nan\n", "sharpness is NaN"},
+      {"t crease 2/1/0 0 1 -inf\n", "sharpness is infinite"},
+      {"t crease 2/1/0 0 1 1e999\n", "sharpness '1e999' is too large"},
+      {"t crease 2/1/0 2 2 1\n", "tag 'crease': edge from vertex 2 to itself"},
+      {"t crease 2/1/0 0 6 1\n", "tag 'crease': vertex id 6 out of range (6 vertices; tag ids are 0-based)"},
+      {"t crease 2/1/0 0 2 1\n", "tag 'crease': vertices 0 and 2 (0-based) are not an edge of any face"},
+      {"t crease 2/1/0 0 1 1\nt crease 2/1/0 4 1 1\nt crease 2/1/0 3 1 1\n", "vertices 3 and 1"},
+      {"t corner 1/1/0 6 1\n", "tag 'corner': vertex id 6 out of range"},
+      {"t corner 2/3/0 0 1 1 1 1\n", "tag 'corner' with counts 2/3/0: expected k/1/0 or k/k/0"},
+      {"t corner 0/1/0 1\n", "expected k/1/0"},
+      {"t corner 1/1/0 0 -0.5\n", "sharpness -0.5 is negative"},
+      {"t hole 1/0/0 2\n", "tag 'hole': face id 2 out of range (2 faces; tag ids are 0-based)"},
+      {"t hole 1/1/0 0 1\n", "tag 'hole' with counts 1/1/0: expected k/0/0"},
+      {"t interpolateboundary 1/0/0 3\n", "tag 'interpolateboundary': '3' is not 0 (none), 1 (edge and corner) or 2 (edge only)"},
+      {"t interpolateboundary 1/0/0 -1\n", "is not 0 (none)"},
+      {"t interpolateboundary 0/0/1 edge\n", "tag 'interpolateboundary' with counts 0/0/1: expected 1/0/0"},
+      {"t creasemethod 0/0/1 fast\n", "tag 'creasemethod': 'fast' is not 'normal' or 'chaikin'"},
+      {"t smoothtriangles 0/0/1 loop\n", "is not 'catmark' or 'smooth'"},
+      {"t facevaryinginterpolateboundary 1/0/0 6\n", "is not 0 to 5"},
+  };
+  for (const Bad& bad : cases) {
+    const std::string text = std::string(kTwoQuads) + bad.tag;
+    std::string message;
+    CAPTURE(text);
+    const int64_t line = errorLine(text, &message);
+    CAPTURE(message);
+    CHECK(line > kTwoQuadsLines);
+    CHECK(message.find(bad.words) != std::string::npos);
+    CHECK(message.find("bad.obj:" + std::to_string(line) + ": ") == 0);
+  }
+  // Ids are checked once the whole file is known: a tag may come before its vertices and faces.
+  std::string message;
+  CHECK(errorLine(std::string("t corner 1/1/0 6 1.0\nt hole 1/0/0 0\n") + kTwoQuads, &message) == 1);
+  CHECK(message == "bad.obj:1: tag 'corner': vertex id 6 out of range (6 vertices; tag ids are 0-based)");
+  const PolyMesh early = parseObjText(std::string("t corner 1/1/0 5 1.0\nt hole 1/0/0 0\n") + kTwoQuads, "early.obj");
+  CHECK(early.tags.corners == std::vector<CornerVertex>{{5, 1.0}});
+  CHECK(early.tags.holes == std::vector<Index>{0});
+}
+
+TEST_CASE("obj: t tags survive a save/load round trip") {
+  TempDir dir;
+  PolyMesh mesh = parseObjText(kTwoQuads, "q.obj");
+  mesh.tags.creases = {{0, 1, 0.1}, {2, 5, kInfiniteSharpness}, {4, 5, 1.0 / 3.0}};
+  mesh.tags.corners = {{3, 2.75}, {4, 1e-9}};
+  mesh.tags.holes = {1};
+  mesh.tags.boundary = BoundaryInterpolation::None;
+  mesh.tags.creaseMethod = CreaseMethod::Chaikin;
+  mesh.tags.triangles = TriangleSubdivision::Smooth;
+  const std::string path = (dir.path / "tags.obj").string();
+  saveObj(path, mesh);
+  const PolyMesh back = loadObj(path);
+  CHECK(back.tags.creases == mesh.tags.creases);
+  CHECK(back.tags.corners == mesh.tags.corners);
+  CHECK(back.tags.holes == mesh.tags.holes);
+  CHECK(back.tags.boundary == mesh.tags.boundary);
+  CHECK(back.tags.creaseMethod == mesh.tags.creaseMethod);
+  CHECK(back.tags.triangles == mesh.tags.triangles);
+
+  // Default tags write no `t` line at all; a bad sharpness is refused before anything is written.
+  saveObj(path, parseObjText(kTwoQuads, "q.obj"));
+  std::ifstream written(path);
+  const std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+  CHECK(text.find("\nt ") == std::string::npos);
+  mesh.tags.corners[0].sharpness = -1;
+  CHECK_THROWS_AS(saveObj((dir.path / "bad.obj").string(), mesh), InputError);
+  CHECK_FALSE(fs::exists(dir.path / "bad.obj"));
+}
+
+// [SECTION] Streaming: hostile files are refused as they are read
+
+namespace {
+
+// A stream of one byte, endless or `limit` bytes long and then `tail`, that counts what it hands out.
+class EndlessBytes : public std::streambuf {
+ public:
+  explicit EndlessBytes(char byte, size_t limit = SIZE_MAX, std::string tail = "") : limit_(limit), tail_(std::move(tail)) {
+    block_.fill(byte);
+  }
+  size_t served = 0;
+
+ protected:
+  int_type underflow() override {
+    if (served >= limit_) {
+      if (tailServed_ || tail_.empty()) return traits_type::eof();
+      tailServed_ = true;
+      setg(tail_.data(), tail_.data(), tail_.data() + tail_.size());
+      return traits_type::to_int_type(tail_[0]);
+    }
+    const size_t n = std::min(block_.size(), limit_ - served);
+    setg(block_.data(), block_.data(), block_.data() + n);
+    served += n;
+    return traits_type::to_int_type(block_[0]);
+  }
+
+ private:
+  std::array<char, 4096> block_;
+  size_t limit_;
+  std::string tail_;
+  bool tailServed_ = false;
+};
+
+// The InputError's message when `in` is parsed (empty if it parsed).
+std::string streamError(std::istream& in, const std::string& name = "stream.obj") {
+  try {
+    parseObj(in, name);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("obj: an endless stream of NUL bytes or of garbage is refused at its first chunk") {
+  for (char byte : {'\0', '\x01', 'x'}) {
+    EndlessBytes source(byte);
+    std::istream in(&source);
+    const std::string message = streamError(in);
+    CAPTURE(message);
+    CHECK(message.find("stream.obj:1: ") == 0);
+    CHECK(message.find(byte == 'x' ? "unknown statement 'xxxx" : byte == '\0' ? "binary data (NUL byte)" : "binary data (control character)") !=
+          std::string::npos);
+    CHECK(source.served <= (size_t(1) << 20));  // bounded memory: never more than one chunk ahead
+  }
+}
+
+TEST_CASE("obj: a statement after 256 MB of blanks on its line is read (blanks are not collected)") {
+  // Each byte of a line is looked at about once, however many chunks it spans.
+  EndlessBytes source(' ', size_t(256) << 20, std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  std::istream in(&source);
+  const PolyMesh m = parseObj(in, "blanks.obj");
+  CHECK(m.faceLine == std::vector<int64_t>{4});
+  CHECK(m.points[1] == Point(1, 0, 0));
+}
+
+TEST_CASE("obj: a 64 MB file of NUL bytes is refused, naming line 1") {
+  TempDir dir;
+  const std::string path = (dir.path / "zeros.obj").string();
+  {
+    std::ofstream out(path, std::ios::binary);
+    const std::string block(size_t(1) << 20, '\0');
+    for (int i = 0; i < 64; ++i) out << block;
+  }
+  REQUIRE(fs::file_size(path) == (uint64_t(64) << 20));
+  try {
+    loadObj(path);
+    FAIL("a file of NUL bytes was read");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == path + ":1: binary data (NUL byte), not a text OBJ file");
+  }
+}
+
+TEST_CASE("obj: lines cut across read chunks give the same mesh and errors as one piece") {
+  // parseObj reads 64 KiB at a time: put a CRLF, a CR, a continuation and a bad byte at each
+  // offset around the first chunk end and compare with parseObjText, which gets the text whole.
+  constexpr size_t kChunk = size_t(1) << 16;
+  for (const char* tail : {"\r\n", "\r", "\n", " \\\r\n"}) {
+    for (size_t shift = 0; shift < 6; ++shift) {
+      const std::string comment = "# " + std::string(kChunk - 4 + shift, 'c');
+      const std::string text = comment + tail + kTwoQuads;
+      CAPTURE(tail);
+      CAPTURE(shift);
+      std::istringstream stream(text);
+      const PolyMesh streamed = parseObj(stream, "s.obj"), whole = parseObjText(text, "s.obj");
+      CHECK(streamed.faceLine == whole.faceLine);
+      CHECK(streamed.faceVerts == whole.faceVerts);
+      CHECK(streamed.faceLine.front() == 9);  // the comment is line 1 (continued or not), kTwoQuads lines 2-10
+      for (const std::string& bad : {std::string("v 1 \x01 2\n"), std::string("v 1 abc 2\n")}) {
+        std::istringstream badStream(comment + tail + bad);
+        std::string wholeMessage;
+        errorLine(comment + tail + bad, &wholeMessage);
+        CHECK(streamError(badStream, "bad.obj") == wholeMessage);
+      }
+    }
+  }
+  // A byte-order mark split over the first reads is still a byte-order mark.
+  std::string withBom = std::string("\xEF\xBB\xBF") + kTwoQuads;
+  std::istringstream bom(withBom);
+  CHECK(parseObj(bom, "bom.obj").faceLine == std::vector<int64_t>{8, 9});
+}
+
+TEST_CASE("obj: line numbers are 64-bit, past 2^31 lines") {
+  static_assert(std::is_same_v<decltype(PolyMesh::faceLine)::value_type, int64_t>);
+  const InputError e("huge.obj", int64_t(3) << 31, "malformed number 'x'");
+  CHECK(e.line() == int64_t(6442450944));
+  CHECK(std::string(e.what()) == "huge.obj:6442450944: malformed number 'x'");
 }

@@ -223,7 +223,8 @@ TEST_CASE("derived connectivity with splits at random vertices (boundary ones to
 
 TEST_CASE("corner links name the opposite half-edge of each interior edge and its successor, -1 on the boundary") {
   for (const auto& [name, mesh] : testMeshes()) {
-    CAPTURE(name);
+    const std::string& meshName = name;  // C++17 lambdas (CAPTURE) cannot capture a structured binding
+    CAPTURE(meshName);
     const MeshTopology topo = buildTopology(mesh);
     checkLinksAreOppositeHalfEdges(mesh, topo, cornerLinks(mesh, topo));
   }
@@ -231,7 +232,8 @@ TEST_CASE("corner links name the opposite half-edge of each interior edge and it
 
 TEST_CASE("Catmull-Clark points are bit-identical on 1, 2, 3 and 7 threads") {
   for (const auto& [name, base] : testMeshes()) {
-    CAPTURE(name);
+    const std::string& meshName = name;  // C++17 lambdas (CAPTURE) cannot capture a structured binding
+    CAPTURE(meshName);
     PolyMesh mesh = base;
     for (int level = 1; level <= 3; ++level) {
       const MeshTopology topo = buildTopology(mesh);

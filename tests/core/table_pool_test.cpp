@@ -80,7 +80,8 @@ TEST_CASE("refinements built on recycled tables equal those built on fresh memor
   for (const auto& [base, levels] : meshes) {
     for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
       CAPTURE(std::string(schemeName(scheme)));
-      CAPTURE(base.faceCount());
+      const Index baseFaces = base.faceCount();  // C++17 lambdas (CAPTURE) cannot capture a structured binding
+      CAPTURE(baseFaces);
       const RefineOptions options{scheme, levels, false};
       clearTablePool();
       const Refinement fresh(base, options);

@@ -18,6 +18,7 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
+#include "core/subdiv/refiner.h"
 
 using namespace polarview;
 namespace Far = OpenSubdiv::Far;
@@ -111,6 +112,8 @@ PolyMesh poleMesh(int n, int rings, bool closed) {
 
 // [SECTION] OpenSubdiv side
 
+// OpenSubdiv's refiner of `m`, with m.tags' creases and corners (sharpness as float, as Far takes
+// it), boundary rule and creasing method.
 std::unique_ptr<Far::TopologyRefiner> osdRefiner(const PolyMesh& m, int levels) {
   std::vector<int> faceSizes(m.faceCount());
   for (Index f = 0; f < m.faceCount(); ++f) faceSizes[f] = m.faceSize(f);
@@ -119,10 +122,29 @@ std::unique_ptr<Far::TopologyRefiner> osdRefiner(const PolyMesh& m, int levels) 
   desc.numFaces = m.faceCount();
   desc.numVertsPerFace = faceSizes.data();
   desc.vertIndicesPerFace = m.faceVerts.data();
+  std::vector<Index> creasePairs, cornerIds;
+  std::vector<float> creaseWeights, cornerWeights;
+  for (const CreaseEdge& c : m.tags.creases) {
+    creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
+    creaseWeights.push_back(float(c.sharpness));
+  }
+  for (const CornerVertex& c : m.tags.corners) {
+    cornerIds.push_back(c.vertex);
+    cornerWeights.push_back(float(c.sharpness));
+  }
+  desc.numCreases = int(creaseWeights.size());
+  desc.creaseVertexIndexPairs = creasePairs.data();
+  desc.creaseWeights = creaseWeights.data();
+  desc.numCorners = int(cornerWeights.size());
+  desc.cornerVertexIndices = cornerIds.data();
+  desc.cornerWeights = cornerWeights.data();
 
   Sdc::Options options;
-  options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  options.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
+  options.SetVtxBoundaryInterpolation(m.tags.boundary == BoundaryInterpolation::EdgeAndCorner
+                                          ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                          : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  options.SetCreasingMethod(m.tags.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                         : Sdc::Options::CREASE_UNIFORM);
   options.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
@@ -243,7 +265,120 @@ void compareWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
   CHECK(maxLimitDifference <= tolerance);
 }
 
+// Refines `base` (with crease and corner tags) kLevels times with polarview's uniform Refinement
+// and with OpenSubdiv, and compares positions per level; also that each level's tags are the
+// base's less 1 a level, by refining the level-1 mesh with its own tags once more.
+void compareSharpWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
+  CAPTURE(name);
+  const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(base, kLevels);
+  const Far::PrimvarRefinerReal<double> primvar(*refiner);
+  const double tolerance = 1e-12 * boundingDiagonal(base.points);
+  const Refinement ours(base, {Scheme::CatmullClark, kLevels, false});
+  REQUIRE(ours.levelCount() == kLevels + 1);
+  CHECK_FALSE(ours.level(0).sharpness.empty());
+
+  std::vector<OsdPoint> osdPoints(base.vertexCount());
+  for (Index v = 0; v < base.vertexCount(); ++v) osdPoints[v].p = base.points[v];
+  std::vector<int> vertexMap(base.vertexCount()), faceMap(base.faceCount());
+  for (size_t i = 0; i < vertexMap.size(); ++i) vertexMap[i] = int(i);
+  for (size_t i = 0; i < faceMap.size(); ++i) faceMap[i] = int(i);
+  for (int level = 1; level <= kLevels; ++level) {
+    CAPTURE(level);
+    const RefinedLevel& parent = ours.level(level - 1);
+    const PolyMesh& child = ours.level(level).mesh;
+    const Far::TopologyLevel& osdChild = refiner->GetLevel(level);
+    REQUIRE(child.vertexCount() == osdChild.GetNumVertices());
+    std::vector<OsdPoint> osdChildPoints(osdChild.GetNumVertices());
+    OsdPoint* dst = osdChildPoints.data();
+    primvar.Interpolate(level, osdPoints.data(), dst);
+    std::vector<int> childVertexMap, childFaceMap;
+    mapChildLevel(parent.topology, child, refiner->GetLevel(level - 1), osdChild, vertexMap, faceMap, childVertexMap, childFaceMap);
+    double maxDifference = 0;
+    for (Index v = 0; v < child.vertexCount(); ++v)
+      maxDifference = std::max(maxDifference, glm::length(child.points[v] - osdChildPoints[childVertexMap[v]].p));
+    MESSAGE(name, " level ", level, ": max |ours - OpenSubdiv| = ", maxDifference);
+    CHECK(maxDifference <= tolerance);
+    osdPoints = std::move(osdChildPoints);
+    vertexMap = std::move(childVertexMap);
+    faceMap = std::move(childFaceMap);
+  }
+
+  // The level-1 mesh with its tags (sharpness less 1) refined kLevels - 1 times is the same surface.
+  const Refinement again(ours.level(1).mesh, {Scheme::CatmullClark, kLevels - 1, false});
+  double maxDifference = 0;
+  for (Index v = 0; v < ours.finest().mesh.vertexCount(); ++v)
+    maxDifference = std::max(maxDifference, glm::length(again.finest().mesh.points[v] - ours.finest().mesh.points[v]));
+  CHECK(maxDifference <= tolerance);
+}
+
+// Tags `mesh`: each edge crease with probability 1/3, sharpness from a list of fractional (under
+// and over 1), integral and infinite values, and every seventh vertex a corner.
+void tagRandomly(PolyMesh& mesh, uint32_t seed) {
+  const float kSharpness[] = {0.25f, 0.5f, 0.9f, 1.0f, 1.3f, 2.0f, 2.6f, 10.0f};
+  std::mt19937 rng(seed);
+  const MeshTopology topo = buildTopology(mesh);
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (rng() % 3 == 0)
+      mesh.tags.creases.push_back({std::min(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]),
+                                   std::max(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]), kSharpness[rng() % 8]});
+  for (Index v = 1; v < mesh.vertexCount(); v += 7) mesh.tags.corners.push_back({v, kSharpness[rng() % 8]});
+}
+
 }  // namespace
+
+TEST_CASE("opensubdiv oracle: semi-sharp and infinitely sharp creases and corners on a cube refine identically") {
+  // Around the top face: sharpness 0.3 (decays at once), 1 (a full step), 1.5, 2.7; one vertical
+  // edge infinitely sharp; a semi-sharp corner; the top face's vertices see 2 or 3 sharp edges.
+  PolyMesh m = cube();
+  const MeshTopology topo = buildTopology(m);
+  const float sharpness[] = {0.3f, 1.0f, 1.5f, 2.7f, 10.0f};
+  for (Index e = 0; e < 5; ++e)
+    m.tags.creases.push_back({std::min(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]),
+                              std::max(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]), sharpness[e]});
+  m.tags.corners.push_back({6, 2.5});
+  compareSharpWithOpenSubdiv("cube with creases", m);
+}
+
+TEST_CASE("opensubdiv oracle: random creases and corners on open and closed mixed meshes refine identically") {
+  for (uint32_t seed : {11u, 12u, 13u, 18u}) {  // 18: the fractional weight sums three edges (order matters)
+    PolyMesh torus = cellGrid(9, 6, true, true, seed);
+    tagRandomly(torus, seed);
+    compareSharpWithOpenSubdiv("closed mixed torus, random creases, seed " + std::to_string(seed), torus);
+    PolyMesh open = cellGrid(7, 5, false, true, seed);
+    tagRandomly(open, seed + 100);
+    compareSharpWithOpenSubdiv("open mixed grid, random creases, seed " + std::to_string(seed), open);
+  }
+}
+
+TEST_CASE("opensubdiv oracle: Chaikin creasing (creasemethod chaikin) refines identically") {
+  // Chains of semi-sharp edges of differing sharpness, so each half's sharpness depends on its
+  // neighbours at that end; one value above 1 whose halves may still decay (OpenSubdiv then blends
+  // with a weight over 1).
+  PolyMesh torus = cellGrid(9, 6, true, false, 31);
+  const MeshTopology topo = buildTopology(torus);
+  const float kSharpness[] = {0.5f, 1.25f, 2.0f, 3.5f, 1.0f, 0.75f};
+  for (Index e = 0; e < topo.edgeCount; e += 2)
+    torus.tags.creases.push_back({std::min(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]),
+                                  std::max(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]), kSharpness[(e / 2) % 6]});
+  torus.tags.creaseMethod = CreaseMethod::Chaikin;
+  compareSharpWithOpenSubdiv("torus, Chaikin creases", torus);
+  for (uint32_t seed : {41u, 42u, 71u}) {  // 42, 71: Chaikin sums three or more edges at a vertex
+    PolyMesh open = cellGrid(7, 5, false, true, seed);
+    tagRandomly(open, seed);
+    open.tags.creaseMethod = CreaseMethod::Chaikin;
+    compareSharpWithOpenSubdiv("open mixed grid, Chaikin, random creases, seed " + std::to_string(seed), open);
+  }
+}
+
+TEST_CASE("opensubdiv oracle: interpolateboundary 1 (edge and corner) sharpens corners of one face") {
+  PolyMesh grid = cellGrid(6, 4, false, false, 7);
+  grid.tags.boundary = BoundaryInterpolation::EdgeAndCorner;
+  compareSharpWithOpenSubdiv("open grid, edge-and-corner boundary", grid);
+  PolyMesh tagged = cellGrid(7, 5, false, true, 21);
+  tagRandomly(tagged, 21);
+  tagged.tags.boundary = BoundaryInterpolation::EdgeAndCorner;
+  compareSharpWithOpenSubdiv("open mixed grid, edge-and-corner boundary, random creases", tagged);
+}
 
 TEST_CASE("opensubdiv oracle: a closed cube refines identically") { compareWithOpenSubdiv("cube", cube()); }
 

@@ -11,8 +11,12 @@
 
 namespace polarview {
 
-inline std::unique_ptr<ViewerApp> makeHiddenApp(int width = 640, int height = 400, size_t faceBudget = kDefaultFaceBudget) {
+// Levels are made ahead only where a test asks for it (prepareNextLevel): the others wait for
+// nothing they do not look at.
+inline std::unique_ptr<ViewerApp> makeHiddenApp(int width = 640, int height = 400, size_t faceBudget = kDefaultFaceBudget,
+                                                bool prepareNextLevel = false) {
   ViewerOptions options;
+  options.prepareNextLevel = prepareNextLevel;
   options.width = width;
   options.height = height;
   options.hidden = true;

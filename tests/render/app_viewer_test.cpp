@@ -9,6 +9,8 @@
 #include "app_test_support.h"
 #include "app/viewer_app.h"
 #include "app/viewer_surface.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
 
 #include <doctest/doctest.h>
 
@@ -475,6 +477,98 @@ TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's lim
   tap(GLFW_KEY_RIGHT_BRACKET);
   CHECK(state.views[0].level == deepest);
   CHECK(state.notice.find("refused") != std::string::npos);
+}
+
+TEST_CASE("viewer app: level steps reuse the view's refinement, the next level is made ahead, and what is shown equals a fresh build") {
+  auto app = makeHiddenApp(640, 400, kDefaultFaceBudget, /*prepareNextLevel=*/true);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 2;
+  state.linkLevels = false;
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[1].scheme = SchemeChoice::RTS;
+  state.views[0].level = state.views[1].level = 2;
+  app->waitUntilIdle();
+  runFrames(*app, 1);
+  const AdaptiveRefinement* refinement = app->shownSurface(0)->refinement.get();
+  for (int level : {3, 4, 2, 5, 4}) {
+    CAPTURE(level);
+    state.views[0].level = state.views[1].level = level;
+    app->waitUntilIdle();
+    runFrames(*app, 1);
+    REQUIRE(showsWanted(*app, 0));
+    const BuiltSurface& shown = *app->shownSurface(0);
+    CHECK(shown.refinement.get() == refinement);  // one refinement, stepped
+    // Made ahead while idle: the next level is there before it is asked for.
+    CHECK(shown.hierarchy->deepestMade.load() >= level + 1);
+    CHECK(state.status[0].keptPatches > 0);  // regular patches of shared levels stayed on the GPU
+    for (int v = 0; v < 2; ++v) {
+      const BuiltSurface& surface = *app->shownSurface(v);
+      // RTS is not C2 at the pole: its holes are closed at kNonC2CapLevel whatever the level asked.
+      CHECK(surface.patchLevel == (v == 0 ? level : kNonC2CapLevel));
+      const PatchSet fresh =
+          extractPatches(AdaptiveRefinement(*app->model().mesh, refineOptionsFor(surface.key.scheme, surface.patchLevel)));
+      REQUIRE(fresh.patches.size() == surface.patches.size());
+      size_t differ = 0;
+      for (size_t k = 0; k < fresh.patches.size(); ++k)
+        differ += fresh.patches[k].cp != surface.patches[k].cp || fresh.patches[k].edgeLevelDelta != surface.patches[k].edgeLevelDelta;
+      CHECK(differ == 0);
+    }
+  }
+}
+
+TEST_CASE("viewer surface: an edit drops the levels made ahead, then refreshes the shown one as a fresh build") {
+  auto app = makeHiddenApp();
+  app->loadDefaultModel();
+  Model model = app->model();
+  const SurfaceKey key{model.generation, SchemeChoice::C2PS, 2, model.points};
+  const auto surface = buildSurface(model, key, kDefaultFaceBudget);
+  prepareLevel(*surface->hierarchy, model.points, 4, kDefaultFaceBudget);
+  CHECK(surface->hierarchy->deepestMade.load() == 4);
+  prepareLevel(*surface->hierarchy, model.points + 1, 5, kDefaultFaceBudget);  // other points: nothing made
+  CHECK(surface->hierarchy->deepestMade.load() == 4);
+  auto moved = std::make_shared<PolyMesh>(*model.mesh);
+  moved->points[3] += Point(0.02, -0.01, 0.03);
+  model.mesh = moved;
+  ++model.points;
+  const auto refreshed = refreshSurface(*surface, model, false);
+  CHECK(surface->hierarchy->deepestMade.load() == 2);
+  CHECK(surface->hierarchy->refinement->levelCount() == 3);
+  const PatchSet fresh = extractPatches(AdaptiveRefinement(*moved, refineOptionsFor(SchemeChoice::C2PS, 2)));
+  REQUIRE(fresh.patches.size() == refreshed->patches.size());
+  double worst = 0.0;
+  for (size_t k = 0; k < fresh.patches.size(); ++k)
+    for (int i = 0; i < 16; ++i) worst = std::max(worst, glm::length(fresh.patches[k].cp[i] - refreshed->patches[k].cp[i]));
+  CHECK(worst < 1e-12);
+  CHECK(refreshed->stamp != surface->stamp);  // new points: nothing on the GPU is theirs
+}
+
+TEST_CASE("viewer surface: RTS and BPS close their poles below a pixel at any level, C2PS at the level asked") {
+  auto app = makeHiddenApp();
+  app->loadDefaultModel();
+  const Model& model = app->model();
+  double size = 0.0;
+  for (const Point& p : model.mesh->points) size = std::max(size, glm::length(p - model.mesh->points[0]));
+  for (SchemeChoice scheme : {SchemeChoice::RTS, SchemeChoice::BPS, SchemeChoice::C2PS})
+    for (int level : {0, 2, 4}) {
+      CAPTURE(int(scheme));
+      CAPTURE(level);
+      const auto surface = buildSurface(model, SurfaceKey{model.generation, scheme, level, model.points}, kDefaultFaceBudget);
+      const bool c2 = scheme == SchemeChoice::C2PS;
+      CHECK(surface->patchLevel == (c2 ? level : kNonC2CapLevel));
+      // The caps' extent: the seam where a cap not C2 with its ring meets it (the dark ring of
+      // curvature maps) is then ~1e-5 of the model, under a pixel of any window.
+      double capExtent = 0.0;
+      int caps = 0;
+      for (const Patch& patch : surface->patches)
+        if (patch.kind == PatchKind::PoleCap) {
+          ++caps;
+          for (int k = 6; k < 10; ++k) capExtent = std::max(capExtent, glm::length(patch.cp[k] - patch.cp[0]));
+        }
+      REQUIRE(caps > 0);
+      if (!c2) CHECK(capExtent < 1e-4 * size);
+      else CHECK(capExtent > 1e-3 * size);
+    }
 }
 
 }  // namespace polarview

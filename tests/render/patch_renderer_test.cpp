@@ -6,6 +6,10 @@
 
 #include "render_test_support.h"
 
+#include "core/mesh/obj_io.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
+
 namespace polarview {
 namespace {
 
@@ -310,4 +314,47 @@ TEST_CASE("control net: light lines where the surface is hidden, dark lines over
 }
 
 }  // namespace
+}  // namespace polarview
+
+namespace polarview {
+
+// A level step on one hierarchy uploads only the regular patches not yet on the GPU (setPatches'
+// stable sequence) and the new level's caps: what the GPU then evaluates must be what a fresh
+// upload of the new level evaluates, up and down, after the buffers grew, and after a deeper level
+// was shown (its regular patches stay on the GPU, beyond the shallower set's).
+TEST_CASE("renderer: level steps keeping the regular patches on the GPU evaluate as fresh uploads") {
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  AdaptiveRefinement refinement(mesh, RefineOptions{Scheme::C2PS, 4, false});
+  LevelPatchCache cache;
+  auto stepped = test::makeRenderer();
+  constexpr uint64_t kStamp = 7;
+  int deepestShown = -1;
+  for (int level : {1, 3, 2, 4, 0, 4, 3}) {
+    CAPTURE(level);
+    const PatchSet set = cache.patchSet(refinement, level);
+    const size_t regular = cache.sharedPrefix(level, level);
+    stepped->setPatches(set.patches, kStamp, regular);
+    // Every regular patch of a level shown before is reused.
+    CHECK(stepped->lastReusedPatches() == (deepestShown < 0 ? 0 : cache.sharedPrefix(deepestShown, level)));
+    CHECK(stepped->slotsInUse() >= set.patches.size());
+    deepestShown = std::max(deepestShown, level);
+    auto fresh = test::makeRenderer();
+    fresh->setPatches(set.patches);
+    const std::vector<SurfaceProbe> a = stepped->probeSurface(3), b = fresh->probeSurface(3);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(a.size() >= set.patches.size());
+    double worstPosition = 0.0, worstK = 0.0;
+    size_t indexMismatch = 0;
+    for (size_t k = 0; k < a.size(); ++k) {
+      indexMismatch += a[k].patch != b[k].patch;
+      worstPosition = std::max(worstPosition, glm::length(a[k].position - b[k].position));
+      worstK = std::max(worstK, double(std::abs(a[k].gaussian - b[k].gaussian)) / (1.0 + std::abs(b[k].gaussian)));
+    }
+    CHECK(indexMismatch == 0);  // probes name the patch of the set, whatever slot it lies in
+    // Both are float evaluations of the same patches in their own frames; the centre differs.
+    CHECK(worstPosition < 1e-5);
+    CHECK(worstK < 1e-3);
+  }
+}
+
 }  // namespace polarview

@@ -1,6 +1,6 @@
 // OBJ reading and writing with strict validation: every error names FILE:LINE.
-// tinyobjloader is not used for reading because it cannot report the file line of an error (it
-// silently skips or clamps bad statements), and polarview must say exactly which line is wrong.
+// The reader is polarview's own, not tinyobjloader: tinyobjloader loses data on valid files (face
+// sizes over 255, tags, the last bits of doubles) and reports no lines; docs/toolchain.md.
 #pragma once
 
 #include <iosfwd>
@@ -18,12 +18,16 @@ namespace polarview {
 constexpr double kMaxObjCoordinate = 1e150;
 
 // Reads an OBJ file: `v` and `f` statements (texture/normal parts of `f a/b/c` ignored; negative
-// indices resolved relative to the vertices read so far). Lines end at LF, CRLF or a lone CR; a
-// leading UTF-8 byte-order mark is skipped. Fills PolyMesh::faceLine. Throws
-// InputError(path, line, msg) for unreadable, empty, binary or malformed input, non-finite
-// coordinates or ones over kMaxObjCoordinate, bad indices, faces with < 3 vertices or a repeated
-// vertex. Non-fatal findings (unreferenced vertices, ignored `l`/`p`/`t` statements) go to
-// `warnings`. [O(file size)]
+// indices resolved relative to the vertices read so far) and OpenSubdiv's `t` tags (crease,
+// corner, hole, interpolateboundary, creasemethod, smoothtriangles -> PolyMesh::tags). Lines end
+// at LF, CRLF or a lone CR; a leading UTF-8 byte-order mark is skipped. Fills PolyMesh::faceLine.
+// The file is read in 64 KiB chunks and checked as it comes: binary data or an unknown statement
+// is refused at its chunk, before the rest is read. Throws InputError(path, line, msg) for
+// unreadable, empty, binary or malformed input, non-finite coordinates or ones over
+// kMaxObjCoordinate, bad indices, faces with < 3 vertices or a repeated vertex, malformed tags,
+// tag ids out of range, negative or non-finite sharpness, crease edges that are no edge. Non-fatal
+// findings (unreferenced vertices, ignored `l`/`p` statements and tags) go to `warnings`.
+// [O(file size), memory O(mesh + longest line)]
 PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 // Same as loadObj on an already opened stream; `sourceName` is the file name used in errors.
@@ -33,9 +37,9 @@ PolyMesh parseObj(std::istream& in, const std::string& sourceName, std::vector<s
 PolyMesh parseObjText(const std::string& text, const std::string& sourceName,
                       std::vector<std::string>* warnings = nullptr);
 
-// Writes `v` lines with 17 significant digits (doubles round-trip exactly) and 1-based `f` lines,
-// atomically (atomic_file.h): a failure or a kill never leaves a partial file or a temporary.
-// A non-finite coordinate is refused before anything is written: InputError naming `sourceName`
+// Writes `v` lines with 17 significant digits (doubles round-trip exactly), 1-based `f` lines and
+// `t` lines for mesh.tags (options only where not the default), atomically (atomic_file.h): a failure or a kill never leaves a partial file or a temporary.
+// A non-finite coordinate or sharpness is refused before anything is written: InputError naming `sourceName`
 // (the input the mesh came from; `path` when empty). Other failures: InputError(path, 0, msg).
 // [O(mesh)]
 void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName = "");

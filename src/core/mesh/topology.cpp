@@ -28,7 +28,7 @@ class TopologyBuilder {
 
  private:
   [[noreturn]] void fail(Index face, const std::string& what) const {
-    int line = 0;
+    int64_t line = 0;
     if (face >= 0 && face < Index(mesh_.faceLine.size())) line = mesh_.faceLine[face];
     // Without OBJ lines, name the face itself so the message still points somewhere.
     if (line <= 0 && face >= 0) throw InputError(source_, 0, "face " + std::to_string(face + 1) + ": " + what);

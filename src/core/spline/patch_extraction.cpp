@@ -456,6 +456,9 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
     for (size_t f = 0; f < cover[m].size(); ++f)
       if (cover[m][f] < 0) cover[m][f] = cover[m - 1][parent[f]];
   }
+  // Levels apart: a side's neighbour is looked up for every patch, its level decides.
+  std::vector<uint8_t> patchLevel(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k) patchLevel[k] = patches[k].level;
   for (Patch& patch : patches) {
     if (!hasFaceSides(patch, refinement)) continue;
     const int m = patch.level;
@@ -469,9 +472,10 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
         if (!refinement.refinedRadially(m, across)) patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
         continue;
       }
+      const int jump = m - int(patchLevel[size_t(q)]);
+      if (jump <= 0) continue;  // the usual case, decided without touching the (large) patch
       Patch& coarse = patches[q];
-      const int jump = m - coarse.level;
-      if (jump <= 0 || !hasFaceSides(coarse, refinement)) continue;
+      if (!hasFaceSides(coarse, refinement)) continue;
       bool keptColumns = true;  // every step from the coarse patch's level to this one radial
       for (Index face = patch.face, k = m; k > coarse.level && keptColumns; --k) {
         face = refinement.level(k).faceParent[face];
@@ -519,6 +523,10 @@ void extractRegular(const LevelStack& refinement, int m, const LevelClasses& cla
   const PolyMesh& mesh = level.mesh;
   const MeshTopology& topo = level.topology;
   const RingMembership rings = markRingLinks(level);
+  const size_t regular = size_t(std::count(classes.faceRegular.begin(), classes.faceRegular.end(), uint8_t(1)));
+  out.patches.reserve(regular);
+  out.stencil.reserve(regular);
+  out.sidesMissing.reserve(regular);
   std::array<Index, 16> ids;
   std::array<bool, 4> sideMissing;
   for (Index f = 0; f < mesh.faceCount(); ++f) {
@@ -732,7 +740,7 @@ LevelPatchCache::~LevelPatchCache() = default;
 LevelPatchCache::LevelPatchCache(LevelPatchCache&&) noexcept = default;
 LevelPatchCache& LevelPatchCache::operator=(LevelPatchCache&&) noexcept = default;
 
-PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources) {
+void LevelPatchCache::prepare(const AdaptiveRefinement& refinement, int finest) {
   if (finest < 0 || finest >= refinement.levelCount())
     throw std::invalid_argument("LevelPatchCache: level " + std::to_string(finest) + " of a refinement of " +
                                 std::to_string(refinement.levelCount() - 1) + " levels");
@@ -752,6 +760,12 @@ PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int fin
     extractCaps(stack, finest, cache.regular[size_t(finest)].faceRegular, *caps);
     cache.caps[size_t(finest)] = std::move(caps);
   }
+}
+
+PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources) {
+  prepare(refinement, finest);
+  const LevelStack stack = stackOf(refinement, finest);
+  Impl& cache = *impl_;
   return assembleSet(stack, [&](int m) -> const LevelRegularPatches& { return cache.regular[size_t(m)]; },
                      *cache.caps[size_t(finest)], sources);
 }

@@ -105,6 +105,9 @@ class LevelPatchCache {
   // std::invalid_argument): equal, patch for patch and with its sources, to extractPatches of a
   // refinement made to that level. [O(patches of the set + faces of new levels)]
   PatchSet patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources = nullptr);
+  // Extracts what patchSet(refinement, finest) needs without assembling it (a viewer makes the next
+  // level ahead, in the background). [O(faces of new levels)]
+  void prepare(const AdaptiveRefinement& refinement, int finest);
   // How many patches the sets of levels a and b begin with in common (the regular patches of
   // levels 0..min(a, b); level jumps may differ). [O(levels)]
   size_t sharedPrefix(int a, int b) const;

@@ -2,9 +2,12 @@
 // (docs/schemes.md, Catmull-Clark). The point rules are straight loops over MeshTopology's flat tables.
 #include "core/subdiv/catmull_clark.h"
 
+#include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 #include "core/subdiv/parallel_for.h"
+#include "core/subdiv/refine_steps.h"
 
 namespace polarview {
 
@@ -79,67 +82,289 @@ void computeFacePoints(const PolyMesh& parent, const Point* p, Point* facePoints
   }
 }
 
-// Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside.
+// [SECTION] sharpness (OpenSubdiv's Sdc::Crease)
+
+constexpr float kInfinite = float(kInfiniteSharpness);
+
+// Sdc::Crease::decrementSharpness: one level less sharp; infinite stays, 1 or less becomes smooth.
+float decrementSharpness(float s) {
+  if (s <= 0.0f) return 0.0f;
+  if (s >= kInfinite) return kInfinite;
+  return s > 1.0f ? s - 1.0f : 0.0f;
+}
+
+// How a level's sharpness decays a level down: Sdc::Crease::SubdivideEdgeSharpnessAtVertex (each
+// half of an edge from the end it touches) and SubdivideVertexSharpness. Chaikin needs each
+// vertex's semi-sharp edges: their count and sum, gathered once.
+class SharpnessDecay {
+ public:
+  SharpnessDecay(const MeshTopology& topo, const CreaseSharpness& sharpness) : topo_(topo), s_(sharpness) {
+    if (!s_.chaikin) return;
+    semiSharpCount_.assign(size_t(topo.vertexCount), 0);
+    semiSharpSum_.assign(size_t(topo.vertexCount), 0.0f);
+    for (Index v = 0; v < topo.vertexCount; ++v) {
+      // In float and in ring order, as OpenSubdiv sums (its vertex-edge order is the same
+      // rotation; osd_oracle_test): with three or more edges the rounding depends on the order.
+      float sum = 0.0f;
+      for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) {
+        const float x = s_.edge[topo.vertexEdges[i]];
+        if (x > 0.0f && x < kInfinite) {
+          ++semiSharpCount_[v];
+          sum += x;
+        }
+      }
+      semiSharpSum_[v] = sum;
+    }
+  }
+
+  // The sharpness of the half of edge e at its end v, a level down.
+  float edgeAt(Index e, Index v) const {
+    float x = s_.edge[e];
+    if (!s_.chaikin || topo_.valence(v) < 2) return decrementSharpness(x);
+    if (x <= 0.0f) return 0.0f;
+    if (x >= kInfinite) return kInfinite;
+    const int count = semiSharpCount_[v];
+    if (count > 1) {
+      const float othersMean = (semiSharpSum_[v] - x) / float(count - 1);
+      x = 0.75f * x + 0.25f * othersMean;
+    }
+    x -= 1.0f;
+    return x > 0.0f ? x : 0.0f;
+  }
+  float vertex(Index v) const { return decrementSharpness(s_.vertex[v]); }
+
+ private:
+  const MeshTopology& topo_;
+  const CreaseSharpness& s_;
+  std::vector<int> semiSharpCount_;
+  std::vector<float> semiSharpSum_;
+};
+
+// Sdc::Crease::Rule without DART, which refines as SMOOTH: from the vertex's sharpness and the
+// number of sharp edges at it.
+enum class VertexRule { Smooth, Crease, Corner };
+VertexRule vertexRule(float vertexSharpness, int sharpEdges) {
+  if (vertexSharpness > 0.0f || sharpEdges > 2) return VertexRule::Corner;
+  return sharpEdges == 2 ? VertexRule::Crease : VertexRule::Smooth;
+}
+
+// [SECTION] point rules
+
+// Smooth edge point 1/4 (v0 + v1 + f0 + f1), or (1 - w) of it plus w of the midpoint: the
+// transition of an edge of sharpness w not both of whose halves stay sharp (Sdc
+// ComputeEdgeVertexMask; w is not clamped to 1 there either).
+inline Point edgePoint(const Point& ends, const Point& faces, double crease) {
+  return (crease * 0.5 + (1.0 - crease) * 0.25) * ends + (1.0 - crease) * 0.25 * faces;
+}
+
+// Smooth vertex point of an interior vertex of valence k (also a dart's).
+inline Point smoothVertexPoint(const MeshTopology& topo, const Point* p, const Point* facePoints, Index v) {
+  Point sum(0.0);
+  for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) {
+    const Index e = topo.vertexEdges[i];
+    sum += p[topo.edgeVerts[2 * e] ^ topo.edgeVerts[2 * e + 1] ^ v];  // the end that is not v, branch-free
+  }
+  for (Index i = topo.vertexFaceStart[v]; i < topo.vertexFaceStart[v + 1]; ++i) sum += facePoints[topo.vertexFaces[i]];
+  const double k = double(topo.valence(v));
+  return smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
+}
+
+// Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside;
+// with `sharpness` (and its `decay`), the crease rules.
 void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* edgePoints, Index begin,
-                       Index end) {
+                       Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
   for (Index e = begin; e < end; ++e) {
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
-    if (edgeFaces[2 * e + 1] < 0)
-      edgePoints[e] = 0.5 * ends;
+    const float s = sharpness ? sharpness->edge[e] : 0.0f;
+    const bool staysSharp = s > 0.0f && decay->edgeAt(e, edgeVerts[2 * e]) > 0.0f && decay->edgeAt(e, edgeVerts[2 * e + 1]) > 0.0f;
+    if (edgeFaces[2 * e + 1] < 0 || staysSharp)
+      edgePoints[e] = 0.5 * ends;  // the boundary always
+    else if (s > 0.0f)
+      edgePoints[e] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(s));
     else
       edgePoints[e] = 0.25 * (ends + facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]]);
   }
 }
 
+// The vertex point of a vertex at or near sharp features (Sdc ComputeVertexVertexMask): the
+// parent's rule, and where the child's rule differs, OpenSubdiv's fractional weight of the
+// parent's mask plus the rest of the child's.
+Point sharpVertexPoint(const MeshTopology& topo, const Point* p, const Point* facePoints, const CreaseSharpness& sharpness,
+                       const SharpnessDecay& decay, Index v) {
+  const float parentVertex = sharpness.vertex[v], childVertex = decay.vertex(v);
+  // Sharp edges now and a level down: count, and the far ends of the first and last (a crease's two).
+  int parentSharp = 0, childSharp = 0;
+  Index parentEnds[2] = {v, v}, childEnds[2] = {v, v};
+  float transitionSum = 0.0f;  // in float and ring order, as OpenSubdiv (see SharpnessDecay)
+  int transitions = 0;
+  if (parentVertex > 0.0f && childVertex <= 0.0f) {
+    transitionSum = parentVertex;
+    transitions = 1;
+  }
+  for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) {
+    const Index e = topo.vertexEdges[i];
+    const float s = sharpness.edge[e];
+    if (s <= 0.0f) continue;
+    const Index far = topo.otherEnd(e, v);
+    parentEnds[parentSharp++ == 0 ? 0 : 1] = far;
+    if (decay.edgeAt(e, v) > 0.0f) {
+      childEnds[childSharp++ == 0 ? 0 : 1] = far;
+    } else {  // the edge decays to smooth here (under CREASE_UNIFORM: exactly when s <= 1)
+      transitionSum += s;
+      ++transitions;
+    }
+  }
+  if (parentSharp == 1) parentEnds[1] = parentEnds[0];
+  if (childSharp == 1) childEnds[1] = childEnds[0];
+  auto pointByRule = [&](VertexRule rule, const Index ends[2]) {
+    switch (rule) {
+      case VertexRule::Smooth: return smoothVertexPoint(topo, p, facePoints, v);
+      case VertexRule::Crease: return kBoundaryVertexWeight * p[v] + kBoundaryNeighbourWeight * (p[ends[0]] + p[ends[1]]);
+      case VertexRule::Corner: break;
+    }
+    return p[v];
+  };
+  const VertexRule parentRule = vertexRule(parentVertex, parentSharp);
+  const Point parentPoint = pointByRule(parentRule, parentEnds);
+  if (parentRule == VertexRule::Smooth) return parentPoint;  // a smooth or dart vertex never blends
+  const VertexRule childRule = vertexRule(childVertex, childSharp);
+  if (childRule == parentRule) return parentPoint;
+  // Sdc::Crease::ComputeFractionalWeightAtVertex, in float as there.
+  const float weight = transitions == 0 ? 0.0f : std::min(1.0f, transitionSum / float(transitions));
+  return double(weight) * parentPoint + (1.0 - double(weight)) * pointByRule(childRule, childEnds);
+}
+
 // Vertex points of vertices [begin, end): crease rule on the boundary, smooth rule inside, unused
-// vertices copied.
+// vertices copied; with `sharpness`, the rules of sharp features.
 void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* vertexPoints, Index begin,
-                         Index end) {
-  const Index* edgeVerts = topo.edgeVerts.data();
-  const Index* vertexEdgeStart = topo.vertexEdgeStart.data();
-  const Index* vertexEdges = topo.vertexEdges.data();
-  const Index* vertexFaceStart = topo.vertexFaceStart.data();
-  const Index* vertexFaces = topo.vertexFaces.data();
+                         Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
   for (Index v = begin; v < end; ++v) {
     if (!topo.vertexUsed[v]) {
       vertexPoints[v] = p[v];
+    } else if (sharpness) {
+      vertexPoints[v] = sharpVertexPoint(topo, p, facePoints, *sharpness, *decay, v);
     } else if (topo.vertexOnBoundary[v]) {
       Index a, b;
       boundaryNeighbours(topo, v, a, b);
       vertexPoints[v] = kBoundaryVertexWeight * p[v] + kBoundaryNeighbourWeight * (p[a] + p[b]);
     } else {
-      Point sum(0.0);
-      for (Index i = vertexEdgeStart[v]; i < vertexEdgeStart[v + 1]; ++i) {
-        const Index e = vertexEdges[i];
-        sum += p[edgeVerts[2 * e] ^ edgeVerts[2 * e + 1] ^ v];  // the end that is not v, branch-free
-      }
-      for (Index i = vertexFaceStart[v]; i < vertexFaceStart[v + 1]; ++i) sum += facePoints[vertexFaces[i]];
-      const double k = double(vertexEdgeStart[v + 1] - vertexEdgeStart[v]);
-      vertexPoints[v] = smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
+      vertexPoints[v] = smoothVertexPoint(topo, p, facePoints, v);
     }
   }
+}
+
+// Both computeCatmullClarkPoints: each point depends only on parent points and face points, so
+// ranges run on separate threads with results independent of the split; face points first, as
+// the others read them.
+void computePoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints, Point* childPoints,
+                   const CreaseSharpness* sharpness, unsigned threads) {
+  Point* facePoints = childPoints;
+  Point* edgePoints = childPoints + topo.faceCount;
+  Point* vertexPoints = childPoints + topo.faceCount + topo.edgeCount;
+  const unsigned parts = threads ? threads : threadsFor(parent.faceVerts.size());
+  std::unique_ptr<SharpnessDecay> decay;
+  if (sharpness) decay = std::make_unique<SharpnessDecay>(topo, *sharpness);
+  parallelRanges(topo.faceCount, parts,
+                 [&](Index begin, Index end) { computeFacePoints(parent, parentPoints, facePoints, begin, end); });
+  runParts(parts, [&](unsigned k) {
+    computeEdgePoints(topo, parentPoints, facePoints, edgePoints, partBound(topo.edgeCount, parts, k),
+                      partBound(topo.edgeCount, parts, k + 1), sharpness, decay.get());
+    computeVertexPoints(topo, parentPoints, facePoints, vertexPoints, partBound(topo.vertexCount, parts, k),
+                        partBound(topo.vertexCount, parts, k + 1), sharpness, decay.get());
+  });
 }
 
 }  // namespace
 
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
                                Point* childPoints, unsigned threads) {
-  Point* facePoints = childPoints;
-  Point* edgePoints = childPoints + topo.faceCount;
-  Point* vertexPoints = childPoints + topo.faceCount + topo.edgeCount;
-  // Each point depends only on parent points and face points, so ranges run on separate threads
-  // with results independent of the split; face points first, as the others read them.
-  const unsigned parts = threads ? threads : threadsFor(parent.faceVerts.size());
-  parallelRanges(topo.faceCount, parts,
-                 [&](Index begin, Index end) { computeFacePoints(parent, parentPoints, facePoints, begin, end); });
-  runParts(parts, [&](unsigned k) {
-    computeEdgePoints(topo, parentPoints, facePoints, edgePoints, partBound(topo.edgeCount, parts, k),
-                      partBound(topo.edgeCount, parts, k + 1));
-    computeVertexPoints(topo, parentPoints, facePoints, vertexPoints, partBound(topo.vertexCount, parts, k),
-                        partBound(topo.vertexCount, parts, k + 1));
-  });
+  computePoints(topo, parent, parentPoints, childPoints, nullptr, threads);
+}
+
+void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
+                               Point* childPoints, const CreaseSharpness& sharpness, unsigned threads) {
+  computePoints(topo, parent, parentPoints, childPoints, sharpness.empty() ? nullptr : &sharpness, threads);
+}
+
+// [SECTION] sharpness per level
+
+namespace {
+
+// Whether anything but the boundary is sharp (else the smooth rules do the same, faster).
+bool sharpInside(const MeshTopology& topo, const CreaseSharpness& s) {
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (s.edge[e] > 0.0f && !topo.edgeOnBoundary(e)) return true;
+  return std::any_of(s.vertex.begin(), s.vertex.end(), [](float x) { return x > 0.0f; });
+}
+
+// The boundary edges, infinitely sharp (Far's prepareComponentTagsAndSharpness), and `s` emptied
+// when nothing else is sharp.
+CreaseSharpness finishSharpness(const MeshTopology& topo, CreaseSharpness s) {
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (topo.edgeOnBoundary(e)) s.edge[e] = kInfinite;
+  return sharpInside(topo, s) ? s : CreaseSharpness{};
+}
+
+}  // namespace
+
+CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo) {
+  const SubdivTags& tags = mesh.tags;
+  const bool sharpCorners = tags.boundary == BoundaryInterpolation::EdgeAndCorner;
+  if (!tags.hasSharpFeatures() && !sharpCorners) return {};
+  CreaseSharpness s;
+  s.edge.assign(size_t(topo.edgeCount), 0.0f);
+  s.vertex.assign(size_t(topo.vertexCount), 0.0f);
+  s.chaikin = tags.creaseMethod == CreaseMethod::Chaikin;
+  for (const CreaseEdge& crease : tags.creases) {
+    const Index e = edgeBetween(topo, crease.v0, crease.v1);
+    if (e < 0) throw std::invalid_argument("baseSharpness: crease " + std::to_string(crease.v0) + "-" + std::to_string(crease.v1) + " is not an edge");
+    s.edge[e] = float(crease.sharpness);
+  }
+  for (const CornerVertex& corner : tags.corners) s.vertex[corner.vertex] = float(corner.sharpness);
+  // VTX_BOUNDARY_EDGE_AND_CORNER: a vertex with one face and two edges is a corner.
+  if (sharpCorners)
+    for (Index v = 0; v < topo.vertexCount; ++v)
+      if (topo.faceValence(v) == 1 && topo.valence(v) == 2) s.vertex[v] = kInfinite;
+  return finishSharpness(topo, std::move(s));
+}
+
+CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const MeshTopology& childTopo) {
+  if (parent.empty()) return {};
+  const SharpnessDecay decay(parentTopo, parent);
+  CreaseSharpness child;
+  child.edge.assign(size_t(childTopo.edgeCount), 0.0f);
+  child.vertex.assign(size_t(childTopo.vertexCount), 0.0f);
+  child.chaikin = parent.chaikin;
+  for (Index e = 0; e < parentTopo.edgeCount; ++e) {
+    if (parent.edge[e] <= 0.0f) continue;
+    for (int end = 0; end < 2; ++end) {
+      const Index v = parentTopo.edgeVerts[2 * e + end];
+      const Index half = edgeBetween(childTopo, ccEdgePoint(parentTopo, e), ccVertexPoint(parentTopo, v));
+      child.edge[half] = decay.edgeAt(e, v);
+    }
+  }
+  for (Index v = 0; v < parentTopo.vertexCount; ++v) child.vertex[ccVertexPoint(parentTopo, v)] = decay.vertex(v);
+  return finishSharpness(childTopo, std::move(child));
+}
+
+SubdivTags sharpnessTags(const MeshTopology& topo, const CreaseSharpness& sharpness, const SubdivTags& options) {
+  SubdivTags tags;
+  tags.boundary = options.boundary;
+  tags.creaseMethod = options.creaseMethod;
+  tags.triangles = options.triangles;
+  if (sharpness.empty()) return tags;
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (sharpness.edge[e] > 0.0f && !topo.edgeOnBoundary(e)) {
+      const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+      tags.creases.push_back({std::min(a, b), std::max(a, b), double(sharpness.edge[e])});
+    }
+  std::sort(tags.creases.begin(), tags.creases.end(),
+            [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1; });
+  for (Index v = 0; v < topo.vertexCount; ++v)
+    if (sharpness.vertex[v] > 0.0f) tags.corners.push_back({v, double(sharpness.vertex[v])});
+  return tags;
 }
 
 PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent) {

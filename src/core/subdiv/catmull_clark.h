@@ -34,6 +34,40 @@ PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& 
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
                                Point* childPoints, unsigned threads = 0);
 
+// Sharpness of one level's edges and vertices as OpenSubdiv's Vtr keeps it, in float as there (so
+// fractional weights round the same): crease edges and corners from the mesh's `t` tags at level 0,
+// boundary edges infinitely sharp (and, under BoundaryInterpolation::EdgeAndCorner, vertices with one
+// face); each level 1 less than its parent (CREASE_UNIFORM), or by Chaikin's rule at each end
+// (CreaseMethod::Chaikin: 3/4 of the edge's and 1/4 of the mean of the other semi-sharp edges
+// there, less 1); kInfiniteSharpness stays. Empty when no edge inside the mesh and no vertex is
+// sharp: the smooth rules above then apply unchanged.
+struct CreaseSharpness {
+  std::vector<float> edge;    // per edge
+  std::vector<float> vertex;  // per vertex
+  bool chaikin = false;       // the decay rule: CREASE_CHAIKIN, else CREASE_UNIFORM
+  bool empty() const { return edge.empty(); }
+};
+
+// Level 0's sharpness from mesh.tags (the crease edges must be edges of `topo`, as loadObj checks).
+// [O(edges + vertices + tags valence)]
+CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo);
+// The sharpness one Catmull-Clark step makes of `parent` (level tables `parentTopo`, child tables
+// `childTopo`): each half of an edge and the vertex point of a vertex get the parent's value
+// decayed (see CreaseSharpness), the new edges inside faces are smooth. [O(child edges)]
+CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const MeshTopology& childTopo);
+// The crease and corner tags that give `sharpness` (boundary edges left out: they are sharp anyway),
+// with the options of `options`; for a refined level's mesh. [O(edges + vertices)]
+SubdivTags sharpnessTags(const MeshTopology& topo, const CreaseSharpness& sharpness, const SubdivTags& options);
+
+// computeCatmullClarkPoints with OpenSubdiv's crease rules (Sdc::Scheme<CATMARK>): an edge point
+// is the midpoint while both halves of its edge stay sharp, else s of the midpoint and 1 - s of
+// the smooth point for an edge of sharpness s (s > 1 too, as OpenSubdiv does under Chaikin); a
+// vertex point follows the vertex's rule (smooth or dart: under 2 sharp edges; crease: 2; corner:
+// more, or a sharp vertex), blended with the child's rule by OpenSubdiv's fractional weight where
+// the rule changes. An empty `sharpness` gives the smooth rules. [O(corners)]
+void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
+                               Point* childPoints, const CreaseSharpness& sharpness, unsigned threads = 0);
+
 // One full step: topology and points. [O(corners)]
 PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent = nullptr);
 

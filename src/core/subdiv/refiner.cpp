@@ -377,6 +377,9 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   level0.topology = buildTopology(base, sourceName);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(options.scheme, config)) level0.poles.push_back(std::move(config));
+  // Creases and corners: Catmull-Clark's own rules; the polar schemes do not have them yet.
+  const bool creases = options.scheme == Scheme::CatmullClark && !base.tags.empty();
+  if (creases) level0.sharpness = baseSharpness(base, level0.topology);
   levels_.push_back(std::move(level0));
 
   // RTS/BPS on caps and globes: radial refinement of the whole mesh.
@@ -395,6 +398,12 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
       plan_->regions.push_back(std::move(childRegions));
     } else {
       levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links));
+      if (creases) {
+        const RefinedLevel& parent = levels_[levels_.size() - 2];
+        RefinedLevel& child = levels_.back();
+        child.sharpness = childSharpness(parent.topology, parent.sharpness, child.topology);
+        child.mesh.tags = sharpnessTags(child.topology, child.sharpness, base.tags);
+      }
     }
   }
   updatePositions(base.points);
@@ -466,7 +475,7 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
     const RefinedLevel& parent = levels_[m - 1];
     RefinedLevel& level = levels_[m];
     level.mesh.points.resize(ccChildVertexCount(parent.topology));
-    computeCatmullClarkPoints(parent.topology, parent.mesh, parent.mesh.points.data(), level.mesh.points.data());
+    computeCatmullClarkPoints(parent.topology, parent.mesh, parent.mesh.points.data(), level.mesh.points.data(), parent.sharpness);
     const bool uniformStep = options_.uniformFirstStep && m == 1;
     for (size_t k = 0; k < level.poles.size(); ++k) {
       const PolarConfig& child = level.poles[k];

@@ -3,7 +3,9 @@
 //
 // Level m+1 from level m:
 //  * Catmull-Clark everywhere (catmull_clark.h), child vertices ordered
-//    [face points | edge points | vertex points] as in OpenSubdiv.
+//    [face points | edge points | vertex points] as in OpenSubdiv. With Scheme::CatmullClark the
+//    base mesh's crease and corner tags are applied (OpenSubdiv's CREASE_UNIFORM rules) and each
+//    level's mesh carries its own, decremented, tags.
 //  * C2PS: at each refinable polar configuration the five CC point groups (docs/schemes.md, C2PS
 //    inside Catmull-Clark) are overridden by rules (1)-(3) and each pole-corner quad is split along
 //    its diagonal, so the polar valence doubles.
@@ -21,6 +23,7 @@
 #include "core/mesh/poly_mesh.h"
 #include "core/mesh/topology.h"
 #include "core/spline/pole_taylor.h"
+#include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/polar_grid.h"
 #include "core/subdiv/scheme.h"
@@ -31,6 +34,9 @@ struct RefinedLevel {
   PolyMesh mesh;                   // control mesh of this level
   MeshTopology topology;
   std::vector<Index> faceParent;   // per face: parent face at level-1 (empty at level 0)
+  // Catmull-Clark only: the sharpness of this level's creases and corners (the base mesh's `t`
+  // tags, 1 less a level); empty when nothing is sharp but the boundary.
+  CreaseSharpness sharpness;
   std::vector<PolarConfig> poles;  // polar configurations the scheme treats as poles here
   // Parallel to `poles` (filled for C2PS, RTS and BPS; empty for CC): the pole's points in
   // PolarGrid order (links 0..3 of this level's mesh) and the scheme's Taylor expansion (32) in

@@ -1,0 +1,423 @@
+#include "app/figure_command.h"
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/viewer_app.h"
+#include "app/viewer_styles.h"
+#include "core/mesh/atomic_file.h"
+#include "core/mesh/ev_to_polar.h"
+#include "core/mesh/obj_io.h"
+#include "core/subdiv/refiner.h"
+#include "render/indexed_png.h"
+
+namespace polarview {
+namespace {
+
+// [SECTION] What each figure shows
+
+using Mode = ShadingParams::Mode;
+using Map = ShadingParams::ColorMap;
+
+// What a panel draws: the limit surface, the input net, the net refined uniformly `level` times
+// (the viewer's net of a level is the feature-adaptive one, refined only near poles), or the surface
+// with its patch boundaries coloured by spline ring (Fig. 11c).
+enum class Draw { Surface, Net, RefinedNet, Rings };
+// Fig. 14: the model's extraordinary vertices turned into poles in memory (core/mesh/ev_to_polar.h).
+enum class Conversion { None, Polar, Pentagons };
+
+struct Panel {
+  std::string caption;  // its title, followed by "scheme · level" where a level is drawn
+  SchemeChoice scheme;
+  int level;
+  Mode shade;
+  Draw draw = Draw::Surface;
+};
+
+// One multi-view render of one model; a figure stacks its rows.
+struct Row {
+  std::string model;  // in assets/
+  std::vector<Panel> panels;
+  Conversion conversion = Conversion::None;
+  std::optional<float> range{};  // a typed colour range (else the figure's shared or automatic one)
+  double zoom = 1.0;             // > 1: that much closer than the framing (a close-up of the pole)
+};
+
+struct Figure {
+  int number;
+  std::string title;
+  std::string shows;    // the gallery line: what the PNG shows ...
+  std::string differs;  // ... and where it differs from the paper
+  std::vector<Row> rows;
+  Map colormap = Map::Paper;
+  bool sharedRange = true;  // rows after the first curvature row keep its colour range
+  double yaw = -60.0, pitch = 40.0;  // camera direction (OrbitCamera), framed on each row's net
+  int panelHeight = 250;             // above the colour bar / legend strip
+};
+
+constexpr SchemeChoice kCC = SchemeChoice::CatmullClark, kC2PS = SchemeChoice::C2PS,
+                       kC2PSU = SchemeChoice::C2PSUniformFirstStep, kRTS = SchemeChoice::RTS,
+                       kRTSU = SchemeChoice::RTSUniformFirstStep;
+
+// The figures, with the paper's captions (docs: /work/shared/paper, Section 6) in mind. The models
+// are the shipped OBJs (assets/README.md says which command made each).
+std::vector<Figure> paperFigures() {
+  std::vector<Figure> figures;
+  figures.push_back(
+      {1, "Making C2 subdivision work with degree bi-3",
+       "valence-6 caps of (x^2+y^2)/2 and (x^2-y^2)/2 (the quadratics that Fig. 1's eigensplines e3, e4 "
+       "must reproduce), seen from above in a close-up of the pole (about +-0.07 of the cap's radius 1): "
+       "(a) the input's fan, and the Gaussian curvature of stationary RTS (b, c) and of C2PS, which doubles the valence "
+       "(d, e), at level 8: RTS's K near "
+       "the pole depends on the direction (a 6-fold star), C2PS's is the same in every direction and "
+       "tends to the pole's value (its first rings overshoot, what Fig. 11's uniform first step damps; "
+       "`pole --rings` gives the numbers)",
+       "the paper draws the eigenvectors v1..v5 and their eigensplines; polarview computes eigenvalues "
+       "only (`spectrum`), so this shows what they imply on the functions they must reproduce",
+       {{"cap6_paraboloid.obj",
+         {{"(a) x^2+y^2, n=6", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"(b)", kRTS, 8, Mode::Gaussian},
+          {"(d)", kC2PS, 8, Mode::Gaussian}},
+         Conversion::None, 3.0f, 16.0},
+        {"cap6_saddle.obj",
+         {{"(a) x^2-y^2, n=6", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"(c)", kRTS, 8, Mode::Gaussian},
+          {"(e)", kC2PS, 8, Mode::Gaussian}},
+         Conversion::None, 1.5f, 16.0}},
+       Map::Paper, false, -90.0, 89.0});
+  figures.push_back(
+      {2, "Polar configurations",
+       "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
+       "C2PS's level-2 mesh and the C2PS limit surface (lit)",
+       "one row per model (the paper has one column per model); our own models: a UV globe of valence "
+       "16, the default mushroom of valence 12, a box hand with five valence-8 finger tips",
+       {{"globe.obj",
+         {{"(a) globe", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
+          {"limit", kC2PS, 4, Mode::Shaded}}},
+        {"default.obj",
+         {{"(b) mushroom", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
+          {"limit", kC2PS, 4, Mode::Shaded}}},
+        {"fingertips.obj",
+         {{"(c) finger tips", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
+          {"limit", kC2PS, 4, Mode::Shaded}}}},
+       Map::Paper, false, -70.0, 25.0});
+  figures.push_back(
+      {4, "Avoiding ripples",
+       "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4 in "
+       "Gaussian curvature and highlight lines: Catmull-Clark's curvature oscillates around the "
+       "16-valent vertex, C2PS's does not",
+       "the caption names no shading: the ripples show here in K (paper map) and highlight lines; our "
+       "own convex input (a dome steep at its rim)",
+       {{"convex16.obj",
+         {{"(a) input", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"(b)", kCC, 4, Mode::Gaussian},
+          {"(c)", kC2PS, 4, Mode::Gaussian}}},
+        {"convex16.obj",
+         {{"(a) input", kC2PS, 0, Mode::Shaded, Draw::Net},
+          {"(b)", kCC, 4, Mode::Highlight},
+          {"(c)", kC2PS, 4, Mode::Highlight}}}},
+       Map::Paper, true, -60.0, 35.0});
+  figures.push_back(
+      {11, "Comparison of RTS and C2PS",
+       "a valence-8 cap of the paraboloid (x^2+y^2)/2 (K falls off monotonically from the pole): top, "
+       "(a, b) C2PS applied directly, Gauss curvature (magnitude map: dark blue is zero) and lit; (c) "
+       "spline rings of C2PS with the uniform first step, (d) that surface lit; bottom, close to the "
+       "pole on a range of +-2.5: (a) C2PS's first rings overshoot in a ring around the pole, (e) less "
+       "so with the uniform first step, (f) RTS with and without it shows the 8-sidedness (a star)",
+       "without Jet subdivision (Karciauskas et al. 2006), which polarview does not implement; our own "
+       "input (the paper's is not printed)",
+       {{"cap8_paraboloid.obj",
+         {{"(a)", kC2PS, 5, Mode::Gaussian},
+          {"(b)", kC2PS, 5, Mode::Shaded},
+          {"(c) rings", kC2PSU, 5, Mode::Shaded, Draw::Rings},
+          {"(d)", kC2PSU, 5, Mode::Shaded}}},
+        {"cap8_paraboloid.obj",
+         {{"(a)", kC2PS, 5, Mode::Gaussian},
+          {"(e)", kC2PSU, 5, Mode::Gaussian},
+          {"(f)", kRTSU, 5, Mode::Gaussian},
+          {"(f)", kRTS, 5, Mode::Gaussian}},
+         Conversion::None, 2.5f, 2.5}},
+       Map::Magnitude, false, -60.0, 70.0});
+  figures.push_back(
+      {12, "Polar configuration of valence 20",
+       "RTS and C2PS on a valence-20 cap (an elliptic bump), lit and in Gaussian curvature (magnitude "
+       "map: dark blue is near zero) at level 4: similar surfaces and curvature at this high valence",
+       "our own valence-20 input (the paper's is not printed)",
+       {{"valence20.obj",
+         {{"", kRTS, 4, Mode::Shaded},
+          {"", kRTS, 4, Mode::Gaussian},
+          {"", kC2PS, 4, Mode::Shaded},
+          {"", kC2PS, 4, Mode::Gaussian}}}},
+       Map::Magnitude, true, -60.0, 25.0, 220});
+  const char* caps[][2] = {{"cap12_paraboloid.obj", "paraboloid"},
+                           {"cap12_saddle.obj", "saddle"},
+                           {"cap12_monkey.obj", "monkey saddle"},
+                           {"cap12_flat4.obj", "flat point"},
+                           {"cap12_saddle4.obj", "4th-order saddle"}};
+  Figure gallery{13, "Shape gallery",
+                 "valence-12 caps of a paraboloid, saddle, monkey saddle, flat point (r^4) and 4th-order saddle: "
+                 "(a) input, (b) twice subdivided mesh, (c) Gaussian curvature of the C2PS limit surface "
+                 "(paper map: green straddles zero, blue negative, red positive; each row its own range), "
+                 "(d) highlight lines",
+                 "our own height-function inputs of one valence (the paper's are not printed); level 4 surfaces",
+                 {}, Map::Paper, false, -60.0, 40.0, 200};
+  for (const auto& cap : caps)
+    gallery.rows.push_back({cap[0],
+                            {{std::string("(a) ") + cap[1], kC2PS, 0, Mode::Shaded, Draw::Net},
+                             {"(b) subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
+                             {"(c)", kC2PS, 4, Mode::Gaussian},
+                             {"(d)", kC2PS, 4, Mode::Highlight}}});
+  figures.push_back(gallery);
+  figures.push_back(
+      {14, "Conversion",
+       "the corners (valence-3 extraordinary vertices) of a twice refined cube: (b) as they are, under "
+       "Catmull-Clark; (a) converted into 6-valent polar configurations with three 5-valent extraordinary "
+       "vertices each, and (c) into 3-valent polar configurations with three pentagons each, under C2PS "
+       "(`convert --ev-to-polar [--pentagons]`); nets and Gaussian curvature at level 3",
+       "the paper shows the connectivity only; valence 3 (a cube's corner) rather than a general n",
+       {{"cube_cc2.obj",
+         {{"(b) n-valent", kCC, 0, Mode::Shaded, Draw::Net}, {"(b)", kCC, 3, Mode::Gaussian}}},
+        {"cube_cc2.obj",
+         {{"(a) 2n-valent pole", kC2PS, 0, Mode::Shaded, Draw::Net}, {"(a)", kC2PS, 3, Mode::Gaussian}},
+         Conversion::Polar},
+        {"cube_cc2.obj",
+         {{"(c) pentagons", kC2PS, 0, Mode::Shaded, Draw::Net}, {"(c)", kC2PS, 3, Mode::Gaussian}},
+         Conversion::Pentagons}},
+       Map::Paper, true, 45.0, 30.0, 230});
+  return figures;
+}
+
+// [SECTION] Rendering
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* kFigureUsage =
+    "usage: polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
+    "  writes DIR/figNN.png (and for all, the gallery DIR/README.md) from the models in assets/\n";
+
+constexpr int kDefaultWidth = 800;
+
+std::string assetPath(const std::string& name) { return std::string(POLARVIEW_ASSET_DIR) + "/" + name; }
+
+// A row's model (converted for Fig. 14); throws InputError on a bad file.
+PolyMesh rowModel(const Row& row) {
+  const std::string path = assetPath(row.model);
+  PolyMesh mesh = loadObj(path);
+  if (row.conversion == Conversion::None) return mesh;
+  return convertExtraordinaryToPolar(mesh, row.conversion == Conversion::Pentagons, path).mesh;
+}
+
+// Shows `mesh` in the app (which frames it); throws with the app's message when it is not usable.
+void showModel(ViewerApp& app, PolyMesh mesh, const std::string& name) {
+  if (!app.loadMesh(std::move(mesh), name)) throw std::runtime_error(app.state().file.error);
+}
+
+// Refines every view, then renders them in their styles; throws a view's refusal or error, naming
+// the model file as every input error does.
+RgbaImage renderViews(ViewerApp& app, int width, int height, int supersample) {
+  app.runFrame();
+  app.waitUntilIdle();
+  const ViewerState& state = app.state();
+  const std::string& file = app.model().name;
+  for (int v = 0; v < state.viewCount; ++v) {
+    const std::string& message = state.status[size_t(v)].message;
+    if (!message.empty()) throw std::runtime_error(message.rfind(file + ":", 0) == 0 ? message : file + ": " + message);
+  }
+  return renderStyledImage(app, width, height, supersample, false);
+}
+
+// One row of `figure`: its model in one view per panel, side by side in an image `width` wide.
+// `range` is the figure's shared colour range once a row has set it.
+RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int width, int supersample,
+                    std::optional<float>* range) {
+  const PolyMesh model = rowModel(row);
+  showModel(app, model, assetPath(row.model));
+  ViewerState& state = app.state();
+  state.viewCount = int(row.panels.size());
+  for (size_t v = 0; v < row.panels.size(); ++v) {
+    const Panel& panel = row.panels[v];
+    ViewSettings& view = state.views[v];
+    const bool net = panel.draw == Draw::Net || panel.draw == Draw::RefinedNet;
+    view.scheme = panel.scheme;
+    view.level = net ? 0 : panel.level;  // a refined net is the level-0 net of the refined mesh
+    view.shade = panel.shade;
+    view.caption = panel.caption;
+    if (panel.draw != Draw::Net) {
+      const std::string drawn = std::string(schemeChoiceLabel(panel.scheme)) + " \xC2\xB7 " + std::to_string(panel.level);
+      view.caption += (view.caption.empty() ? "" : " ") + drawn;
+    }
+    DisplayFlags display;
+    display.surface = !net;
+    display.controlNet = net;
+    display.patchBoundaries = panel.draw == Draw::Rings;
+    display.boundaryColor = DisplayFlags::BoundaryColor::Ring;
+    display.poleMarkers = false;
+    view.display = display;
+  }
+  state.shading.colormap = figure.colormap;
+  const std::optional<float> typed = row.range ? row.range : *range;
+  state.colour.automatic = !typed;
+  if (typed) state.colour.typedRange = *typed;
+
+  // The camera's direction, then framing on the net in the first view's shape.
+  const int height = figure.panelHeight + int(colourBarReserve(state, 1.0f));
+  const ScreenRect frame{0, 0, float(width), float(height)};
+  const std::vector<ScreenRect> rects = layoutViews(state.viewCount, frame, colourBarReserve(state, 1.0f));
+  state.sharedCamera.yawDeg = figure.yaw;
+  state.sharedCamera.pitchDeg = figure.pitch;
+  app.frameModel(&rects.front());
+  state.sharedCamera.distance /= row.zoom;
+  const OrbitCamera camera = state.sharedCamera;
+  RgbaImage image = renderViews(app, width, height, supersample);
+  if (figure.sharedRange && !*range && state.showsColourBar()) *range = state.colourRange();
+
+  // Refined nets: the model refined uniformly (core Refinement), drawn through the same camera.
+  for (size_t v = 0; v < row.panels.size(); ++v) {
+    const Panel& panel = row.panels[v];
+    if (panel.draw != Draw::RefinedNet) continue;
+    const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
+    showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
+    for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only the net is needed
+    state.sharedCamera = camera;
+    copyImageRect(image, renderViews(app, width, height, supersample), rects[v]);
+  }
+  return image;
+}
+
+// The rows one above the other (all `width` wide).
+RgbaImage stackRows(const std::vector<RgbaImage>& rows) {
+  RgbaImage image;
+  image.width = rows.front().width;
+  for (const RgbaImage& row : rows) image.height += row.height;
+  image.pixels.reserve(size_t(image.width) * size_t(image.height) * 4);
+  for (const RgbaImage& row : rows) image.pixels.insert(image.pixels.end(), row.pixels.begin(), row.pixels.end());
+  return image;
+}
+
+std::string figureFile(int number) {
+  char name[16];
+  std::snprintf(name, sizeof name, "fig%02d.png", number);
+  return name;
+}
+
+// The gallery's line of one figure: its PNG, what it shows, where it differs from the paper.
+std::string galleryLine(const Figure& figure, const std::string& directory) {
+  return "- **Fig. " + std::to_string(figure.number) + " (" + figure.title + ")** [" + figureFile(figure.number) +
+         "](" + directory + figureFile(figure.number) + "): " + figure.shows + ". *Differs from the paper:* " +
+         figure.differs + ".";
+}
+
+struct FigureRequest {
+  std::vector<int> numbers;  // empty: all
+  std::string directory;
+  int width = kDefaultWidth, supersample = 2;
+};
+
+int parseNumber(const std::string& text, const std::string& what, int lo, int hi) {
+  size_t used = 0;
+  int value = 0;
+  try {
+    value = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || value < lo || value > hi)
+    throw UsageError(what + " expects an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + text + "'");
+  return value;
+}
+
+FigureRequest parseFigureArgs(const std::vector<std::string>& args) {
+  FigureRequest r;
+  bool named = false;
+  for (size_t k = 0; k < args.size(); ++k) {
+    auto value = [&]() -> const std::string& {
+      if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
+      return args[++k];
+    };
+    if (args[k] == "-o" || args[k] == "--output") r.directory = value();
+    else if (args[k] == "--width") r.width = parseNumber(value(), "--width", 320, 4096);
+    else if (args[k] == "--supersample") {
+      r.supersample = parseNumber(value(), "--supersample", 1, 4);
+      if (r.supersample == 3) throw UsageError("--supersample takes 1, 2 or 4, got 3");
+    } else if (!named && args[k] == "all") named = true;
+    else if (!named && !args[k].empty() && args[k][0] != '-') {
+      const int number = parseNumber(args[k], "figure", 1, 14);
+      const std::vector<Figure> figures = paperFigures();
+      if (std::none_of(figures.begin(), figures.end(), [&](const Figure& f) { return f.number == number; }))
+        throw UsageError("no figure " + args[k] + " (1, 2, 4, 11, 12, 13, 14 or all)");
+      r.numbers.push_back(number);
+      named = true;
+    } else throw UsageError("unexpected argument '" + args[k] + "'");
+  }
+  if (!named) throw UsageError("which figure? (1, 2, 4, 11, 12, 13, 14 or all)");
+  if (r.directory.empty()) throw UsageError("missing -o DIR");
+  return r;
+}
+
+int renderFigures(const FigureRequest& r) {
+  std::filesystem::create_directories(r.directory);
+  ViewerOptions options;
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  options.prepareNextLevel = false;  // still pictures: no level steps to come
+  ViewerApp app(options);
+  std::string error;
+  app.loadDefaultModel();
+  if (!app.init(&error)) throw std::runtime_error(error);
+  app.state().showPanels = false;
+  app.state().linkCameras = true;
+
+  std::ostringstream gallery;
+  gallery << "# Gallery\n\nThe paper's figures as polarview draws them, written by `polarview figure all -o "
+             "docs/gallery` from the models in `assets/` (assets/README.md says which command made each). "
+             "One line per figure: what it shows, and where it differs from the paper. The PNGs hold 256 "
+             "colours (median cut) to stay small, so smooth shading shows steps.\n\n";
+  for (const Figure& figure : paperFigures()) {
+    if (!r.numbers.empty() && std::find(r.numbers.begin(), r.numbers.end(), figure.number) == r.numbers.end()) continue;
+    std::optional<float> range;
+    std::vector<RgbaImage> rows;
+    for (const Row& row : figure.rows) rows.push_back(renderRow(app, figure, row, r.width, r.supersample, &range));
+    const std::string path = (std::filesystem::path(r.directory) / figureFile(figure.number)).string();
+    writeIndexedPngAtomic(path, stackRows(rows));
+    std::cout << path << "\n";
+    gallery << galleryLine(figure, "") << "\n";
+  }
+  if (r.numbers.empty()) {
+    const std::string path = (std::filesystem::path(r.directory) / "README.md").string();
+    writeFileAtomically(path, gallery.str());
+    std::cout << path << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runFigureCommand(const std::vector<std::string>& args) {
+  int code = 0;
+  try {
+    code = renderFigures(parseFigureArgs(args));
+  } catch (const UsageError& e) {
+    std::cerr << "polarview: figure: " << e.what() << "\n" << kFigureUsage;
+    code = 2;
+  } catch (const std::exception& e) {
+    std::cerr << "polarview: " << e.what() << "\n";
+    code = 1;
+  }
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace polarview

@@ -1,0 +1,16 @@
+// `polarview figure N|all -o DIR`: the figures of Myles & Peters 2009 (Figs. 1, 2, 4, 11, 12, 13, 14)
+// rendered from the models shipped in assets/ with the schemes, levels, shading and colour maps their
+// captions name, as DIR/figNN.png, and for `all` the gallery DIR/README.md: one line per figure on what
+// it shows and where it differs from the paper.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace polarview {
+
+// The arguments after "figure"; 0 ok, 1 bad input or a failed render ("polarview: FILE: msg"),
+// 2 usage error.
+int runFigureCommand(const std::vector<std::string>& args);
+
+}  // namespace polarview

@@ -1,0 +1,145 @@
+#!/usr/bin/env bash
+# `polarview figure` and per-view shading in `polarview render`. Figure 13 (the shape gallery: five
+# valence-12 caps; columns input net, twice subdivided net, Gaussian curvature, highlight lines)
+# must be an indexed PNG 800 wide whose curvature column holds both signs of the paper map (blue
+# saddles, red paraboloid and flat point ring) and its green band at zero (the monkey saddle's and
+# flat point's centres), whose highlight column is black and white stripes without map colours, and
+# whose net columns hold no map colours. `render --shade gaussian,highlight` must colour the first
+# view only; mismatched shade lists and unknown figures are usage errors (exit 2).
+# Usage: bash render_figure.sh <polarview-exe> <repo>. Needs an X display: re-runs itself under Xvfb.
+set -u
+exe="$1"
+repo="$2"
+if [ -z "${DISPLAY:-}" ]; then
+  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
+fi
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# Prints "width height type" and, per column band [x0, x1) given as arguments "x0:x1", the pixels
+# that are map blue, map red, map green, dark (stripes: under 100, unlike the background, the most
+# common colour) and light (lit stripes, net lines: over 180), of an 8-bit
+# PNG (RGB, RGBA or indexed), counting only the rows of views: those where the grey line that
+# separates the first two views runs (at x = the first band's end), not the strips of colour bar and
+# legend under them.
+count_colours() {  # png band...
+  python3 - "$@" <<'EOF'
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+pos, idat, palette = 8, b"", None
+while pos < len(data):
+    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    body = data[pos + 8:pos + 8 + length]
+    if kind == b"IHDR":
+        width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        assert depth == 8 and colour in (2, 3, 6), "expected 8-bit RGB, RGBA or indexed"
+    elif kind == b"PLTE":
+        palette = [tuple(body[i:i + 3]) for i in range(0, len(body), 3)]
+    elif kind == b"IDAT":
+        idat += body
+    pos += 12 + length
+bpp = {2: 3, 3: 1, 6: 4}[colour]
+raw, stride, rows, prev = zlib.decompress(idat), bpp * width, [], bytearray(bpp * width)
+for y in range(height):
+    line = raw[y * (stride + 1):(y + 1) * (stride + 1)]
+    f, cur = line[0], bytearray(line[1:])
+    if f:
+        for x in range(stride):
+            a = cur[x - bpp] if x >= bpp else 0
+            b = prev[x]
+            c = prev[x - bpp] if x >= bpp else 0
+            if f == 1: cur[x] = (cur[x] + a) & 255
+            elif f == 2: cur[x] = (cur[x] + b) & 255
+            elif f == 3: cur[x] = (cur[x] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                cur[x] = (cur[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(cur)
+    prev = cur
+def pixel(x, y):
+    if colour == 3: return palette[rows[y][x]]
+    return tuple(rows[y][bpp * x:bpp * x + 3])
+separator = int(sys.argv[2].split(":")[1])
+views = [y for y in range(height) if all(abs(c - g) <= 20 for c, g in zip(pixel(separator, y), (98, 100, 102)))]
+counts = {}
+for y in views:
+    for x in range(width):
+        counts[pixel(x, y)] = counts.get(pixel(x, y), 0) + 1
+background = max(counts, key=counts.get)
+out = [str(width), str(height), str(colour), str(len(views))]
+for band in sys.argv[2:]:
+    x0, x1 = (int(v) for v in band.split(":"))
+    blue = red = green = black = white = 0
+    for y in views:
+        for x in range(x0, x1):
+            r, g, b = pixel(x, y)
+            blue += b > 170 and r < 60 and g < 110
+            red += r > 170 and g < 90 and b < 60
+            green += g > 170 and r < 90 and b < 60
+            black += max(r, g, b) < 100 and max(abs(r - background[0]), abs(g - background[1]), abs(b - background[2])) > 12
+            white += min(r, g, b) > 180
+    out += [str(blue), str(red), str(green), str(black), str(white)]
+print(" ".join(out))
+EOF
+}
+
+# Figure 13: four columns of 200 pixels.
+if "$exe" figure 13 -o "$work/fig" > "$work/out.txt" 2> "$work/err.txt"; then
+  [ -f "$work/fig/fig13.png" ] || fail "figure 13 wrote no fig13.png ($(cat "$work/out.txt"))"
+  read -r width height type rows \
+    b1 r1 g1 k1 w1 b2 r2 g2 k2 w2 b3 r3 g3 k3 w3 b4 r4 g4 k4 w4 \
+    <<< "$(count_colours "$work/fig/fig13.png" 0:200 200:400 400:600 600:800)"
+  [ "$width" = 800 ] && [ "$type" = 3 ] || fail "fig13.png is ${width} wide of colour type $type (expected 800, indexed 3)"
+  [ "$rows" -ge 900 ] && [ "$rows" -le "$((height - 400))" ] || fail "fig13.png: $rows of its $height rows are views' (not five rows of views above strips)"
+  # Curvature column: both signs and the green band, each over a sizeable area.
+  [ "$b3" -gt 3000 ] || fail "curvature column: $b3 blue (negative K) pixels"
+  [ "$r3" -gt 3000 ] || fail "curvature column: $r3 red (positive K) pixels"
+  [ "$g3" -gt 3000 ] || fail "curvature column: $g3 green (K near zero) pixels"
+  # Highlight column: black and white stripes, no map colours.
+  [ "$k4" -gt 2000 ] && [ "$w4" -gt 2000 ] || fail "highlight column: $k4 dark, $w4 light pixels (no stripes)"
+  [ $((b4 + r4 + g4)) -lt 50 ] || fail "highlight column has $b4 blue, $r4 red, $g4 green pixels"
+  # Net columns: white lines on the background, no map colours.
+  [ "$w1" -gt 100 ] && [ "$w2" -gt $((3 * w1)) ] || fail "net columns: $w1 and $w2 light pixels (the twice subdivided net must have many more)"
+  [ $((b1 + r1 + g1 + b2 + r2 + g2)) -lt 50 ] || fail "net columns have map colours"
+else
+  fail "figure 13: $(cat "$work/err.txt")"
+fi
+
+# render: one shading per view; the JSON says which.
+saddle="$repo/assets/cap12_saddle.obj"
+if json="$("$exe" render "$saddle" -o "$work/two.png" --scheme c2ps,rts-u --shade gaussian,highlight --level 3 \
+    --size 400x260 --no-poles --time 1 2> "$work/err.txt")"; then
+  echo "$json" | grep -q '"shades":\["gaussian","highlight"\]' || fail "render JSON lacks the per-view shades: $json"
+  echo "$json" | grep -q '"titles":\["C2PS · 3","RTS-U · 3"\]' || fail "rts-u did not render: $json"
+  read -r width height type rows b1 r1 g1 k1 w1 b2 r2 g2 k2 w2 <<< "$(count_colours "$work/two.png" 0:200 200:400)"
+  [ "$b1" -gt 400 ] || fail "gaussian view of the saddle: $b1 blue pixels"
+  [ $((b2 + r2 + g2)) -lt 20 ] || fail "highlight view has map colours ($b2 blue, $r2 red, $g2 green)"
+  [ "$k2" -gt 300 ] && [ "$w2" -gt 300 ] || fail "highlight view: $k2 dark, $w2 light pixels"
+else
+  fail "render --shade gaussian,highlight: $(cat "$work/err.txt")"
+fi
+
+# Usage errors: exit 2, no output.
+expect_usage() {  # description args...
+  local what="$1"
+  shift
+  "$exe" "$@" > /dev/null 2>&1
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$what: exit $rc, expected 2"
+}
+expect_usage "three shades for two views" render "$saddle" -o "$work/x.png" --scheme c2ps,rts --shade gaussian,highlight,shaded
+expect_usage "gaussian and mean in one image" render "$saddle" -o "$work/x.png" --scheme c2ps,rts --shade gaussian,mean
+expect_usage "figure 3" figure 3 -o "$work/x"
+expect_usage "figure without a number" figure -o "$work/x"
+expect_usage "figure without -o" figure 13
+[ ! -e "$work/x.png" ] && [ ! -e "$work/x" ] || fail "a usage error left output behind"
+
+if [ $failures -ne 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "render_figure: all checks passed"
