@@ -639,8 +639,10 @@ void ViewerApp::updateSurfaces() {
 }
 
 void ViewerApp::updateColourRange() {
-  const ShadingParams::Mode mode = state_.shading.mode;
-  if (mode != ShadingParams::Mode::Gaussian && mode != ShadingParams::Mode::Mean) return;
+  // The curvature map some view shows (views may shade differently: render --shade a,b).
+  const std::optional<ShadingParams::Mode> shown = state_.curvatureShade();
+  if (!shown) return;
+  const ShadingParams::Mode mode = *shown;
   uint64_t signature = 14695981039346656037ull;
   hashMix(signature, uint64_t(mode));
   hashMix(signature, uint64_t(state_.colour.quantile * 1e6f));
@@ -661,7 +663,7 @@ void ViewerApp::updateColourRange() {
 }
 
 void ViewerApp::collectColourSamples() {
-  const ShadingParams::Mode mode = state_.shading.mode;
+  const ShadingParams::Mode mode = state_.curvatureShade().value_or(state_.shading.mode);
   // One range over the samples of every visible view, so equal colours mean equal values.
   // Each view counts by area: weights are normalised per view so a finer level does not outvote.
   std::vector<float>& values = colourValues_;
@@ -972,13 +974,16 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
   ShadingParams shading = state_.shading;
   shading.range = state_.colourRange();
   shading.rangeBelow = state_.colourRangeBelow();
-  // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read like
-  // a curvature feature right at the pole).
-  DisplayFlags display = state_.display;
-  display.poleMarkers = false;
   std::vector<PoleMarker> markers;
   for (size_t v = 0; v < rects.size(); ++v) {
     if (!views_[v].shown) continue;
+    // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
+    shading.mode = state_.viewShade(int(v));
+    // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read
+    // like a curvature feature right at the pole).
+    DisplayFlags display = state_.viewDisplay(int(v));
+    const bool markPoles = display.poleMarkers;
+    display.poleMarkers = false;
     const ScreenRect& r = rects[v];
     const OrbitCamera& camera = state_.camera(int(v));
     ViewParams params;
@@ -988,7 +993,7 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
     params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
     params.eye = camera.eye();  // double: the renderer draws relative to the eye
     views_[v].renderer->draw(params, shading, display);
-    if (state_.display.poleMarkers) {
+    if (markPoles) {
       visiblePoles(views_[v].shown->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
     }
   }
