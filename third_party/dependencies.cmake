@@ -17,11 +17,13 @@ else()
   message(STATUS "OpenSubdiv not found: oracle test and bench peer disabled")
 endif()
 
+# stb_image_write: the pipeline's PNG files (screenshots, figures).
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
 if(POLARVIEW_BUILD_VIEWER)
   find_package(OpenGL REQUIRED)
   find_package(glfw3 REQUIRED)
   pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
-  pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
   # glad2 loader, generated offline at build time by Debian's `glad` (python3-glad).
   find_program(GLAD_EXECUTABLE glad PATHS /usr/bin NO_DEFAULT_PATH)
@@ -37,7 +39,4 @@ if(POLARVIEW_BUILD_VIEWER)
   add_library(polarview_glad STATIC ${GLAD_OUT}/src/gl.c)
   target_include_directories(polarview_glad PUBLIC ${GLAD_OUT}/include)
   set_target_properties(polarview_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)
-
-  add_library(polarview_gl INTERFACE)
-  target_link_libraries(polarview_gl INTERFACE polarview_glad glfw PkgConfig::IMGUI PkgConfig::STB OpenGL::GL ${CMAKE_DL_LIBS})
 endif()

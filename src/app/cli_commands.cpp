@@ -1,4 +1,5 @@
 #include "app/cli_commands.h"
+#include "app/command_args.h"
 
 #include <algorithm>
 #include <fstream>
@@ -35,11 +36,6 @@ namespace {
 
 // How many rejected pole candidates `info` lists in text (the JSON lists all).
 constexpr size_t kRejectedListed = 10;
-
-// A usage error: printed with the usage text, exit code 2.
-struct UsageError {
-  std::string what;
-};
 
 // Options shared by the subcommands, parsed from "--name value" / "--flag" pairs.
 struct CommonOptions {
@@ -131,14 +127,7 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adap
 }
 
 int parseInt(const std::string& flag, const std::string& text, int low, int high) {
-  try {
-    size_t used = 0;
-    long v = std::stol(text, &used);
-    if (used != text.size() || v < low || v > high) throw std::out_of_range(text);
-    return int(v);
-  } catch (const std::exception&) {
-    throw UsageError{flag + " needs an integer in " + std::to_string(low) + ".." + std::to_string(high) + ", got '" + text + "'"};
-  }
+  return parseIntArgument(flag, text, low, high);
 }
 
 // The scheme names every command takes (the scheme table's, "c2ps-u" and "rts-u" for the paper's
@@ -277,7 +266,8 @@ const char* usageText() {
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--json]\n"
          "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
          "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
-         "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--json]\n"
+         "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--vectors] [--json]\n"
+         "                 leading eigenvalues; --vectors: their right and left eigenvectors\n"
          "  polarview help                     this text\n"
          "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
          "  uniform first step of the paper's Section 6\n"
@@ -288,7 +278,7 @@ int guarded(const std::string& file, int (*command)(const Args&), const Args& ar
   try {
     return command(args);
   } catch (const UsageError& e) {
-    std::cerr << "polarview: " << e.what << "\n" << usageText();
+    std::cerr << "polarview: " << e.what() << "\n" << usageText();
     return 2;
   } catch (const InputError& e) {
     std::cerr << "polarview: " << e.what() << "\n";
@@ -724,11 +714,30 @@ int runBench(const Args& args) {
   return 0;
 }
 
+// `spectrum --vectors`: a vector's entries as a JSON array (real parts; "<key>_im" adds the
+// imaginary parts where they are not round-off), or null where the pair has none.
+void writeSpectrumVector(JsonWriter& w, const char* key, const std::vector<Complex>& v) {
+  w.key(key);
+  if (v.empty()) {
+    w.null();
+    return;
+  }
+  double top = 0.0, im = 0.0;
+  for (const Complex& x : v) top = std::max(top, std::abs(x)), im = std::max(im, std::abs(x.imag()));
+  w.beginArray();
+  for (const Complex& x : v) w.value(x.real());
+  w.endArray();
+  if (im <= 1e-12 * top) return;
+  w.key((std::string(key) + "_im").c_str()).beginArray();
+  for (const Complex& x : v) w.value(x.imag());
+  w.endArray();
+}
+
 int runSpectrum(const Args& args) {
-  // Own parsing: no input file. --scheme rts|bps|cc --valence n [--count k] [--json]
+  // Own parsing: no input file. --scheme rts|bps|cc --valence n [--count k] [--vectors] [--json]
   std::optional<Scheme> scheme;
   int valence = -1, count = 8;
-  bool json = false, uniform = false;
+  bool json = false, uniform = false, vectors = false;
   for (size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     auto next = [&]() -> const std::string& {
@@ -740,6 +749,7 @@ int runSpectrum(const Args& args) {
       if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps or cc, got '" + args[k] + "'"};
     } else if (a == "--valence") valence = parseInt(a, next(), 3, 64);
     else if (a == "--count") count = parseInt(a, next(), 1, 1000);
+    else if (a == "--vectors") vectors = true;
     else if (a == "--json") json = true;
     else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
   }
@@ -753,15 +763,37 @@ int runSpectrum(const Args& args) {
   const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
   const size_t shown = std::min(all.size(), size_t(count));
   const std::string name = cliSchemeName(*scheme, false);
+  const bool polar = schemeTraits(*scheme).polar();
+  std::vector<EigenPair> pairs;
+  Matrix matrix;
+  if (vectors) {
+    pairs = schemeEigenPairs(*scheme, valence, shown);
+    matrix = schemeMatrix(*scheme, valence);
+  }
+  // The support's order, as the matrix lists it (schemeMatrix).
+  const char* order = polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
+                            : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
   // An eigenvalue whose imaginary part is round-off is printed as real.
   auto imaginary = [](const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; };
   if (json) {
     JsonWriter w("spectrum");
-    w.beginObject().field("scheme", name).field("valence", valence).field("size", all.size()).key("eigenvalues").beginArray();
+    w.beginObject().field("scheme", name).field("valence", valence).field("size", all.size());
+    if (vectors) w.field("order", order);
+    w.key("eigenvalues").beginArray();
     for (size_t k = 0; k < shown; ++k) {
       w.beginObject().field("re", all[k].value.real()).field("im", imaginary(all[k].value));
       w.field("modulus", std::abs(all[k].value));
       if (all[k].alpha >= 0) w.field("fourier_block", all[k].alpha);
+      if (vectors) {
+        const EigenPair& p = pairs[k];
+        w.field("mode", fourierModeName(p.mode));
+        writeSpectrumVector(w, "right", p.right);
+        writeSpectrumVector(w, "left", p.left);
+        writeSpectrumVector(w, "right_profile", p.rightProfile);
+        writeSpectrumVector(w, "left_profile", p.leftProfile);
+        if (p.right.empty()) w.field("note", "zero or defective eigenvalue: no basis of eigenvectors");
+        else w.field("residual", eigenPairResidual(matrix, p));
+      }
       w.endObject();
     }
     w.endArray().endObject();
@@ -769,13 +801,36 @@ int runSpectrum(const Args& args) {
     return 0;
   }
   std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", name.c_str(), valence, all.size(),
-              !schemeTraits(*scheme).polar() ? "1-ring matrix" : "matrix (13) on links 0..5, by Fourier block", shown);
+              !polar ? "1-ring matrix, by Fourier block" : "matrix (13) on links 0..5, by Fourier block", shown);
+  // A block profile as "[a, b, ...]" (real parts; complex entries as re+imi).
+  auto profile = [](const std::vector<Complex>& v) {
+    double top = 0.0;
+    for (const Complex& x : v) top = std::max(top, std::abs(x));
+    auto clean = [top](double x) { return std::abs(x) <= 1e-12 * top ? 0.0 : x; };  // round-off as 0
+    std::string text = "[";
+    char number[64];
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (clean(v[i].imag()) != 0.0) std::snprintf(number, sizeof number, "%.6g%+.6gi", clean(v[i].real()), v[i].imag());
+      else std::snprintf(number, sizeof number, "%.6g", clean(v[i].real()));
+      text += (i ? ", " : "") + std::string(number);
+    }
+    return text + "]";
+  };
   for (size_t k = 0; k < shown; ++k) {
     const double im = imaginary(all[k].value);
     std::printf("  %2zu  %.15g%s", k + 1, all[k].value.real(), im != 0.0 ? "" : "\n");
     if (im != 0.0) std::printf(" %+.15gi\n", im);
     if (all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", all[k].alpha);
+    if (!vectors) continue;
+    const EigenPair& p = pairs[k];
+    if (p.right.empty()) {
+      std::printf("      no eigenvectors: zero or defective eigenvalue\n");
+      continue;
+    }
+    std::printf("      %s mode, residual %.1e\n      right profile %s\n      left profile  %s\n", fourierModeName(p.mode),
+                eigenPairResidual(matrix, p), profile(p.rightProfile).c_str(), profile(p.leftProfile).c_str());
   }
+  if (vectors) std::printf("profiles: v_ij = v^_i op(j/n), w_ij = w^_i op(j/n) / n (paper (14), (26)); the whole vectors with --json\n");
   return 0;
 }
 

@@ -1,4 +1,5 @@
 #include "app/figure_command.h"
+#include "app/command_args.h"
 
 #include <GLFW/glfw3.h>
 
@@ -15,8 +16,10 @@
 #include "core/mesh/atomic_file.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/obj_io.h"
+#include "core/mesh/shapes.h"
 #include "core/subdiv/refiner.h"
-#include "render/indexed_png.h"
+#include "core/subdiv/spectrum.h"
+#include "pipeline/indexed_png.h"
 
 namespace polarview {
 namespace {
@@ -27,9 +30,10 @@ using Mode = ShadingParams::Mode;
 using Map = ShadingParams::ColorMap;
 
 // What a panel draws: the limit surface, the input net, the net refined uniformly `level` times
-// (the viewer's net of a level is the feature-adaptive one, refined only near poles), or the surface
-// with its patch boundaries coloured by spline ring (Fig. 11c).
-enum class Draw { Surface, Net, RefinedNet, Rings };
+// (the viewer's net of a level is the feature-adaptive one, refined only near poles), the surface
+// with its patch boundaries coloured by spline ring (Fig. 11c), or the surface with the input net
+// over it (Fig. 1).
+enum class Draw { Surface, Net, RefinedNet, Rings, SurfaceNet };
 // Fig. 14: the model's extraordinary vertices turned into poles in memory (core/mesh/ev_to_polar.h).
 enum class Conversion { None, Polar, Pentagons };
 
@@ -39,6 +43,8 @@ struct Panel {
   int level;
   Mode shade;
   Draw draw = Draw::Surface;
+  int eigenvector = -1;  // >= 0: the panel's model is eigenNet(row's eigenValence, this k, c2psSteps)
+  int c2psSteps = 0;
 };
 
 // One multi-view render of one model; a figure stacks its rows.
@@ -48,6 +54,7 @@ struct Row {
   Conversion conversion = Conversion::None;
   std::optional<float> range{};  // a typed colour range (else the figure's shared or automatic one)
   double zoom = 1.0;             // > 1: that much closer than the framing (a close-up of the pole)
+  int eigenValence = 0;          // > 0: the panels show RTS eigenvectors of this valence (Fig. 1)
 };
 
 struct Figure {
@@ -70,28 +77,34 @@ constexpr SchemeChoice kCC = SchemeChoice::CatmullClark, kC2PS = SchemeChoice::C
 // are the shipped OBJs (assets/README.md says which command made each).
 std::vector<Figure> paperFigures() {
   std::vector<Figure> figures;
+  // Fig. 1: the RTS eigenvectors of valence 6 (spectrum.h) as nets over the characteristic map;
+  // models made in memory (eigenNet), not read from assets/.
+  auto eigenPanel = [](const std::string& caption, SchemeChoice scheme, int k, int steps) {
+    return Panel{caption, scheme, 6, Mode::Shaded, Draw::SurfaceNet, k, steps};
+  };
   figures.push_back(
       {1, "Making C2 subdivision work with degree bi-3",
-       "valence-6 caps of (x^2+y^2)/2 and (x^2-y^2)/2 (the quadratics that Fig. 1's eigensplines e3, e4 "
-       "must reproduce), seen from above in a close-up of the pole (about +-0.07 of the cap's radius 1): "
-       "(a) the input's fan, and the Gaussian curvature of stationary RTS (b, c) and of C2PS, which doubles the valence "
-       "(d, e), at level 8: RTS's K near "
-       "the pole depends on the direction (a 6-fold star), C2PS's is the same in every direction and "
-       "tends to the pole's value (its first rings overshoot, what Fig. 11's uniform first step damps; "
-       "`pole --rings` gives the numbers)",
-       "the paper draws the eigenvectors v1..v5 and their eigensplines; polarview computes eigenvalues "
-       "only (`spectrum`), so this shows what they imply on the functions they must reproduce",
-       {{"cap6_paraboloid.obj",
-         {{"(a) x^2+y^2, n=6", kC2PS, 0, Mode::Shaded, Draw::Net},
-          {"(b)", kRTS, 8, Mode::Gaussian},
-          {"(d)", kC2PS, 8, Mode::Gaussian}},
-         Conversion::None, 3.0f, 16.0},
-        {"cap6_saddle.obj",
-         {{"(a) x^2-y^2, n=6", kC2PS, 0, Mode::Shaded, Draw::Net},
-          {"(c)", kRTS, 8, Mode::Gaussian},
-          {"(e)", kC2PS, 8, Mode::Gaussian}},
-         Conversion::None, 1.5f, 16.0}},
-       Map::Paper, false, -90.0, 89.0});
+       "top, the right eigenvectors v_k of RTS (`spectrum --scheme rts --valence 6 --vectors`) as control "
+       "nets (black: links 0..5 of a 6-valent polar configuration, point (x, y, z) = (v1, v2, v_k) over "
+       "the characteristic map) with their eigensplines e_k, the RTS limit surfaces of the nets (level 6): "
+       "the characteristic spline chi = (e1, e2) (lambda = 1/2), a planar disk, drawn below each of "
+       "(a) e3, the paraboloid r^2, (b) e4 = r^2 B^6 cos 2t and (c) e5 = r^2 B^6 sin 2t, the saddles "
+       "(lambda = 1/4; Table 1, Lemma 2); bottom, (d-f) the same nets v3, v4, v5 after three steps of "
+       "C2PS (valence 6 -> 48, links 0..5 of level 3 magnified 8 times, heights 64 times): their rings "
+       "approach the periodic curves r^2, r^2 cos 2t, r^2 sin 2t, over C2PS's limit surface (Lemmas 4, 5)",
+       "the eigensplines are shaded grey, not yellow and red; the radial eigenvectors v^_k (the paper's "
+       "control lines marked o) and the radial eigensplines are not drawn separately (they are the nets' "
+       "and surfaces' sections along the x axis); (d-f) show C2PS's refined nets T^3 v_k rather than "
+       "RTS eigenvectors of growing valence (they agree up to O(8^-m), (30))",
+       {{"",
+         {eigenPanel("chi = (e1, e2)", kRTS, 1, 0), eigenPanel("(a) e3", kRTS, 3, 0),
+          eigenPanel("(b) e4", kRTS, 4, 0), eigenPanel("(c) e5", kRTS, 5, 0)},
+         Conversion::None, std::nullopt, 1.0, 6},
+        {"",
+         {eigenPanel("(d) T^3 v3, n = 48", kC2PS, 3, 3), eigenPanel("(e) T^3 v4, n = 48", kC2PS, 4, 3),
+          eigenPanel("(f) T^3 v5, n = 48", kC2PS, 5, 3)},
+         Conversion::None, std::nullopt, 1.0, 6}},
+       Map::Paper, false, -60.0, 30.0});
   figures.push_back(
       {2, "Polar configurations",
        "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
@@ -199,10 +212,6 @@ std::vector<Figure> paperFigures() {
 
 // [SECTION] Rendering
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 const char* kFigureUsage =
     "usage: polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
     "  writes DIR/figNN.png (and for all, the gallery DIR/README.md) from the models in assets/\n";
@@ -211,8 +220,49 @@ constexpr int kDefaultWidth = 800;
 
 std::string assetPath(const std::string& name) { return std::string(POLARVIEW_ASSET_DIR) + "/" + name; }
 
-// A row's model (converted for Fig. 14); throws InputError on a bad file.
+// Fig. 1's nets: links 0..5 of the valence-n polar configuration whose point q_ij is
+// (v1, v2, v_k)_ij, the right eigenvectors of RTS (spectrum.h) over the characteristic map (v1, v2),
+// z = 0 for k <= 2 (chi itself). For k >= 3 the planar net of chi lies below it (the paper's disk).
+// `steps` > 0: that many C2PS steps first (links 0..5 kept, the valence doubling), then magnified
+// back by 2^steps in x, y and lambda_k^-steps in z, so that Lemma 5's scaling shows as equal heights.
+PolyMesh eigenNet(int n, int k, int steps) {
+  constexpr int kLinks = 5;  // the support of matrix (13)
+  constexpr double kHeight = 0.6, kDiskDepth = -0.9;  // drawing scale of v_k and where chi lies
+  const std::vector<EigenPair> pairs = schemeEigenPairs(Scheme::RTS, n, 6);
+  const EigenPair& pair = pairs.at(size_t(k));
+  PolarGrid grid(n, kLinks);
+  auto entry = [&](const EigenPair& p, int i, int j) { return p.right[size_t(polarMatrixIndex(i, j))].real(); };
+  grid.pole = Point(entry(pairs[1], 0, 0), entry(pairs[2], 0, 0), k >= 3 ? entry(pair, 0, 0) : 0.0);
+  for (int i = 1; i <= kLinks; ++i)
+    for (int j = 0; j < n; ++j) grid.q(i, j) = Point(entry(pairs[1], i, j), entry(pairs[2], i, j), k >= 3 ? entry(pair, i, j) : 0.0);
+  for (int step = 0; step < steps; ++step) {
+    const PolarGrid fine = schemeTraits(Scheme::C2PS).refineGrid(grid, false);
+    grid = PolarGrid(fine.n, kLinks);
+    grid.pole = fine.pole;
+    std::copy(fine.ring.begin(), fine.ring.begin() + long(grid.ring.size()), grid.ring.begin());
+  }
+  const double xy = std::ldexp(1.0, steps), z = kHeight * std::pow(1.0 / pair.value.real(), steps);
+  auto place = [&](const Point& p) { return Point(xy * p.x, xy * p.y, z * p.z); };
+  PolyMesh mesh = shapes::heightCap(grid.n, kLinks, [](double, double) { return 0.0; });  // the layout
+  mesh.points[0] = place(grid.pole);
+  for (int i = 1; i <= kLinks; ++i)
+    for (int j = 0; j < grid.n; ++j) mesh.points[size_t(1 + (i - 1) * grid.n + j)] = place(grid.q(i, j));
+  if (k < 3 || steps > 0) return mesh;
+  PolyMesh both = mesh;  // chi's disk below: the same net flattened, a second component
+  const Index offset = Index(both.points.size());
+  for (const Point& p : mesh.points) both.points.push_back(Point(p.x, p.y, kDiskDepth));
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    std::vector<Index> loop(mesh.face(f), mesh.face(f) + mesh.faceSize(f));
+    for (Index& v : loop) v += offset;
+    both.addFace(loop);
+  }
+  return both;
+}
+
+// A row's model (converted for Fig. 14; Fig. 1's eigenvector net of its first panel); throws
+// InputError on a bad file.
 PolyMesh rowModel(const Row& row) {
+  if (row.eigenValence > 0) return eigenNet(row.eigenValence, row.panels.front().eigenvector, row.panels.front().c2psSteps);
   const std::string path = assetPath(row.model);
   PolyMesh mesh = loadObj(path);
   if (row.conversion == Conversion::None) return mesh;
@@ -325,18 +375,7 @@ struct FigureRequest {
   int width = kDefaultWidth, supersample = 2;
 };
 
-int parseNumber(const std::string& text, const std::string& what, int lo, int hi) {
-  size_t used = 0;
-  int value = 0;
-  try {
-    value = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size() || value < lo || value > hi)
-    throw UsageError(what + " expects an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + text + "'");
-  return value;
-}
+int parseNumber(const std::string& text, const std::string& what, int lo, int hi) { return parseIntArgument(what, text, lo, hi); }
 
 FigureRequest parseFigureArgs(const std::vector<std::string>& args) {
   FigureRequest r;

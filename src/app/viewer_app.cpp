@@ -1,7 +1,6 @@
 // ViewerApp: window, frame loop, refinement jobs, drawing and screenshots (see viewer_app.h).
 #include "app/viewer_app.h"
 
-#include <glad/gl.h>
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -72,8 +71,7 @@ void visiblePoles(const std::vector<Point>& poles, const ViewParams& view, const
         px >= view.viewport.x + view.viewport.z || py >= view.viewport.y + view.viewport.w) {
       continue;
     }
-    float depth = 1.0f;
-    glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    const float depth = readDepthAt(px, py);
     if (depth < 1.0f) {
       const glm::dvec3 surface = worldOf({px + 0.5, py + 0.5, depth}, eye, rotation, proj, viewport);
       if (glm::length(surface - eye) < glm::length(poles[i] - eye) - tolerance) continue;  // hidden
@@ -213,8 +211,7 @@ bool ViewerApp::init(std::string* error) {
       return false;
     }
   }
-  state_.glInfo = std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) + " / " +
-                  reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  state_.glInfo = currentGlVersion();
   if (options_.persistRecent) loadRecent();
   return true;
 }
@@ -1004,8 +1001,7 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
                              int framebufferHeight) {
   // Depth under the cursor (default framebuffer, right after the views were drawn).
   int x = int(pick.x * pixelScale), y = framebufferHeight - 1 - int(pick.y * pixelScale);
-  float depth = 1.0f;
-  glReadPixels(x, y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+  const float depth = readDepthAt(x, y);
   if (depth >= 1.0f) {
     if (pick.zoomNotches != 0.0f) zoomTowardsCursor(state_, rects[size_t(pick.view)], pick.view, pick.zoomNotches);
     else state_.notice = "no surface under the cursor";
@@ -1086,9 +1082,7 @@ void ViewerApp::runFrame() {
   updateEditState();
 
   // Draw the views, then the overlay and the UI over them.
-  glViewport(0, 0, fbWidth, fbHeight);
-  glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  clearFramebuffer(fbWidth, fbHeight, kBackground);
   std::vector<PoleMarker> poles;
   if (fbWidth > 0 && fbHeight > 0) {
     poles = drawViews(rects, pixelScale, fbHeight);
@@ -1098,7 +1092,7 @@ void ViewerApp::runFrame() {
                   vertexMarkers(rects));
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  glFinish();  // frame time includes the GPU work (not the swap's wait for vsync)
+  finishGpuWork();  // frame time includes the GPU work (not the swap's wait for vsync)
   state_.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
   if (!windowCapturePath_.empty()) {
     try {

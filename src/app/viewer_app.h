@@ -4,7 +4,7 @@
 //
 // Frame order (Dear ImGui's example): poll events, new frame, panels + input, requests, rebuild
 // what is dirty (finished jobs are uploaded, new jobs started), draw the views, overlay + UI, swap.
-// Editing: a drag on a control vertex (viewer_edit.h) changes the model's points; the same frame
+// Editing: a drag on a control vertex (pipeline/vertex_edit.h) changes the model's points; the same frame
 // each view recomputes its kept refinement's points and patches (refreshSurface) and uploads them.
 #pragma once
 
@@ -18,8 +18,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "app/viewer_edit.h"
-#include "app/viewer_surface.h"
+#include "pipeline/vertex_edit.h"
+#include "pipeline/surface_pipeline.h"
 #include "render/framebuffer_capture.h"
 #include "ui/input_events.h"
 #include "ui/viewer_panels.h"

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "app/command_args.h"
 #include "app/viewer_styles.h"
 #include "core/mesh/input_error.h"
 
@@ -18,11 +19,6 @@ namespace polarview {
 namespace {
 
 // [SECTION] Shared option parsing
-
-// A command-line mistake: printed with the usage, exit code 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
@@ -49,19 +45,7 @@ class ArgCursor {
   size_t i_ = 0;
 };
 
-int parseInt(const std::string& text, const std::string& option, int lo, int hi) {
-  size_t used = 0;
-  int value = 0;
-  try {
-    value = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || value < lo || value > hi) {
-    throw UsageError(option + " expects an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + text + "'");
-  }
-  return value;
-}
+int parseInt(const std::string& text, const std::string& option, int lo, int hi) { return parseIntArgument(option, text, lo, hi); }
 
 std::pair<int, int> parseSize(const std::string& text) {
   size_t x = text.find('x');

@@ -2,12 +2,10 @@
 #include "render/framebuffer_capture.h"
 
 #include <glad/gl.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "core/mesh/atomic_file.h"
 
 namespace polarview {
 
@@ -25,20 +23,6 @@ RgbaImage readFramebuffer(int x, int y, int width, int height) {
     std::copy_n(glOrder.data() + size_t(height - 1 - row) * rowBytes, rowBytes,
                 image.pixels.data() + size_t(row) * rowBytes);
   return image;
-}
-
-void writePngAtomic(const std::string& path, const RgbaImage& image) {
-  if (image.width <= 0 || image.height <= 0 ||
-      image.pixels.size() != size_t(image.width) * image.height * 4)
-    throw std::runtime_error("writePngAtomic: empty or inconsistent image for " + path);
-  // Encode in memory, then one atomic write: no temporary of our own to name or clean up.
-  std::string png;
-  auto append = [](void* context, void* data, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
-  };
-  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.pixels.data(), image.width * 4))
-    throw std::runtime_error(path + ": cannot encode the PNG");
-  writeFileAtomically(path, png);
 }
 
 // [SECTION] OffscreenTarget

@@ -1,4 +1,4 @@
-// Framebuffer capture: read pixels back, write PNGs atomically, and an offscreen render target
+// Framebuffer capture: read pixels back (into pipeline/image.h's RgbaImage), and an offscreen render target
 // (FBO with optional supersampling and a transparent background) for screenshots and tests.
 #pragma once
 
@@ -6,23 +6,13 @@
 #include <string>
 #include <vector>
 
-namespace polarview {
+#include "pipeline/image.h"
 
-// Tightly packed RGBA8 pixels, rows top to bottom (image order, already flipped from GL).
-struct RgbaImage {
-  int width = 0, height = 0;
-  std::vector<uint8_t> pixels;  // width * height * 4
-  const uint8_t* at(int x, int y) const { return pixels.data() + 4 * (size_t(y) * width + x); }
-};
+namespace polarview {
 
 // Reads (x, y, width, height) of the currently bound read framebuffer (bottom-left origin, as GL)
 // into an image with rows top to bottom. Needs a current GL context.
 RgbaImage readFramebuffer(int x, int y, int width, int height);
-
-// Encodes a PNG in memory (stb_image_write) and writes it atomically (core/mesh/atomic_file.h):
-// readers never see a half-written file and no temporary is left. Throws std::runtime_error (an
-// InputError for file errors) naming the path.
-void writePngAtomic(const std::string& path, const RgbaImage& image);
 
 // The largest side of an offscreen target this GL allows (GL_MAX_RENDERBUFFER_SIZE and the viewport
 // limit). Needs a current GL context.

@@ -4,6 +4,7 @@
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
+#include <cstdio>
 #include <string>
 
 namespace polarview {
@@ -30,10 +31,51 @@ bool ensureGlfw(std::string* error) {
 
 }  // namespace
 
+std::string currentGlVersion() {
+  const GLubyte* version = glGetString(GL_VERSION);
+  const GLubyte* renderer = glGetString(GL_RENDERER);
+  return std::string(version ? reinterpret_cast<const char*>(version) : "?") + " / " +
+         (renderer ? reinterpret_cast<const char*>(renderer) : "?");
+}
+
+float readDepthAt(int x, int y) {
+  float depth = 1.0f;
+  glReadPixels(x, y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+  return depth;
+}
+
+void clearFramebuffer(int width, int height, const float rgb[3]) {
+  glViewport(0, 0, width, height);
+  glClearColor(rgb[0], rgb[1], rgb[2], 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void finishGpuWork() { glFinish(); }
+
+#ifndef NDEBUG
+namespace {
+// Debug builds: GL errors and undefined behaviour are reported where they happen, one line each
+// (KHR_debug; 4.3 core, and Mesa offers it on 4.1 too).
+void APIENTRY reportGlMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                              const GLchar* message, const void* user) {
+  (void)source, (void)id, (void)length, (void)user;
+  if (type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR || severity == GL_DEBUG_SEVERITY_HIGH)
+    std::fprintf(stderr, "polarview: GL: %s\n", message);
+}
+}  // namespace
+#endif
+
 bool loadGlFunctions() {
   const int version = gladLoadGL(glfwGetProcAddress);
-  return version != 0 && (GLAD_VERSION_MAJOR(version) > 4 ||
-                          (GLAD_VERSION_MAJOR(version) == 4 && GLAD_VERSION_MINOR(version) >= 1));
+  const bool enough = version != 0 && (GLAD_VERSION_MAJOR(version) > 4 ||
+                                       (GLAD_VERSION_MAJOR(version) == 4 && GLAD_VERSION_MINOR(version) >= 1));
+#ifndef NDEBUG
+  if (enough && glDebugMessageCallback) {
+    glEnable(GL_DEBUG_OUTPUT);
+    glDebugMessageCallback(reportGlMessage, nullptr);
+  }
+#endif
+  return enough;
 }
 
 std::unique_ptr<HiddenGlContext> HiddenGlContext::create(int width, int height,

@@ -33,4 +33,14 @@ class HiddenGlContext {
 // after glfwMakeContextCurrent in the app). False when the context lacks GL 4.1.
 bool loadGlFunctions();
 
+// The framebuffer operations the app needs besides the renderers' draws (render is the only code
+// that calls GL): the current context's GL_VERSION / GL_RENDERER, ...
+std::string currentGlVersion();
+// ... the default framebuffer's depth at pixel (x, y) (1: nothing drawn there), ...
+float readDepthAt(int x, int y);
+// ... the whole framebuffer cleared to `rgb` with the depth at 1, the viewport set to it, ...
+void clearFramebuffer(int width, int height, const float rgb[3]);
+// ... and waiting for the GPU (frame times then include its work).
+void finishGpuWork();
+
 }  // namespace polarview

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/screen_rect.h"
 #include "ui/viewer_state.h"
 
 struct ImDrawList;
@@ -15,10 +16,6 @@ struct ImFont;
 namespace polarview {
 
 // A rectangle in window coordinates (top-left origin, y down), as ImGui uses.
-struct ScreenRect {
-  float x = 0, y = 0, w = 0, h = 0;
-  bool contains(float px, float py) const { return px >= x && px < x + w && py >= y && py < y + h; }
-};
 
 // One hotkey or mouse gesture and what it does; the help window lists them all.
 struct HotkeyHelp {
@@ -51,8 +48,6 @@ struct PoleMarker {
   float x = 0, y = 0;
 };
 
-// How close (window pixels) a click must come to a control vertex's projection to pick it.
-constexpr float kPickRadiusPixels = 8.0f;
 
 // A control vertex marked in the overlay: the selected one (filled) or the one a click would pick
 // (a ring), in the overlay's coordinates.

@@ -9,33 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "core/subdiv/scheme.h"
-#include "render/patch_renderer.h"
-#include "ui/orbit_camera.h"
+#include "pipeline/scheme_choice.h"
+#include "pipeline/shading.h"
+#include "pipeline/orbit_camera.h"
 
 namespace polarview {
 
-// The six schemes a view can show (C2PS and RTS twice: with and without the uniform first step of
-// the paper's Section 6, which its Fig. 11 uses).
-enum class SchemeChoice : uint8_t { CatmullClark, C2PS, C2PSUniformFirstStep, RTS, RTSUniformFirstStep, BPS };
-constexpr int kSchemeChoiceCount = 6;
 constexpr int kMaxViews = 4;
-// Hard cap of the level (keys 0-9 and the slider stop earlier where the model's face budget says
-// so: ViewStatus::deepestLevel).
-constexpr int kMaxLevel = 24;
-constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
-
-// On-screen name: "CC", "C2PS", "C2PS-U", "RTS", "RTS-U", "BPS".
-const char* schemeChoiceLabel(SchemeChoice scheme);
-// Command-line name: "cc", "c2ps", "c2ps-u", "rts", "rts-u", "bps".
-const char* schemeChoiceCliName(SchemeChoice scheme);
-// Accepts the command-line names (case-insensitive; also "c2ps-uniform", "rts-uniform", "catmull-clark").
-std::optional<SchemeChoice> parseSchemeChoice(const std::string& name);
-// Refinement options of a scheme choice at `level`.
-RefineOptions refineOptionsFor(SchemeChoice scheme, int level);
-// Name of a shading mode for labels ("shaded", "gaussian", "mean", "highlight", "reflection").
-const char* shadeModeName(ShadingParams::Mode mode);
-std::optional<ShadingParams::Mode> parseShadeMode(const std::string& name);
 
 // What one view shows.
 struct ViewSettings {
@@ -44,8 +24,7 @@ struct ViewSettings {
   OrbitCamera camera;  // used when the cameras are not linked
   // Per-view styles of `render --shade a,b` and `figure` (the viewer leaves them unset): this view's
   // shading mode and what it draws instead of ViewerState::shading.mode / display, and a caption in
-  // place of its title ("(c) C2PS · 4"). The app draws every view in one style; renderStyledImage
-  // (app/viewer_styles.h) renders one image per style and takes each view from its own.
+  // place of its title ("(c) C2PS · 4"). The app draws each view in its own style.
   std::optional<ShadingParams::Mode> shade;
   std::optional<DisplayFlags> display;
   std::string caption;
@@ -68,7 +47,7 @@ struct ViewStatus {
   double uploadMs = 0.0;           // then packing + upload on the GL thread,
   int keptPatches = 0;             //   where this many patches stayed on the GPU (a level step)
   int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
-                                   //   RTS/BPS close them deeper, app/viewer_surface.h kNonC2CapLevel)
+                                   //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
   int polesByScheme = 0;           // polar configurations the shown scheme refines
   int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
   std::string fallbackReason;      // why (empty when none)

@@ -2,12 +2,11 @@
 // callback, background loading that keeps the window drawing, the automatic colour range's
 // percentiles, and pole rings that outline the pole without covering its colour.
 //
-#include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
 #include "app_test_support.h"
 #include "app/viewer_app.h"
-#include "app/viewer_surface.h"
+#include "pipeline/surface_pipeline.h"
 #include "ui/viewer_panels.h"
 #include "core/mesh/shapes.h"
 
@@ -47,21 +46,6 @@ int writeSaddleObj(const fs::path& path, int n, int links) {
   return n * links;
 }
 
-// Weighted share of values above `bound`, below `-bound`, at or above it, at or below `-bound`.
-struct TailWeights {
-  double above = 0, below = 0, atOrAbove = 0, atOrBelow = 0, total = 0;
-};
-TailWeights tails(const std::vector<float>& values, const std::vector<float>& weights, float bound) {
-  TailWeights t;
-  for (size_t i = 0; i < values.size(); ++i) {
-    t.total += weights[i];
-    if (values[i] > bound) t.above += weights[i];
-    if (values[i] < -bound) t.below += weights[i];
-    if (values[i] >= bound) t.atOrAbove += weights[i];
-    if (values[i] <= -bound) t.atOrBelow += weights[i];
-  }
-  return t;
-}
 
 }  // namespace
 
@@ -221,44 +205,6 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
   fs::remove(small);
 }
 
-TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the weight and the range is the smallest such") {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (int trial = 0; trial < 400; ++trial) {
-    const size_t n = 1 + rng() % 300;
-    const float shift = 4.0f * u(rng) - 2.0f, scale = std::exp(6.0f * u(rng) - 3.0f);
-    std::vector<float> values(n), weights(n);
-    for (size_t i = 0; i < n; ++i) {
-      values[i] = scale * (shift + std::tan(3.0f * (u(rng) - 0.5f)));  // heavy tails on both sides
-      weights[i] = float(1 + rng() % 8);  // small integers: exact sums
-    }
-    const float quantile = 0.5f + 0.5f * u(rng);
-    const float range = weightedSymmetricRange(values, weights, quantile);
-    CAPTURE(trial);
-    REQUIRE(range > 0.0f);
-    TailWeights t = tails(values, weights, range);
-    const double allowed = (1.0 - quantile) * t.total;
-    CHECK(t.above <= allowed + 1e-9 * t.total);
-    CHECK(t.below <= allowed + 1e-9 * t.total);
-    // Smallest: at the range itself one tail reaches its share (unless all values are 0).
-    CHECK((t.atOrAbove >= allowed - 1e-9 * t.total || t.atOrBelow >= allowed - 1e-9 * t.total));
-  }
-}
-
-TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, values beyond in the end bins") {
-  // below 2, above 1: -1 -> t = -0.5 (bin 1 of 4), 0.5 -> t = 0.5 (bin 3), 3 -> saturates into bin 3.
-  const std::vector<float> values{-1.0f, 0.5f, 3.0f, -8.0f}, weights{1.0f, 2.0f, 1.0f, 0.5f};
-  const std::vector<float> bins = weightedHistogram(values, weights, 2.0f, 1.0f, 4);
-  REQUIRE(bins.size() == 4);
-  CHECK(bins[0] == doctest::Approx(0.5f / 3.0f));  // -8 saturates into the first bin
-  CHECK(bins[1] == doctest::Approx(1.0f / 3.0f));
-  CHECK(bins[2] == 0.0f);
-  CHECK(bins[3] == doctest::Approx(1.0f));
-  CHECK(weightedPercentile(values, weights, 0.5f) == 0.5f);  // running weight 0.5, 1.5, 3.5 of 4.5
-  CHECK(weightedPercentile(values, weights, 0.0f) == -8.0f);
-  CHECK(weightedPercentile(values, weights, 1.0f) == 3.0f);
-}
-
 TEST_CASE("asymmetric colour range: each side from its own percentile, switching automatic off keeps both") {
   auto app = makeHiddenApp(480, 320);
   app->loadDefaultModel();
@@ -278,44 +224,6 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
   setAutomaticRange(state, false);
   CHECK(state.colourRangeBelow() == below);
   CHECK(state.colourRange() == above);
-}
-
-TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {
-  // 94% of the area curved like a cap (K in 0.5..1), 6% at a valence-3 corner (K = 100).
-  std::vector<float> values, weights;
-  for (int i = 0; i < 94; ++i) {
-    values.push_back(0.5f + 0.5f * float(i) / 93.0f);
-    weights.push_back(1.0f);
-  }
-  for (int i = 0; i < 6; ++i) {
-    values.push_back(100.0f);
-    weights.push_back(1.0f);
-  }
-  CHECK(weightedSymmetricRange(values, weights, 0.90f) <= 1.0f);
-  CHECK(weightedSymmetricRange(values, weights, 0.95f) == 100.0f);
-  // All zero (a plane) or no weight: 1, never 0.
-  CHECK(weightedSymmetricRange({0.0f, 0.0f}, {1.0f, 2.0f}, 0.9f) == 1.0f);
-  CHECK(weightedSymmetricRange({}, {}, 0.9f) == 1.0f);
-}
-
-TEST_CASE("curvature samples for the range come from every patch except the end caps at extraordinary vertices") {
-  Model model{std::make_shared<const PolyMesh>(shapes::mushroom(12)), "mushroom", 1};
-  for (SchemeChoice scheme : {SchemeChoice::C2PS, SchemeChoice::CatmullClark}) {
-    for (int level = 1; level <= 3; ++level) {
-      auto surface = buildSurface(model, SurfaceKey{1, scheme, level}, kDefaultFaceBudget);
-      const int endCaps = surface->patchesPerKind[size_t(PatchKind::EndCap)];
-      const size_t counted = surface->patches.size() - size_t(endCaps);
-      CAPTURE(level);
-      REQUIRE(endCaps > 0);
-      REQUIRE(counted > 0);
-      const size_t samples = surface->samples->gaussian.size();
-      CHECK(samples % counted == 0);
-      const size_t perPatch = samples / counted;
-      const size_t side = size_t(std::lround(std::sqrt(double(perPatch))));
-      CHECK(side * side == perPatch);
-      CHECK(surface->samples->areas.size() == samples);
-    }
-  }
 }
 
 TEST_CASE("pole rings: drawn around a visible pole without covering its colour, not drawn when the surface hides it") {

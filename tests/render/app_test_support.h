@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/viewer_app.h"
-#include "app/viewer_surface.h"
+#include "pipeline/surface_pipeline.h"
 
 namespace polarview {
 

@@ -17,7 +17,7 @@
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/adaptive_refiner.h"
 #include "render_test_support.h"
-#include "ui/orbit_camera.h"
+#include "pipeline/orbit_camera.h"
 
 namespace polarview {
 namespace {

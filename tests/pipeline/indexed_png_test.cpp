@@ -10,7 +10,7 @@
 #include <iterator>
 #include <string>
 
-#include "render/indexed_png.h"
+#include "pipeline/indexed_png.h"
 
 namespace polarview {
 namespace {

@@ -19,7 +19,7 @@
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
 #include "core/spline/patch_extraction.h"
-#include "ui/viewer_state.h"
+#include "pipeline/scheme_choice.h"
 
 namespace polarview {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "render/framebuffer_capture.h"
+#include "pipeline/image.h"
 
 namespace polarview {
 

@@ -1,4 +1,4 @@
-#include "render/indexed_png.h"
+#include "pipeline/indexed_png.h"
 
 #include <stb_image_write.h>
 

@@ -1,4 +1,4 @@
-#include "ui/orbit_camera.h"
+#include "pipeline/orbit_camera.h"
 
 #include <algorithm>
 #include <cctype>

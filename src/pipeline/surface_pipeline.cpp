@@ -1,4 +1,4 @@
-#include "app/viewer_surface.h"
+#include "pipeline/surface_pipeline.h"
 
 #include <algorithm>
 #include <atomic>
@@ -312,8 +312,8 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   if (surface.key.model != model.generation || !surface.hierarchy)
     throw std::invalid_argument("refreshSurface: the surface was not built from this model's topology");
   RefreshTiming measured;
-  auto refreshed = std::make_shared<BuiltSurface>();
-  refreshed->key = surface.key;
+  // Everything of the topology stays (counts, fallbacks, level, hierarchy, sources, timings).
+  auto refreshed = std::make_shared<BuiltSurface>(surface);
   refreshed->key.points = model.points;
 
   // Positions of every level from the new base points; the levels' meshes and tables stay. The
@@ -336,26 +336,13 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   // The patches and pole markers of the moved points; counts and fallbacks are the topology's.
   start = std::chrono::steady_clock::now();
   PatchSet patchSet;
-  patchSet.patches = surface.patches;
+  patchSet.patches = std::move(refreshed->patches);  // the copy made above, refreshed in place
   refreshPatches(refinement, *surface.sources, patchSet);
   refreshed->patches = std::move(patchSet.patches);
   refreshed->poles = polePositions(refreshed->patches, refinement.level(surface.patchLevel));
   measured.patchesMs = millisecondsSince(start);
   refreshed->controlMesh = *model.mesh;
-  refreshed->patchesPerKind = surface.patchesPerKind;
-  refreshed->polesByScheme = surface.polesByScheme;
-  refreshed->polesByCatmullClark = surface.polesByCatmullClark;
-  refreshed->fallbackReason = surface.fallbackReason;
-  refreshed->patchLevel = surface.patchLevel;
-  refreshed->refineMs = surface.refineMs;
-  refreshed->refineOnlyMs = surface.refineOnlyMs;
-  refreshed->patchesMs = surface.patchesMs;
-  refreshed->samplesMs = surface.samplesMs;
-  refreshed->refinement = surface.refinement;
-  refreshed->sources = surface.sources;
-  refreshed->hierarchy = surface.hierarchy;
   refreshed->stamp = hierarchy.stamp;  // new points: nothing on the GPU is theirs
-  refreshed->regularCount = surface.regularCount;
 
   start = std::chrono::steady_clock::now();
   refreshed->samples = resample ? sampleCurvatures(refreshed->patches, curvatureSamplesPerPatch(refreshed->patches.size()),

@@ -10,9 +10,8 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec4.hpp>
 
-#include "ui/orbit_camera.h"
+#include "pipeline/orbit_camera.h"
 #include "ui/viewer_panels.h"
-#include "app_test_support.h"
 
 using namespace polarview;
 
@@ -283,37 +282,3 @@ TEST_CASE("view layout: views stay side by side in a wide frame and form a 2 x 2
   CHECK(grid[2].x == grid[0].x);
 }
 
-TEST_CASE("viewer app: a pivot picked at a deep pole, seen from 1e-6 of the model, lands on the surface point there") {
-  auto app = makeHiddenApp(480, 360);
-  app->loadDefaultModel();
-  ViewerState& state = app->state();
-  state.viewCount = 1;
-  state.showPanels = false;
-  state.views[0].scheme = SchemeChoice::RTS;
-  state.views[0].level = 20;
-  app->waitUntilIdle();
-  for (int frame = 0; frame < 3; ++frame) app->runFrame();  // the first frames frame the model
-  glm::dvec3 pole(0.0);
-  for (const Patch& patch : app->shownSurface(0)->patches)
-    if (patch.kind == PatchKind::PoleCap) pole = patch.cp[0];
-  OrbitCamera& camera = state.camera(0);
-  camera.target = pole;
-  camera.distance = 1e-6;
-  camera.pitchDeg = 89.0;
-  app->runFrame();
-  app->runFrame();
-  const ViewTransform view = app->viewTransform(0);
-  const auto at = view.project(pole);
-  REQUIRE(at);
-  // A point of the surface a few pixels beside the pole: on the surface, so its height over the
-  // pole's tangent plane (normal +z at this pole) is second order in its distance (~1e-7 here).
-  app->requestPivot(PivotPick{0, float(at->x) + 20.0f, float(at->y), 0.0f});
-  app->runFrame();
-  const glm::dvec3 picked = state.camera(0).target;
-  const double across = glm::length(glm::dvec2(picked - pole));
-  CHECK(across > 1e-8);   // it moved to the picked point ...
-  CHECK(across < 1e-6);   // ... which is near the pole, within the view
-  // Float unprojection put it ~1e-7 off in depth (float steps near 1.6 are 1.2e-7), 40x the
-  // surface's actual rise there (K ~ 0.5: ~(1e-7)^2); the depth buffer resolves ~1e-9 at this range.
-  CHECK(std::abs(picked.z - pole.z) < 2e-8);
-}

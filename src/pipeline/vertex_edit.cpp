@@ -1,5 +1,5 @@
-// Control-vertex picking, dragging and the edit history (see viewer_edit.h).
-#include "app/viewer_edit.h"
+// Control-vertex picking, dragging and the edit history (see vertex_edit.h).
+#include "pipeline/vertex_edit.h"
 
 #include <algorithm>
 #include <cmath>

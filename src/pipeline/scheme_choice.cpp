@@ -1,4 +1,5 @@
-#include "ui/viewer_state.h"
+// Names of the scheme choices and shading modes (see scheme_choice.h).
+#include "pipeline/scheme_choice.h"
 
 #include <algorithm>
 #include <array>

@@ -1,0 +1,35 @@
+// The schemes a view can show, named as the panels and the command line name them, and the
+// shading modes' names: plain data shared by the surface pipeline, the panels and the commands.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/subdiv/scheme.h"
+#include "pipeline/shading.h"
+
+namespace polarview {
+
+// The six schemes a view can show (C2PS and RTS twice: with and without the uniform first step of
+// the paper's Section 6, which its Fig. 11 uses).
+enum class SchemeChoice : uint8_t { CatmullClark, C2PS, C2PSUniformFirstStep, RTS, RTSUniformFirstStep, BPS };
+constexpr int kSchemeChoiceCount = 6;
+// Hard cap of the level (keys 0-9 and the slider stop earlier where the model's face budget says
+// so: ViewStatus::deepestLevel).
+constexpr int kMaxLevel = 24;
+constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
+
+// On-screen name: "CC", "C2PS", "C2PS-U", "RTS", "RTS-U", "BPS".
+const char* schemeChoiceLabel(SchemeChoice scheme);
+// Command-line name: "cc", "c2ps", "c2ps-u", "rts", "rts-u", "bps".
+const char* schemeChoiceCliName(SchemeChoice scheme);
+// Accepts the command-line names (case-insensitive; also "c2ps-uniform", "rts-uniform", "catmull-clark").
+std::optional<SchemeChoice> parseSchemeChoice(const std::string& name);
+// Refinement options of a scheme choice at `level`.
+RefineOptions refineOptionsFor(SchemeChoice scheme, int level);
+// Name of a shading mode for labels ("shaded", "gaussian", "mean", "highlight", "reflection").
+const char* shadeModeName(ShadingParams::Mode mode);
+std::optional<ShadingParams::Mode> parseShadeMode(const std::string& name);
+
+}  // namespace polarview

@@ -1,0 +1,78 @@
+// The colours shared with the shaders, on the CPU (see shading.h).
+#include "pipeline/shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+
+namespace polarview {
+namespace {
+
+// Colour-map stops shared by colorMapCpu (mirror of shaders/common/colormap.glsl).
+glm::vec3 fiveStops(float t, const glm::vec3 (&c)[5]) {
+  const float x = std::clamp(t, 0.0f, 1.0f) * 4.0f;
+  const int k = std::min(static_cast<int>(x), 3);
+  return glm::mix(c[k], c[k + 1], x - static_cast<float>(k));
+}
+
+}  // namespace
+
+glm::vec3 patchKindColor(PatchKind kind) {
+  switch (kind) {
+    case PatchKind::Regular: return {0.15f, 0.15f, 0.15f};
+    case PatchKind::Boundary: return {0.45f, 0.30f, 0.10f};
+    case PatchKind::PolarRing: return {0.10f, 0.35f, 0.85f};
+    case PatchKind::PoleCap: return {0.85f, 0.10f, 0.10f};
+    case PatchKind::EndCap: return {0.70f, 0.10f, 0.75f};
+  }
+  return {0.5f, 0.5f, 0.5f};
+}
+
+glm::vec3 ringColor(int ring) {
+  // A qualitative palette (Tableau 10 subset), cycling.
+  static const glm::vec3 palette[8] = {{0.12f, 0.47f, 0.71f}, {1.00f, 0.50f, 0.05f},
+                                       {0.17f, 0.63f, 0.17f}, {0.84f, 0.15f, 0.16f},
+                                       {0.58f, 0.40f, 0.74f}, {0.55f, 0.34f, 0.29f},
+                                       {0.89f, 0.47f, 0.76f}, {0.09f, 0.75f, 0.81f}};
+  if (ring < 0) return {0.35f, 0.35f, 0.35f};
+  return palette[ring % 8];
+}
+
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow) {
+  const float side = value >= 0.0f || !(rangeBelow > 0.0f) ? range : rangeBelow;
+  const float t = std::clamp(value / std::max(side, 1e-30f), -1.0f, 1.0f);
+  switch (map) {
+    case ShadingParams::ColorMap::CoolWarm: {
+      static const glm::vec3 stops[5] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f},
+                                         {0.865f, 0.865f, 0.865f}, {0.958f, 0.603f, 0.482f},
+                                         {0.706f, 0.016f, 0.150f}};
+      return fiveStops(0.5f * (t + 1.0f), stops);
+    }
+    case ShadingParams::ColorMap::Viridis: {
+      static const glm::vec3 stops[5] = {{0.267f, 0.005f, 0.329f}, {0.229f, 0.322f, 0.546f},
+                                         {0.128f, 0.567f, 0.551f}, {0.369f, 0.789f, 0.383f},
+                                         {0.993f, 0.906f, 0.144f}};
+      return fiveStops(0.5f * (t + 1.0f), stops);
+    }
+    case ShadingParams::ColorMap::Magnitude: {
+      static const glm::vec3 stops[5] = {{0.0f, 0.0f, 0.45f}, {0.0f, 0.3f, 1.0f}, {0.0f, 0.9f, 0.9f},
+                                         {1.0f, 0.9f, 0.0f}, {0.85f, 0.0f, 0.0f}};
+      return fiveStops(std::abs(t), stops);
+    }
+    case ShadingParams::ColorMap::Paper:
+    default: {
+      // Hue 240 (blue) at -range, 120 (green) on |t| <= kPaperGreenBand, 0 (red) at +range.
+      constexpr float kPaperGreenBand = 0.1f;
+      const float s = std::copysign(std::max(std::abs(t) - kPaperGreenBand, 0.0f), t) / (1.0f - kPaperGreenBand);
+      const float hue = (1.0f - s) * 2.0f;
+      glm::vec3 rgb;
+      const float offsets[3] = {0.0f, 4.0f, 2.0f};
+      for (int c = 0; c < 3; ++c)
+        rgb[c] = std::clamp(std::abs(std::fmod(hue + offsets[c], 6.0f) - 3.0f) - 1.0f, 0.0f, 1.0f);
+      return 0.95f * rgb;
+    }
+  }
+}
+
+}  // namespace polarview

@@ -1,0 +1,76 @@
+// What a view draws and how, as plain data (no GL): shading mode and colour map, display flags,
+// the camera of one draw, and the colours the shaders use, mirrored on the CPU for legends, tests
+// and images. PatchRenderer (render/) takes these; the panels (ui/) edit them.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/spline/patch.h"
+
+namespace polarview {
+
+// How the surface is coloured.
+struct ShadingParams {
+  enum class Mode { Shaded, Gaussian, Mean, Highlight, Reflection };
+  enum class ColorMap { Paper, CoolWarm, Viridis, Magnitude };  // Magnitude: Figs 11-12, dark blue at 0
+  Mode mode = Mode::Shaded;
+  ColorMap colormap = ColorMap::Paper;
+  float range = 1.0f;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
+  // > 0: the negative side's range instead, [-rangeBelow, range] with zero still the map's middle
+  // (two slopes, as matplotlib's TwoSlopeNorm), so zero curvature keeps its colour.
+  float rangeBelow = 0.0f;
+  float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
+  // Highlight lines (Beier & Chen 1994, SCHEMES.md section 7): parallel light lines with direction
+  // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
+  // direction) placed 2 bounding radii from the model centre. Spacing is in units of the model's
+  // bounding radius; width is the fraction of one spacing that is dark (0..1).
+  // Reflection lines (zebra) use the same direction and width, and reflectionSpacing: the stripe
+  // period as a fraction of a full turn of the reflected ray (1/24: a stripe pair every 15 degrees,
+  // about a dozen stripes across a dome at the default view; 1/4 showed only ~3).
+  glm::vec3 highlightDir{1.0f, 0.0f, 0.0f};
+  glm::vec3 highlightPlaneNormal{0.0f, 0.0f, 1.0f};
+  float highlightSpacing = 0.25f;
+  float reflectionSpacing = 1.0f / 24.0f;
+  float highlightWidth = 0.3f;
+  // Key light of the lit and curvature modes, in view space (x right, y up, z towards the eye):
+  // upper left, in front. Ctrl+left drag turns it.
+  glm::vec3 keyLightView{-0.35f, 0.55f, 0.76f};
+  float tessPixels = 12.0f;   // target screen length of a tessellated edge, in pixels
+  int maxTessLevel = 64;      // clamp of the adaptive level (llvmpipe gets ~5x slower from 15 up)
+  int fixedTessLevel = 0;     // > 0: this level on every edge instead of the adaptive one
+  glm::vec3 surfaceColor{0.78f, 0.80f, 0.84f};  // base colour of Shaded mode
+};
+
+// What is drawn.
+struct DisplayFlags {
+  enum class BoundaryColor { Kind, Ring };
+  bool surface = true;
+  bool controlNet = false;
+  bool patchBoundaries = false;
+  bool poleMarkers = true;
+  bool wireframe = false;  // tessellation triangles over (or, with surface off, instead of) it
+  BoundaryColor boundaryColor = BoundaryColor::Kind;
+};
+
+// Camera for one draw. view/proj map world coordinates (the Patch coordinates) to clip space;
+// viewport is (x, y, width, height) in framebuffer pixels, bottom-left origin as glViewport.
+// The renderer draws relative to the eye (see "Precision" in patch_renderer.cpp): it takes the
+// rotation from `view` and the translation from `eye`, which must therefore be the eye of `view`,
+// given in double (a float eye would move the camera by its rounding, ~6e-8 of its coordinates).
+struct ViewParams {
+  glm::mat4 view{1.0f}, proj{1.0f};
+  glm::ivec4 viewport{0, 0, 1, 1};
+  glm::dvec3 eye{0.0, 0.0, 1.0};  // camera position in world coordinates
+};
+
+// Colours used for DisplayFlags::BoundaryColor::Kind (index = PatchKind), also for a UI legend.
+glm::vec3 patchKindColor(PatchKind kind);
+// Colour for a ring index (cycles through a qualitative palette; -1 = grey).
+glm::vec3 ringColor(int ring);
+// The curvature colour map on the CPU, identical to shaders/common/colormap.glsl: value in
+// [-range, range] -> RGB in [0,1]. For legends and tests.
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow = 0.0f);
+
+}  // namespace polarview

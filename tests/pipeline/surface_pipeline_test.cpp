@@ -1,0 +1,174 @@
+// The GL-free surface pipeline (pipeline/surface_pipeline.h): what a view shows, built, stepped
+// between levels, refreshed after edits, and the statistics behind the colour range. No display.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "core/mesh/obj_io.h"
+#include "core/mesh/shapes.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
+#include "pipeline/surface_pipeline.h"
+
+namespace polarview {
+namespace {
+
+// The viewer's default model (assets/default.obj) as a Model of generation 1.
+Model defaultModel() {
+  const std::string path = std::string(POLARVIEW_ASSET_DIR) + "/default.obj";
+  return Model{std::make_shared<const PolyMesh>(loadObj(path)), path, 1};
+}
+
+// Weighted share of values above `bound`, below `-bound`, at or above it, at or below `-bound`.
+struct TailWeights {
+  double above = 0, below = 0, atOrAbove = 0, atOrBelow = 0, total = 0;
+};
+
+TailWeights tails(const std::vector<float>& values, const std::vector<float>& weights, float bound) {
+  TailWeights t;
+  for (size_t i = 0; i < values.size(); ++i) {
+    t.total += weights[i];
+    if (values[i] > bound) t.above += weights[i];
+    if (values[i] < -bound) t.below += weights[i];
+    if (values[i] >= bound) t.atOrAbove += weights[i];
+    if (values[i] <= -bound) t.atOrBelow += weights[i];
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the weight and the range is the smallest such") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int trial = 0; trial < 400; ++trial) {
+    const size_t n = 1 + rng() % 300;
+    const float shift = 4.0f * u(rng) - 2.0f, scale = std::exp(6.0f * u(rng) - 3.0f);
+    std::vector<float> values(n), weights(n);
+    for (size_t i = 0; i < n; ++i) {
+      values[i] = scale * (shift + std::tan(3.0f * (u(rng) - 0.5f)));  // heavy tails on both sides
+      weights[i] = float(1 + rng() % 8);  // small integers: exact sums
+    }
+    const float quantile = 0.5f + 0.5f * u(rng);
+    const float range = weightedSymmetricRange(values, weights, quantile);
+    CAPTURE(trial);
+    REQUIRE(range > 0.0f);
+    TailWeights t = tails(values, weights, range);
+    const double allowed = (1.0 - quantile) * t.total;
+    CHECK(t.above <= allowed + 1e-9 * t.total);
+    CHECK(t.below <= allowed + 1e-9 * t.total);
+    // Smallest: at the range itself one tail reaches its share (unless all values are 0).
+    CHECK((t.atOrAbove >= allowed - 1e-9 * t.total || t.atOrBelow >= allowed - 1e-9 * t.total));
+  }
+}
+
+TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, values beyond in the end bins") {
+  // below 2, above 1: -1 -> t = -0.5 (bin 1 of 4), 0.5 -> t = 0.5 (bin 3), 3 -> saturates into bin 3.
+  const std::vector<float> values{-1.0f, 0.5f, 3.0f, -8.0f}, weights{1.0f, 2.0f, 1.0f, 0.5f};
+  const std::vector<float> bins = weightedHistogram(values, weights, 2.0f, 1.0f, 4);
+  REQUIRE(bins.size() == 4);
+  CHECK(bins[0] == doctest::Approx(0.5f / 3.0f));  // -8 saturates into the first bin
+  CHECK(bins[1] == doctest::Approx(1.0f / 3.0f));
+  CHECK(bins[2] == 0.0f);
+  CHECK(bins[3] == doctest::Approx(1.0f));
+  CHECK(weightedPercentile(values, weights, 0.5f) == 0.5f);  // running weight 0.5, 1.5, 3.5 of 4.5
+  CHECK(weightedPercentile(values, weights, 0.0f) == -8.0f);
+  CHECK(weightedPercentile(values, weights, 1.0f) == 3.0f);
+}
+
+TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {
+  // 94% of the area curved like a cap (K in 0.5..1), 6% at a valence-3 corner (K = 100).
+  std::vector<float> values, weights;
+  for (int i = 0; i < 94; ++i) {
+    values.push_back(0.5f + 0.5f * float(i) / 93.0f);
+    weights.push_back(1.0f);
+  }
+  for (int i = 0; i < 6; ++i) {
+    values.push_back(100.0f);
+    weights.push_back(1.0f);
+  }
+  CHECK(weightedSymmetricRange(values, weights, 0.90f) <= 1.0f);
+  CHECK(weightedSymmetricRange(values, weights, 0.95f) == 100.0f);
+  // All zero (a plane) or no weight: 1, never 0.
+  CHECK(weightedSymmetricRange({0.0f, 0.0f}, {1.0f, 2.0f}, 0.9f) == 1.0f);
+  CHECK(weightedSymmetricRange({}, {}, 0.9f) == 1.0f);
+}
+
+TEST_CASE("curvature samples for the range come from every patch except the end caps at extraordinary vertices") {
+  Model model{std::make_shared<const PolyMesh>(shapes::mushroom(12)), "mushroom", 1};
+  for (SchemeChoice scheme : {SchemeChoice::C2PS, SchemeChoice::CatmullClark}) {
+    for (int level = 1; level <= 3; ++level) {
+      auto surface = buildSurface(model, SurfaceKey{1, scheme, level}, kDefaultFaceBudget);
+      const int endCaps = surface->patchesPerKind[size_t(PatchKind::EndCap)];
+      const size_t counted = surface->patches.size() - size_t(endCaps);
+      CAPTURE(level);
+      REQUIRE(endCaps > 0);
+      REQUIRE(counted > 0);
+      const size_t samples = surface->samples->gaussian.size();
+      CHECK(samples % counted == 0);
+      const size_t perPatch = samples / counted;
+      const size_t side = size_t(std::lround(std::sqrt(double(perPatch))));
+      CHECK(side * side == perPatch);
+      CHECK(surface->samples->areas.size() == samples);
+    }
+  }
+}
+
+TEST_CASE("viewer surface: an edit drops the levels made ahead, then refreshes the shown one as a fresh build") {
+  Model model = defaultModel();
+  const SurfaceKey key{model.generation, SchemeChoice::C2PS, 2, model.points};
+  const auto surface = buildSurface(model, key, kDefaultFaceBudget);
+  prepareLevel(*surface->hierarchy, model.points, 4, kDefaultFaceBudget);
+  CHECK(surface->hierarchy->deepestMade.load() == 4);
+  prepareLevel(*surface->hierarchy, model.points + 1, 5, kDefaultFaceBudget);  // other points: nothing made
+  CHECK(surface->hierarchy->deepestMade.load() == 4);
+  auto moved = std::make_shared<PolyMesh>(*model.mesh);
+  moved->points[3] += Point(0.02, -0.01, 0.03);
+  model.mesh = moved;
+  ++model.points;
+  const auto refreshed = refreshSurface(*surface, model, false);
+  CHECK(surface->hierarchy->deepestMade.load() == 2);
+  CHECK(surface->hierarchy->refinement->levelCount() == 3);
+  const PatchSet fresh = extractPatches(AdaptiveRefinement(*moved, refineOptionsFor(SchemeChoice::C2PS, 2)));
+  REQUIRE(fresh.patches.size() == refreshed->patches.size());
+  double worst = 0.0;
+  for (size_t k = 0; k < fresh.patches.size(); ++k)
+    for (int i = 0; i < 16; ++i) worst = std::max(worst, glm::length(fresh.patches[k].cp[i] - refreshed->patches[k].cp[i]));
+  CHECK(worst < 1e-12);
+  CHECK(refreshed->stamp != surface->stamp);  // new points: nothing on the GPU is theirs
+}
+
+TEST_CASE("viewer surface: RTS and BPS close their poles below a pixel at any level, C2PS at the level asked") {
+  const Model model = defaultModel();
+  double size = 0.0;
+  for (const Point& p : model.mesh->points) size = std::max(size, glm::length(p - model.mesh->points[0]));
+  for (SchemeChoice scheme : {SchemeChoice::RTS, SchemeChoice::BPS, SchemeChoice::C2PS})
+    for (int level : {0, 2, 4}) {
+      CAPTURE(int(scheme));
+      CAPTURE(level);
+      const auto surface = buildSurface(model, SurfaceKey{model.generation, scheme, level, model.points}, kDefaultFaceBudget);
+      const bool c2 = scheme == SchemeChoice::C2PS;
+      CHECK(surface->patchLevel == (c2 ? level : kNonC2CapLevel));
+      // The caps' extent: the seam where a cap not C2 with its ring meets it (the dark ring of
+      // curvature maps) is then ~1e-5 of the model, under a pixel of any window.
+      double capExtent = 0.0;
+      int caps = 0;
+      for (const Patch& patch : surface->patches)
+        if (patch.kind == PatchKind::PoleCap) {
+          ++caps;
+          for (int k = 6; k < 10; ++k) capExtent = std::max(capExtent, glm::length(patch.cp[k] - patch.cp[0]));
+        }
+      REQUIRE(caps > 0);
+      if (!c2) CHECK(capExtent < 1e-4 * size);
+      else CHECK(capExtent > 1e-3 * size);
+    }
+}
+
+}  // namespace polarview
