@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace polarview {
 
@@ -14,5 +15,9 @@ struct UsageError : std::runtime_error {
 // `text` as an integer in [low, high]; else UsageError "OPTION expects an integer in low..high,
 // got 'text'". [O(text)]
 int parseIntArgument(const std::string& option, const std::string& text, int low, int high);
+
+// The median of timings (benchmarks report medians: the machines are shared); 0 when empty.
+// [O(n log n)]
+double median(std::vector<double> values);
 
 }  // namespace polarview

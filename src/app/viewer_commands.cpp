@@ -12,6 +12,7 @@
 
 #include "app/viewer_app.h"
 #include "app/command_args.h"
+#include "core/mesh/constants.h"
 #include "app/viewer_styles.h"
 #include "core/mesh/input_error.h"
 
@@ -111,13 +112,6 @@ bool reportViewErrors(const ViewerApp& app) {
     }
   }
   return false;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // The medians of the positions-only updates `costs` (view --edit) as a JSON object: every view
@@ -476,7 +470,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   std::vector<double> frameMs;
   float x = x0, y = y0;
   for (int f = 0; f < frames && !app.shouldClose(); ++f) {
-    const double angle = 2.0 * 3.14159265358979 * double(f + 1) / double(std::max(frames, 8));
+    const double angle = 2.0 * kPi * double(f + 1) / double(std::max(frames, 8));
     x = x0 + 12.0f * float(std::sin(angle));
     y = y0 - 12.0f * float(1.0 - std::cos(angle));
     app.overridePointer(PointerState{x, y, true});

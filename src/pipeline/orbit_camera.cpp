@@ -1,5 +1,7 @@
 #include "pipeline/orbit_camera.h"
 
+#include "core/mesh/constants.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -15,7 +17,6 @@
 namespace polarview {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxPitchDeg = 89.0;  // keeps +z up without a roll flip at the poles of the orbit
 constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerNotch = 0.85;

@@ -39,6 +39,14 @@ struct MeshTopology {
   bool edgeOnBoundary(Index e) const { return edgeFaces[2 * e + 1] < 0; }
   // The vertex across edge e from v. [O(1)]
   Index otherEnd(Index e, Index v) const { return edgeVerts[2 * e] == v ? edgeVerts[2 * e + 1] : edgeVerts[2 * e]; }
+  // The face across edge e from face f (-1 on a boundary). [O(1)]
+  Index faceAcross(Index e, Index f) const { return edgeFaces[2 * e] == f ? edgeFaces[2 * e + 1] : edgeFaces[2 * e]; }
+  // The edge joining a and b (-1 if none). [O(valence of a)]
+  Index edgeBetween(Index a, Index b) const {
+    for (Index k = vertexEdgeStart[a]; k < vertexEdgeStart[a + 1]; ++k)
+      if (otherEnd(vertexEdges[k], a) == b) return vertexEdges[k];
+    return -1;
+  }
 };
 
 // Builds the tables. Throws InputError naming `sourceName` and the face's OBJ line (mesh.faceLine)

@@ -2,6 +2,8 @@
 // interpolating (4, d) Bezier patches for the pole caps (rules and accuracy in the header).
 #include "core/spline/bezierview_export.h"
 
+#include "core/mesh/constants.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -19,7 +21,6 @@ namespace polarview {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846264338327950288;
 constexpr int kCapRadialDegree = 4;  // the cap is a quartic in u (header)
 
 bool isFinite(const Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }

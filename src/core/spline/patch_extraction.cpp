@@ -7,6 +7,9 @@
 // [SECTION] extraction driver
 #include "core/spline/patch_extraction.h"
 
+#include "core/mesh/constants.h"
+
+#include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/face_regularity.h"
 
 #include <algorithm>
@@ -20,8 +23,6 @@
 namespace polarview {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // [SECTION] vertex and face classification
 
@@ -112,10 +113,6 @@ Index cornerAt(const PolyMesh& mesh, Index face, Index vertex) {
   return -1;
 }
 
-Index faceAcross(const MeshTopology& topo, Index edge, Index face) {
-  return topo.edgeFaces[2 * edge] == face ? topo.edgeFaces[2 * edge + 1] : topo.edgeFaces[2 * edge];
-}
-
 // The 16 stencil vertex ids of a regular face, ids[4*j + i] as in patch.h; -1 where the point is a
 // phantom beyond the boundary. `sideMissing[s]` tells whether side s (corner s -> s+1) is a
 // boundary edge.
@@ -132,7 +129,7 @@ void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, Index f, std:
   for (int c = 0; c < 4; ++c) at(kInner[c]) = loop[c];
   for (int s = 0; s < 4; ++s) {
     const Index edge = topo.cornerEdge[mesh.faceStart[f] + s];
-    const Index g = faceAcross(topo, edge, f);
+    const Index g = topo.faceAcross(edge, f);
     sideMissing[s] = g < 0;
     if (g < 0) continue;
     // g runs v_{s+1} -> v_s; after v_s come the point outward of v_s, then the one outward of v_{s+1}.
@@ -266,7 +263,8 @@ class LimitFrames {
     Point edgeSum(0.0), faceSum(0.0);
     for (Index j = 0; j < k; ++j) edgeSum += e[j], faceSum += f[j];
     const double kd = double(k);
-    out.limit = (kd / (kd + 5.0)) * out.point + (4.0 / (kd * (kd + 5.0))) * edgeSum + (1.0 / (kd * (kd + 5.0))) * faceSum;
+    const LimitMask mask = catmullClarkLimitMask(kd);
+    out.limit = mask.vertex * out.point + mask.edge * edgeSum + mask.diagonal * faceSum;
     out.weight = kd;
     // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
     // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12):
@@ -464,7 +462,7 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
     const int m = patch.level;
     const RefinedLevel& level = refinement.level(m);
     for (int s = 0; s < 4; ++s) {
-      const Index across = faceAcross(level.topology, level.topology.cornerEdge[level.mesh.faceStart[patch.face] + s], patch.face);
+      const Index across = level.topology.faceAcross(level.topology.cornerEdge[level.mesh.faceStart[patch.face] + s], patch.face);
       if (across < 0) continue;
       const int32_t q = cover[m][across];
       if (q < 0) {  // refined further: this is the coarse side (the fine sides set the exact jump)
@@ -489,7 +487,7 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
       const RefinedLevel& coarseLevel = refinement.level(coarse.level);
       for (int t = 0; t < 4; ++t) {
         const Index edge = coarseLevel.topology.cornerEdge[coarseLevel.mesh.faceStart[coarse.face] + t];
-        if (faceAcross(coarseLevel.topology, edge, coarse.face) == ancestor)
+        if (coarseLevel.topology.faceAcross(edge, coarse.face) == ancestor)
           coarse.edgeLevelDelta[t] = int8_t(std::max(int(coarse.edgeLevelDelta[t]), std::min(jump, 127)));
       }
     }

@@ -21,10 +21,7 @@ inline double smoothNeighbourWeight(double k) { return 1.0 / (k * k); }
 constexpr double kBoundaryVertexWeight = 0.75;
 constexpr double kBoundaryNeighbourWeight = 0.125;
 
-// Limit masks: smooth valence k, and the boundary crease (1/6, 2/3, 1/6).
-inline double limitVertexWeight(double k) { return k / (k + 5.0); }
-inline double limitEdgeWeight(double k) { return 4.0 / (k * (k + 5.0)); }
-inline double limitDiagonalWeight(double k) { return 1.0 / (k * (k + 5.0)); }
+// Limit mask of the boundary crease (1/6, 2/3, 1/6); the smooth one: catmullClarkLimitMask.
 constexpr double kLimitBoundaryVertexWeight = 2.0 / 3.0;
 constexpr double kLimitBoundaryNeighbourWeight = 1.0 / 6.0;
 
@@ -318,7 +315,7 @@ CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo) {
   s.vertex.assign(size_t(topo.vertexCount), 0.0f);
   s.chaikin = tags.creaseMethod == CreaseMethod::Chaikin;
   for (const CreaseEdge& crease : tags.creases) {
-    const Index e = edgeBetween(topo, crease.v0, crease.v1);
+    const Index e = topo.edgeBetween(crease.v0, crease.v1);
     if (e < 0) throw std::invalid_argument("baseSharpness: crease " + std::to_string(crease.v0) + "-" + std::to_string(crease.v1) + " is not an edge");
     s.edge[e] = float(crease.sharpness);
   }
@@ -341,7 +338,7 @@ CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharp
     if (parent.edge[e] <= 0.0f) continue;
     for (int end = 0; end < 2; ++end) {
       const Index v = parentTopo.edgeVerts[2 * e + end];
-      const Index half = edgeBetween(childTopo, ccEdgePoint(parentTopo, e), ccVertexPoint(parentTopo, v));
+      const Index half = childTopo.edgeBetween(ccEdgePoint(parentTopo, e), ccVertexPoint(parentTopo, v));
       child.edge[half] = decay.edgeAt(e, v);
     }
   }
@@ -395,7 +392,8 @@ std::vector<Point> catmullClarkLimitPoints(const MeshTopology& topo, const PolyM
       diagonalSum += p[mesh.faceVerts[mesh.faceStart[f] + (corner + 2) % 4]];
     }
     const double k = double(topo.valence(v));
-    limit[v] = limitVertexWeight(k) * p[v] + limitEdgeWeight(k) * edgeSum + limitDiagonalWeight(k) * diagonalSum;
+    const LimitMask mask = catmullClarkLimitMask(k);
+    limit[v] = mask.vertex * p[v] + mask.edge * edgeSum + mask.diagonal * diagonalSum;
   }
   return limit;
 }

@@ -78,4 +78,11 @@ PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, st
 // touches a face that is not a quad. [O(corners)]
 std::vector<Point> catmullClarkLimitPoints(const MeshTopology& topo, const PolyMesh& mesh);
 
+// The interior limit mask of a smooth valence-k vertex (above): weights of the vertex, of each
+// edge end and of each face diagonal. Shared with the end caps (patch_extraction.cpp). [O(1)]
+struct LimitMask {
+  double vertex, edge, diagonal;
+};
+inline LimitMask catmullClarkLimitMask(double k) { return {k / (k + 5.0), 4.0 / (k * (k + 5.0)), 1.0 / (k * (k + 5.0))}; }
+
 }  // namespace polarview

@@ -14,19 +14,6 @@ int cornerOf(const PolyMesh& mesh, Index f, Index v) {
   return -1;
 }
 
-// The edge joining a and b, or -1. [O(valence)]
-Index edgeBetween(const MeshTopology& topo, Index a, Index b) {
-  for (Index k = topo.vertexEdgeStart[a]; k < topo.vertexEdgeStart[a + 1]; ++k)
-    if (topo.otherEnd(topo.vertexEdges[k], a) == b) return topo.vertexEdges[k];
-  return -1;
-}
-
-// The face across edge e from face f (-1 on a boundary). [O(1)]
-Index faceAcross(const MeshTopology& topo, Index e, Index f) {
-  Index f0 = topo.edgeFaces[2 * e], f1 = topo.edgeFaces[2 * e + 1];
-  return f0 == f ? f1 : f0;
-}
-
 bool allFacesHaveSize(const PolyMesh& mesh, const MeshTopology& topo, Index v, int size, int* count) {
   int n = 0;
   for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
@@ -131,10 +118,10 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
       Index capPole = -1;
       for (int j = 0; j < n && valid; ++j) {
         Index a = inner[j], b = inner[(j + 1) % n];
-        Index e = edgeBetween(topo, a, b);
+        Index e = topo.edgeBetween(a, b);
         if (e < 0) { valid = false; break; }
         if (topo.edgeOnBoundary(e)) { ++boundaryEdges; continue; }
-        Index g = faceAcross(topo, e, innerFaces[j]);
+        Index g = topo.faceAcross(e, innerFaces[j]);
         int ca = cornerOf(mesh, g, a);
         if (mesh.faceSize(g) == 3) {  // possibly the fan of an opposite pole
           Index p = mesh.face(g)[(ca + 1) % 3];

@@ -14,8 +14,6 @@ namespace polarview {
 
 // Copies a configuration's points (pole and links 1..linkCount) into a PolarGrid. [O(n links)]
 PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config, int linkCount);
-// The edge joining a and b (-1 if none). [O(valence)]
-Index edgeBetween(const MeshTopology& topo, Index a, Index b);
 // Repeats periodic refinement (5) `times` times: n points -> n 2^times points.
 void refinePeriodically(const Point* link, int n, int times, std::vector<Point>& out, std::vector<Point>& scratch);
 

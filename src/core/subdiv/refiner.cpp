@@ -31,18 +31,11 @@ PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config
   return grid;
 }
 
-// The edge joining a and b (-1 if none). [O(valence)]
-Index edgeBetween(const MeshTopology& topo, Index a, Index b) {
-  for (Index k = topo.vertexEdgeStart[a]; k < topo.vertexEdgeStart[a + 1]; ++k)
-    if (topo.otherEnd(topo.vertexEdges[k], a) == b) return topo.vertexEdges[k];
-  return -1;
-}
-
 namespace {
 
 // The face on edge (a,b) that also holds vertex c (-1 if none). [O(valence + face size)]
 Index faceWith(const PolyMesh& mesh, const MeshTopology& topo, Index a, Index b, Index c) {
-  Index e = edgeBetween(topo, a, b);
+  Index e = topo.edgeBetween(a, b);
   if (e < 0) return -1;
   for (int s = 0; s < 2; ++s) {
     Index f = topo.edgeFaces[2 * e + s];
@@ -108,7 +101,7 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
       for (int j = 0; j < n; ++j) {
         // The edge along link max(i, 1) from column j; the face beyond it toward the pole side's
         // neighbour holds the radial edge too, so one edge search serves all three lookups.
-        const Index along = edgeBetween(topo, q(std::max(i, 1), j), q(std::max(i, 1), j + 1));
+        const Index along = topo.edgeBetween(q(std::max(i, 1), j), q(std::max(i, 1), j + 1));
         if (i >= 1) {  // link 2i
           Index* row = &child.links[size_t(2 * i - 1) * 2 * n];
           row[2 * j] = ccVertexPoint(topo, q(i, j));
@@ -119,7 +112,7 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
           const Index from = q(std::max(i, 1), j), toward = i == 0 ? parent.pole : q(i + 1, j);
           Index face = -1, radial = -1;
           if (!faceAndEdgeToward(mesh, topo, along, from, toward, face, radial)) {  // not a valid configuration
-            radial = edgeBetween(topo, q(i, j), q(i + 1, j));
+            radial = topo.edgeBetween(q(i, j), q(i + 1, j));
             face = -1;
           }
           row[2 * j] = ccEdgePoint(topo, radial);
