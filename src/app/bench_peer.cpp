@@ -1,7 +1,13 @@
 #include "app/bench_peer.h"
 
+#include "core/subdiv/parallel_for.h"
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #ifdef POLARVIEW_HAVE_OSD
@@ -15,12 +21,28 @@ namespace polarview::cli {
 #ifdef POLARVIEW_HAVE_OSD
 namespace {
 
-// The vertex type OpenSubdiv's PrimvarRefiner interpolates.
+// The vertex type OpenSubdiv's PrimvarRefiner interpolates (float weights: its fast path; double
+// weights for the equality check).
+template <class Weight>
 struct OsdPoint {
   double x = 0, y = 0, z = 0;
   void Clear() { x = y = z = 0; }
-  void AddWithWeight(const OsdPoint& p, float w) { x += w * p.x; y += w * p.y; z += w * p.z; }
+  void AddWithWeight(const OsdPoint& p, Weight w) { x += w * p.x; y += w * p.y; z += w * p.z; }
 };
+
+// Interpolates `points` (level 0 filled, all levels' room) through every level; returns the finest.
+template <class Weight, class Refiner>
+const OsdPoint<Weight>* interpolateLevels(const OpenSubdiv::Far::TopologyRefiner& refiner, int levels,
+                                          std::vector<OsdPoint<Weight>>& points) {
+  Refiner primvar(refiner);
+  OsdPoint<Weight>* src = points.data();
+  for (int level = 1; level <= levels; ++level) {
+    OsdPoint<Weight>* dst = src + refiner.GetLevel(level - 1).GetNumVertices();
+    primvar.Interpolate(level, src, dst);
+    src = dst;
+  }
+  return src;
+}
 
 double medianOf(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -29,7 +51,44 @@ double medianOf(std::vector<double> v) {
 
 }  // namespace
 
-std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps) {
+// OpenSubdiv's vertex of each of check's finest vertices (-1: none): face and vertex points
+// through their parents, edge points through the parent edge's ends (the libraries number edges
+// differently), child faces through the parent face and the corner, rotated to start alike.
+std::vector<int> finestVertexMap(const Refinement& check, const OpenSubdiv::Far::TopologyRefiner& refiner) {
+  const PolyMesh& base = check.level(0).mesh;
+  std::vector<int> map(base.points.size()), faceMap(size_t(base.faceCount())), shift(faceMap.size(), 0);
+  for (size_t v = 0; v < map.size(); ++v) map[v] = int(v);
+  for (size_t f = 0; f < faceMap.size(); ++f) faceMap[f] = int(f);
+  for (int m = 1; m < check.levelCount(); ++m) {
+    const PolyMesh& parent = check.level(m - 1).mesh;
+    const MeshTopology& topo = check.level(m - 1).topology;
+    const OpenSubdiv::Far::TopologyLevel& osd = refiner.GetLevel(m - 1);
+    const OpenSubdiv::Far::TopologyLevel& osdChild = refiner.GetLevel(m);
+    std::vector<int> child(size_t(ccChildVertexCount(topo)), -1);
+    for (Index f = 0; f < topo.faceCount; ++f) child[ccFacePoint(topo, f)] = osd.GetFaceChildVertex(faceMap[f]);
+    for (Index e = 0; e < topo.edgeCount; ++e) {
+      const int osdEdge = osd.FindEdge(map[topo.edgeVerts[2 * e]], map[topo.edgeVerts[2 * e + 1]]);
+      child[ccEdgePoint(topo, e)] = osdEdge < 0 ? -1 : osd.GetEdgeChildVertex(osdEdge);
+    }
+    for (Index v = 0; v < topo.vertexCount; ++v) child[ccVertexPoint(topo, v)] = osd.GetVertexChildVertex(map[v]);
+    const PolyMesh& childMesh = check.level(m).mesh;
+    std::vector<int> childFaceMap(size_t(childMesh.faceCount()), -1), childShift(childFaceMap.size(), 0);
+    for (Index c = 0; c < childMesh.faceCount(); ++c) {  // child face c: parent corner c
+      const Index f = topo.cornerFace[c], n = parent.faceSize(f);
+      const int osdFace = osd.GetFaceChildFaces(faceMap[f])[(shift[f] + (c - parent.faceStart[f])) % n];
+      const auto verts = osdChild.GetFaceVertices(osdFace);
+      const int first = child[childMesh.face(c)[0]];
+      childFaceMap[c] = osdFace;
+      childShift[c] = int(std::find(verts.begin(), verts.end(), first) - verts.begin());
+    }
+    map.swap(child);
+    faceMap.swap(childFaceMap);
+    shift.swap(childShift);
+  }
+  return map;
+}
+
+std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps, const Refinement* check) {
   using namespace OpenSubdiv;
   std::vector<int> faceSizes(mesh.faceCount());
   for (Index f = 0; f < mesh.faceCount(); ++f) faceSizes[f] = mesh.faceSize(f);
@@ -38,13 +97,34 @@ std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps) 
   desc.numFaces = mesh.faceCount();
   desc.numVertsPerFace = faceSizes.data();
   desc.vertIndicesPerFace = mesh.faceVerts.data();
-  Sdc::Options sdc;  // OpenSubdiv's own tools: boundary edges only, uniform creases, Catmark triangles
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  sdc.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
+  // The mesh's crease and corner tags and options (Scheme::CatmullClark applies them too).
+  std::vector<Index> creasePairs, cornerIds;
+  std::vector<float> creaseWeights, cornerWeights;
+  for (const CreaseEdge& c : mesh.tags.creases) {
+    creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
+    creaseWeights.push_back(float(c.sharpness));
+  }
+  for (const CornerVertex& c : mesh.tags.corners) {
+    cornerIds.push_back(c.vertex);
+    cornerWeights.push_back(float(c.sharpness));
+  }
+  desc.numCreases = int(creaseWeights.size());
+  desc.creaseVertexIndexPairs = creasePairs.data();
+  desc.creaseWeights = creaseWeights.data();
+  desc.numCorners = int(cornerWeights.size());
+  desc.cornerVertexIndices = cornerIds.data();
+  desc.cornerWeights = cornerWeights.data();
+  Sdc::Options sdc;  // OpenSubdiv's defaults for its own tools unless the mesh's tags say otherwise
+  sdc.SetVtxBoundaryInterpolation(mesh.tags.boundary == BoundaryInterpolation::EdgeAndCorner
+                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                      : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  sdc.SetCreasingMethod(mesh.tags.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                          : Sdc::Options::CREASE_UNIFORM);
   sdc.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
 
   PeerTiming timing;
   timing.name = "opensubdiv-3.5";
+  const bool peakReset = resetPeakResident();
   std::vector<double> topo, pos;
   for (int rep = 0; rep < reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
@@ -54,27 +134,70 @@ std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps) 
     refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
     topo.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
 
-    std::vector<OsdPoint> points(refiner->GetNumVerticesTotal());
+    std::vector<OsdPoint<float>> points(refiner->GetNumVerticesTotal());
     for (Index v = 0; v < mesh.vertexCount(); ++v) points[v] = {mesh.points[v].x, mesh.points[v].y, mesh.points[v].z};
     t0 = std::chrono::steady_clock::now();
-    Far::PrimvarRefiner primvar(*refiner);
-    OsdPoint* src = points.data();
-    for (int level = 1; level <= levels; ++level) {
-      OsdPoint* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
-      primvar.Interpolate(level, src, dst);
-      src = dst;
-    }
+    interpolateLevels<float, Far::PrimvarRefiner>(*refiner, levels, points);
     pos.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     timing.outVertices = refiner->GetLevel(levels).GetNumVertices();
     timing.outFaces = refiner->GetLevel(levels).GetNumFaces();
+    if (check && rep + 1 == reps && check->finest().mesh.points.size() == timing.outVertices) {
+      std::vector<OsdPoint<double>> exact(refiner->GetNumVerticesTotal());
+      for (Index v = 0; v < mesh.vertexCount(); ++v) exact[v] = {mesh.points[v].x, mesh.points[v].y, mesh.points[v].z};
+      const OsdPoint<double>* finest = interpolateLevels<double, Far::PrimvarRefinerReal<double>>(*refiner, levels, exact);
+      const std::vector<int> map = finestVertexMap(*check, *refiner);
+      const std::vector<Point>& ours = check->finest().mesh.points;
+      timing.checked = true;
+      for (size_t v = 0; v < ours.size(); ++v) {
+        if (map[v] < 0) {  // an edge OpenSubdiv does not have: not the same mesh
+          timing.maxDifference = std::numeric_limits<double>::infinity();
+          break;
+        }
+        const OsdPoint<double>& q = finest[map[v]];
+        timing.maxDifference = std::max({timing.maxDifference, std::abs(ours[v].x - q.x), std::abs(ours[v].y - q.y),
+                                         std::abs(ours[v].z - q.z)});
+      }
+    }
     delete refiner;
   }
+  if (peakReset) timing.peakRssMb = peakResidentMegabytes();
   timing.topologyMs = medianOf(topo);
   timing.positionsMs = medianOf(pos);
   return timing;
 }
 #else
-std::optional<PeerTiming> benchPeer(const PolyMesh&, int, int) { return std::nullopt; }
+std::optional<PeerTiming> benchPeer(const PolyMesh&, int, int, const Refinement*) { return std::nullopt; }
 #endif
+
+double triadGigabytesPerSecond(size_t bytesPerArray, unsigned threads, int reps) {
+  const Index n = Index(bytesPerArray / sizeof(double));
+  std::vector<double> a(n), b(n, 1.0), c(n, 2.0);  // touched here: the loop times no page faults
+  double best = 1e300;
+  for (int rep = 0; rep < reps; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    parallelRanges(n, threads, [&](Index begin, Index end) {
+      for (Index i = begin; i < end; ++i) a[i] = b[i] + 3.0 * c[i];
+    });
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  volatile double sink = a[size_t(n) / 2];  // the stores are used
+  (void)sink;
+  return 3.0 * double(n) * sizeof(double) / best / 1e9;
+}
+
+double peakResidentMegabytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+bool resetPeakResident() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.flush();
+  return bool(clear);
+}
 
 }  // namespace polarview::cli

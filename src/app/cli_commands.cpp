@@ -13,6 +13,9 @@
 #include <numeric>
 #include <optional>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include "app/bench_peer.h"
 #include "app/export_command.h"
 #include "app/json_writer.h"
@@ -28,6 +31,7 @@
 #include "core/subdiv/spectrum.h"
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
+#include "core/subdiv/parallel_for.h"
 #include "core/subdiv/refiner.h"
 
 namespace polarview::cli {
@@ -49,6 +53,7 @@ struct CommonOptions {
   bool uniformFirstStep = false;
   bool json = false;
   bool adaptive = false, edit = false;  // bench --adaptive [--edit]
+  bool vsOpenSubdiv = false;             // bench --vs-opensubdiv
   bool uniform = false;                  // export --uniform
   bool evToPolar = false, pentagons = false;  // convert --ev-to-polar [--pentagons]
 };
@@ -167,6 +172,7 @@ CommonOptions parseOptions(const std::string& command, const Args& args, const s
     else if (a == "--json") o.json = true;
     else if (a == "--adaptive") o.adaptive = true;
     else if (a == "--edit") o.edit = true;
+    else if (a == "--vs-opensubdiv") o.vsOpenSubdiv = true;
     else if (a == "--uniform") o.uniform = true;
     else if (a == "--ev-to-polar") o.evToPolar = true;
     else if (a == "--pentagons") o.pentagons = true;
@@ -243,6 +249,7 @@ const char* usageText() {
          "  polarview                          open the viewer on the built-in model\n"
          "  polarview view [FILE.obj] [--scheme S[,S...]] [--level L] [--shade MODE] [--size WxH]\n"
          "                 [--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
+         "                 [--inspect-poles]\n"
          "  polarview render FILE.obj -o OUT.png [--scheme S[,S...] (1 to 4 views)] [--level L]\n"
          "                 [--shade MODE[,MODE...]] (gaussian|mean|highlight|reflection|shaded: one, or one\n"
          "                 per view) [--size WxH]\n"
@@ -257,11 +264,13 @@ const char* usageText() {
          "  polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj   (paper Fig. 14)\n"
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
-         "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--json]\n"
+         "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--vs-opensubdiv] [--json]\n"
          "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
          "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
          "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--vectors] [--json]\n"
          "                 leading eigenvalues; --vectors: their right and left eigenvectors\n"
+         "  polarview spectrum --scheme c2ps --valence N [--steps M] [--json]\n"
+         "                 C2PS on RTS's eigenvectors: Lemma 5's eigencoefficient scaling, (30)'s O(8^-m)\n"
          "  polarview help                     this text\n"
          "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
          "  uniform first step of the paper's Section 6\n"
@@ -537,13 +546,33 @@ int runPole(const Args& args) {
   return 0;
 }
 
-// Peak resident memory of this process so far (VmHWM), in MiB; 0 where /proc is missing.
-double peakResidentMegabytes() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0.0;
+// Bytes the positions pass must move at least, all levels: each level's parent points read once,
+// child points written once, and the index tables the point rules stream (catmull_clark.cpp:
+// faces, edges' ends and faces, vertex rings). Gathers of neighbours are not counted again.
+double positionsTrafficBytes(const Refinement& refinement) {
+  double bytes = 0;
+  for (int m = 1; m < refinement.levelCount(); ++m) {
+    const RefinedLevel& parent = refinement.level(m - 1);
+    const MeshTopology& t = parent.topology;
+    const size_t indices = parent.mesh.faceStart.size() + parent.mesh.faceVerts.size() + t.edgeVerts.size() +
+                           t.edgeFaces.size() + t.vertexEdgeStart.size() + t.vertexEdges.size() + t.vertexFaceStart.size() +
+                           t.vertexFaces.size();
+    bytes += double(indices) * sizeof(Index) + 2.0 * double(t.vertexCount) * sizeof(uint8_t);
+    bytes += double(parent.mesh.points.size() + refinement.level(m).mesh.points.size()) * sizeof(Point);
+  }
+  return bytes;
+}
+
+// Bytes of the finest level's arrays: points, faces, face parents and every topology table.
+double finestLevelBytes(const Refinement& refinement) {
+  const RefinedLevel& level = refinement.finest();
+  const MeshTopology& t = level.topology;
+  double bytes = double(level.mesh.points.size()) * sizeof(Point) + double(t.vertexOnBoundary.size() + t.vertexUsed.size());
+  for (const std::vector<Index>* table : {&level.mesh.faceStart, &level.mesh.faceVerts, &level.faceParent, &t.cornerEdge,
+                                          &t.cornerFace, &t.edgeVerts, &t.edgeFaces, &t.vertexFaceStart, &t.vertexFaces,
+                                          &t.vertexEdgeStart, &t.vertexEdges, &t.vertexCorners})
+    bytes += double(table->size()) * sizeof(Index);
+  return bytes;
 }
 
 // bench --adaptive: the feature-adaptive path of view, render and export (adaptive_refiner.h).
@@ -627,15 +656,18 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
 int runBench(const Args& args) {
   CommonOptions o = parseOptions("bench", args,
                                  {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json", "--memory-budget",
-                                  "--adaptive", "--edit"});
+                                  "--adaptive", "--edit", "--vs-opensubdiv"});
   if (o.levels < 0) throw UsageError{"bench needs --levels L"};
   if (o.edit && !o.adaptive) throw UsageError{"bench: --edit needs --adaptive"};
+  if (o.vsOpenSubdiv && o.adaptive) throw UsageError{"bench: --vs-opensubdiv measures the uniform path, not --adaptive"};
   PolyMesh mesh = loadInput(o.input);
   if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   std::vector<double> build, positions, patches;
   size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
+  double trafficBytes = 0, outputBytes = 0;
+  std::optional<Refinement> kept;  // --vs-opensubdiv: the last repetition's, for the check
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
     Refinement refinement(mesh, options, o.input);
@@ -650,13 +682,23 @@ int runBench(const Args& args) {
     outFaces = size_t(refinement.finest().mesh.faceCount());
     patchCount = set.patches.size();
     polesRefined = refinement.level(0).poles.size();
+    trafficBytes = positionsTrafficBytes(refinement);
+    outputBytes = finestLevelBytes(refinement);
+    if (o.vsOpenSubdiv && rep + 1 == o.reps) kept.emplace(std::move(refinement));
   }
+  const double peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
   // The constructor builds topology and computes positions once: topology = build - positions.
   // Repetitions after the first reuse the previous refinement's tables (table_pool.h), as the
   // viewer does when levels change; the first repetition, on fresh memory, is reported apart.
   const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
   const double coldTopologyMs = std::max(0.0, build.front() - positions.front());
-  std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps);
+  // The check compares Catmull-Clark points only (a polar scheme's poles are not OpenSubdiv's).
+  const bool sameRules = !schemeTraits(o.scheme).polar() || polesRefined == 0;
+  std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps, kept && sameRules ? &*kept : nullptr);
+  kept.reset();
+  // The roof for positions_gbs, on as many threads as the point rules use on large meshes.
+  const double triadGbs = triadGigabytesPerSecond(size_t(128) << 20, threadsFor(size_t(1) << 30), 5);
+  const double positionsGbs = trafficBytes / (std::max(positionsMs, 1e-9) * 1e6);
 
   // The peer computes Catmull-Clark only: timings compare only where this run computed the same
   // surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
@@ -679,33 +721,65 @@ int runBench(const Args& args) {
   }
   const double topologySpeedup = compared ? peer->topologyMs / std::max(topologyMs, 1e-9) : 0.0;
   const double positionsSpeedup = compared ? peer->positionsMs / std::max(positionsMs, 1e-9) : 0.0;
+  const double speedup = compared ? (peer->topologyMs + peer->positionsMs) / std::max(topologyMs + positionsMs, 1e-9) : 0.0;
+
+  // --vs-opensubdiv: the finest points must equal OpenSubdiv's (double weights) to round-off,
+  // relative to the mesh's size.
+  const bool checked = o.vsOpenSubdiv && compared && peer->checked;
+  double size = 1.0;
+  if (checked) {
+    Point lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const Point& p : mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    size = std::max(size, glm::length(hi - lo));
+  }
+  const double maxDifference = checked ? peer->maxDifference : 0.0;
+  const bool equal = checked && maxDifference <= 1e-12 * size;
 
   JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
   w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
-  w.field("cold_topology_ms", coldTopologyMs).field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
-  w.field("patches", patchCount);
+  w.field("cold_topology_ms", coldTopologyMs).field("cold_over_warm", coldTopologyMs / std::max(topologyMs, 1e-9));
+  w.field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
+  w.field("patches", patchCount).field("peak_rss_mb", peakRssMb).field("output_mb", outputBytes / (1 << 20));
+  w.field("output_bytes_per_vertex", outputBytes / double(std::max<size_t>(outVertices, 1)));
+  w.field("positions_gbs", positionsGbs).field("triad_gbs", triadGbs).field("positions_over_triad", positionsGbs / triadGbs);
   if (peer) {
     w.key("peer").beginObject().field("what", peerWhat).field("name", peer->name).field("topology_ms", peer->topologyMs);
     w.field("positions_ms", peer->positionsMs).field("out_vertices", peer->outVertices).field("out_faces", peer->outFaces);
+    if (peer->peakRssMb > 0 && !o.vsOpenSubdiv) w.field("peak_rss_mb", peer->peakRssMb);  // (the check keeps ours alive)
     w.endObject();
   }
   w.field("compared", compared).field("comparison", comparison);
-  if (compared) w.field("topology_speedup", topologySpeedup).field("positions_speedup", positionsSpeedup);
+  if (compared) w.field("topology_speedup", topologySpeedup).field("positions_speedup", positionsSpeedup).field("speedup", speedup);
+  if (o.vsOpenSubdiv) {
+    w.key("vs_opensubdiv").beginObject().field("checked", checked);
+    if (checked) w.field("equal", equal).field("max_difference", maxDifference);
+    else w.field("why", compared ? "OpenSubdiv's points were not available" : comparison);
+    w.endObject();
+  }
   w.endObject();
   if (o.json) {
     std::cout << w.str() << "\n";
   } else {
-    std::printf("%s %s level %d: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, %zu patches\n",
-                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), outVertices,
-                outFaces, patchCount);
+    std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
+                "%zu patches; peak RSS %.1f MB\n",
+                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, coldTopologyMs, positionsMs, median(patches), outVertices,
+                outFaces, patchCount, peakRssMb);
+    std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", positionsGbs, triadGbs, 100.0 * positionsGbs / triadGbs);
     if (peer)
       std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", peer->name.c_str(),
                   peerWhat.c_str(), peer->topologyMs, peer->positionsMs, peer->outVertices, peer->outFaces);
-    if (compared) std::printf("%s: speed-up %.2fx (topology), %.2fx (positions)\n", comparison.c_str(), topologySpeedup, positionsSpeedup);
+    if (compared)
+      std::printf("%s: speed-up %.2fx (topology), %.2fx (positions), %.2fx (both)\n", comparison.c_str(), topologySpeedup,
+                  positionsSpeedup, speedup);
     else std::printf("%s\n", comparison.c_str());
+    if (checked) std::printf("vs OpenSubdiv: %s (max difference %.3g)\n", equal ? "equal" : "DIFFERENT", maxDifference);
   }
-  return 0;
+  if (o.vsOpenSubdiv && !peer) {
+    std::fprintf(stderr, "polarview: bench --vs-opensubdiv: %s\n", comparison.c_str());
+    return 2;
+  }
+  return checked && !equal ? 1 : 0;
 }
 
 // `spectrum --vectors`: a vector's entries as a JSON array (real parts; "<key>_im" adds the
@@ -727,11 +801,36 @@ void writeSpectrumVector(JsonWriter& w, const char* key, const std::vector<Compl
   w.endArray();
 }
 
+// `spectrum --scheme c2ps`: no stationary matrix, so Lemma 5 and (30) measured instead
+// (c2psEigencoefficientScaling).
+int runC2psSpectrum(int valence, int steps, bool json) {
+  const std::vector<C2psScalingStep> table = c2psEigencoefficientScaling(valence, steps);
+  if (json) {
+    JsonWriter w("spectrum");
+    w.beginObject().field("scheme", "c2ps").field("valence", valence).key("steps").beginArray();
+    for (const C2psScalingStep& s : table) {
+      w.beginObject().field("m", s.m).field("valence", s.valence).field("coefficient_error", s.coefficientError);
+      w.field("deviation", s.deviation).field("deviation_links01", s.deviationLinks01).endObject();
+    }
+    w.endArray().endObject();
+    std::cout << w.str() << "\n";
+    return 0;
+  }
+  std::printf("c2ps, valence %d: no stationary matrix (the valence doubles every step). C2PS applied m times to RTS's\n"
+              "eigenvectors v_0..v_5 of valence %d (links 0..5), against Lemma 5 (p_h = lambda_k^m delta_hk) and (30):\n"
+              "   m  valence  max|p_h - lambda_k^m delta_hk|  max|T^m v_k - lambda_k^m v_k|  x 8^m   on links 0, 1\n",
+              valence, valence);
+  for (const C2psScalingStep& s : table)
+    std::printf("  %2d  %7d  %30.2e  %29.2e  %6.2f  %12.2e\n", s.m, s.valence, s.coefficientError, s.deviation,
+                s.deviation * std::ldexp(1.0, 3 * s.m), s.deviationLinks01);
+  return 0;
+}
+
 int runSpectrum(const Args& args) {
-  // Own parsing: no input file. --scheme rts|bps|cc --valence n [--count k] [--vectors] [--json]
+  // Own parsing: no input file. --scheme rts|bps|cc|c2ps --valence n [--count k] [--vectors] [--steps m] [--json]
   std::optional<Scheme> scheme;
-  int valence = -1, count = 8;
-  bool json = false, uniform = false, vectors = false;
+  int valence = -1, count = 8, steps = -1;
+  bool json = false, uniform = false, vectors = false, counted = false;
   for (size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     auto next = [&]() -> const std::string& {
@@ -740,20 +839,27 @@ int runSpectrum(const Args& args) {
     };
     if (a == "--scheme") {
       scheme = parseCliScheme(next(), &uniform);
-      if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps or cc, got '" + args[k] + "'"};
+      if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps, cc or c2ps, got '" + args[k] + "'"};
     } else if (a == "--valence") valence = parseInt(a, next(), 3, 64);
-    else if (a == "--count") count = parseInt(a, next(), 1, 1000);
+    else if (a == "--count") count = parseInt(a, next(), 1, 1000), counted = true;
+    else if (a == "--steps") steps = parseInt(a, next(), 1, 12);
     else if (a == "--vectors") vectors = true;
     else if (a == "--json") json = true;
     else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
   }
-  if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc and --valence n (3..64)"};
-  if (schemeTraits(*scheme).polar() && !schemeTraits(*scheme).keepsValence)
-    throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix; its analysis "
-                     "goes through RTS (--scheme rts)"};
-  if (valence < schemeTraits(*scheme).minValence)
+  if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc|c2ps and --valence n (3..64)"};
+  const bool c2ps = schemeTraits(*scheme).polar() && !schemeTraits(*scheme).keepsValence;
+  if (c2ps && (vectors || counted))
+    throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix and no "
+                     "eigenvectors of its own (--scheme rts has them); --scheme c2ps takes --steps M"};
+  if (!c2ps && steps > 0) throw UsageError{"spectrum: --steps applies to --scheme c2ps"};
+  // C2PS is measured on RTS's eigenvectors, so RTS's valence bound applies.
+  const Scheme bounded = c2ps ? Scheme::RTS : *scheme;
+  if (valence < schemeTraits(bounded).minValence)
     throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= " +
-                     std::to_string(schemeTraits(*scheme).minValence) + " (its weights alias below)"};
+                     std::to_string(schemeTraits(bounded).minValence) + " (" +
+                     (c2ps ? "it is measured on RTS's eigenvectors" : "its weights alias below") + ")"};
+  if (c2ps) return runC2psSpectrum(valence, steps > 0 ? steps : 8, json);
   const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
   const size_t shown = std::min(all.size(), size_t(count));
   const std::string name = cliSchemeName(*scheme, false);
@@ -824,7 +930,9 @@ int runSpectrum(const Args& args) {
     std::printf("      %s mode, residual %.1e\n      right profile %s\n      left profile  %s\n", fourierModeName(p.mode),
                 eigenPairResidual(matrix, p), profile(p.rightProfile).c_str(), profile(p.leftProfile).c_str());
   }
-  if (vectors) std::printf("profiles: v_ij = v^_i op(j/n), w_ij = w^_i op(j/n) / n (paper (14), (26)); the whole vectors with --json\n");
+  if (vectors)
+    std::printf("profiles v^, w^ of block alpha: v_ij = v^_i omega^(j alpha), w_ij = w^_i omega^(-j alpha) / n, cos and sin\n"
+                "modes their real and imaginary parts (paper (14), (26)); the whole vectors with --json\n");
   return 0;
 }
 

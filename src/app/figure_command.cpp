@@ -84,27 +84,29 @@ std::vector<Figure> paperFigures() {
   };
   figures.push_back(
       {1, "Making C2 subdivision work with degree bi-3",
-       "top, the right eigenvectors v_k of RTS (`spectrum --scheme rts --valence 6 --vectors`) as control "
-       "nets (black: links 0..5 of a 6-valent polar configuration, point (x, y, z) = (v1, v2, v_k) over "
-       "the characteristic map) with their eigensplines e_k, the RTS limit surfaces of the nets (level 6): "
-       "the characteristic spline chi = (e1, e2) (lambda = 1/2), a planar disk, drawn below each of "
-       "(a) e3, the paraboloid r^2, (b) e4 = r^2 B^6 cos 2t and (c) e5 = r^2 B^6 sin 2t, the saddles "
-       "(lambda = 1/4; Table 1, Lemma 2); bottom, (d-f) the same nets v3, v4, v5 after three steps of "
-       "C2PS (valence 6 -> 48, links 0..5 of level 3 magnified 8 times, heights 64 times): their rings "
-       "approach the periodic curves r^2, r^2 cos 2t, r^2 sin 2t, over C2PS's limit surface (Lemmas 4, 5)",
-       "the eigensplines are shaded grey, not yellow and red; the radial eigenvectors v^_k (the paper's "
-       "control lines marked o) and the radial eigensplines are not drawn separately (they are the nets' "
-       "and surfaces' sections along the x axis); (d-f) show C2PS's refined nets T^3 v_k rather than "
-       "RTS eigenvectors of growing valence (they agree up to O(8^-m), (30))",
+       "top, the right eigenvectors v3, v4, v5 of RTS at valence 6 (`spectrum --scheme rts --valence 6 "
+       "--vectors`) as control nets (black: links 0..5 of a 6-valent polar configuration with points "
+       "(v1, v2, v_k), heights over the characteristic map) with their eigensplines e_k, the RTS limit "
+       "surfaces of the nets: (a) e3, the paraboloid r^2, (b) e4 = r^2 B^6 cos 2t and (c) e5 = r^2 B^6 sin 2t, "
+       "the saddles (lambda = 1/4; Table 1, Lemma 2), each above the characteristic spline chi = (e1, e2) "
+       "(lambda = 1/2) and its net, a planar disk; bottom, (d-f) the same nets after three C2PS steps "
+       "(valence 6 -> 48; links 0..5 of level 3 magnified 8 times, heights 64 = 4^3 times as Lemma 5 "
+       "scales them) with C2PS's limit surface: their rings approach the periodic curves r^2, "
+       "r^2 cos 2t, r^2 sin 2t (`spectrum --scheme c2ps` measures (30)'s O(8^-m))",
+       "grey shading, not yellow and red; the radial eigenvectors and eigensplines (the paper's control "
+       "lines marked o) are not drawn apart (they are the nets' and surfaces' sections along a spoke); "
+       "(d-f) draw C2PS's refined nets T^3 v_k, which equal 4^-3 v_k of valence 48 up to O(8^-3) by (30), "
+       "where the paper draws v_k as n grows; each surface's outer ring follows the boundary rules at "
+       "the net's edge",
        {{"",
-         {eigenPanel("chi = (e1, e2)", kRTS, 1, 0), eigenPanel("(a) e3", kRTS, 3, 0),
-          eigenPanel("(b) e4", kRTS, 4, 0), eigenPanel("(c) e5", kRTS, 5, 0)},
-         Conversion::None, std::nullopt, 1.0, 6},
+         {eigenPanel("(a) v3, e3 over chi", kRTS, 3, 0), eigenPanel("(b) v4, e4 over chi", kRTS, 4, 0),
+          eigenPanel("(c) v5, e5 over chi", kRTS, 5, 0)},
+         Conversion::None, std::nullopt, 1.2, 6},
         {"",
          {eigenPanel("(d) T^3 v3, n = 48", kC2PS, 3, 3), eigenPanel("(e) T^3 v4, n = 48", kC2PS, 4, 3),
           eigenPanel("(f) T^3 v5, n = 48", kC2PS, 5, 3)},
-         Conversion::None, std::nullopt, 1.0, 6}},
-       Map::Paper, false, -60.0, 30.0});
+         Conversion::None, std::nullopt, 0.9, 6}},
+       Map::Paper, false, -60.0, 20.0});
   figures.push_back(
       {2, "Polar configurations",
        "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
@@ -222,12 +224,13 @@ std::string assetPath(const std::string& name) { return std::string(POLARVIEW_AS
 
 // Fig. 1's nets: links 0..5 of the valence-n polar configuration whose point q_ij is
 // (v1, v2, v_k)_ij, the right eigenvectors of RTS (spectrum.h) over the characteristic map (v1, v2),
-// z = 0 for k <= 2 (chi itself). For k >= 3 the planar net of chi lies below it (the paper's disk).
+// z = 0 for k <= 2 (chi itself). For k >= 3 without steps the planar net of chi lies below it (the
+// paper's disk), a second component.
 // `steps` > 0: that many C2PS steps first (links 0..5 kept, the valence doubling), then magnified
 // back by 2^steps in x, y and lambda_k^-steps in z, so that Lemma 5's scaling shows as equal heights.
 PolyMesh eigenNet(int n, int k, int steps) {
   constexpr int kLinks = 5;  // the support of matrix (13)
-  constexpr double kHeight = 0.6, kDiskDepth = -0.9;  // drawing scale of v_k and where chi lies
+  constexpr double kHeight = 0.6, kDiskDepth = -1.2;  // drawing scale of v_k and where chi lies
   const std::vector<EigenPair> pairs = schemeEigenPairs(Scheme::RTS, n, 6);
   const EigenPair& pair = pairs.at(size_t(k));
   PolarGrid grid(n, kLinks);
@@ -235,12 +238,7 @@ PolyMesh eigenNet(int n, int k, int steps) {
   grid.pole = Point(entry(pairs[1], 0, 0), entry(pairs[2], 0, 0), k >= 3 ? entry(pair, 0, 0) : 0.0);
   for (int i = 1; i <= kLinks; ++i)
     for (int j = 0; j < n; ++j) grid.q(i, j) = Point(entry(pairs[1], i, j), entry(pairs[2], i, j), k >= 3 ? entry(pair, i, j) : 0.0);
-  for (int step = 0; step < steps; ++step) {
-    const PolarGrid fine = schemeTraits(Scheme::C2PS).refineGrid(grid, false);
-    grid = PolarGrid(fine.n, kLinks);
-    grid.pole = fine.pole;
-    std::copy(fine.ring.begin(), fine.ring.begin() + long(grid.ring.size()), grid.ring.begin());
-  }
+  for (int step = 0; step < steps; ++step) grid = c2psStepOnLinks(grid);
   const double xy = std::ldexp(1.0, steps), z = kHeight * std::pow(1.0 / pair.value.real(), steps);
   auto place = [&](const Point& p) { return Point(xy * p.x, xy * p.y, z * p.z); };
   PolyMesh mesh = shapes::heightCap(grid.n, kLinks, [](double, double) { return 0.0; });  // the layout
@@ -254,7 +252,7 @@ PolyMesh eigenNet(int n, int k, int steps) {
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     std::vector<Index> loop(mesh.face(f), mesh.face(f) + mesh.faceSize(f));
     for (Index& v : loop) v += offset;
-    both.addFace(loop);
+    both.addFace(loop.data(), loop.size());
   }
   return both;
 }
@@ -293,7 +291,10 @@ RgbaImage renderViews(ViewerApp& app, int width, int height, int supersample) {
 RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int width, int supersample,
                     std::optional<float>* range) {
   const PolyMesh model = rowModel(row);
-  showModel(app, model, assetPath(row.model));
+  // Fig. 1's rows are framed on their widest net (e4's saddle), so that a row's panels share one scale.
+  const std::string name = row.eigenValence > 0 ? "RTS eigenvectors, valence " + std::to_string(row.eigenValence)
+                                                : assetPath(row.model);
+  showModel(app, row.eigenValence > 0 ? eigenNet(row.eigenValence, 4, row.panels.front().c2psSteps) : model, name);
   ViewerState& state = app.state();
   state.viewCount = int(row.panels.size());
   for (size_t v = 0; v < row.panels.size(); ++v) {
@@ -310,7 +311,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     }
     DisplayFlags display;
     display.surface = !net;
-    display.controlNet = net;
+    display.controlNet = net || panel.draw == Draw::SurfaceNet;
     display.patchBoundaries = panel.draw == Draw::Rings;
     display.boundaryColor = DisplayFlags::BoundaryColor::Ring;
     display.poleMarkers = false;
@@ -330,16 +331,26 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
   app.frameModel(&rects.front());
   state.sharedCamera.distance /= row.zoom;
   const OrbitCamera camera = state.sharedCamera;
+  if (row.eigenValence > 0) {
+    showModel(app, model, name);
+    state.sharedCamera = camera;
+  }
   RgbaImage image = renderViews(app, width, height, supersample);
   if (figure.sharedRange && !*range && state.showsColourBar()) *range = state.colourRange();
 
-  // Refined nets: the model refined uniformly (core Refinement), drawn through the same camera.
+  // Panels with a model of their own, drawn through the same camera into their place: refined nets
+  // (the model refined uniformly, core Refinement) and Fig. 1's eigenvector nets after the first.
   for (size_t v = 0; v < row.panels.size(); ++v) {
     const Panel& panel = row.panels[v];
-    if (panel.draw != Draw::RefinedNet) continue;
-    const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
-    showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
-    for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only the net is needed
+    if (panel.draw == Draw::RefinedNet) {
+      const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
+      showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
+      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only the net is needed
+    } else if (panel.eigenvector >= 0 && v > 0) {
+      showModel(app, eigenNet(row.eigenValence, panel.eigenvector, panel.c2psSteps), name);
+    } else {
+      continue;
+    }
     state.sharedCamera = camera;
     copyImageRect(image, renderViews(app, width, height, supersample), rects[v]);
   }

@@ -114,6 +114,7 @@ ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
   if (loadJob_.valid()) loadJob_.wait();
   if (exportJob_.valid()) exportJob_.wait();
+  if (inspectJob_.valid()) inspectJob_.wait();
   for (ViewRuntime& view : views_) {
     view.job.wait();
     if (view.prepare.valid()) view.prepare.wait();
@@ -688,6 +689,60 @@ void ViewerApp::collectColourSamples() {
   state_.colour.histogram.clear();  // recomputed for the new samples
 }
 
+void ViewerApp::updatePoleInspector() {
+  PoleInspectorSettings& inspector = state_.poleInspector;
+  const bool open = inspector.open;
+  inspector.open = false;  // the panel marks it again next frame while the section is open
+  if (!model_.mesh) return;
+  if (inspectPolesOf_ != model_.generation) {
+    inspectPolesOf_ = model_.generation;
+    try {
+      inspector.poles = modelPoles(*model_.mesh);
+    } catch (const std::exception&) {
+      inspector.poles.clear();
+    }
+    inspector.inspections.clear();
+    inspectShown_.clear();
+  }
+  // A finished job: shown if it is still what the panel asks for.
+  if (inspectJob_.valid() && inspectJob_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    try {
+      std::vector<PoleInspection> done = inspectJob_.get();
+      inspector.inspections = std::move(done);
+      inspector.error.clear();
+    } catch (const std::exception& e) {
+      inspector.inspections.clear();
+      inspector.error = e.what();
+    }
+    inspectShown_ = inspectRunning_;
+  }
+  inspector.computing = inspectJob_.valid();
+  if (!open || inspector.poles.empty() || inspectJob_.valid()) return;
+  // The selected pole under each scheme the visible views show (once each, in view order).
+  inspector.pole = std::clamp(inspector.pole, 0, int(inspector.poles.size()) - 1);
+  std::vector<SchemeChoice> schemes;
+  for (int v = 0; v < state_.viewCount; ++v)
+    if (std::find(schemes.begin(), schemes.end(), state_.views[size_t(v)].scheme) == schemes.end())
+      schemes.push_back(state_.views[size_t(v)].scheme);
+  const Index pole = inspector.poles[size_t(inspector.pole)];
+  std::string key = std::to_string(model_.generation) + ":" + std::to_string(model_.points) + ":" + std::to_string(pole);
+  for (SchemeChoice scheme : schemes) key += ":" + std::string(schemeChoiceCliName(scheme));
+  if (key == inspectShown_) return;
+  inspectRunning_ = key;
+  inspector.computing = true;
+  inspectJob_ = std::async(std::launch::async, [mesh = model_.mesh, pole, schemes] {
+    std::vector<PoleInspection> out;
+    // Rings deep enough to see the trend: C2PS to ring 10 (valence x 1024), RTS and BPS to 14
+    // (they keep n columns), Catmull-Clark to level 8.
+    for (SchemeChoice scheme : schemes) {
+      const Scheme refined = refineOptionsFor(scheme, 0).scheme;
+      const int rings = refined == Scheme::CatmullClark ? 8 : schemeTraits(refined).keepsValence ? 14 : 10;
+      out.push_back(inspectPole(*mesh, pole, scheme, rings));
+    }
+    return out;
+  });
+}
+
 void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   ViewRuntime& view = views_[size_t(v)];
   if (view.prepare.valid()) {
@@ -1078,6 +1133,7 @@ void ViewerApp::runFrame() {
   pollLoad();
   pollExport();
   updateSurfaces();
+  updatePoleInspector();
   updateColourRange();
   updateEditState();
 

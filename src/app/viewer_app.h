@@ -176,6 +176,9 @@ class ViewerApp {
   // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
   void expireNotice();
   void updateSurfaces();
+  // The pole inspector: its pole list on a model change; while its section is open, the
+  // inspections of the selected pole for the visible views' schemes, computed in the background.
+  void updatePoleInspector();
   // Starts making view v's next level ahead when it is idle (ViewerOptions::prepareNextLevel).
   void prepareNextLevel(int v, const SurfaceKey& wanted);
   // Positions-only updates of the visible views whose surface has the model's topology but older
@@ -237,6 +240,9 @@ class ViewerApp {
   std::string windowCapturePath_;
   std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
+  std::future<std::vector<PoleInspection>> inspectJob_;
+  std::string inspectRunning_, inspectShown_;  // what the job computes / what the panel shows
+  uint64_t inspectPolesOf_ = 0;                // model generation the pole list is of
   std::optional<PointerState> pointerOverride_;
   std::pair<double, double> eventCursor_{0.0, 0.0};  // the cursor as of the last event GLFW delivered
   std::optional<std::pair<float, float>> buttonPosition_;  // where this frame's mouse button changed (window coordinates)

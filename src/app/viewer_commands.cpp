@@ -28,7 +28,8 @@ const char* kRenderUsage =
     "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n";
+    "[--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help] "
+    "[--inspect-poles]\n";
 
 // Walks the argument list; values of options are taken with value().
 class ArgCursor {
@@ -374,6 +375,7 @@ struct ViewRequest {
   bool stats = false, hidden = false, showHelp = false;
   bool edit = false;    // the frames drag a control vertex (positions-only updates every frame)
   bool levelSteps = false;  // first view: level L-1, then L (deeper), L-1, L again, each step timed
+  bool inspectPoles = false;  // open the "Poles" section
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
 };
 
@@ -390,6 +392,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
     else if (arg == "--stats") r.stats = true;
     else if (arg == "--edit") r.edit = true;
     else if (arg == "--level-steps") r.levelSteps = true;
+    else if (arg == "--inspect-poles") r.inspectPoles = true;
     else if (arg == "--hidden") r.hidden = true;
     else if (arg == "--capture") r.capture = cursor.value(arg);
     else if (arg == "--show-help") r.showHelp = true;
@@ -501,6 +504,7 @@ int viewWithApp(const ViewRequest& r) {
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
+  state.requests.openPoleInspector = r.inspectPoles;
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();

@@ -649,6 +649,18 @@ void drawViewerPanels(ViewerState& state) {
     if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(state);
     if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(state);
     if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(state);
+    if (state.requests.openPoleInspector) {
+      ImGui::SetNextItemOpen(true);
+      state.poleInspector.scrollFrames = 120;
+    }
+    state.requests.openPoleInspector = false;
+    if (ImGui::CollapsingHeader("Poles")) {
+      if (state.poleInspector.scrollFrames > 0) {
+        --state.poleInspector.scrollFrames;
+        ImGui::SetScrollHereY(0.0f);  // the header at the top of the column
+      }
+      drawPoleInspectorPanel(state);
+    }
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
     ImGui::PopItemWidth();
   }

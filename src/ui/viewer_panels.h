@@ -38,6 +38,10 @@ float colourBarReserve(const ViewerState& state, float scale);
 // larger), above a strip of `bottomReserve`. [O(count)]
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve);
 
+// The "Poles" section: pole list, K and H at the pole per scheme shown, the rings' approach to it
+// (log scale) and K around ring m (pole_inspector_panel.cpp). Marks the inspector open.
+void drawPoleInspectorPanel(ViewerState& state);
+
 // All panels (file, views, display, shading, colour, camera, screenshot, stats) and the help
 // window. Call between ImGui::NewFrame and ImGui::Render.
 void drawViewerPanels(ViewerState& state);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/pole_inspection.h"
 #include "pipeline/scheme_choice.h"
 #include "pipeline/shading.h"
 #include "pipeline/orbit_camera.h"
@@ -144,6 +145,21 @@ struct ViewerRequests {
   bool copyCamera = false;    // Ctrl+C
   bool pasteCamera = false;   // Ctrl+V
   std::optional<ViewPreset> preset;
+  bool openPoleInspector = false;  // open the "Poles" section (view --inspect-poles)
+};
+
+// The pole inspector (panel "Poles"): the paper's claim made visible, computed by the app in the
+// background while the section is open (pipeline/pole_inspection.h).
+struct PoleInspectorSettings {
+  bool open = false;  // the section is open: the app keeps `inspections` up to date
+  int pole = 0;       // index into `poles`
+  int ring = 4;       // ring m whose K around the pole is plotted
+  int scrollFrames = 0;  // > 0: the panel scrolls the section into view (so many frames: results grow it)
+  // Set by the app.
+  std::vector<Index> poles;                 // the model's pole vertices
+  std::vector<PoleInspection> inspections;  // one per distinct scheme of the visible views
+  bool computing = false;
+  std::string error;
 };
 
 struct ViewerState {
@@ -160,6 +176,7 @@ struct ViewerState {
   FileSettings file;
   ScreenshotSettings screenshot;
   EditSettings edit;
+  PoleInspectorSettings poleInspector;
   ViewerRequests requests;
 
   bool showPanels = true;      // Tab

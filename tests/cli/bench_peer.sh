@@ -30,7 +30,7 @@ assert isinstance(d['compared'], bool) and d['comparison'], what
 if not peer:
     assert 'peer' not in d and not d['compared'] and not speedups, (what, d)
 elif expect=='compared':
-    assert d['compared'] and speedups==['topology_speedup','positions_speedup'], (what, d)
+    assert d['compared'] and speedups==['topology_speedup','positions_speedup','speedup'], (what, d)
     assert d['peer']['out_faces']==d['out_faces'], (what, d)
     assert d['comparison'].startswith('same surface: Catmull-Clark'), (what, d['comparison'])
     assert 'not compared' not in d['peer']['what'] and 'speed-up' in text, (what, d, text)
@@ -54,4 +54,22 @@ bench_check "$tmp/torus.obj" cc 3 compared
 bench_check "$tmp/cube.obj" cc 3 compared
 bench_check "$tmp/torus.obj" rts 2 compared
 bench_check "$tmp/cube.obj" c2ps 2 compared
+
+# --vs-opensubdiv checks Catmull-Clark's points against OpenSubdiv's; elsewhere it says why not.
+# Every uniform bench reports its peak RSS and positions' bandwidth beside a triad loop's.
+if [ "$peer" = 1 ]; then
+  "$exe" bench "$tmp/torus.obj" --scheme cc --levels 3 --reps 1 --vs-opensubdiv --json > "$tmp/v.json" || fail "vs-opensubdiv torus cc"
+  "$exe" bench "$tmp/cap.obj" --scheme c2ps --levels 2 --reps 1 --vs-opensubdiv --json > "$tmp/p.json" || fail "vs-opensubdiv cap c2ps"
+  python3 -c "
+import json; v=json.load(open('$tmp/v.json')); p=json.load(open('$tmp/p.json'))
+assert v['vs_opensubdiv']['checked'] and v['vs_opensubdiv']['equal'] and v['vs_opensubdiv']['max_difference'] < 1e-12, v
+assert v['speedup'] > 0 and v['peak_rss_mb'] > 0 and v['triad_gbs'] > 0 and v['positions_gbs'] > 0, v
+assert not p['vs_opensubdiv']['checked'] and 'different surfaces' in p['vs_opensubdiv']['why'], p
+assert not any(k.endswith('speedup') for k in p), p
+" || fail "bench --vs-opensubdiv"
+else
+  if "$exe" bench "$tmp/torus.obj" --scheme cc --levels 1 --reps 1 --vs-opensubdiv > /dev/null 2>&1; then
+    fail "--vs-opensubdiv without OpenSubdiv must fail"
+  fi
+fi
 echo "bench_peer: ok (peer: $peer)"

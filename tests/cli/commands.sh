@@ -82,13 +82,34 @@ assert all(abs(a-b)<1e-12 for a,b in zip(v,[1,.5,.5,.25,.25,.25])), v; assert d[
 "$exe" spectrum --scheme cc --valence 4 --count 4 --json | py "
 import json,sys; v=[e['re'] for e in json.loads(sys.stdin.read())['eigenvalues']]
 assert all(abs(a-b)<1e-12 for a,b in zip(v,[1,.5,.5,.25])), v"
+# spectrum --vectors: per eigenvalue v and w in the matrix's order (q_ij at 6j+i), A v = lambda v
+# to round-off, w_k^T v_l = delta_kl; RTS's 1/2 pair is i cos(2 pi j/n), i sin(2 pi j/n) (Table 1, (14))
+"$exe" spectrum --scheme rts --valence 7 --count 6 --vectors --json | py "
+import json,math,sys; d=json.loads(sys.stdin.read()); e=d['eigenvalues']; n=7
+assert [x['mode'] for x in e]==['single','cos','sin','single','cos','sin'], [x['mode'] for x in e]
+assert all(len(x['right'])==6*n and len(x['left'])==6*n and x['residual']<1e-12 for x in e)
+for k in range(6):
+    for l in range(6):
+        dot=sum(a*b for a,b in zip(e[k]['left'],e[l]['right'])); assert abs(dot-(k==l))<1e-12, (k,l,dot)
+for k,f in ((1,math.cos),(2,math.sin)):
+    v=e[k]['right']; c=v[6*0+5]/5 if k==1 else v[6*1+5]/(5*math.sin(2*math.pi/n))
+    assert all(abs(v[6*j+i]-c*i*f(2*math.pi*j/n))<1e-12 for i in range(6) for j in range(n)), k"
+"$exe" spectrum --scheme cc --valence 5 --count 3 --vectors --json | py "
+import json,sys; e=json.loads(sys.stdin.read())['eigenvalues']
+assert all(len(x['right'])==11 and x['residual']<1e-12 for x in e); assert abs(e[0]['left'][0]-25/50)<1e-12"
+
+# spectrum --scheme c2ps: Lemma 5 (eigencoefficients scale by lambda_k^m) and (30) (O(8^-m), 0 on links 0, 1)
+"$exe" spectrum --scheme c2ps --valence 6 --steps 6 --json | py "
+import json,sys; s=json.loads(sys.stdin.read())['steps']; assert [x['valence'] for x in s]==[12,24,48,96,192,384], s
+assert all(x['coefficient_error']<1e-12 and x['deviation_links01']<1e-12 for x in s), s
+assert 6 < s[4]['deviation']/s[5]['deviation'] < 8.5, s"
 
 # usage errors exit 2 with the usage; an unknown scheme too
 set +e
 "$exe" refine "$tmp/globe.obj" --levels 1 >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing -o should exit 2"
 "$exe" refine "$tmp/globe.obj" -o "$tmp/x.obj" --scheme loop --levels 1 2>/dev/null; [ $? -eq 2 ] || fail "unknown scheme should exit 2"
 "$exe" frobnicate 2>/dev/null; [ $? -eq 2 ] || fail "unknown command should exit 2"
-"$exe" spectrum --scheme c2ps --valence 6 2>/dev/null; [ $? -eq 2 ] || fail "spectrum c2ps should exit 2"
+"$exe" spectrum --scheme c2ps --valence 6 --vectors 2>/dev/null; [ $? -eq 2 ] || fail "spectrum c2ps --vectors should exit 2"
 "$exe" spectrum --scheme rts --valence 4 2>/dev/null; [ $? -eq 2 ] || fail "spectrum rts n=4 should exit 2"
 "$exe" pole "$tmp/cap12.obj" --rings 0 2>/dev/null; [ $? -eq 2 ] || fail "pole --rings 0 should exit 2"
 "$exe" pole "$tmp/cap12.obj" --scheme c2ps --rings 20 2>/dev/null; [ $? -eq 2 ] || fail "pole: C2PS valence over 2^18 should exit 2"

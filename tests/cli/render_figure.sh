@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# `polarview figure` and per-view shading in `polarview render`. Figure 13 (the shape gallery: five
+# `polarview figure` and per-view shading in `polarview render`. Figure 1 must draw lit eigensplines
+# under black nets in each of its columns. Figure 13 (the shape gallery: five
 # valence-12 caps; columns input net, twice subdivided net, Gaussian curvature, highlight lines)
 # must be an indexed PNG 800 wide whose curvature column holds both signs of the paper map (blue
 # saddles, red paraboloid and flat point ring) and its green band at zero (the monkey saddle's and
@@ -107,6 +108,22 @@ if "$exe" figure 13 -o "$work/fig" > "$work/out.txt" 2> "$work/err.txt"; then
   [ $((b1 + r1 + g1 + b2 + r2 + g2)) -lt 50 ] || fail "net columns have map colours"
 else
   fail "figure 13: $(cat "$work/err.txt")"
+fi
+
+# Figure 1: RTS's eigenvectors as nets with their eigensplines, three columns (the separator at
+# x = 266), two rows: every column lit surfaces (light) and black nets (dark), no map colours.
+if "$exe" figure 1 -o "$work/fig" > "$work/out.txt" 2> "$work/err.txt"; then
+  read -r width height type rows b1 r1 g1 k1 w1 b2 r2 g2 k2 w2 b3 r3 g3 k3 w3 \
+    <<< "$(count_colours "$work/fig/fig01.png" 0:266 266:533 533:800)"
+  [ "$width" = 800 ] && [ "$type" = 3 ] || fail "fig01.png is ${width} wide of colour type $type (expected 800, indexed 3)"
+  [ "$rows" -ge 400 ] || fail "fig01.png: only $rows rows of views"
+  for column in "$k1 $w1" "$k2 $w2" "$k3 $w3"; do
+    read -r dark light <<< "$column"
+    [ "$dark" -gt 2000 ] && [ "$light" -gt 2000 ] || fail "fig01.png column: $dark dark, $light light pixels (no net or surface)"
+  done
+  [ $((b1 + r1 + g1 + b2 + r2 + g2 + b3 + r3 + g3)) -lt 50 ] || fail "fig01.png has map colours (it is shaded)"
+else
+  fail "figure 1: $(cat "$work/err.txt")"
 fi
 
 # render: one shading per view; the JSON says which.

@@ -2,7 +2,9 @@
 // expansion's K and H at every depth double precision allows, RTS's K keeps an angular spread.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -66,4 +68,34 @@ TEST_CASE("ring curvature: RTS keeps the valence and its K keeps depending on th
   CHECK(spread12 > 1e-3 * std::abs(r[11].maxK));
   CHECK(spread12 == doctest::Approx(spread10).epsilon(0.05));
   MESSAGE("RTS n=6: K spread on ring 10 " << spread10 << ", ring 12 " << spread12);
+}
+
+TEST_CASE("ring curvature: K along the middle circle of ring m flattens for C2PS and keeps a wave for RTS") {
+  const PolarGrid grid = quadraticGrid(6, Point(0.0), 5);
+  auto waves = [&](Scheme scheme) {
+    const PoleDifferential d = analyzePole(poleTaylorCoefficients(grid, scheme));
+    return ringCurvatures(grid, scheme, false, 8, d.gaussian, d.mean, d.normal, 5, 360);
+  };
+  auto spread = [](const std::vector<double>& k) {
+    return *std::max_element(k.begin(), k.end()) - *std::min_element(k.begin(), k.end());
+  };
+  for (Scheme scheme : {Scheme::C2PS, Scheme::RTS}) {
+    const std::string name = schemeName(scheme);
+    CAPTURE(name);
+    const std::vector<RingCurvature> r = waves(scheme);
+    REQUIRE(r.size() == 8);
+    for (const RingCurvature& ring : r) {
+      REQUIRE(ring.kAlongAngle.size() == 360);
+      // The circle lies in the ring: its K within the ring's samples' range, widened by that range
+      // (the 5 x 5 samples a patch miss the extremes between them).
+      const double width = ring.maxK - ring.minK;
+      for (double k : ring.kAlongAngle) CHECK((k >= ring.minK - width && k <= ring.maxK + width));
+    }
+    if (scheme == Scheme::C2PS)  // ... and tends to the pole's K as the ring does
+      for (double k : r[7].kAlongAngle) CHECK(std::abs(k - (r[7].minK + r[7].maxK) / 2) <= r[7].maxAbsDeltaK * 1.5 + 1e-12);
+    const double early = spread(r[1].kAlongAngle), late = spread(r[7].kAlongAngle);
+    MESSAGE(name << ": K spread along the circle, ring 2 " << early << ", ring 8 " << late);
+    if (scheme == Scheme::C2PS) CHECK(late < 0.05 * early);  // converges (~/2.5 a level)
+    else CHECK(late > 0.3 * early);                          // levels off: not C2 for finite n
+  }
 }

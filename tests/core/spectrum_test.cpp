@@ -1,5 +1,7 @@
 // Spectra of subdivision matrices (spectrum.h): Catmull-Clark's 1-ring matrix against the closed
-// forms of its eigenvalues, and the `spectrum` command's entry point for RTS (Table 1).
+// forms of its eigenvalues and limit mask, the `spectrum` command's entry point for RTS (Table 1's
+// eigenvalues and eigenvectors), eigenpair residuals and bi-orthonormality for RTS, BPS and
+// Catmull-Clark, and C2PS on RTS's eigenvectors (Lemma 5, (30)).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -138,8 +140,12 @@ TEST_CASE("spectrum: RTS's eigenvectors are Table 1's: the characteristic map's 
       }
       const double c = multipleOf(p.right, v, 1e-12);
       REQUIRE(c != 0.0);
-      // v = c v_Table1 and w^T v = 1 force w = w_Table1 / c.
+      // v = c v_Table1 and w^T v = 1 force w = w_Table1 / c, and so the profiles.
       for (size_t i = 0; i < w.size(); ++i) CHECK(std::abs(p.left[i].real() * c - w[i]) < 1e-12);
+      for (int i = 0; i < 6; ++i) {
+        CHECK(std::abs(p.rightProfile[size_t(i)] - c * profile(k, i)) < 1e-12);
+        CHECK(std::abs(p.leftProfile[size_t(i)] * c - (i < 2 ? left[k][i] : 0.0)) < 1e-12);
+      }
     }
   }
 }
@@ -172,6 +178,27 @@ TEST_CASE("spectrum: Catmull-Clark's eigenvectors: the limit mask on the left of
         CHECK(std::abs(p.right[size_t(1 + j)].real() - e * op(double(j) / n)) < 1e-12);
         CHECK(std::abs(p.right[size_t(1 + n + j)].real() - f * op((j + 0.5) / n)) < 1e-12);
       }
+    }
+  }
+}
+
+TEST_CASE("spectrum: C2PS scales RTS's eigencoefficients by lambda_k^m (Lemma 5) and meets lambda_k^m v_k up to O(8^-m) (30)") {
+  for (int n : {5, 6, 9}) {
+    CAPTURE(n);
+    const std::vector<C2psScalingStep> steps = c2psEigencoefficientScaling(n, 9);
+    REQUIRE(steps.size() == 9);
+    for (const C2psScalingStep& s : steps) {
+      CAPTURE(s.m);
+      CHECK(s.valence == n << s.m);
+      CHECK(s.coefficientError < 1e-12);   // Lemma 5, exactly (with (27) corrected)
+      CHECK(s.deviationLinks01 < 1e-12);   // (30): the O(8^-m) term is 0 on links 0, 1 ...
+      CHECK(s.deviation > 1e-12);          // ... and not beyond (C2PS is not RTS)
+    }
+    // ... where it shrinks by 8 a step in the end (m = 7..9: between 7 and 8.5).
+    for (size_t m = 7; m < steps.size(); ++m) {
+      const double ratio = steps[m - 1].deviation / steps[m].deviation;
+      CHECK(ratio > 7.0);
+      CHECK(ratio < 8.5);
     }
   }
 }

@@ -9,6 +9,7 @@
 #include "app/viewer_app.h"
 #include "pipeline/surface_pipeline.h"
 #include "core/spline/patch_extraction.h"
+#include "pipeline/pole_inspection.h"
 #include "core/subdiv/adaptive_refiner.h"
 
 #include <doctest/doctest.h>
@@ -17,6 +18,8 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <thread>
+#include <chrono>
 
 #include <stb_image.h>
 
@@ -549,6 +552,43 @@ TEST_CASE("viewer app: a pivot picked at a deep pole, seen from 1e-6 of the mode
   // Float unprojection put it ~1e-7 off in depth (float steps near 1.6 are 1.2e-7), 40x the
   // surface's actual rise there (K ~ 0.5: ~(1e-7)^2); the depth buffer resolves ~1e-9 at this range.
   CHECK(std::abs(picked.z - pole.z) < 2e-8);
+}
+
+TEST_CASE("pole inspector: open, it lists the model's pole and computes it for each scheme shown, in the background") {
+  auto app = makeHiddenApp(900, 600);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 3;
+  state.linkLevels = false;
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[1].scheme = SchemeChoice::RTS;
+  state.views[2].scheme = SchemeChoice::C2PS;  // a scheme twice is inspected once
+  state.requests.openPoleInspector = true;     // as `view --inspect-poles`: the panel opens the section
+  app->waitUntilIdle();
+  for (int frame = 0; frame < 400 && (state.poleInspector.inspections.size() < 2 || state.poleInspector.computing); ++frame) {
+    app->runFrame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const PoleInspectorSettings& inspector = state.poleInspector;
+  REQUIRE(inspector.poles.size() == 1);
+  REQUIRE(inspector.inspections.size() == 2);
+  CHECK(inspector.inspections[0].scheme == SchemeChoice::C2PS);
+  CHECK(inspector.inspections[1].scheme == SchemeChoice::RTS);
+  // What the panel shows is what the pipeline computes.
+  const PoleInspection fresh = inspectPole(*app->model().mesh, inspector.poles[0], SchemeChoice::C2PS, 10);
+  REQUIRE(fresh.rings.size() == inspector.inspections[0].rings.size());
+  CHECK(fresh.K == inspector.inspections[0].K);
+  CHECK(fresh.rings.back().deviation == inspector.inspections[0].rings.back().deviation);
+  // Another scheme shown: the open section follows it.
+  state.views[1].scheme = SchemeChoice::BPS;
+  app->waitUntilIdle();
+  for (int frame = 0; frame < 400 && (inspector.computing || inspector.inspections[1].scheme != SchemeChoice::BPS); ++frame) {
+    app->runFrame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  REQUIRE(inspector.inspections.size() == 2);
+  CHECK(inspector.inspections[1].scheme == SchemeChoice::BPS);
+  CHECK_FALSE(inspector.inspections[1].curvatureDefined);  // BPS is C1 at the pole
 }
 
 }  // namespace polarview

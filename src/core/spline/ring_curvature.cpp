@@ -29,7 +29,7 @@ PolarGrid innerLinks(const PolarGrid& grid) {
 }  // namespace
 
 std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool uniformFirstStep, int rings, double poleK,
-                                          double poleH, const Point& poleNormal, int samples) {
+                                          double poleH, const Point& poleNormal, int samples, int angleSamples) {
   if (grid.links < 2) throw std::invalid_argument("ringCurvatures: a pole needs links 0..2");
   samples = std::max(samples, 2);
   std::vector<RingCurvature> out;
@@ -50,7 +50,8 @@ std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool un
     rc.valence = grid.n;
     rc.minK = rc.minH = std::numeric_limits<double>::infinity();
     rc.maxK = rc.maxH = -std::numeric_limits<double>::infinity();
-    for (Patch patch : splineRing(grid, m)) {
+    std::vector<Patch> patches = splineRing(grid, m);
+    for (Patch& patch : patches) {
       // Relative to one of its own points: the derivatives are then differences of small numbers
       // (a deep ring is 2^-m of the model, far from the origin); K and H do not move.
       const Point origin = patch.cp[5];
@@ -65,6 +66,12 @@ std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool un
           rc.minH = std::min(rc.minH, H);
           rc.maxH = std::max(rc.maxH, H);
         }
+    }
+    // The middle circle: row 0's outer edge (u = 1, link 3), column j at v = angle n - j.
+    for (int a = 0; a < angleSamples; ++a) {
+      const double at = double(a) / angleSamples * grid.n;
+      const int j = std::min(int(at), grid.n - 1);
+      rc.kAlongAngle.push_back(evaluatePatch(patches[size_t(j)], 1.0, at - j).gaussian);
     }
     rc.maxAbsDeltaK = std::max(std::abs(rc.maxK - poleK), std::abs(rc.minK - poleK));
     rc.maxAbsDeltaH = std::max(std::abs(rc.maxH - poleH), std::abs(rc.minH - poleH));

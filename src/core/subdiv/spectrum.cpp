@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/mesh/constants.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/bps.h"
 #include "core/subdiv/catmull_clark.h"
@@ -12,10 +13,8 @@
 
 namespace polarview {
 namespace {
-constexpr double kSpectrumPi = 3.14159265358979323846264338327950288;
-
 // omega^k, omega = exp(2 pi i / n), with k reduced mod n first so large k lose no accuracy.
-Complex unitRoot(int n, long long k) { return std::polar(1.0, 2.0 * kSpectrumPi * double(((k % n) + n) % n) / n); }
+Complex unitRoot(int n, long long k) { return std::polar(1.0, 2.0 * kPi * double(((k % n) + n) % n) / n); }
 
 int blockSize(const Matrix& a, int n) {
   if (n <= 0 || a.empty() || a.size() % size_t(n) != 0)
@@ -324,9 +323,11 @@ std::vector<EigenPair> eigenPairsByFourierBlocks(const Matrix& a, int n, const s
         blockEigenvectors(fourierBlock(a, n, source), pair.value, m, &right, &left)) {
       pair.rightProfile = right[size_t(rank)];
       pair.leftProfile = left[size_t(rank)];
-      // (14): v_{ij} = v^_i omega^{j alpha}; (26): w_{ij} = w^_i omega^{-j alpha} / n, so that
-      // w^T v = w^^T v^. The real pair: v = Re, Im of that; w = 2 Re, -2 Im of w's (Fourier
-      // orthogonality makes the cross terms vanish).
+      // (14): v_ij = v^_i omega^{j alpha}; (26): w_ij = w^_i omega^{-j alpha} / n, so that
+      // w^T v = w^^T v^ = 1. The real pair: v = Re, Im of that and w = 2 Re, -2 Im of w's (Fourier
+      // orthogonality makes the cross terms vanish); w^ takes the 2, as Table 1's does.
+      if (mode == FourierMode::Cos || mode == FourierMode::Sin)
+        for (Complex& x : pair.leftProfile) x *= 2.0;
       pair.right.resize(a.size());
       pair.left.resize(a.size());
       for (int j = 0; j < n; ++j) {
@@ -335,8 +336,8 @@ std::vector<EigenPair> eigenPairsByFourierBlocks(const Matrix& a, int n, const s
           const Complex v = pair.rightProfile[size_t(i)] * forward, w = pair.leftProfile[size_t(i)] * backward;
           const size_t row = size_t(b * j + i);
           switch (mode) {
-            case FourierMode::Cos: pair.right[row] = v.real(), pair.left[row] = 2.0 * w.real(); break;
-            case FourierMode::Sin: pair.right[row] = v.imag(), pair.left[row] = -2.0 * w.imag(); break;
+            case FourierMode::Cos: pair.right[row] = v.real(), pair.left[row] = w.real(); break;
+            case FourierMode::Sin: pair.right[row] = v.imag(), pair.left[row] = -w.imag(); break;
             default: pair.right[row] = v, pair.left[row] = w;
           }
         }
@@ -441,6 +442,67 @@ std::vector<EigenPair> schemeEigenPairs(Scheme scheme, int n, size_t count) {
     pair.left = std::move(left);
   }
   return pairs;
+}
+
+// [SECTION] C2PS: Lemma 5 and (30), measured
+
+PolarGrid c2psStepOnLinks(const PolarGrid& grid) {
+  const PolarGrid fine = schemeTraits(Scheme::C2PS).refineGrid(grid, false);
+  PolarGrid kept(fine.n, grid.links);
+  kept.pole = fine.pole;
+  std::copy(fine.ring.begin(), fine.ring.begin() + long(kept.ring.size()), kept.ring.begin());
+  return kept;
+}
+
+std::vector<C2psScalingStep> c2psEigencoefficientScaling(int n, int steps) {
+  constexpr int kLinks = 5;
+  const std::vector<EigenPair> pairs = schemeEigenPairs(Scheme::RTS, n, 6);
+  // op_k(t) of (14) with t = j / valence, the column's Greville abscissa at any valence.
+  auto op = [&](const EigenPair& p, double t) {
+    const int frequency = std::min(p.alpha, n - p.alpha);
+    if (p.mode == FourierMode::Single) return 1.0;
+    return p.mode == FourierMode::Cos ? std::cos(2.0 * kPi * frequency * t) : std::sin(2.0 * kPi * frequency * t);
+  };
+  // v_k^[valence] at links 0..5 (its profile scales with the valence-independent op_k).
+  auto eigenvector = [&](const EigenPair& p, int valence) {
+    PolarGrid g(valence, kLinks);
+    g.pole = Point(p.rightProfile[0].real() * op(p, 0.0));
+    for (int i = 1; i <= kLinks; ++i)
+      for (int j = 0; j < valence; ++j) g.q(i, j) = Point(p.rightProfile[size_t(i)].real() * op(p, double(j) / valence));
+    return g;
+  };
+  std::vector<C2psScalingStep> result;
+  std::vector<PolarGrid> grids;
+  for (const EigenPair& p : pairs) grids.push_back(eigenvector(p, n));
+  for (int m = 1; m <= steps; ++m) {
+    C2psScalingStep step{m, n << m, 0.0, 0.0, 0.0};
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      PolarGrid& g = grids[k];
+      g = c2psStepOnLinks(g);
+      const double scale = std::pow(pairs[k].value.real(), m);  // lambda_k^m
+      // (26): p_h = sum_ij (1/n) w^_h,i op_h(j/n) q_ij, the pole counted once per column.
+      for (size_t h = 0; h < pairs.size(); ++h) {
+        double coefficient = 0.0;
+        for (int j = 0; j < g.n; ++j) {
+          const double column = op(pairs[h], double(j) / g.n) / g.n;
+          coefficient += pairs[h].leftProfile[0].real() * column * g.pole.x;
+          for (int i = 1; i <= kLinks; ++i) coefficient += pairs[h].leftProfile[size_t(i)].real() * column * g.q(i, j).x;
+        }
+        step.coefficientError = std::max(step.coefficientError, std::abs(coefficient - (h == k ? scale : 0.0)));
+      }
+      // (30): against lambda_k^m v_k at the new valence.
+      const PolarGrid target = eigenvector(pairs[k], g.n);
+      auto deviate = [&](int i, double d) {
+        step.deviation = std::max(step.deviation, d);
+        if (i <= 1) step.deviationLinks01 = std::max(step.deviationLinks01, d);
+      };
+      deviate(0, std::abs(g.pole.x - scale * target.pole.x));
+      for (int i = 1; i <= kLinks; ++i)
+        for (int j = 0; j < g.n; ++j) deviate(i, std::abs(g.q(i, j).x - scale * target.q(i, j).x));
+    }
+    result.push_back(step);
+  }
+  return result;
 }
 
 }  // namespace polarview

@@ -106,4 +106,25 @@ std::vector<TaggedEigenvalue> schemeSpectrum(Scheme scheme, int n);
 // unchanged). [O(n^2)]
 std::vector<EigenPair> schemeEigenPairs(Scheme scheme, int n, size_t count);
 
+// [SECTION] C2PS: Lemma 5 and (30), measured
+
+// One C2PS step m applied to RTS's eigenvectors v_k (k < 6) of valence n, links 0..5 (C2PS makes
+// links 0..5 of level m from those of level m - 1 alone; the valence is n 2^m).
+struct C2psScalingStep {
+  int m, valence;
+  // Lemma 5: the eigencoefficients (26) p_h = w_h^T T^m v_k, with RTS's left eigenvectors at valence
+  // n 2^m (Table 1's profiles hold at every valence), are lambda_k^m delta_hk: the largest error.
+  double coefficientError;
+  // (30): |T^m v_k - lambda_k^m v_k^[n 2^m]|, largest over k < 6, on links 0..5 (O(8^-m)) and on
+  // links 0, 1 (zero).
+  double deviation, deviationLinks01;
+};
+
+// One C2PS step (rules (1)-(5), (29)) keeping the grid's links 0..K: the step makes links
+// 0..2K-1 from them, so these are exact. [O(n K)]
+PolarGrid c2psStepOnLinks(const PolarGrid& grid);
+
+// Steps 1..steps of the above (n >= 5, as RTS). [O(steps 6 n 2^steps) with C2PS's O(n) rules]
+std::vector<C2psScalingStep> c2psEigencoefficientScaling(int n, int steps);
+
 }  // namespace polarview

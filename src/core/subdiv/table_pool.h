@@ -2,7 +2,12 @@
 // change in the viewer, the bench's repetitions) writes into memory the process already has
 // instead of asking the kernel for fresh pages: on this project's machines a fresh page costs
 // several times more than writing it (fault, zeroing, then std::vector's own zero fill).
-// Thread-safe. The pool holds at most kMaxPooledBytes; clearTablePool() frees it.
+// Thread-safe. The pool holds at most maxPooledBytes(); clearTablePool() frees it.
+//
+// Fresh buffers (nothing pooled fits) are pre-faulted in one madvise(MADV_POPULATE_WRITE) call:
+// measured here (Firecracker VM, 4 KiB pages) it maps 1 GiB in ~240 ms against ~330 ms of
+// one-by-one faults. Transparent huge pages were measured slower (seconds per GiB with
+// defrag=madvise: compaction), so they are not asked for. docs/performance.md has the numbers.
 #pragma once
 
 #include <cstddef>
@@ -10,7 +15,11 @@
 
 namespace polarview {
 
-constexpr size_t kMaxPooledBytes = size_t(1) << 30;  // about one refinement of 2.5M faces
+// The most the pool keeps: a quarter of the machine's memory, at least 1 GiB, so a whole uniform
+// refinement (10M faces: ~3 GB) is reused by the next one instead of faulted in again.
+size_t maxPooledBytes();
+// Sets maxPooledBytes() (0: back to the default); for tests and memory-tight callers.
+void setMaxPooledBytes(size_t bytes);
 constexpr size_t kMinPooledBytes = size_t(1) << 20;  // smaller tables: malloc recycles them well
 
 // Makes table.capacity() >= size, taking the best-fitting pooled buffer when `table` is smaller.

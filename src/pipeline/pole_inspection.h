@@ -1,0 +1,50 @@
+// The pole inspector's numbers (issue: the paper's claim made visible): per pole of the model and
+// scheme, the limit point, normal, expansion (32) and K, H at the pole, and ring by ring how K
+// approaches it: C2PS converges (about /2.5 a level), RTS's K keeps depending on the direction,
+// Catmull-Clark oscillates n-fold around its extraordinary vertex. Plain data, no GL.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/mesh/poly_mesh.h"
+#include "pipeline/scheme_choice.h"
+
+namespace polarview {
+
+struct PoleRingCurves {
+  int m = 0;                // ring m: r in [2, 4] 2^-m of level 0's radial unit (level m's patches for CC)
+  double minK = 0.0, maxK = 0.0;
+  // max |K - K(pole)| where K(pole) is defined (C2 schemes), else the spread maxK - minK.
+  double deviation = 0.0;
+  std::vector<double> kAlongAngle;  // K at kInspectorAngles uniform angles around the ring
+};
+
+struct PoleInspection {
+  SchemeChoice scheme = SchemeChoice::C2PS;
+  Index vertex = -1;
+  int valence = 0;
+  bool byScheme = true;            // false: the scheme leaves this pole to Catmull-Clark (why: note)
+  bool hasExpansion = false;       // limit, normal, p0..p5 below are (32)'s
+  Point limit{}, normal{};
+  std::array<Point, 6> p{};
+  bool curvatureDefined = false;   // K, H at the pole are defined (C2 at the pole: C2PS; RTS: Taylor K)
+  double K = 0.0, H = 0.0;
+  bool directional = false;        // K depends on the direction at the pole (RTS for finite n, CC)
+  bool deviationFromPole = false;  // rings' deviation is |K - K(pole)| (else the spread)
+  std::vector<PoleRingCurves> rings;
+  std::string note;                // one line for the panel
+};
+
+constexpr int kInspectorAngles = 180;
+
+// The polar vertices of the model (refinable polar configurations, any scheme), by vertex id. [O(mesh)]
+std::vector<Index> modelPoles(const PolyMesh& mesh);
+// The inspection of pole `vertex` of `mesh` under `scheme`, rings 1..rings (C2PS at most the rings
+// that keep its doubled valence within 2^16). Polar schemes: from the pole's own links (pole-
+// relative, any depth); Catmull-Clark: from its feature-adaptive patches around the vertex.
+// Throws std::invalid_argument when `vertex` is not a pole of the mesh. [O(rings * ring size)]
+PoleInspection inspectPole(const PolyMesh& mesh, Index vertex, SchemeChoice scheme, int rings);
+
+}  // namespace polarview

@@ -1,0 +1,154 @@
+// The "Poles" panel: the pole inspector's numbers and two plots (ui/viewer_panels.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "ui/viewer_panels.h"
+
+namespace polarview {
+namespace {
+
+// One line of a plot: its colour and points (x, y); non-finite y are gaps.
+struct PlotSeries {
+  ImU32 colour;
+  std::vector<float> x, y;
+};
+
+ImU32 seriesColour(int k) {
+  static const ImU32 colours[] = {IM_COL32(90, 170, 255, 255), IM_COL32(255, 150, 60, 255), IM_COL32(120, 220, 120, 255),
+                                  IM_COL32(230, 90, 200, 255)};
+  return colours[k % 4];
+}
+
+// Lines in a box the width of the panel, with the y range written at its corners and `xLabel`
+// below. Enough for reading trends (ImGui's PlotLines draws one series without axes).
+void drawPlot(const char* id, const std::vector<PlotSeries>& series, const char* xLabel, const char* yFormat, float height) {
+  float xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
+  for (const PlotSeries& s : series)
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.y[i])) continue;
+      xMin = std::min(xMin, s.x[i]), xMax = std::max(xMax, s.x[i]);
+      yMin = std::min(yMin, s.y[i]), yMax = std::max(yMax, s.y[i]);
+    }
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = std::max(ImGui::GetContentRegionAvail().x, 100.0f);
+  ImGui::InvisibleButton(id, ImVec2(width, height));
+  ImDrawList* list = ImGui::GetWindowDrawList();
+  list->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(25, 27, 32, 255));
+  list->AddRect(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(90, 90, 100, 255));
+  if (!(xMax > xMin)) return;
+  if (!(yMax > yMin)) yMin -= 0.5f, yMax += 0.5f;
+  const float pad = 4.0f;
+  auto at = [&](float x, float y) {
+    return ImVec2(origin.x + pad + (x - xMin) / (xMax - xMin) * (width - 2 * pad),
+                  origin.y + height - pad - (y - yMin) / (yMax - yMin) * (height - 2 * pad));
+  };
+  for (const PlotSeries& s : series) {
+    std::vector<ImVec2> run;
+    auto flush = [&] {
+      if (run.size() >= 2) list->AddPolyline(run.data(), int(run.size()), s.colour, 0, 1.5f);
+      else if (run.size() == 1) list->AddCircleFilled(run[0], 2.0f, s.colour);
+      run.clear();
+    };
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (std::isfinite(s.y[i])) run.push_back(at(s.x[i], s.y[i]));
+      else flush();
+    }
+    flush();
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, yFormat, double(yMax));
+  list->AddText(ImVec2(origin.x + pad, origin.y + 1), IM_COL32(200, 200, 200, 255), text);
+  std::snprintf(text, sizeof text, yFormat, double(yMin));
+  list->AddText(ImVec2(origin.x + pad, origin.y + height - ImGui::GetTextLineHeight() - 1), IM_COL32(200, 200, 200, 255), text);
+  ImGui::TextDisabled("%s", xLabel);
+}
+
+std::string pointText(const Point& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", p.x, p.y, p.z);
+  return text;
+}
+
+}  // namespace
+
+void drawPoleInspectorPanel(ViewerState& state) {
+  PoleInspectorSettings& s = state.poleInspector;
+  s.open = true;  // the app computes while the section is open
+  if (s.poles.empty()) {
+    ImGui::TextWrapped("The model has no polar configuration.");
+    return;
+  }
+  s.pole = std::clamp(s.pole, 0, int(s.poles.size()) - 1);
+  const std::string current = "vertex " + std::to_string(s.poles[size_t(s.pole)]);
+  if (ImGui::BeginCombo("pole", current.c_str())) {
+    for (int k = 0; k < int(s.poles.size()); ++k)
+      if (ImGui::Selectable(("vertex " + std::to_string(s.poles[size_t(k)])).c_str(), k == s.pole)) s.pole = k;
+    ImGui::EndCombo();
+  }
+  if (s.computing) ImGui::TextDisabled("computing the rings ...");
+  if (!s.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.4f, 1.0f), "%s", s.error.c_str());
+  if (s.inspections.empty()) return;
+
+  // Per scheme: K and H at the pole, and what they mean.
+  std::string copied;
+  for (size_t k = 0; k < s.inspections.size(); ++k) {
+    const PoleInspection& in = s.inspections[k];
+    ImGui::TextColored(ImColor(seriesColour(int(k))).Value, "%s", schemeChoiceLabel(in.scheme));
+    ImGui::SameLine();
+    if (in.curvatureDefined) ImGui::Text("K %.6g  H %.6g%s", in.K, in.H, in.directional ? " (Taylor)" : "");
+    else ImGui::Text("K, H not defined at the pole");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", in.note.c_str());
+    ImGui::PopStyleColor();
+    if (in.hasExpansion && copied.empty()) {
+      copied = std::string(schemeChoiceLabel(in.scheme)) + " pole at vertex " + std::to_string(in.vertex) +
+               " (valence " + std::to_string(in.valence) + ")\nlimit " + pointText(in.limit) + "\nnormal " + pointText(in.normal);
+      for (int i = 0; i < 6; ++i) copied += "\np" + std::to_string(i) + " " + pointText(in.p[size_t(i)]);
+      if (in.curvatureDefined) copied += "\nK " + std::to_string(in.K) + " H " + std::to_string(in.H);
+    }
+  }
+  if (!copied.empty() && ImGui::TreeNode("limit, normal, expansion (32)")) {
+    ImGui::TextUnformatted(copied.c_str());
+    if (ImGui::SmallButton("Copy")) ImGui::SetClipboardText(copied.c_str());
+    ImGui::TreePop();
+  }
+
+  // How K approaches the pole, ring by ring (log scale).
+  std::vector<PlotSeries> convergence;
+  int deepest = 1;
+  for (size_t k = 0; k < s.inspections.size(); ++k) {
+    PlotSeries series{seriesColour(int(k)), {}, {}};
+    for (const PoleRingCurves& ring : s.inspections[k].rings) {
+      series.x.push_back(float(ring.m));
+      series.y.push_back(ring.deviation > 0.0 ? float(std::log10(ring.deviation)) : NAN);
+      deepest = std::max(deepest, ring.m);
+    }
+    convergence.push_back(std::move(series));
+  }
+  ImGui::Text("log10 of max |K - K(pole)| (C2) or spread of K");
+  drawPlot("##convergence", convergence, "ring m (level) ->", "%.1f", 110.0f);
+
+  // K around the pole on ring m.
+  s.ring = std::clamp(s.ring, 1, deepest);
+  ImGui::SliderInt("ring m", &s.ring, 1, deepest);
+  std::vector<PlotSeries> around;
+  for (size_t k = 0; k < s.inspections.size(); ++k) {
+    PlotSeries series{seriesColour(int(k)), {}, {}};
+    for (const PoleRingCurves& ring : s.inspections[k].rings)
+      if (ring.m == s.ring)
+        for (size_t a = 0; a < ring.kAlongAngle.size(); ++a) {
+          series.x.push_back(360.0f * float(a) / float(ring.kAlongAngle.size()));
+          series.y.push_back(float(ring.kAlongAngle[a]));
+        }
+    around.push_back(std::move(series));
+  }
+  ImGui::Text("K around the pole on ring %d", s.ring);
+  drawPlot("##around", around, "angle (degrees) ->", "%.4g", 110.0f);
+}
+
+}  // namespace polarview
