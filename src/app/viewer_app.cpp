@@ -1075,8 +1075,18 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
     camera.zoomTowards(glm::dvec3(world), pick.zoomNotches);
     return;
   }
+  if (pick.readout && views_[size_t(pick.view)].shown) {
+    // The depth buffer holds the surface up to its resolution: search within 1% of the distance.
+    const double tolerance = 1e-2 * glm::length(world - camera.eye());
+    if (const auto readout = readSurfacePoint(views_[size_t(pick.view)].shown->patches, world, tolerance)) {
+      state_.readout = ReadoutSettings{true, pick.view, *readout, readout->text()};
+      state_.notice = "K " + std::to_string(readout->point.gaussian) + ", H " + std::to_string(readout->point.mean) +
+                      " (panel Point; Copy)";
+    }
+  }
+  if (!pick.movePivot) return;
   camera.setPivotKeepingEye(glm::dvec3(world));
-  state_.notice = "pivot set";
+  if (!pick.readout) state_.notice = "pivot set";
 }
 
 void ViewerApp::runFrame() {

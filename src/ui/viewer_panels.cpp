@@ -501,7 +501,8 @@ const std::vector<HotkeyHelp>& hotkeyList() {
       {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
       {"Left drag on a control vertex", "with the control net shown (N): move the vertex in the view plane; every view follows"},
       {"O", "orthographic / perspective projection"},
-      {"Double-click", "set the pivot to the surface point under the cursor"},
+      {"Double-click", "set the pivot to the surface point under the cursor (and read it, as Alt+click)"},
+      {"Alt+click", "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
       {"F", "frame the model"},
       {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
       {"Ctrl+C / Ctrl+V", "copy / paste the camera as JSON"},
@@ -660,6 +661,11 @@ void drawViewerPanels(ViewerState& state) {
         ImGui::SetScrollHereY(0.0f);  // the header at the top of the column
       }
       drawPoleInspectorPanel(state);
+    }
+    if (state.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ImGui::Text("view %d", state.readout.view + 1);
+      ImGui::TextUnformatted(state.readout.text.c_str());
+      if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(state.readout.text.c_str());
     }
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
     ImGui::PopItemWidth();
@@ -872,7 +878,13 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   }
   if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) {
     if (io.MouseWheel != 0.0f) zoomTowardsCursor(state, views[size_t(hovered)], hovered, io.MouseWheel);
-    result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y};
+    result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y, 0.0f, true, true};
+    return result;
+  }
+  // Alt+click reads the surface point under the cursor without moving the camera.
+  if (hovered >= 0 && io.KeyAlt && ImGui::IsMouseReleased(0) &&
+      io.MouseDragMaxDistanceSqr[0] <= io.MouseDragThreshold * io.MouseDragThreshold) {
+    result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y, 0.0f, true, false};
     return result;
   }
   // The wheel zooms towards the surface point under the cursor: the app reads the depth there.

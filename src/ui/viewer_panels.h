@@ -78,6 +78,8 @@ struct PivotPick {
   int view = 0;
   float x = 0, y = 0;  // window coordinates
   float zoomNotches = 0.0f;
+  bool readout = false;     // also read the surface point there (ViewerState::readout)
+  bool movePivot = true;    // false: the readout only (Alt+click)
 };
 
 // A left drag that began on a control vertex: where the cursor is now (window coordinates), for the

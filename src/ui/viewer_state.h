@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/point_readout.h"
 #include "pipeline/pole_inspection.h"
 #include "pipeline/scheme_choice.h"
 #include "pipeline/shading.h"
@@ -148,6 +149,14 @@ struct ViewerRequests {
   bool openPoleInspector = false;  // open the "Poles" section (view --inspect-poles)
 };
 
+// The surface point last read (Alt+click, double-click): panel "Point".
+struct ReadoutSettings {
+  bool valid = false;
+  int view = 0;
+  PointReadout readout;
+  std::string text;  // readout.text(), what Copy puts on the clipboard
+};
+
 // The pole inspector (panel "Poles"): the paper's claim made visible, computed by the app in the
 // background while the section is open (pipeline/pole_inspection.h).
 struct PoleInspectorSettings {
@@ -177,6 +186,7 @@ struct ViewerState {
   ScreenshotSettings screenshot;
   EditSettings edit;
   PoleInspectorSettings poleInspector;
+  ReadoutSettings readout;
   ViewerRequests requests;
 
   bool showPanels = true;      // Tab

@@ -591,4 +591,31 @@ TEST_CASE("pole inspector: open, it lists the model's pole and computes it for e
   CHECK_FALSE(inspector.inspections[1].curvatureDefined);  // BPS is C1 at the pole
 }
 
+TEST_CASE("point readout: Alt+click reads the surface point under the cursor without moving the camera") {
+  auto app = makeHiddenApp(640, 480);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[0].level = 3;
+  app->waitUntilIdle();
+  for (int frame = 0; frame < 3; ++frame) app->runFrame();
+  const OrbitCamera before = state.camera(0);
+  const ViewTransform view = app->viewTransform(0);
+  const float x = view.rect.x + 0.5f * view.rect.w, y = view.rect.y + 0.45f * view.rect.h;
+  app->requestPivot(PivotPick{0, x, y, 0.0f, true, false});
+  app->runFrame();
+  REQUIRE(state.readout.valid);
+  const PointReadout& r = state.readout.readout;
+  CHECK(state.camera(0).target == before.target);  // Alt+click moves nothing
+  CHECK(state.camera(0).distance == before.distance);
+  // The point projects back under the cursor, and its K is the patch's there.
+  const auto at = view.project(r.point.position);
+  REQUIRE(at);
+  CHECK(std::abs(at->x - x) < 1.5);
+  CHECK(std::abs(at->y - y) < 1.5);
+  const SurfacePoint again = evaluatePatch(app->shownSurface(0)->patches.at(r.patchIndex), r.u, r.v);
+  CHECK(again.gaussian == doctest::Approx(r.point.gaussian));
+  CHECK(state.readout.text.find("K ") != std::string::npos);
+}
+
 }  // namespace polarview
