@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/export_command.h"
+#include "core/mesh/ev_to_polar.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/refiner.h"
@@ -449,6 +450,21 @@ void ViewerApp::processRequests() {
   }
   if (r.redo) redoEdit();
   if (r.resetEdits) resetEdits();
+  if (r.convertToPolar && model_.mesh) {
+    try {
+      PolarConversion conversion = convertExtraordinaryToPolar(*model_.mesh, r.convertWithPentagons, model_.name);
+      if (conversion.converted.empty()) {
+        state_.notice = "no extraordinary vertex to convert (interior, all quads around it, valence != 4)";
+      } else {
+        const size_t count = conversion.converted.size();
+        const std::string name = "converted (Fig. 14" + std::string(r.convertWithPentagons ? "c" : "a") + "): " + model_.name;
+        if (loadMesh(std::move(conversion.mesh), name, ""))
+          state_.notice = std::to_string(count) + " extraordinary vertices made poles (Ctrl+Z returns)";
+      }
+    } catch (const std::exception& e) {
+      state_.notice = std::string("conversion failed: ") + e.what();
+    }
+  }
   if (r.saveEdited) saveEditedMesh();
   if (r.exportBezierView) startExport(true);
   if (r.exportRefinedMesh) startExport(false);

@@ -172,6 +172,13 @@ void drawEditPanel(ViewerState& state) {
   if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "Export refined mesh"))
     state.requests.exportRefinedMesh = true;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");
+  // Fig. 14: extraordinary vertices to polar configurations (the model is replaced; Ctrl+Z returns).
+  if (ImGui::Button("EVs to poles (Fig. 14a)")) state.requests.convertToPolar = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each n-valent extraordinary vertex becomes a 2n-valent polar configuration with n 5-valent vertices");
+  ImGui::SameLine();
+  if (ImGui::Button("with pentagons (14c)")) state.requests.convertToPolar = state.requests.convertWithPentagons = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
 
   if (!state.display.controlNet) {
     ImGui::TextDisabled("Show the control net (N) to pick and drag its vertices.");

@@ -147,6 +147,9 @@ struct ViewerRequests {
   bool pasteCamera = false;   // Ctrl+V
   std::optional<ViewPreset> preset;
   bool openPoleInspector = false;  // open the "Poles" section (view --inspect-poles)
+  // Paper Fig. 14: turn the model's Catmull-Clark extraordinary vertices into polar configurations
+  // (a) 2n-valent with n 5-valent vertices, or (c) n-valent with n pentagons; Ctrl+Z returns.
+  bool convertToPolar = false, convertWithPentagons = false;
 };
 
 // The surface point last read (Alt+click, double-click): panel "Point".

@@ -10,6 +10,7 @@
 #include "pipeline/surface_pipeline.h"
 #include "core/spline/patch_extraction.h"
 #include "pipeline/pole_inspection.h"
+#include "core/mesh/shapes.h"
 #include "core/subdiv/adaptive_refiner.h"
 
 #include <doctest/doctest.h>
@@ -616,6 +617,33 @@ TEST_CASE("point readout: Alt+click reads the surface point under the cursor wit
   const SurfacePoint again = evaluatePatch(app->shownSurface(0)->patches.at(r.patchIndex), r.u, r.v);
   CHECK(again.gaussian == doctest::Approx(r.point.gaussian));
   CHECK(state.readout.text.find("K ") != std::string::npos);
+}
+
+TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refines, Ctrl+Z brings the cube back") {
+  auto app = makeHiddenApp(640, 480);
+  REQUIRE(app->loadMesh(shapes::cube(), "cube"));
+  ViewerState& state = app->state();
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[0].level = 2;
+  app->waitUntilIdle();
+  app->runFrame();
+  CHECK(state.status[0].polesByScheme == 0);
+  const int cubeFaces = app->model().mesh->faceCount();
+  for (bool pentagons : {false, true}) {
+    CAPTURE(pentagons);
+    state.requests.convertToPolar = true;
+    state.requests.convertWithPentagons = pentagons;
+    app->runFrame();
+    app->waitUntilIdle();
+    app->runFrame();
+    CHECK(app->model().mesh->faceCount() > cubeFaces);
+    CHECK_FALSE(modelPoles(*app->model().mesh).empty());
+    CHECK(state.status[0].polesByScheme == int(modelPoles(*app->model().mesh).size()));  // C2PS refines them
+    state.requests.undoModel = true;  // Ctrl+Z with no edit to undo
+    app->runFrame();
+    app->waitUntilIdle();
+    CHECK(app->model().mesh->faceCount() == cubeFaces);
+  }
 }
 
 }  // namespace polarview
