@@ -18,6 +18,8 @@
 
 #include "app/export_command.h"
 #include "core/mesh/ev_to_polar.h"
+#include "core/subdiv/spectrum.h"
+#include "pipeline/eigen_nets.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/refiner.h"
@@ -450,6 +452,17 @@ void ViewerApp::processRequests() {
   }
   if (r.redo) redoEdit();
   if (r.resetEdits) resetEdits();
+  if (r.showEigenvector) {
+    const SpectrumSettings& spectrum = state_.spectrum;
+    try {
+      const std::string name = "RTS eigenvector v" + std::to_string(spectrum.k) + ", valence " + std::to_string(spectrum.valence) +
+                               (spectrum.c2psSteps > 0 ? ", " + std::to_string(spectrum.c2psSteps) + " C2PS steps" : "");
+      if (loadMesh(eigenNet(spectrum.valence, spectrum.k, spectrum.c2psSteps), name, ""))
+        state_.notice = name + " (Ctrl+Z returns)";
+    } catch (const std::exception& e) {
+      state_.notice = std::string("eigenvector: ") + e.what();
+    }
+  }
   if (r.convertToPolar && model_.mesh) {
     try {
       PolarConversion conversion = convertExtraordinaryToPolar(*model_.mesh, r.convertWithPentagons, model_.name);
@@ -703,6 +716,28 @@ void ViewerApp::collectColourSamples() {
   state_.colour.autoBelow = std::max(-low, floor);
   state_.colour.autoAbove = std::max(high, floor);
   state_.colour.histogram.clear();  // recomputed for the new samples
+}
+
+void ViewerApp::updateSpectrum() {
+  SpectrumSettings& spectrum = state_.spectrum;
+  const bool open = spectrum.open;
+  spectrum.open = false;  // the panel marks it again next frame while the section is open
+  if (!open || spectrum.linesValence == spectrum.valence) return;
+  // Small (6n x 6n, n <= 24): computed on the GL thread when the valence changes.
+  spectrum.lines.clear();
+  try {
+    const std::vector<EigenPair> pairs = schemeEigenPairs(Scheme::RTS, spectrum.valence, 8);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      char line[96];
+      std::snprintf(line, sizeof line, "v%zu  %.12g  block %d  %s", k, pairs[k].value.real(), pairs[k].alpha,
+                    fourierModeName(pairs[k].mode));
+      spectrum.lines.push_back(line);
+    }
+  } catch (const std::exception& e) {
+    spectrum.lines.push_back(e.what());
+  }
+  spectrum.linesValence = spectrum.valence;
+  spectrum.k = std::clamp(spectrum.k, 0, std::max(int(spectrum.lines.size()) - 1, 0));
 }
 
 void ViewerApp::updatePoleInspector() {
@@ -1160,6 +1195,7 @@ void ViewerApp::runFrame() {
   pollExport();
   updateSurfaces();
   updatePoleInspector();
+  updateSpectrum();
   updateColourRange();
   updateEditState();
 

@@ -179,6 +179,8 @@ class ViewerApp {
   // The pole inspector: its pole list on a model change; while its section is open, the
   // inspections of the selected pole for the visible views' schemes, computed in the background.
   void updatePoleInspector();
+  // The Spectrum panel's eigenvalue lines, when it is open and the valence changed.
+  void updateSpectrum();
   // Starts making view v's next level ahead when it is idle (ViewerOptions::prepareNextLevel).
   void prepareNextLevel(int v, const SurfaceKey& wanted);
   // Positions-only updates of the visible views whose surface has the model's topology but older

@@ -151,4 +151,21 @@ void drawPoleInspectorPanel(ViewerState& state) {
   drawPlot("##around", around, "angle (degrees) ->", "%.4g", 110.0f);
 }
 
+void drawSpectrumPanel(ViewerState& state) {
+  SpectrumSettings& s = state.spectrum;
+  s.open = true;
+  ImGui::SliderInt("valence n", &s.valence, 5, 24);
+  ImGui::TextDisabled("RTS, matrix (13): k, eigenvalue, Fourier block, mode");
+  for (int k = 0; k < int(s.lines.size()); ++k)
+    if (ImGui::Selectable(s.lines[size_t(k)].c_str(), k == s.k)) s.k = k;
+  if (s.linesValence != s.valence) ImGui::TextDisabled("computing ...");
+  ImGui::SliderInt("C2PS steps", &s.c2psSteps, 0, 3);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Fig. 1 d-f: the net after that many C2PS steps (valence x 2 each), magnified back by 2 a step\n"
+                      "and its heights by 1 / lambda a step: Lemma 5's scaling shows as equal heights");
+  if (ImGui::Button("Show v_k as the model")) state.requests.showEigenvector = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the net (v1, v2, v_k) over the characteristic map; the views draw its eigenspline (Ctrl+Z returns)");
+}
+
 }  // namespace polarview

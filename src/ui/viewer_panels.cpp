@@ -669,6 +669,7 @@ void drawViewerPanels(ViewerState& state) {
       }
       drawPoleInspectorPanel(state);
     }
+    if (ImGui::CollapsingHeader("Spectrum (Fig. 1)")) drawSpectrumPanel(state);
     if (state.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
       ImGui::Text("view %d", state.readout.view + 1);
       ImGui::TextUnformatted(state.readout.text.c_str());

@@ -41,6 +41,9 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
 // The "Poles" section: pole list, K and H at the pole per scheme shown, the rings' approach to it
 // (log scale) and K around ring m (pole_inspector_panel.cpp). Marks the inspector open.
 void drawPoleInspectorPanel(ViewerState& state);
+// The "Spectrum (Fig. 1)" section: RTS's eigenvalues at a valence, and a button that shows an
+// eigenvector's net as the model (pole_inspector_panel.cpp). Marks the section open.
+void drawSpectrumPanel(ViewerState& state);
 
 // All panels (file, views, display, shading, colour, camera, screenshot, stats) and the help
 // window. Call between ImGui::NewFrame and ImGui::Render.

@@ -150,6 +150,7 @@ struct ViewerRequests {
   // Paper Fig. 14: turn the model's Catmull-Clark extraordinary vertices into polar configurations
   // (a) 2n-valent with n 5-valent vertices, or (c) n-valent with n pentagons; Ctrl+Z returns.
   bool convertToPolar = false, convertWithPentagons = false;
+  bool showEigenvector = false;  // the model becomes SpectrumSettings' eigenvector net (Ctrl+Z returns)
 };
 
 // The surface point last read (Alt+click, double-click): panel "Point".
@@ -158,6 +159,18 @@ struct ReadoutSettings {
   int view = 0;
   PointReadout readout;
   std::string text;  // readout.text(), what Copy puts on the clipboard
+};
+
+// The Spectrum panel (paper Table 1, Fig. 1): RTS's leading eigenvalues at a valence, and one
+// eigenvector v_k shown as the model (its net over the characteristic map, pipeline/eigen_nets.h).
+struct SpectrumSettings {
+  bool open = false;      // marked by the panel each frame it is drawn
+  int valence = 6;
+  int k = 3;              // the eigenvector to show (0..7)
+  int c2psSteps = 0;      // > 0: that many C2PS steps first, magnified back (Fig. 1 d-f, Lemma 5)
+  // Set by the app: one line per eigenvalue ("k  lambda  block  mode"), for `linesValence`.
+  std::vector<std::string> lines;
+  int linesValence = 0;
 };
 
 // The pole inspector (panel "Poles"): the paper's claim made visible, computed by the app in the
@@ -190,6 +203,7 @@ struct ViewerState {
   EditSettings edit;
   PoleInspectorSettings poleInspector;
   ReadoutSettings readout;
+  SpectrumSettings spectrum;
   ViewerRequests requests;
 
   bool showPanels = true;      // Tab

@@ -9,6 +9,7 @@
 #include "app/viewer_app.h"
 #include "pipeline/surface_pipeline.h"
 #include "core/spline/patch_extraction.h"
+#include "pipeline/eigen_nets.h"
 #include "pipeline/pole_inspection.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/adaptive_refiner.h"
@@ -644,6 +645,32 @@ TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refi
     app->waitUntilIdle();
     CHECK(app->model().mesh->faceCount() == cubeFaces);
   }
+}
+
+TEST_CASE("Spectrum panel: RTS's Table 1 at the chosen valence, and v_k shown as the model (its net and eigenspline)") {
+  auto app = makeHiddenApp(640, 480);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.spectrum.valence = 7;
+  state.spectrum.open = true;  // as the panel marks it while the section is open
+  app->runFrame();
+  REQUIRE(state.spectrum.linesValence == 7);
+  REQUIRE(state.spectrum.lines.size() == 8);
+  // Table 1: 1, 1/2, 1/2, 1/4, 1/4, 1/4.
+  const double table1[] = {1.0, 0.5, 0.5, 0.25, 0.25, 0.25};
+  for (int k = 0; k < 6; ++k) {
+    CAPTURE(state.spectrum.lines[size_t(k)]);
+    const double value = std::stod(state.spectrum.lines[size_t(k)].substr(state.spectrum.lines[size_t(k)].find(' ') + 2));
+    CHECK(value == doctest::Approx(table1[k]).epsilon(1e-9));
+  }
+  state.spectrum.k = 3;  // the paraboloid mode: its net's heights are the eigenvector
+  state.requests.showEigenvector = true;
+  app->runFrame();
+  app->waitUntilIdle();
+  const PolyMesh& net = *app->model().mesh;
+  CHECK(net.points.size() == eigenNet(7, 3, 0).points.size());
+  CHECK(modelPoles(net).size() >= 1);
+  CHECK(app->model().name.find("v3") != std::string::npos);
 }
 
 }  // namespace polarview

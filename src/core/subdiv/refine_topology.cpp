@@ -66,7 +66,12 @@ struct TableJob {
 template <class T>
 TableJob tableJob(std::vector<T>& table, size_t size) {
   return {size * sizeof(T), [](void* v, size_t n) { reserveFromPool(*static_cast<std::vector<T>*>(v), n); },
-          [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->resize(n); }, &table, size};
+          [](void* v, size_t n) {
+            std::vector<T>& t = *static_cast<std::vector<T>*>(v);
+            if (t.size() < n) prefault(t.data() + t.size(), (n - t.size()) * sizeof(T));  // fresh pages: map at once
+            t.resize(n);
+          },
+          &table, size};
 }
 
 // Asks for a cache line that a later iteration reads at a data-dependent place.

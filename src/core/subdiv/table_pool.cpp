@@ -37,7 +37,8 @@ size_t& poolLimit() {
   return limit;
 }
 
-// Maps a fresh buffer's pages in one call instead of one fault per page (see table_pool.h).
+}  // namespace
+
 void prefault(void* data, size_t bytes) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
   const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
@@ -48,8 +49,6 @@ void prefault(void* data, size_t bytes) {
   (void)bytes;
 #endif
 }
-
-}  // namespace
 
 size_t maxPooledBytes() {
   std::lock_guard<std::mutex> lock(poolMutex());
@@ -85,7 +84,6 @@ void reserveFromPool(std::vector<T>& table, size_t size) {
   }
   std::vector<T>().swap(table);  // drop the old contents rather than copy them
   table.reserve(size);
-  if (size * sizeof(T) >= kMinPooledBytes) prefault(table.data(), size * sizeof(T));
 }
 
 template <class T>

@@ -4,10 +4,8 @@
 // several times more than writing it (fault, zeroing, then std::vector's own zero fill).
 // Thread-safe. The pool holds at most maxPooledBytes(); clearTablePool() frees it.
 //
-// Fresh buffers (nothing pooled fits) are pre-faulted in one madvise(MADV_POPULATE_WRITE) call:
-// measured here (Firecracker VM, 4 KiB pages) it maps 1 GiB in ~240 ms against ~330 ms of
-// one-by-one faults. Transparent huge pages were measured slower (seconds per GiB with
-// defrag=madvise: compaction), so they are not asked for. docs/performance.md has the numbers.
+// Memory the pool cannot supply is fresh: prefault() maps its pages in one call, per table on the
+// thread that fills it. docs/performance.md has the measurements behind these choices.
 #pragma once
 
 #include <cstddef>
@@ -31,6 +29,12 @@ void reserveFromPool(std::vector<T>& table, size_t size);
 // Hands the table's buffer to the pool (or frees it when small or the pool is full); leaves it empty.
 template <class T>
 void releaseToPool(std::vector<T>& table);
+
+// Maps the pages of [data, data + bytes) writable in one madvise(MADV_POPULATE_WRITE) call instead of
+// one fault per page (measured here, 4 KiB pages in a Firecracker VM: 1 GiB in ~240 ms against
+// ~330 ms of demand faults). Transparent huge pages are not asked for: with defrag=madvise they
+// took seconds per GiB here (compaction). Best effort; a no-op where unsupported. [O(bytes)]
+void prefault(void* data, size_t bytes);
 
 // Frees every pooled buffer. [O(buffers)]
 void clearTablePool();
