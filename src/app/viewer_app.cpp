@@ -521,7 +521,16 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   ViewRuntime& view = views_[size_t(v)];
   // A level step on the same hierarchy keeps the patches both levels share on the GPU.
   const auto start = std::chrono::steady_clock::now();
-  view.renderer->setPatches(surface->patches, surface->stamp, surface->regularCount);
+  const int zoom = state_.poleInspector.zoomRing;
+  if (zoom >= 0 && !surface->poles.empty()) {
+    // Pole zoom: the rings of the inspected pole, scaled in double (a new upload: no stable prefix).
+    const int pole = std::clamp(state_.poleInspector.pole, 0, int(surface->poles.size()) - 1);
+    view.renderer->setPatches(zoomAboutPole(surface->patches, pole, zoom, 3, surface->poles[size_t(pole)]));
+    view.zoomShown = zoom;
+  } else {
+    view.renderer->setPatches(surface->patches, surface->stamp, surface->regularCount);
+    view.zoomShown = -1;
+  }
   view.keptPatches = view.renderer->lastReusedPatches();
   view.uploadMs = millisecondsSince(start);
   view.renderer->setControlMesh(surface->controlMesh);
@@ -605,6 +614,9 @@ void ViewerApp::updateSurfaces() {
       }
     }
 
+    // The pole zoom changed: the same surface, other patches on the GPU.
+    if (view.shown && view.zoomShown != (view.shown->poles.empty() ? -1 : state_.poleInspector.zoomRing)) show(v, view.shown);
+
     // A refused or failed key reverts the view to what it shows, so the controls tell the truth.
     SurfaceKey wanted = wantedKey(v);
     if (view.failed && *view.failed == wanted && view.shown && view.shown->key.model == wanted.model) {
@@ -657,6 +669,7 @@ void ViewerApp::updateSurfaces() {
       status.samplesMs = view.shown->samplesMs;
       status.uploadMs = view.uploadMs;
       status.patchLevel = view.shown->patchLevel;
+      status.zoomRing = view.zoomShown;
       status.keptPatches = int(view.keptPatches);
       status.polesByScheme = view.shown->polesByScheme;
       status.polesByCatmullClark = view.shown->polesByCatmullClark;
@@ -1082,6 +1095,15 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
     if (!views_[v].shown) continue;
     // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
     shading.mode = state_.viewShade(int(v));
+    // A pole zoom by s = 2^m scales K by 1 / s^2 and H by 1 / s: the range alike, so colours keep values.
+    shading.range = state_.colourRange();
+    shading.rangeBelow = state_.colourRangeBelow();
+    if (views_[v].zoomShown >= 0) {
+      const float s = std::ldexp(1.0f, views_[v].zoomShown);
+      const float scale = shading.mode == ShadingParams::Mode::Gaussian ? 1.0f / (s * s) : 1.0f / s;
+      shading.range *= scale;
+      shading.rangeBelow *= scale;
+    }
     // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read
     // like a curvature feature right at the pole).
     DisplayFlags display = state_.viewDisplay(int(v));

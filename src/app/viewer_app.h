@@ -144,6 +144,8 @@ class ViewerApp {
   glm::dvec3 modelMax() const { return modelMax_; }
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
   const BuiltSurface* shownSurface(int v) const { return views_[size_t(v)].shown.get(); }
+  // View v's renderer (what is on the GPU), for tests.
+  const PatchRenderer& renderer(int v) const { return *views_[size_t(v)].renderer; }
   uint64_t modelGeneration() const { return model_.generation; }
   const Model& model() const { return model_; }
 
@@ -155,6 +157,7 @@ class ViewerApp {
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
     std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
     std::future<void> prepare;  // the next level made ahead (prepareLevel), if running
+    int zoomShown = -1;         // the pole zoom ring the renderer holds (-1: the whole surface)
     double uploadMs = 0.0;  // the last show(): packing + upload
     size_t keptPatches = 0;  // patches of it that stayed on the GPU
   };

@@ -167,3 +167,25 @@ PoleInspection inspectPole(const PolyMesh& mesh, Index vertex, SchemeChoice sche
 }
 
 }  // namespace polarview
+
+namespace polarview {
+
+std::vector<Patch> zoomAboutPole(const std::vector<Patch>& patches, int pole, int firstRing, int rings, const Point& centre) {
+  const double s = std::ldexp(1.0, firstRing);
+  std::vector<Patch> out;
+  for (const Patch& patch : patches) {
+    if (patch.pole != pole) continue;
+    const bool ring = patch.kind == PatchKind::PolarRing && patch.ring >= firstRing && patch.ring < firstRing + rings;
+    const bool cap = patch.kind == PatchKind::PoleCap && patch.level >= firstRing && patch.level < firstRing + rings;
+    if (!ring && !cap) continue;
+    Patch zoomed = patch;
+    for (int k = 0; k < 16; ++k) {
+      if (patch.kind != PatchKind::PoleCap || k == 0 || (k >= 6 && k <= 9)) zoomed.cp[k] = centre + s * (patch.cp[k] - centre);
+      else if (k != 10 && k != 11) zoomed.cp[k] = s * patch.cp[k];  // p1..p5, e_j: vectors
+    }
+    out.push_back(zoomed);
+  }
+  return out;
+}
+
+}  // namespace polarview

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/mesh/poly_mesh.h"
+#include "core/spline/patch.h"
 #include "pipeline/scheme_choice.h"
 
 namespace polarview {
@@ -46,5 +47,16 @@ std::vector<Index> modelPoles(const PolyMesh& mesh);
 // relative, any depth); Catmull-Clark: from its feature-adaptive patches around the vertex.
 // Throws std::invalid_argument when `vertex` is not a pole of the mesh. [O(rings * ring size)]
 PoleInspection inspectPole(const PolyMesh& mesh, Index vertex, SchemeChoice scheme, int rings);
+
+}  // namespace polarview
+
+namespace polarview {
+
+// Pole zoom (the paper's Figs. 8, 9): the polar-ring patches of pole `pole` with rings
+// firstRing .. firstRing + rings - 1 (and its cap when it closes the hole within them), scaled by
+// 2^firstRing about `centre` (the pole's limit point) in double precision, so that ring m appears
+// as large as ring 0 at any depth: positions c + s (p - c), the cap's vector slots (p1..p5, e) times
+// s. K scales by 1 / s^2 and H by 1 / s (the viewer scales its colour range alike). [O(patches)]
+std::vector<Patch> zoomAboutPole(const std::vector<Patch>& patches, int pole, int firstRing, int rings, const Point& centre);
 
 }  // namespace polarview

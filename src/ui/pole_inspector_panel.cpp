@@ -149,6 +149,14 @@ void drawPoleInspectorPanel(ViewerState& state) {
   }
   ImGui::Text("K around the pole on ring %d", s.ring);
   drawPlot("##around", around, "angle (degrees) ->", "%.4g", 110.0f);
+
+  // Pole zoom: the views show rings m..m+2 of this pole at the size of the first rings.
+  bool zoom = s.zoomRing >= 0;
+  if (ImGui::Checkbox("zoom the views to rings m..m+2", &zoom)) s.zoomRing = zoom ? s.ring : -1;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Figs. 8, 9: the rings scaled by 2^m about the pole (in double), so nested rings compare at any "
+                      "depth;\nthe colour range is scaled alike (K / 4^m, H / 2^m), so colours keep their values");
+  if (zoom) s.zoomRing = s.ring;
 }
 
 void drawSpectrumPanel(ViewerState& state) {

@@ -538,7 +538,10 @@ const std::vector<HotkeyHelp>& hotkeyList() {
 std::string viewTitle(const ViewStatus& status) {
   if (!status.hasSurface) return "(no surface)";
   const std::string scheme = schemeChoiceLabel(status.shownScheme);
-  const std::string level = " \xC2\xB7 " + std::to_string(status.shownLevel);
+  std::string level = " \xC2\xB7 " + std::to_string(status.shownLevel);
+  if (status.zoomRing >= 0)
+    level += " \xC2\xB7 rings " + std::to_string(status.zoomRing) + "-" + std::to_string(status.zoomRing + 2) + " x2^" +
+             std::to_string(status.zoomRing);
   if (status.polesByCatmullClark == 0) return scheme + level;
   // The scheme fell back to Catmull-Clark at some poles: the title must not claim it drew them.
   if (status.polesByScheme == 0) return scheme + level + " \xC2\xB7 poles by CC (valence < 5)";

@@ -48,6 +48,7 @@ struct ViewStatus {
   double samplesMs = 0.0;          //   curvature samples for the colour range;
   double uploadMs = 0.0;           // then packing + upload on the GL thread,
   int keptPatches = 0;             //   where this many patches stayed on the GPU (a level step)
+  int zoomRing = -1;               // >= 0: the view shows rings zoomRing.. of a pole, zoomed (Poles panel)
   int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
                                    //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
   int polesByScheme = 0;           // polar configurations the shown scheme refines
@@ -180,6 +181,9 @@ struct PoleInspectorSettings {
   int pole = 0;       // index into `poles`
   int ring = 4;       // ring m whose K around the pole is plotted
   int scrollFrames = 0;  // > 0: the panel scrolls the section into view (so many frames: results grow it)
+  // Pole zoom (Figs. 8, 9): >= 0: every view draws rings zoomRing .. zoomRing + 2 of the pole,
+  // scaled by 2^zoomRing about it (pipeline zoomAboutPole); -1: off.
+  int zoomRing = -1;
   // Set by the app.
   std::vector<Index> poles;                 // the model's pole vertices
   std::vector<PoleInspection> inspections;  // one per distinct scheme of the visible views

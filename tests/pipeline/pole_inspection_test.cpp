@@ -8,6 +8,10 @@
 #include <string>
 
 #include "core/mesh/obj_io.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
+
+#include <glm/geometric.hpp>
 #include "pipeline/pole_inspection.h"
 
 namespace polarview {
@@ -64,6 +68,49 @@ TEST_CASE("pole inspector: C2PS converges to the pole's K, RTS's spread stalls, 
   MESSAGE("Catmull-Clark ring 3: " << changes << " sign changes of K - mean around the vertex, spread " << cc.rings[2].deviation);
   CHECK(changes == 24);
   for (const PoleRingCurves& ring : cc.rings) CHECK(ring.kAlongAngle.size() == size_t(kInspectorAngles));
+}
+
+}  // namespace polarview
+
+namespace polarview {
+
+TEST_CASE("pole zoom: rings m.. scaled by 2^m about the pole: shapes kept, K / 4^m, H / 2^m, ring m as large as ring 0") {
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  const PatchSet set = extractPatches(AdaptiveRefinement(mesh, RefineOptions{Scheme::C2PS, 8, false}));
+  Point centre(0.0);
+  for (const Patch& patch : set.patches)
+    if (patch.kind == PatchKind::PoleCap) centre = patch.cp[0];
+  auto extent = [&](const std::vector<Patch>& patches, int ring) {
+    double far = 0.0;
+    for (const Patch& patch : patches)
+      if (patch.kind == PatchKind::PolarRing && patch.ring == ring)
+        far = std::max(far, glm::length(evaluatePatch(patch, 1.0, 0.5).position - centre));
+    return far;
+  };
+  const std::vector<Patch> ring5 = zoomAboutPole(set.patches, 0, 5, 1, centre);
+  const std::vector<Patch> zoomed = zoomAboutPole(set.patches, 0, 6, 3, centre);
+  REQUIRE_FALSE(zoomed.empty());
+  int caps = 0;
+  for (const Patch& patch : zoomed) {
+    CHECK((patch.kind == PatchKind::PolarRing ? (patch.ring >= 6 && patch.ring <= 8) : patch.kind == PatchKind::PoleCap));
+    caps += patch.kind == PatchKind::PoleCap;
+  }
+  CHECK(caps > 0);  // level 8 closes the hole within rings 6..8
+  // Nested rings at one size: ring 6 zoomed by 2^6 spans what ring 5 zoomed by 2^5 spans (deep rings
+  // are nearly similar: the characteristic map), to 1%.
+  CHECK(extent(zoomed, 6) == doctest::Approx(extent(ring5, 5)).epsilon(0.01));
+  // Each zoomed patch is the original scaled: K / 4^6, H / 2^6 at every parameter, the pole fixed.
+  size_t k = 0;
+  for (const Patch& original : set.patches) {
+    if (original.kind != PatchKind::PolarRing || original.ring < 6 || original.ring > 8) continue;
+    while (k < zoomed.size() && zoomed[k].kind != PatchKind::PolarRing) ++k;
+    REQUIRE(k < zoomed.size());
+    const SurfacePoint a = evaluatePatch(original, 0.3, 0.7), b = evaluatePatch(zoomed[k], 0.3, 0.7);
+    CHECK(b.gaussian == doctest::Approx(a.gaussian / 4096.0).epsilon(1e-6));
+    CHECK(b.mean == doctest::Approx(a.mean / 64.0).epsilon(1e-6));
+    CHECK(glm::length((b.position - centre) - 64.0 * (a.position - centre)) < 1e-9);
+    ++k;
+  }
 }
 
 }  // namespace polarview

@@ -10,6 +10,7 @@
 #include "pipeline/surface_pipeline.h"
 #include "core/spline/patch_extraction.h"
 #include "pipeline/eigen_nets.h"
+#include "render/patch_renderer.h"
 #include "pipeline/pole_inspection.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/adaptive_refiner.h"
@@ -671,6 +672,36 @@ TEST_CASE("Spectrum panel: RTS's Table 1 at the chosen valence, and v_k shown as
   CHECK(net.points.size() == eigenNet(7, 3, 0).points.size());
   CHECK(modelPoles(net).size() >= 1);
   CHECK(app->model().name.find("v3") != std::string::npos);
+}
+
+TEST_CASE("pole zoom: the views draw rings m..m+2 of the pole scaled by 2^m, and the whole surface again when it is off") {
+  auto app = makeHiddenApp(800, 500);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  state.viewCount = 2;
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[1].scheme = SchemeChoice::RTS;
+  state.views[0].level = state.views[1].level = 9;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  app->waitUntilIdle();
+  app->runFrame();
+  const int whole = state.status[0].patchCount;
+  state.poleInspector.zoomRing = 6;
+  app->runFrame();
+  app->runFrame();
+  const BuiltSurface& shown = *app->shownSurface(0);
+  const std::vector<Patch> zoomed = zoomAboutPole(shown.patches, 0, 6, 3, shown.poles[0]);
+  CHECK(app->renderer(0).patchCount() == int(zoomed.size()));
+  CHECK(state.status[0].zoomRing == 6);
+  CHECK(viewTitle(state.status[0]).find("rings 6-8") != std::string::npos);
+  const char* out = std::getenv("POLARVIEW_TEST_SHOTS");
+  if (out) {
+    const RgbaImage image = app->renderImage(800, 500, 1, false);
+    writePngAtomic(std::string(out) + "/pole_zoom.png", image);
+  }
+  state.poleInspector.zoomRing = -1;
+  app->runFrame();
+  CHECK(app->renderer(0).patchCount() == whole);
 }
 
 }  // namespace polarview

@@ -166,6 +166,20 @@ inline Point smoothVertexPoint(const MeshTopology& topo, const Point* p, const P
   return smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
 }
 
+// The rules gather points from all over the parent level; these prefetches run ahead of them.
+constexpr Index kPointPrefetchDistance = 8;  // edges or vertices ahead
+// Vertex v's ring, two steps ahead: first (p null) its edges' ends and its face points, then
+// (p given, the ends now cached) its neighbours' points.
+inline void prefetchRing(const MeshTopology& topo, Index v, const Point* p, const Point* facePoints) {
+  for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) {
+    const Index e = topo.vertexEdges[i];
+    if (p) prefetch(p + (topo.edgeVerts[2 * e] ^ topo.edgeVerts[2 * e + 1] ^ v));
+    else prefetch(&topo.edgeVerts[2 * e]);
+  }
+  if (facePoints)
+    for (Index i = topo.vertexFaceStart[v]; i < topo.vertexFaceStart[v + 1]; ++i) prefetch(facePoints + topo.vertexFaces[i]);
+}
+
 // Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside;
 // with `sharpness` (and its `decay`), the crease rules.
 void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* edgePoints, Index begin,
@@ -173,6 +187,10 @@ void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* fa
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
   for (Index e = begin; e < end; ++e) {
+    if (e + kPointPrefetchDistance < end) {  // the ends' points, a few edges ahead
+      prefetch(p + edgeVerts[2 * (e + kPointPrefetchDistance)]);
+      prefetch(p + edgeVerts[2 * (e + kPointPrefetchDistance) + 1]);
+    }
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
     const float s = sharpness ? sharpness->edge[e] : 0.0f;
     const bool staysSharp = s > 0.0f && decay->edgeAt(e, edgeVerts[2 * e]) > 0.0f && decay->edgeAt(e, edgeVerts[2 * e + 1]) > 0.0f;
@@ -238,6 +256,8 @@ Point sharpVertexPoint(const MeshTopology& topo, const Point* p, const Point* fa
 void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* vertexPoints, Index begin,
                          Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
   for (Index v = begin; v < end; ++v) {
+    if (v + 2 * kPointPrefetchDistance < end) prefetchRing(topo, v + 2 * kPointPrefetchDistance, nullptr, facePoints);
+    if (v + kPointPrefetchDistance < end) prefetchRing(topo, v + kPointPrefetchDistance, p, nullptr);
     if (!topo.vertexUsed[v]) {
       vertexPoints[v] = p[v];
     } else if (sharpness) {
