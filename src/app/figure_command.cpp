@@ -422,18 +422,7 @@ int renderFigures(const FigureRequest& r) {
 }  // namespace
 
 int runFigureCommand(const std::vector<std::string>& args) {
-  int code = 0;
-  try {
-    code = renderFigures(parseFigureArgs(args));
-  } catch (const UsageError& e) {
-    std::cerr << "polarview: figure: " << e.what() << "\n" << kFigureUsage;
-    code = 2;
-  } catch (const std::exception& e) {
-    std::cerr << "polarview: " << e.what() << "\n";
-    code = 1;
-  }
-  glfwTerminate();
-  return code;
+  return runCommand("figure", kFigureUsage, [&] { return renderFigures(parseFigureArgs(args)); }, [] { glfwTerminate(); });
 }
 
 }  // namespace polarview

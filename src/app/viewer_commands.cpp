@@ -537,28 +537,10 @@ int viewWithApp(const ViewRequest& r) {
 
 template <class Request, class Parse, class Run>
 int guardedCommand(const std::vector<std::string>& args, Parse parse, Run run, const char* name, const char* usage) {
-  int code = 0;
-  try {
-    Request request = parse(args);
-    code = run(request);
-  } catch (const UsageError& e) {
-    std::cerr << "polarview: " << name << ": " << e.what() << "\n" << usage;
-    code = 2;
-  } catch (const std::exception& e) {
-    std::cerr << "polarview: " << e.what() << "\n";
-    code = 1;
-  }
-  glfwTerminate();
-  return code;
+  return runCommand(name, usage, [&] { return run(parse(args)); }, [] { glfwTerminate(); });
 }
 
 }  // namespace
-
-int runViewer(const std::string& objPathOrEmpty) {
-  std::vector<std::string> args;
-  if (!objPathOrEmpty.empty()) args.push_back(objPathOrEmpty);
-  return runViewerCommand(args);
-}
 
 int runViewerCommand(const std::vector<std::string>& args) {
   return guardedCommand<ViewRequest>(args, parseViewArgs, viewWithApp, "view", kViewUsage);
@@ -566,6 +548,12 @@ int runViewerCommand(const std::vector<std::string>& args) {
 
 int runRenderCommand(const std::vector<std::string>& args) {
   return guardedCommand<RenderRequest>(args, parseRenderArgs, renderWithApp, "render", kRenderUsage);
+}
+
+int runViewer(const std::string& objPathOrEmpty) {
+  std::vector<std::string> args;
+  if (!objPathOrEmpty.empty()) args.push_back(objPathOrEmpty);
+  return runViewerCommand(args);
 }
 
 }  // namespace polarview
