@@ -244,6 +244,12 @@ std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t fa
 SurfaceHierarchy::SurfaceHierarchy(std::unique_ptr<AdaptiveRefinement> made) : refinement(std::move(made)) { renewStamp(); }
 SurfaceHierarchy::~SurfaceHierarchy() = default;
 
+BuiltSurface::~BuiltSurface() {
+  if (!hierarchy || patches.capacity() == 0) return;
+  const std::lock_guard<std::mutex> lock(hierarchy->spareMutex);
+  if (patches.capacity() > hierarchy->spare.capacity()) hierarchy->spare = std::move(patches);
+}
+
 void SurfaceHierarchy::renewStamp() {
   static std::atomic<uint64_t> next{1};
   stamp = next.fetch_add(1);
@@ -286,7 +292,12 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   surface->refineOnlyMs = millisecondsSince(start);
   const auto patchesStart = std::chrono::steady_clock::now();
   auto sources = std::make_shared<PatchSources>();
-  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get());
+  std::vector<Patch> storage;
+  {
+    const std::lock_guard<std::mutex> spareLock(hierarchy.spareMutex);
+    storage = std::move(hierarchy.spare);
+  }
+  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get(), std::move(storage));
   surface->regularCount = hierarchy.cache.sharedPrefix(level, level);
   surface->stamp = hierarchy.stamp;
   surface->sources = std::move(sources);

@@ -47,6 +47,10 @@ struct SurfaceHierarchy {
   // made ahead and are dropped), and the deepest made (read without the mutex by the GL thread).
   int deepestShown = 0;
   std::atomic<int> deepestMade{0};
+  // The patch memory of a surface built from it that is gone, for the next assembly to reuse
+  // (guarded by spareMutex: surfaces die on the GL thread while a job may assemble).
+  std::mutex spareMutex;
+  std::vector<Patch> spare;
 };
 
 // Makes level `level` of `hierarchy` ahead of the user (extend + LevelPatchCache::prepare) when it
@@ -96,6 +100,10 @@ struct CurvatureSamples {
 };
 
 struct BuiltSurface {
+  BuiltSurface() = default;
+  BuiltSurface(const BuiltSurface&) = default;
+  // Hands its patch memory to the hierarchy (SurfaceHierarchy::spare) when it is the larger.
+  ~BuiltSurface();
   SurfaceKey key;
   int patchLevel = 0;  // the level whose patch set is shown (patchLevelFor: key.level, or deeper)
   std::vector<Patch> patches;

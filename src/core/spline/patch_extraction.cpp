@@ -611,8 +611,10 @@ void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>
 // (in that order: PatchSet's), level jumps marked over the whole. [O(patches + faces of all levels)]
 template <class RegularOfLevel>
 PatchSet assembleSet(const LevelStack& refinement, RegularOfLevel regularOf, const FinestLevelCaps& caps,
-                     PatchSources* sources) {
+                     PatchSources* sources, std::vector<Patch> storage = {}) {
   PatchSet set;
+  set.patches = std::move(storage);  // its memory, already touched: no page faults for it
+  set.patches.clear();
   const int finest = refinement.count() - 1;
   size_t total = caps.patches.size();
   for (int m = 0; m <= finest; ++m) total += regularOf(m).patches.size();
@@ -760,12 +762,13 @@ void LevelPatchCache::prepare(const AdaptiveRefinement& refinement, int finest) 
   }
 }
 
-PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources) {
+PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources,
+                                   std::vector<Patch> storage) {
   prepare(refinement, finest);
   const LevelStack stack = stackOf(refinement, finest);
   Impl& cache = *impl_;
   return assembleSet(stack, [&](int m) -> const LevelRegularPatches& { return cache.regular[size_t(m)]; },
-                     *cache.caps[size_t(finest)], sources);
+                     *cache.caps[size_t(finest)], sources, std::move(storage));
 }
 
 size_t LevelPatchCache::sharedPrefix(int a, int b) const {

@@ -104,7 +104,10 @@ class LevelPatchCache {
   // The patch set of `refinement` cut at level `finest` (0..levelCount()-1, else
   // std::invalid_argument): equal, patch for patch and with its sources, to extractPatches of a
   // refinement made to that level. [O(patches of the set + faces of new levels)]
-  PatchSet patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources = nullptr);
+  // `storage`: a vector whose memory the set may take (a viewer's previous set: large fresh
+  // allocations cost page faults, about a third of an assembly at C2PS level 12).
+  PatchSet patchSet(const AdaptiveRefinement& refinement, int finest, PatchSources* sources = nullptr,
+                    std::vector<Patch> storage = {});
   // Extracts what patchSet(refinement, finest) needs without assembling it (a viewer makes the next
   // level ahead, in the background). [O(faces of new levels)]
   void prepare(const AdaptiveRefinement& refinement, int finest);
