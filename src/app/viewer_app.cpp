@@ -19,6 +19,7 @@
 #include "app/export_command.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/subdiv/spectrum.h"
+#include "core/subdiv/table_pool.h"
 #include "pipeline/eigen_nets.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
@@ -1008,12 +1009,18 @@ void ViewerApp::startExport(bool bezierView) {
       return;
     }
     exportJob_ = std::async(std::launch::async, [model, options, path, budget, scheme, level] {
-      const Refinement refinement(*model.mesh, options, model.name, budget);
-      const PolyMesh& refined = refinement.finest().mesh;
-      saveObj(path, refined, model.name);
-      return "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
-             " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +
-             std::to_string(refined.vertexCount()) + " vertices)";
+      std::string done;
+      {
+        const Refinement refinement(*model.mesh, options, model.name, budget);
+        const PolyMesh& refined = refinement.finest().mesh;
+        saveObj(path, refined, model.name);
+        done = "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
+               " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +
+               std::to_string(refined.vertexCount()) + " vertices)";
+      }
+      // The refinement's tables went to the pool (up to half the RAM): a viewer keeps none idle.
+      clearTablePool();
+      return done;
     });
   }
   exportTarget_ = path;

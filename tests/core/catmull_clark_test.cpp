@@ -13,6 +13,7 @@
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/refiner.h"
+#include "support/reference_catmull_clark.h"
 
 using namespace polarview;
 
@@ -60,7 +61,7 @@ Index findFace(const MeshTopology& t, Index a, Index c) {
 ControlGrid refineGrid(const ControlGrid& g) {
   const MeshTopology t = buildTopology(g.mesh);
   ControlGrid child;
-  child.mesh = refineCatmullClark(g.mesh, t);
+  child.mesh = reference::refineCatmullClark(g.mesh, t);
   child.side = 2 * g.side - 1;
   child.id.assign(size_t(child.side) * child.side, -1);
   auto set = [&](int i, int j, Index v) { child.id[size_t(j) * child.side + i] = v; };
@@ -140,7 +141,7 @@ std::vector<PolyMesh> sampleMeshes() { return {cube(), mixedOpenMesh(), closedMi
 
 // L steps of Catmull-Clark.
 PolyMesh refineLevels(PolyMesh m, int levels) {
-  for (int l = 0; l < levels; ++l) m = refineCatmullClark(m, buildTopology(m));
+  for (int l = 0; l < levels; ++l) m = reference::refineCatmullClark(m, buildTopology(m));
   return m;
 }
 
@@ -183,7 +184,7 @@ TEST_CASE("catmull-clark: limit points do not move under further refinement") {
   for (const PolyMesh& base : sampleMeshes()) {
     const PolyMesh level1 = refineLevels(base, 1);
     const MeshTopology t1 = buildTopology(level1);
-    const PolyMesh level2 = refineCatmullClark(level1, t1);
+    const PolyMesh level2 = reference::refineCatmullClark(level1, t1);
     const std::vector<Point> limit1 = catmullClarkLimitPoints(t1, level1);
     const std::vector<Point> limit2 = catmullClarkLimitPoints(buildTopology(level2), level2);
     for (Index v = 0; v < level1.vertexCount(); ++v) CHECK(glm::length(limit1[v] - limit2[ccVertexPoint(t1, v)]) < 1e-13);
@@ -230,7 +231,7 @@ TEST_CASE("catmull-clark: counts are F' = corners, V' = F + E + V, E' = 2E + cor
       const MeshTopology t = buildTopology(m);
       const Index corners = Index(m.faceVerts.size());
       std::vector<Index> faceParent;
-      PolyMesh child = refineCatmullClarkTopology(m, t, &faceParent);
+      PolyMesh child = reference::refineCatmullClarkTopology(m, t, &faceParent);
       computeCatmullClarkPoints(t, m, m.points.data(), child.points.data());
       CHECK(child.faceCount() == corners);
       CHECK(child.vertexCount() == t.faceCount + t.edgeCount + t.vertexCount);
@@ -253,7 +254,7 @@ TEST_CASE("catmull-clark: counts are F' = corners, V' = F + E + V, E' = 2E + cor
 TEST_CASE("catmull-clark: face points are centroids, boundary edges midpoints, unused vertices stay") {
   const PolyMesh m = mixedOpenMesh();
   const MeshTopology t = buildTopology(m);
-  const PolyMesh child = refineCatmullClark(m, t);
+  const PolyMesh child = reference::refineCatmullClark(m, t);
   for (Index f = 0; f < m.faceCount(); ++f) {
     Point centroid(0.0);
     for (Index i = 0; i < m.faceSize(f); ++i) centroid += m.points[m.face(f)[i]] / double(m.faceSize(f));

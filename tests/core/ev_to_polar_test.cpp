@@ -10,6 +10,7 @@
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
+#include "support/reference_catmull_clark.h"
 
 using namespace polarview;
 
@@ -18,7 +19,7 @@ namespace {
 // The cube refined twice: eight valence-3 extraordinary vertices far enough apart to convert all.
 PolyMesh separatedCorners() {
   PolyMesh mesh = shapes::cube();
-  for (int step = 0; step < 2; ++step) mesh = refineCatmullClark(mesh, buildTopology(mesh));
+  for (int step = 0; step < 2; ++step) mesh = reference::refineCatmullClark(mesh, buildTopology(mesh));
   return mesh;
 }
 

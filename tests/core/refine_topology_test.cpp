@@ -11,6 +11,7 @@
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refine_topology.h"
+#include "support/reference_catmull_clark.h"
 
 using namespace polarview;
 
@@ -38,7 +39,7 @@ std::vector<uint8_t> chooseSplits(const PolyMesh& mesh, const MeshTopology& topo
 PolyMesh referenceChild(const PolyMesh& parent, const MeshTopology& topo, const std::vector<uint8_t>& split,
                         std::vector<Index>& faceParent) {
   std::vector<Index> quadParent;
-  PolyMesh quads = refineCatmullClarkTopology(parent, topo, &quadParent);
+  PolyMesh quads = reference::refineCatmullClarkTopology(parent, topo, &quadParent);
   PolyMesh child;
   child.points.resize(quads.points.size());
   faceParent.clear();
@@ -244,7 +245,7 @@ TEST_CASE("Catmull-Clark points are bit-identical on 1, 2, 3 and 7 threads") {
         computeCatmullClarkPoints(topo, mesh, mesh.points.data(), parallel.data(), threads);
         for (size_t v = 0; v < serial.size(); ++v) REQUIRE(parallel[v] == serial[v]);
       }
-      PolyMesh child = refineCatmullClarkTopology(mesh, topo, nullptr);
+      PolyMesh child = reference::refineCatmullClarkTopology(mesh, topo, nullptr);
       child.points = serial;
       mesh = std::move(child);
     }

@@ -19,6 +19,7 @@
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/refiner.h"
+#include "support/reference_catmull_clark.h"
 
 using namespace polarview;
 namespace Far = OpenSubdiv::Far;
@@ -220,7 +221,7 @@ void compareWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
     const Far::TopologyLevel& osdChild = refiner->GetLevel(level);
     REQUIRE(osdParent.GetNumEdges() == topo.edgeCount);
 
-    PolyMesh child = refineCatmullClark(ours, topo);
+    PolyMesh child = reference::refineCatmullClark(ours, topo);
     REQUIRE(child.faceCount() == osdChild.GetNumFaces());
     REQUIRE(child.vertexCount() == osdChild.GetNumVertices());
     std::vector<OsdPoint> osdChildPoints(osdChild.GetNumVertices());

@@ -33,33 +33,6 @@ inline void boundaryNeighbours(const MeshTopology& t, Index v, Index& a, Index& 
 
 }  // namespace
 
-PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent) {
-  const Index cornerCount = static_cast<Index>(parent.faceVerts.size());
-  PolyMesh child;
-  child.points.resize(ccChildVertexCount(topo));
-  child.faceStart.resize(size_t(cornerCount) + 1);
-  child.faceVerts.resize(size_t(cornerCount) * 4);
-  if (faceParent) faceParent->resize(cornerCount);
-
-  // One quad per parent corner: (vertex point, edge point of the outgoing edge, face point,
-  // edge point of the incoming edge) keeps the parent's orientation.
-  Index* out = child.faceVerts.data();
-  for (Index f = 0; f < topo.faceCount; ++f) {
-    const Index begin = parent.faceStart[f], end = parent.faceStart[f + 1];
-    Index previousEdge = topo.cornerEdge[end - 1];
-    for (Index c = begin; c < end; ++c) {
-      *out++ = ccVertexPoint(topo, parent.faceVerts[c]);
-      *out++ = ccEdgePoint(topo, topo.cornerEdge[c]);
-      *out++ = ccFacePoint(topo, f);
-      *out++ = ccEdgePoint(topo, previousEdge);
-      previousEdge = topo.cornerEdge[c];
-      if (faceParent) (*faceParent)[c] = f;
-    }
-  }
-  for (Index c = 0; c <= cornerCount; ++c) child.faceStart[c] = 4 * c;
-  return child;
-}
-
 namespace {
 
 // Face points of faces [begin, end): centroids of any n-gon.
@@ -166,20 +139,6 @@ inline Point smoothVertexPoint(const MeshTopology& topo, const Point* p, const P
   return smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * sum;
 }
 
-// The rules gather points from all over the parent level; these prefetches run ahead of them.
-constexpr Index kPointPrefetchDistance = 8;  // edges or vertices ahead
-// Vertex v's ring, two steps ahead: first (p null) its edges' ends and its face points, then
-// (p given, the ends now cached) its neighbours' points.
-inline void prefetchRing(const MeshTopology& topo, Index v, const Point* p, const Point* facePoints) {
-  for (Index i = topo.vertexEdgeStart[v]; i < topo.vertexEdgeStart[v + 1]; ++i) {
-    const Index e = topo.vertexEdges[i];
-    if (p) prefetch(p + (topo.edgeVerts[2 * e] ^ topo.edgeVerts[2 * e + 1] ^ v));
-    else prefetch(&topo.edgeVerts[2 * e]);
-  }
-  if (facePoints)
-    for (Index i = topo.vertexFaceStart[v]; i < topo.vertexFaceStart[v + 1]; ++i) prefetch(facePoints + topo.vertexFaces[i]);
-}
-
 // Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside;
 // with `sharpness` (and its `decay`), the crease rules.
 void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* edgePoints, Index begin,
@@ -187,10 +146,6 @@ void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* fa
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
   for (Index e = begin; e < end; ++e) {
-    if (e + kPointPrefetchDistance < end) {  // the ends' points, a few edges ahead
-      prefetch(p + edgeVerts[2 * (e + kPointPrefetchDistance)]);
-      prefetch(p + edgeVerts[2 * (e + kPointPrefetchDistance) + 1]);
-    }
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
     const float s = sharpness ? sharpness->edge[e] : 0.0f;
     const bool staysSharp = s > 0.0f && decay->edgeAt(e, edgeVerts[2 * e]) > 0.0f && decay->edgeAt(e, edgeVerts[2 * e + 1]) > 0.0f;
@@ -256,8 +211,6 @@ Point sharpVertexPoint(const MeshTopology& topo, const Point* p, const Point* fa
 void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* vertexPoints, Index begin,
                          Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
   for (Index v = begin; v < end; ++v) {
-    if (v + 2 * kPointPrefetchDistance < end) prefetchRing(topo, v + 2 * kPointPrefetchDistance, nullptr, facePoints);
-    if (v + kPointPrefetchDistance < end) prefetchRing(topo, v + kPointPrefetchDistance, p, nullptr);
     if (!topo.vertexUsed[v]) {
       vertexPoints[v] = p[v];
     } else if (sharpness) {
@@ -382,12 +335,6 @@ SubdivTags sharpnessTags(const MeshTopology& topo, const CreaseSharpness& sharpn
   for (Index v = 0; v < topo.vertexCount; ++v)
     if (sharpness.vertex[v] > 0.0f) tags.corners.push_back({v, double(sharpness.vertex[v])});
   return tags;
-}
-
-PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent) {
-  PolyMesh child = refineCatmullClarkTopology(parent, topo, faceParent);
-  computeCatmullClarkPoints(topo, parent, parent.points.data(), child.points.data());
-  return child;
 }
 
 std::vector<Point> catmullClarkLimitPoints(const MeshTopology& topo, const PolyMesh& mesh) {

@@ -23,9 +23,6 @@ inline Index ccVertexPoint(const MeshTopology& t, Index v) { return t.faceCount 
 // Number of child vertices F + E + V. [O(1)]
 inline Index ccChildVertexCount(const MeshTopology& t) { return t.faceCount + t.edgeCount + t.vertexCount; }
 
-// The child mesh's faces (all quads, one per parent corner); `points` is sized F + E + V but left
-// unset. faceParent (optional) receives each child face's parent face. [O(corners)]
-PolyMesh refineCatmullClarkTopology(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent);
 
 // Fills all F + E + V child points from the parent points (childPoints must hold
 // ccChildVertexCount(topo) points). Vertices no face uses are copied through. No allocation but the
@@ -68,8 +65,6 @@ SubdivTags sharpnessTags(const MeshTopology& topo, const CreaseSharpness& sharpn
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
                                Point* childPoints, const CreaseSharpness& sharpness, unsigned threads = 0);
 
-// One full step: topology and points. [O(corners)]
-PolyMesh refineCatmullClark(const PolyMesh& parent, const MeshTopology& topo, std::vector<Index>* faceParent = nullptr);
 
 // Limit positions of the vertices of an all-quad mesh (e.g. any level >= 1): smooth valence k:
 // k/(k+5) v + 4/(k(k+5)) sum of edge ends + 1/(k(k+5)) sum of face diagonals; boundary:

@@ -10,16 +10,6 @@
 
 namespace polarview {
 
-// Asks for a cache line that a later iteration reads at a data-dependent place (the refiner's
-// passes gather from all over the parent level: latency, not bandwidth, would bound them).
-inline void prefetch(const void* address) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address);
-#else
-  (void)address;
-#endif
-}
-
 // Threads worth using for `work` elements: 1 below a size where starting threads costs more than it
 // saves, else the hardware's concurrency (at most 8). [O(1)]
 inline unsigned threadsFor(size_t work) {

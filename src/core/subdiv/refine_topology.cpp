@@ -74,6 +74,14 @@ TableJob tableJob(std::vector<T>& table, size_t size) {
           &table, size};
 }
 
+// Asks for a cache line that a later iteration reads at a data-dependent place.
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
 constexpr Index kPrefetchDistance = 16;  // ring entries ahead
 
 // Where a ring-writing pass stands: the child vertex, its ring's first entry, the next entries.

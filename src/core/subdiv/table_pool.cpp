@@ -57,7 +57,7 @@ size_t maxPooledBytes() {
 #if defined(__linux__)
   physical = size_t(sysconf(_SC_PHYS_PAGES)) * size_t(sysconf(_SC_PAGESIZE));
 #endif
-  return std::max(size_t(1) << 30, physical / 4);
+  return std::max(size_t(1) << 30, physical / 2);
 }
 
 void setMaxPooledBytes(size_t bytes) {

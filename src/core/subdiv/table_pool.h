@@ -13,8 +13,10 @@
 
 namespace polarview {
 
-// The most the pool keeps: a quarter of the machine's memory, at least 1 GiB, so a whole uniform
-// refinement (10M faces: ~3 GB) is reused by the next one instead of faulted in again.
+// The most the pool keeps: half the machine's memory, at least 1 GiB, so a whole uniform refinement
+// (torus level 6, 41M faces: ~9 GB of tables, all levels) is reused by the next one instead of
+// faulted in again; a process keeps what it once needed, as malloc arenas do. Only uniform
+// refinements (Refinement) release to it; a long-lived caller can clearTablePool() after a big one.
 size_t maxPooledBytes();
 // Sets maxPooledBytes() (0: back to the default); for tests and memory-tight callers.
 void setMaxPooledBytes(size_t bytes);
