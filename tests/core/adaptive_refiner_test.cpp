@@ -12,6 +12,7 @@
 
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
+#include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/adaptive_refiner.h"
 
@@ -300,4 +301,62 @@ TEST_CASE("adaptive: an extension over the face budget is refused and leaves the
   CHECK(refinement.totalFaces() == faces);
   const PatchSet before = extractPatches(AdaptiveRefinement(mesh, RefineOptions{Scheme::C2PS, 3, false}));
   CHECK(extractPatches(refinement).patches.size() == before.patches.size());
+}
+
+namespace {
+
+// A cube with sharp features (OpenSubdiv `t` tags): the four edges around its top face infinitely
+// sharp, one vertical edge semi-sharp (1.5, gone after two levels), one bottom corner sharp.
+PolyMesh creasedCube() {
+  PolyMesh mesh = shapes::cube();
+  const MeshTopology topo = buildTopology(mesh);
+  // The top face: the face whose vertices all have the largest z.
+  Index top = 0;
+  double best = -1e300;
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    double z = 0.0;
+    for (int c = 0; c < mesh.faceSize(f); ++c) z += mesh.points[size_t(mesh.face(f)[c])].z;
+    if (z > best) best = z, top = f;
+  }
+  auto crease = [](Index a, Index b, double s) { return CreaseEdge{std::min(a, b), std::max(a, b), s}; };
+  for (int c = 0; c < 4; ++c) mesh.tags.creases.push_back(crease(mesh.face(top)[c], mesh.face(top)[(c + 1) % 4], 10.0));
+  // A vertical edge from a top corner.
+  const Index corner = mesh.face(top)[0];
+  for (Index k = topo.vertexEdgeStart[corner]; k < topo.vertexEdgeStart[corner + 1]; ++k) {
+    const Index other = topo.otherEnd(topo.vertexEdges[k], corner);
+    if (std::abs(mesh.points[size_t(other)].z - mesh.points[size_t(corner)].z) > 1e-9) {
+      mesh.tags.creases.push_back(crease(corner, other, 1.5));
+      break;
+    }
+  }
+  std::sort(mesh.tags.creases.begin(), mesh.tags.creases.end(),
+            [](const CreaseEdge& a, const CreaseEdge& b) { return std::tie(a.v0, a.v1) < std::tie(b.v0, b.v1); });
+  Index lowest = 0;
+  for (Index v = 0; v < mesh.vertexCount(); ++v)
+    if (mesh.points[size_t(v)].z < mesh.points[size_t(lowest)].z) lowest = v;
+  mesh.tags.corners.push_back(CornerVertex{lowest, 10.0});
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("adaptive: creases and corners (Catmull-Clark): the same patches as the uniform refinement, and not the smooth ones") {
+  const PolyMesh creased = creasedCube();
+  REQUIRE(creased.tags.hasSharpFeatures());
+  PolyMesh smooth = creased;
+  smooth.tags = SubdivTags{};
+  for (int level = 0; level <= 4; ++level) {
+    const RefineOptions options{Scheme::CatmullClark, level, false};
+    const std::string what = "creased cube level " + std::to_string(level);
+    const PatchSet uniform = extractPatches(Refinement(creased, options));
+    PatchSet adaptive;
+    REQUIRE_NOTHROW(adaptive = extractPatches(AdaptiveRefinement(creased, options)));
+    comparePatchSets(uniform, adaptive, modelSize(creased), what);
+    if (level >= 2) {
+      // Faces at sharp features are not smooth B-spline patches: refined to the last level and
+      // closed by end caps there, more of them than the smooth cube has.
+      const PatchSet plain = extractPatches(AdaptiveRefinement(smooth, options));
+      CHECK(adaptive.count(PatchKind::EndCap) > plain.count(PatchKind::EndCap));
+    }
+  }
 }

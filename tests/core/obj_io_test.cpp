@@ -383,10 +383,10 @@ TEST_CASE("obj: t tags give creases, corners, holes and options, merged as OpenS
   CHECK(m.tags.triangles == TriangleSubdivision::Smooth);
   CAPTURE(warnings);
   REQUIRE(warnings.size() == 4);  // creasemethod applies with the creases
-  CHECK(warnings[0] == "4 crease edges and 3 corners ('t' tags): only Catmull-Clark's refinement of the control mesh "
-                       "(refine --scheme cc) applies them; the polar schemes and the limit surface (view, render, export, "
-                       "pole) treat them as smooth");
-  CHECK(warnings[1].find("'t interpolateboundary 1' (sharp corners): only Catmull-Clark's") == 0);
+  CHECK(warnings[0] == "4 crease edges and 3 corners ('t' tags): Catmull-Clark applies them (refine, view, render, "
+                       "export with --scheme cc: faces at sharp features are refined to the last level); the polar "
+                       "schemes treat them as smooth");
+  CHECK(warnings[1].find("'t interpolateboundary 1' (sharp corners): Catmull-Clark applies") == 0);
   CHECK(warnings[2].find("1 hole faces") == 0);
 
   // OpenSubdiv's own options are the defaults; tags it has but polarview cannot use are named.

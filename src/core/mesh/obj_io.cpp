@@ -573,11 +573,12 @@ class ObjParser {
     if (unused > 0) warn(std::to_string(unused) + " unreferenced vertices ignored");
     if (polylines_ > 0) warn(std::to_string(polylines_) + " 'l' (polyline) statements ignored");
     if (pointStatements_ > 0) warn(std::to_string(pointStatements_) + " 'p' (point) statements ignored");
-    // Where the tags are applied: Refinement (refiner.h) with Scheme::CatmullClark only.
+    // Where the tags are applied: Catmull-Clark's refinements (refiner.h, adaptive_refiner.h), whose
+    // limit surface refines the faces at sharp features to the last level.
     const SubdivTags& tags = mesh_.tags;
     const char* kOnlyUniformCatmullClark =
-        " only Catmull-Clark's refinement of the control mesh (refine --scheme cc) applies them; the polar schemes"
-        " and the limit surface (view, render, export, pole) treat them as smooth";
+        " Catmull-Clark applies them (refine, view, render, export with --scheme cc: faces at sharp features are"
+        " refined to the last level); the polar schemes treat them as smooth";
     if (tags.hasSharpFeatures())
       warn(std::to_string(tags.creases.size()) + " crease edges and " + std::to_string(tags.corners.size()) + " corners ('t' tags):" +
            kOnlyUniformCatmullClark);

@@ -66,6 +66,7 @@ LevelClasses classifyLevel(const LevelStack& stack, int m, const LevelClasses& p
   const bool inherit = !stack.adaptive() && !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
   LevelClasses classes;
   classes.vertex.assign(mesh.vertexCount(), VertexClass::Unknown);
+  markSharpVertices(topo, level.sharpness, classes.vertex.data());
   classes.faceRegular.assign(mesh.faceCount(), 0);
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     if (inherit && parent.faceRegular[level.faceParent[f]]) {

@@ -38,6 +38,7 @@ constexpr int kRadialTailLevel = 5;
 // Faces of `level` to refine: needed and not regular. [O(faces)]
 std::vector<uint8_t> facesToRefine(const RefinedLevel& level, const std::vector<uint8_t>& needed) {
   std::vector<VertexClass> classes(level.mesh.vertexCount(), VertexClass::Unknown);
+  markSharpVertices(level.topology, level.sharpness, classes.data());
   std::vector<uint8_t> refine(level.mesh.faceCount(), 0);
   for (Index f = 0; f < level.mesh.faceCount(); ++f)
     refine[f] = needed[f] && !isRegularFace(level.mesh, level.topology, f, classes.data());
@@ -171,6 +172,20 @@ CopiedPart copyOut(const RefinedLevel& level, const std::vector<uint8_t>& select
   }
   part.sub.mesh.points.assign(part.subToLevel.size(), Point(0.0));
   part.sub.topology = buildTopology(part.sub.mesh, source);
+  // Creases and corners: the part's edges and vertices keep the level's sharpness.
+  if (!level.sharpness.empty()) {
+    CreaseSharpness& sharpness = part.sub.sharpness;
+    sharpness.chaikin = level.sharpness.chaikin;
+    sharpness.edge.assign(size_t(part.sub.topology.edgeCount), 0.0f);
+    sharpness.vertex.assign(part.subToLevel.size(), 0.0f);
+    for (Index e = 0; e < part.sub.topology.edgeCount; ++e) {
+      const Index a = part.subToLevel[size_t(part.sub.topology.edgeVerts[2 * e])];
+      const Index b = part.subToLevel[size_t(part.sub.topology.edgeVerts[2 * e + 1])];
+      const Index edge = level.topology.edgeBetween(a, b);
+      if (edge >= 0) sharpness.edge[size_t(e)] = level.sharpness.edge[size_t(edge)];
+    }
+    for (size_t v = 0; v < part.subToLevel.size(); ++v) sharpness.vertex[v] = level.sharpness.vertex[size_t(part.subToLevel[v])];
+  }
   const std::vector<uint8_t> inside = verticesInside(level, selected);
   for (const PolarConfig& config : poles) part.sub.poles.push_back(truncatedConfig(config, inside, toSub, radial));
   for (const Index w : part.subToLevel) {
@@ -309,6 +324,7 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
     std::vector<Index> links = cornerLinks(part.sub.mesh, part.sub.topology);
     const SchemeTraits& traits = schemeTraits(scheme);
     child = refineGenericTopology(part.sub, traits.polar(), true, links);
+    if (!part.sub.sharpness.empty()) child.sharpness = childSharpness(part.sub.topology, part.sub.sharpness, child.topology);
     markGenericChildren(part.sub, ok, full, child, childExact, childComplete);
     if (traits.polar() && !traits.keepsValence) {
       // C2PS: rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
@@ -351,6 +367,9 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   level0.topology = buildTopology(base, sourceName);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
+  // Creases and corners: Catmull-Clark's own rules, as the uniform refiner (the polar schemes do
+  // not have them yet).
+  if (scheme == Scheme::CatmullClark && !base.tags.empty()) level0.sharpness = baseSharpness(base, level0.topology);
   radial_ = schemeTraits(scheme).keepsValence && !findRadialRegions(level0).empty();
   needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
   exact_.push_back(std::vector<uint8_t>(base.vertexCount(), 1));
@@ -515,7 +534,7 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
       continue;
     }
     if (part.sub.mesh.faceCount() > 0)
-      computeCatmullClarkPoints(part.sub.topology, part.sub.mesh, subPoints.data(), points.data());
+      computeCatmullClarkPoints(part.sub.topology, part.sub.mesh, subPoints.data(), points.data(), part.sub.sharpness);
     for (size_t k = 0; k < child.poles.size(); ++k) {
       const PolarConfig& config = child.poles[k];
       if (!rules.keepsValence) {  // C2PS: rules (1)-(3)

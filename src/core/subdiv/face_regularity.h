@@ -8,6 +8,7 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/mesh/topology.h"
+#include "core/subdiv/catmull_clark.h"
 
 namespace polarview {
 
@@ -33,6 +34,20 @@ inline bool isRegularFace(const PolyMesh& mesh, const MeshTopology& topo, Index 
     if (vertex == VertexClass::Irregular) return false;
   }
   return true;
+}
+
+// Creases and corners (Catmull-Clark's `t` tags): a vertex with sharpness, or with an edge inside the
+// mesh of sharpness > 0 at it, is marked Irregular in `cache`, so that its faces are refined to the
+// last level (where end caps close them) instead of getting a smooth B-spline patch. Boundary edges
+// (sharp by the boundary rule) are the boundary patches' business. No-op without sharpness. [O(edges)]
+inline void markSharpVertices(const MeshTopology& topo, const CreaseSharpness& sharpness, VertexClass* cache) {
+  if (sharpness.empty()) return;
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (!topo.edgeOnBoundary(e) && sharpness.edge[size_t(e)] > 0.0f)
+      cache[topo.edgeVerts[2 * e]] = cache[topo.edgeVerts[2 * e + 1]] = VertexClass::Irregular;
+  for (Index v = 0; v < topo.vertexCount; ++v)
+    if (size_t(v) < sharpness.vertex.size() && sharpness.vertex[size_t(v)] > 0.0f)
+      cache[v] = VertexClass::Irregular;
 }
 
 }  // namespace polarview
