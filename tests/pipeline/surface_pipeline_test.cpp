@@ -15,6 +15,8 @@
 #include "core/mesh/shapes.h"
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/adaptive_refiner.h"
+#include "core/subdiv/polar_config.h"
+#include "core/mesh/topology.h"
 #include "pipeline/surface_pipeline.h"
 
 namespace polarview {
@@ -169,6 +171,33 @@ TEST_CASE("viewer surface: RTS and BPS close their poles below a pixel at any le
       if (!c2) CHECK(capExtent < 1e-4 * size);
       else CHECK(capExtent > 1e-3 * size);
     }
+}
+
+}  // namespace polarview
+
+namespace polarview {
+
+TEST_CASE("viewer surface: a pole touched by a crease or corner tag is left to Catmull-Clark, and the view says so") {
+  PolyMesh cap = shapes::polarCap(8, 3);
+  // A crease on the 1-link (vertices 1 and 2: the cap's first ring) and, apart, the same cap untagged.
+  cap.tags.creases.push_back(CreaseEdge{1, 2, 1.0});
+  const MeshTopology topo = buildTopology(cap);
+  const std::vector<PolarConfig> configs = findPolarConfigs(cap, topo);
+  REQUIRE(configs.size() == 1);
+  CHECK_FALSE(configs[0].refinable);
+  CHECK(configs[0].rejection == PolarRejection::SharpFeature);
+  CHECK(configs[0].reason.find("at vertex 1") != std::string::npos);
+  const Model model{std::make_shared<const PolyMesh>(cap), "creased cap", 1};
+  const auto surface = buildSurface(model, SurfaceKey{1, SchemeChoice::C2PS, 2}, kDefaultFaceBudget);
+  CHECK(surface->polesByScheme == 0);
+  CHECK(surface->polesByCatmullClark == 1);
+  CHECK(surface->fallbackReason.find("crease or corner tag") != std::string::npos);
+  CHECK(surface->patchesPerKind[size_t(PatchKind::PoleCap)] == 0);  // no C2PS cap: Catmull-Clark closed it
+  // Untagged, C2PS refines it.
+  PolyMesh plain = cap;
+  plain.tags = SubdivTags{};
+  const Model plainModel{std::make_shared<const PolyMesh>(plain), "cap", 2};
+  CHECK(buildSurface(plainModel, SurfaceKey{2, SchemeChoice::C2PS, 2}, kDefaultFaceBudget)->polesByScheme == 1);
 }
 
 }  // namespace polarview

@@ -180,6 +180,26 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     configs.push_back(config);
   }
 
+  // Creases and corners (`t` tags): the polar rules have none, so a configuration whose pole or links
+  // 1-3 carry one is left to Catmull-Clark.
+  if (mesh.tags.hasSharpFeatures()) {
+    std::vector<uint8_t> sharp(size_t(topo.vertexCount), 0);
+    for (const CreaseEdge& crease : mesh.tags.creases)
+      if (crease.sharpness > 0.0) sharp[size_t(crease.v0)] = sharp[size_t(crease.v1)] = 1;
+    for (const CornerVertex& corner : mesh.tags.corners)
+      if (corner.sharpness > 0.0) sharp[size_t(corner.vertex)] = 1;
+    for (PolarConfig& config : configs) {
+      if (!config.refinable) continue;
+      Index tagged = sharp[size_t(config.pole)] ? config.pole : -1;
+      const size_t count = size_t(std::min(config.linkCount, 3)) * size_t(config.valence);
+      for (size_t k = 0; k < count && k < config.links.size() && tagged < 0; ++k)
+        if (sharp[size_t(config.links[k])]) tagged = config.links[k];
+      if (tagged >= 0)
+        reject(config, PolarRejection::SharpFeature,
+               "a crease or corner tag touches it at vertex " + std::to_string(tagged) + " (the polar rules have none)");
+    }
+  }
+
   // Poles whose rule stencils (fan and 1-link) overlap cannot both be refined as poles.
   for (size_t k = 0; k < configs.size(); ++k) {
     PolarConfig& config = configs[k];
@@ -207,6 +227,7 @@ const char* polarRejectionKey(PolarRejection rejection) {
     case PolarRejection::Link1NotTwoQuads: return "link1_not_2_triangles_2_quads";
     case PolarRejection::NoLink2: return "no_link2";
     case PolarRejection::StencilOverlap: return "stencil_overlap";
+    case PolarRejection::SharpFeature: return "sharp_feature";
   }
   return "?";
 }
@@ -221,6 +242,7 @@ const char* polarRejectionWords(PolarRejection rejection) {
     case PolarRejection::Link1NotTwoQuads: return "a 1-link vertex is not between 2 triangles and 2 quads";
     case PolarRejection::NoLink2: return "no 2-link (ring of quads)";
     case PolarRejection::StencilOverlap: return "its stencil overlaps another pole's";
+    case PolarRejection::SharpFeature: return "a crease or corner tag touches it";
   }
   return "?";
 }

@@ -23,6 +23,7 @@ enum class PolarRejection {
   Link1NotTwoQuads,    // a 4-valent 1-link vertex is not surrounded by 2 fan triangles and 2 quads
   NoLink2,             // no ring of quads beyond the 1-link
   StencilOverlap,      // its fan and 1-link overlap those of another pole
+  SharpFeature,        // a crease or corner tag touches its pole or links 1-3 (the polar rules have no creases)
 };
 
 struct PolarConfig {
