@@ -12,8 +12,8 @@
 
 #ifdef POLARVIEW_HAVE_OSD
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "app/osd_descriptor.h"
 #endif
 
 namespace polarview::cli {
@@ -90,37 +90,8 @@ std::vector<int> finestVertexMap(const Refinement& check, const OpenSubdiv::Far:
 
 std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps, const Refinement* check) {
   using namespace OpenSubdiv;
-  std::vector<int> faceSizes(mesh.faceCount());
-  for (Index f = 0; f < mesh.faceCount(); ++f) faceSizes[f] = mesh.faceSize(f);
-  Far::TopologyDescriptor desc;
-  desc.numVertices = mesh.vertexCount();
-  desc.numFaces = mesh.faceCount();
-  desc.numVertsPerFace = faceSizes.data();
-  desc.vertIndicesPerFace = mesh.faceVerts.data();
-  // The mesh's crease and corner tags and options (Scheme::CatmullClark applies them too).
-  std::vector<Index> creasePairs, cornerIds;
-  std::vector<float> creaseWeights, cornerWeights;
-  for (const CreaseEdge& c : mesh.tags.creases) {
-    creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
-    creaseWeights.push_back(float(c.sharpness));
-  }
-  for (const CornerVertex& c : mesh.tags.corners) {
-    cornerIds.push_back(c.vertex);
-    cornerWeights.push_back(float(c.sharpness));
-  }
-  desc.numCreases = int(creaseWeights.size());
-  desc.creaseVertexIndexPairs = creasePairs.data();
-  desc.creaseWeights = creaseWeights.data();
-  desc.numCorners = int(cornerWeights.size());
-  desc.cornerVertexIndices = cornerIds.data();
-  desc.cornerWeights = cornerWeights.data();
-  Sdc::Options sdc;  // OpenSubdiv's defaults for its own tools unless the mesh's tags say otherwise
-  sdc.SetVtxBoundaryInterpolation(mesh.tags.boundary == BoundaryInterpolation::EdgeAndCorner
-                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                      : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  sdc.SetCreasingMethod(mesh.tags.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                          : Sdc::Options::CREASE_UNIFORM);
-  sdc.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
+  // The mesh as Far takes it, with its tags (built once, outside the timed region).
+  const OsdMeshDescriptor described(mesh);
 
   PeerTiming timing;
   timing.name = "opensubdiv-3.5";
@@ -128,8 +99,7 @@ std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps, 
   std::vector<double> topo, pos;
   for (int rep = 0; rep < reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    Far::TopologyRefiner* refiner = Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc));
+    Far::TopologyRefiner* refiner = described.create();
     if (!refiner) return std::nullopt;
     refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
     topo.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());

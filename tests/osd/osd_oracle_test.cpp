@@ -15,6 +15,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "app/osd_descriptor.h"
+
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
@@ -116,39 +118,8 @@ PolyMesh poleMesh(int n, int rings, bool closed) {
 // OpenSubdiv's refiner of `m`, with m.tags' creases and corners (sharpness as float, as Far takes
 // it), boundary rule and creasing method.
 std::unique_ptr<Far::TopologyRefiner> osdRefiner(const PolyMesh& m, int levels) {
-  std::vector<int> faceSizes(m.faceCount());
-  for (Index f = 0; f < m.faceCount(); ++f) faceSizes[f] = m.faceSize(f);
-  Far::TopologyDescriptor desc;
-  desc.numVertices = m.vertexCount();
-  desc.numFaces = m.faceCount();
-  desc.numVertsPerFace = faceSizes.data();
-  desc.vertIndicesPerFace = m.faceVerts.data();
-  std::vector<Index> creasePairs, cornerIds;
-  std::vector<float> creaseWeights, cornerWeights;
-  for (const CreaseEdge& c : m.tags.creases) {
-    creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
-    creaseWeights.push_back(float(c.sharpness));
-  }
-  for (const CornerVertex& c : m.tags.corners) {
-    cornerIds.push_back(c.vertex);
-    cornerWeights.push_back(float(c.sharpness));
-  }
-  desc.numCreases = int(creaseWeights.size());
-  desc.creaseVertexIndexPairs = creasePairs.data();
-  desc.creaseWeights = creaseWeights.data();
-  desc.numCorners = int(cornerWeights.size());
-  desc.cornerVertexIndices = cornerIds.data();
-  desc.cornerWeights = cornerWeights.data();
-
-  Sdc::Options options;
-  options.SetVtxBoundaryInterpolation(m.tags.boundary == BoundaryInterpolation::EdgeAndCorner
-                                          ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                          : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  options.SetCreasingMethod(m.tags.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                         : Sdc::Options::CREASE_UNIFORM);
-  options.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
+  const OsdMeshDescriptor described(m);
+  std::unique_ptr<Far::TopologyRefiner> refiner(described.create());
   REQUIRE(refiner);
   Far::TopologyRefiner::UniformOptions uniform(levels);
   uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs the finest level's vertex rings

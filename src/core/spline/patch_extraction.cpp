@@ -778,8 +778,6 @@ size_t LevelPatchCache::sharedPrefix(int a, int b) const {
   return count;
 }
 
-int LevelPatchCache::extractedLevels() const { return int(impl_->regular.size()); }
-
 void LevelPatchCache::forget(int fromLevel) {
   const size_t keep = size_t(std::max(fromLevel, 0));
   if (impl_->regular.size() > keep) impl_->regular.resize(keep);

@@ -114,8 +114,6 @@ class LevelPatchCache {
   // How many patches the sets of levels a and b begin with in common (the regular patches of
   // levels 0..min(a, b); level jumps may differ). [O(levels)]
   size_t sharedPrefix(int a, int b) const;
-  // Levels whose regular patches are kept.
-  int extractedLevels() const;
   // Drops what levels >= fromLevel gave (their points or topology changed). [O(1)]
   void forget(int fromLevel = 0);
 

@@ -1,0 +1,62 @@
+// A PolyMesh as OpenSubdiv 3.5 takes it (bench's peer and the oracle test): the Far topology
+// descriptor with the mesh's crease and corner tags (sharpness as float, as Far takes it), and the
+// Sdc options of its boundary rule and creasing method. Header-only: the oracle test includes it.
+#pragma once
+
+#include <vector>
+
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "core/mesh/poly_mesh.h"
+
+namespace polarview {
+
+// Owns the arrays `descriptor` points into: keep it alive while a refiner is created from it.
+struct OsdMeshDescriptor {
+  std::vector<int> faceSizes;
+  std::vector<Index> creasePairs, cornerIds;
+  std::vector<float> creaseWeights, cornerWeights;
+  OpenSubdiv::Far::TopologyDescriptor descriptor;
+  OpenSubdiv::Sdc::Options options;
+
+  explicit OsdMeshDescriptor(const PolyMesh& mesh) {
+    using OpenSubdiv::Sdc::Options;
+    faceSizes.resize(size_t(mesh.faceCount()));
+    for (Index f = 0; f < mesh.faceCount(); ++f) faceSizes[size_t(f)] = mesh.faceSize(f);
+    for (const CreaseEdge& c : mesh.tags.creases) {
+      creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
+      creaseWeights.push_back(float(c.sharpness));
+    }
+    for (const CornerVertex& c : mesh.tags.corners) {
+      cornerIds.push_back(c.vertex);
+      cornerWeights.push_back(float(c.sharpness));
+    }
+    descriptor.numVertices = mesh.vertexCount();
+    descriptor.numFaces = mesh.faceCount();
+    descriptor.numVertsPerFace = faceSizes.data();
+    descriptor.vertIndicesPerFace = mesh.faceVerts.data();
+    descriptor.numCreases = int(creaseWeights.size());
+    descriptor.creaseVertexIndexPairs = creasePairs.data();
+    descriptor.creaseWeights = creaseWeights.data();
+    descriptor.numCorners = int(cornerWeights.size());
+    descriptor.cornerVertexIndices = cornerIds.data();
+    descriptor.cornerWeights = cornerWeights.data();
+    options.SetVtxBoundaryInterpolation(mesh.tags.boundary == BoundaryInterpolation::EdgeAndCorner
+                                            ? Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                            : Options::VTX_BOUNDARY_EDGE_ONLY);
+    options.SetCreasingMethod(mesh.tags.creaseMethod == CreaseMethod::Chaikin ? Options::CREASE_CHAIKIN
+                                                                              : Options::CREASE_UNIFORM);
+    options.SetTriangleSubdivision(Options::TRI_SUB_CATMARK);
+  }
+  OsdMeshDescriptor(const OsdMeshDescriptor&) = delete;  // `descriptor` points into this object
+  OsdMeshDescriptor& operator=(const OsdMeshDescriptor&) = delete;
+
+  // An unrefined Catmull-Clark refiner of the mesh (nullptr when Far refuses it; the caller owns it).
+  OpenSubdiv::Far::TopologyRefiner* create() const {
+    using Factory = OpenSubdiv::Far::TopologyRefinerFactory<OpenSubdiv::Far::TopologyDescriptor>;
+    return Factory::Create(descriptor, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, options));
+  }
+};
+
+}  // namespace polarview
