@@ -27,10 +27,11 @@ const char* kindName(PatchKind kind) {
 bool mayHold(const Patch& patch, const Point& p, double tolerance) {
   Point lo(INFINITY), hi(-INFINITY);
   for (int k = 0; k < 16; ++k) {
-    if (patch.kind == PatchKind::PoleCap && (k == 10 || k == 11 || (k >= 1 && k <= 5) || k >= 12)) continue;
+    if (!isPositionPoint(patch.kind, k)) continue;
     lo = glm::min(lo, patch.cp[k]);
     hi = glm::max(hi, patch.cp[k]);
   }
+  lo += patch.origin, hi += patch.origin;
   if (patch.kind == PatchKind::PoleCap) {  // the cap bulges past its pole and boundary: grow by its size
     const double size = glm::length(hi - lo);
     lo -= Point(size), hi += Point(size);

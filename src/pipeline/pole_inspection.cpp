@@ -178,11 +178,12 @@ std::vector<Patch> zoomAboutPole(const std::vector<Patch>& patches, int pole, in
     const bool ring = patch.kind == PatchKind::PolarRing && patch.ring >= firstRing && patch.ring < firstRing + rings;
     const bool cap = patch.kind == PatchKind::PoleCap && patch.level >= firstRing && patch.level < firstRing + rings;
     if (!ring && !cap) continue;
+    // Positions relative to the origin and vectors scale alike; the origin moves about the centre.
     Patch zoomed = patch;
-    for (int k = 0; k < 16; ++k) {
-      if (patch.kind != PatchKind::PoleCap || k == 0 || (k >= 6 && k <= 9)) zoomed.cp[k] = centre + s * (patch.cp[k] - centre);
-      else if (k != 10 && k != 11) zoomed.cp[k] = s * patch.cp[k];  // p1..p5, e_j: vectors
-    }
+    zoomed.origin = centre + s * (patch.origin - centre);
+    for (int k = 0; k < 16; ++k)
+      if (k != 10 || patch.kind != PatchKind::PoleCap) zoomed.cp[k] = s * patch.cp[k];
+    if (patch.kind == PatchKind::PoleCap) zoomed.cp[11] = patch.cp[11];
     out.push_back(zoomed);
   }
   return out;

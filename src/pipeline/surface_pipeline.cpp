@@ -33,12 +33,12 @@ int curvatureSamplesPerPatch(size_t patchCount) {
 std::vector<Point> polePositions(const std::vector<Patch>& patches, const RefinedLevel& finest) {
   std::map<int32_t, Point> capPoles;
   for (const Patch& patch : patches) {
-    if (patch.kind == PatchKind::PoleCap) capPoles.emplace(patch.pole, patch.cp[0]);
+    if (patch.kind == PatchKind::PoleCap) capPoles.emplace(patch.pole, patch.origin + patch.cp[0]);
   }
   std::vector<Point> poles;
   for (const auto& [index, position] : capPoles) poles.push_back(position);
   if (poles.empty()) {
-    for (const PolarConfig& config : finest.poles) poles.push_back(finest.mesh.points[size_t(config.pole)]);
+    for (const PolarConfig& config : finest.poles) poles.push_back(finest.absolutePoint(config.pole));
   }
   return poles;
 }

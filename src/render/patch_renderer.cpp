@@ -21,12 +21,6 @@ namespace {
 
 constexpr int kControlPointsPerPatch = 16;
 
-// Patch kinds whose control points are all positions (everything but the PoleCap).
-bool isPositionSlot(PatchKind kind, int slot) {
-  if (kind != PatchKind::PoleCap) return true;
-  return slot == 0 || (slot >= 6 && slot <= 9);  // p0 and the boundary curve b_{j-1..j+2}
-}
-
 // [SECTION] Precision: each patch in its own frame, as differences
 //
 // Deep levels (RTS/BPS reach 24 on a globe, the innermost ring ~2^-L of the model; C2PS reaches 12
@@ -146,6 +140,7 @@ GpuPatch gpuForm(const Patch& patch) {
     for (int k = 12; k <= 15; ++k) out.cp[k] = f.toLocal * cp[k];
     toForwardDifferences(out.cp, 6, 1);   // boundary curve b_{j-1..j+2}
     toForwardDifferences(out.cp, 12, 1);  // cross-boundary derivative e_{j-1..j+2}
+    out.frame.origin += patch.origin;     // the frame sat at p0 relative to the patch's origin
     return out;
   }
   // B-spline patch: frame at the centre of the parameter square (limit point, du, du x dv; the
@@ -167,6 +162,7 @@ GpuPatch gpuForm(const Patch& patch) {
   for (int k = 0; k < 16; ++k) out.cp[k] = out.frame.toLocal * (patch.cp[k] - out.frame.origin);
   for (int j = 0; j < 4; ++j) toForwardDifferences(out.cp, 4 * j, 1);  // along u, each row
   for (int i = 0; i < 4; ++i) toForwardDifferences(out.cp, i, 4);      // then along v
+  out.frame.origin += patch.origin;  // the frame was placed relative to the patch's origin
   return out;
 }
 
@@ -476,9 +472,9 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   if (sameSequence) lo = boundsMin_, hi = boundsMax_;
   for (size_t p = reused; p < patches.size(); ++p)
     for (int k = 0; k < kControlPointsPerPatch; ++k)
-      if (isPositionSlot(patches[p].kind, k)) {
-        lo = glm::min(lo, patches[p].cp[k]);
-        hi = glm::max(hi, patches[p].cp[k]);
+      if (isPositionPoint(patches[p].kind, k)) {
+        lo = glm::min(lo, patches[p].origin + patches[p].cp[k]);
+        hi = glm::max(hi, patches[p].origin + patches[p].cp[k]);
       }
   if (patches.empty()) lo = hi = glm::dvec3(0.0);
   boundsMin_ = lo;
@@ -518,7 +514,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
       for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
         const glm::vec3 local(gpu.cp[k]);
         point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionSlot(patch.kind, k) ? patch.cp[k] - center_ : glm::dvec3(0.0), point + 3, point + 6);
+        splitHiLo(isPositionPoint(patch.kind, k) ? (patch.origin - center_) + patch.cp[k] : glm::dvec3(0.0), point + 3, point + 6);
       }
     }
   });

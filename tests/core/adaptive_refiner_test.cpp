@@ -14,6 +14,8 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
+#include "core/spline/pole_taylor.h"
+#include "core/spline/ring_curvature.h"
 #include "core/subdiv/adaptive_refiner.h"
 
 using namespace polarview;
@@ -54,9 +56,11 @@ Patch quarterTurns(const Patch& patch, int turns) {
 // with the same control points (to round-off) and level jumps. Returns the largest cp difference.
 // `tailMeets` >= 0: the level whose polar ring patches meet the RTS/BPS tail, where the adaptive
 // side has no level jump (the tail keeps the columns) and the uniform side has one.
-double comparePatchSets(const PatchSet& uniform, const PatchSet& adaptive, double size, const std::string& what,
+double comparePatchSets(const PatchSet& uniform, const PatchSet& relativeAdaptive, double size, const std::string& what,
                         int tailMeets = -1) {
   INFO(what);
+  PatchSet adaptive = relativeAdaptive;  // adaptive patches are relative to their frames' origins
+  for (Patch& patch : adaptive.patches) patch = withAbsolutePositions(patch);
   for (size_t k = 0; k < uniform.kindCounts.size(); ++k) CHECK(uniform.kindCounts[k] == adaptive.kindCounts[k]);
   REQUIRE(uniform.patches.size() == adaptive.patches.size());
   std::multimap<PatchKey, const Patch*> byKey;
@@ -217,7 +221,9 @@ TEST_CASE("adaptive: live edits: new points on the kept hierarchy, patches refre
         REQUIRE(fresh.patches.size() == patches.patches.size());
         double worst = 0.0;
         for (size_t k = 0; k < fresh.patches.size(); ++k)
-          for (int i = 0; i < 16; ++i) worst = std::max(worst, glm::length(fresh.patches[k].cp[i] - patches.patches[k].cp[i]));
+          for (int i = 0; i < 16; ++i)
+            worst = std::max(worst, glm::length(withAbsolutePositions(fresh.patches[k]).cp[i] -
+                                                withAbsolutePositions(patches.patches[k]).cp[i]));
         CHECK(worst <= 1e-12 * modelSize(mesh));
       }
 }
@@ -238,6 +244,7 @@ void requireIdentical(const PatchSet& expected, const PatchSources& expectedSour
     bool same = a.kind == b.kind && a.level == b.level && a.ring == b.ring && a.pole == b.pole && a.face == b.face &&
                 a.edgeLevelDelta == b.edgeLevelDelta;
     for (int i = 0; i < 16; ++i) same = same && a.cp[i] == b.cp[i];
+    same = same && a.origin == b.origin;
     same = same && expectedSources.stencil[k] == gotSources.stencil[k] &&
            expectedSources.sidesMissing[k] == gotSources.sidesMissing[k];
     differ += !same;
@@ -281,7 +288,7 @@ TEST_CASE("adaptive: a refinement extended level by level, and a level cache ste
       const PatchSet four = cache.patchSet(stepped, 4), six = cache.patchSet(stepped, 6);
       const size_t shared = cache.sharedPrefix(4, 6);
       REQUIRE(shared <= std::min(four.patches.size(), six.patches.size()));
-      for (size_t k = 0; k < shared; ++k) REQUIRE(four.patches[k].cp == six.patches[k].cp);
+      for (size_t k = 0; k < shared; ++k) REQUIRE((four.patches[k].cp == six.patches[k].cp && four.patches[k].origin == six.patches[k].origin));
       // Truncated to 3 and extended to 6 in one step: the fresh level 6 again.
       stepped.truncate(3);
       CHECK(stepped.levelCount() == 4);
@@ -357,6 +364,64 @@ TEST_CASE("adaptive: creases and corners (Catmull-Clark): the same patches as th
       // closed by end caps there, more of them than the smooth cube has.
       const PatchSet plain = extractPatches(AdaptiveRefinement(smooth, options));
       CHECK(adaptive.count(PatchKind::EndCap) > plain.count(PatchKind::EndCap));
+    }
+  }
+}
+
+namespace {
+
+struct KRange {
+  double lo = INFINITY, hi = -INFINITY;
+  size_t patches = 0;
+};
+
+// K over ring m of pole 0: 5 x 5 samples of each of its PolarRing patches.
+KRange ringK(const PatchSet& set, int m) {
+  KRange range;
+  for (const Patch& patch : set.patches) {
+    if (patch.kind != PatchKind::PolarRing || patch.pole != 0 || patch.ring != m) continue;
+    ++range.patches;
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j) {
+        const double K = evaluatePatch(patch, i / 4.0, j / 4.0).gaussian;
+        range.lo = std::min(range.lo, K), range.hi = std::max(range.hi, K);
+      }
+  }
+  return range;
+}
+
+}  // namespace
+
+TEST_CASE("adaptive: deep rings keep their curvature (each part refined in a frame of its own)") {
+  // Points ~1 apart from the origin and 1e-8 apart from each other (RTS's ring 20, C2PS's ring 12)
+  // lose the second differences K is made of to the rounding of absolute coordinates; relative to
+  // their frames they keep them. Reference: the same rings refined from the pole's own links,
+  // relative to the pole (ring_curvature.h).
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  struct Case {
+    Scheme scheme;
+    int levels;
+    std::vector<int> rings;
+  };
+  for (const Case& c : {Case{Scheme::RTS, 20, {8, 14, 17, 20}}, Case{Scheme::C2PS, 11, {6, 9, 11}}}) {
+    const AdaptiveRefinement refinement(mesh, RefineOptions{c.scheme, c.levels, false});
+    const RefinedLevel& base = refinement.level(0);
+    REQUIRE_FALSE(base.poles.empty());
+    const PoleDifferential pole = analyzePole(base.poleTaylor[0]);
+    const std::vector<RingCurvature> exact =
+        ringCurvatures(base.poleGrids[0], c.scheme, false, c.levels, NAN, NAN, pole.normal);
+    const PatchSet set = extractPatches(refinement);
+    for (const int m : c.rings) {
+      const KRange got = ringK(set, m);
+      const RingCurvature& want = exact[size_t(m - 1)];
+      REQUIRE(want.m == m);
+      REQUIRE(got.patches > 0);
+      MESSAGE(std::string(schemeName(c.scheme)) << " ring " << m << ": K in [" << got.lo << ", " << got.hi << "] over " << got.patches
+                                   << " patches; exact [" << want.minK << ", " << want.maxK << "]");
+      // Same surface, other samples: the ranges agree to a tenth of the exact spread plus 1e-4 of K.
+      const double tolerance = 0.1 * (want.maxK - want.minK) + 1e-4 * std::abs(want.maxK);
+      CHECK(std::abs(got.lo - want.minK) <= tolerance);
+      CHECK(std::abs(got.hi - want.maxK) <= tolerance);
     }
   }
 }

@@ -97,7 +97,7 @@ void checkPatchSet(const PatchSet& set, bool moderate) {
   for (size_t i = 0; i < set.patches.size(); ++i) {
     const Patch& patch = set.patches[i];
     for (int c = 0; c < 16; ++c)
-      if (!allFinite(patch.cp[c])) requireFinite(patch.cp[c], name(i) + " cp[" + std::to_string(c) + "]");
+      if (!allFinite(patch.cp[c] + patch.origin)) requireFinite(patch.cp[c] + patch.origin, name(i) + " cp[" + std::to_string(c) + "]");
     for (const auto& uv : kSamples) {
       const SurfacePoint sp = evaluatePatch(patch, uv[0], uv[1]);
       const bool ok = allFinite(sp.position) &&
@@ -120,7 +120,10 @@ Point controlPointSum(const PatchSet& set, double& magnitude) {
   magnitude = 0.0;
   for (const Patch& patch : set.patches) {
     if (patch.kind == PatchKind::PoleCap) continue;
-    for (const Point& p : patch.cp) sum += p, magnitude += std::abs(p.x) + std::abs(p.y) + std::abs(p.z);
+    for (const Point& relative : patch.cp) {
+      const Point p = patch.origin + relative;
+      sum += p, magnitude += std::abs(p.x) + std::abs(p.y) + std::abs(p.z);
+    }
   }
   return sum;
 }
@@ -143,7 +146,7 @@ void compareRefreshed(const PatchSet& refreshed, const PatchSet& fresh) {
     fail("refreshPatches kept " + std::to_string(refreshed.patches.size()) + " patches, fresh extraction has " +
          std::to_string(fresh.patches.size()));
   for (size_t i = 0; i < fresh.patches.size(); ++i) {
-    const Patch &a = refreshed.patches[i], &b = fresh.patches[i];
+    const Patch a = withAbsolutePositions(refreshed.patches[i]), b = withAbsolutePositions(fresh.patches[i]);
     if (a.kind != b.kind || a.level != b.level || a.edgeLevelDelta != b.edgeLevelDelta)
       fail("refreshed patch " + std::to_string(i) + " differs in kind, level or level jumps from a fresh extraction");
     double scale = 0.0, diff = 0.0;

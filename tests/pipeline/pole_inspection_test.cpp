@@ -79,7 +79,7 @@ TEST_CASE("pole zoom: rings m.. scaled by 2^m about the pole: shapes kept, K / 4
   const PatchSet set = extractPatches(AdaptiveRefinement(mesh, RefineOptions{Scheme::C2PS, 8, false}));
   Point centre(0.0);
   for (const Patch& patch : set.patches)
-    if (patch.kind == PatchKind::PoleCap) centre = patch.cp[0];
+    if (patch.kind == PatchKind::PoleCap) centre = patch.origin + patch.cp[0];
   auto extent = [&](const std::vector<Patch>& patches, int ring) {
     double far = 0.0;
     for (const Patch& patch : patches)

@@ -91,7 +91,8 @@ void checkSamePatches(const std::vector<Patch>& a, const std::vector<Patch>& b, 
   size_t kindsDiffer = 0;
   for (size_t p = 0; p < a.size(); ++p) {
     kindsDiffer += a[p].kind != b[p].kind;
-    for (int k = 0; k < 16; ++k) worst = std::max(worst, glm::length(a[p].cp[k] - b[p].cp[k]));
+    for (int k = 0; k < 16; ++k)
+      worst = std::max(worst, glm::length(withAbsolutePositions(a[p]).cp[k] - withAbsolutePositions(b[p]).cp[k]));
   }
   CHECK(kindsDiffer == 0);
   CHECK(worst <= tolerance);

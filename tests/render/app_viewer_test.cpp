@@ -534,7 +534,7 @@ TEST_CASE("viewer app: a pivot picked at a deep pole, seen from 1e-6 of the mode
   for (int frame = 0; frame < 3; ++frame) app->runFrame();  // the first frames frame the model
   glm::dvec3 pole(0.0);
   for (const Patch& patch : app->shownSurface(0)->patches)
-    if (patch.kind == PatchKind::PoleCap) pole = patch.cp[0];
+    if (patch.kind == PatchKind::PoleCap) pole = patch.origin + patch.cp[0];
   OrbitCamera& camera = state.camera(0);
   camera.target = pole;
   camera.distance = 1e-6;

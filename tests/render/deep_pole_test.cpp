@@ -39,7 +39,8 @@ const Patch& firstCap(const std::vector<Patch>& patches) {
   return patches.front();
 }
 
-// A point of the patch and its size: the cap's pole and boundary, or the face's corners.
+// A point of the patch (relative to Patch::origin) and its size: the cap's pole and boundary, or
+// the face's corners.
 glm::dvec3 patchPoint(const Patch& patch) { return patch.kind == PatchKind::PoleCap ? patch.cp[0] : patch.cp[5]; }
 double patchSize(const Patch& patch) {
   if (patch.kind == PatchKind::PoleCap) return glm::length(patch.cp[7] - patch.cp[0]);
@@ -50,11 +51,12 @@ double patchSize(const Patch& patch) {
 // does not lose the digits of a small patch far from the origin. K and H do not change.
 SurfacePoint evaluateNearby(const Patch& patch, double u, double v) {
   Patch moved = patch;
-  const glm::dvec3 origin = patchPoint(patch);
+  const glm::dvec3 near = patchPoint(patch);
   for (int k = 0; k < 16; ++k)
-    if (patch.kind != PatchKind::PoleCap || k == 0 || (k >= 6 && k <= 9)) moved.cp[k] -= origin;
+    if (isPositionPoint(patch.kind, k)) moved.cp[k] -= near;
+  moved.origin = glm::dvec3(0.0);
   SurfacePoint point = evaluatePatch(moved, u, v);
-  point.position += origin;
+  point.position += patch.origin + near;
   return point;
 }
 
@@ -87,7 +89,7 @@ DeepAgreement compareDeepPatches(PatchRenderer& renderer, const std::vector<Patc
   renderer.setPatches(patches);
   glm::dvec3 pole(0.0);
   for (const Patch& patch : patches)
-    if (patch.kind == PatchKind::PoleCap && patch.pole == 0) pole = patch.cp[0];
+    if (patch.kind == PatchKind::PoleCap && patch.pole == 0) pole = patch.origin + patch.cp[0];
   ShadingParams fixed;
   fixed.fixedTessLevel = 6;
   std::vector<SurfaceProbe> probes = renderer.probeSurface(lookAtPole(pole, 1e-6, 320, 240), fixed);
@@ -180,7 +182,7 @@ TEST_CASE("deep pole: a level-20 pole seen from 1e-3 down to 1e-7 of the model i
     // The view's centre is the pole: its colour is that of the cap's K there (BPS: 0, the tangent
     // plane; RTS: the Taylor expansion's).
     const Patch& cap = firstCap(patches);
-    const glm::dvec3 pole = cap.cp[0];
+    const glm::dvec3 pole = cap.origin + cap.cp[0];
     const ShadingParams shading = test::flatCurvature(ShadingParams::Mode::Gaussian, ShadingParams::ColorMap::Paper, 2.0f);
     const glm::vec3 poleColour = colorMapCpu(shading.colormap, float(evaluatePatch(cap, 0.0, 0.0).gaussian), shading.range);
     // 1e-5: rings 14.. and the cap (radius ~2e-6); 1e-6: the cap fills the view; 1e-7: 6e-8 wide.

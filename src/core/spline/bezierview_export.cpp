@@ -150,7 +150,7 @@ BezierPatch bicubicBezier(const Patch& patch) {
   for (int i = 0; i < 4; ++i) {
     Point column[4];
     convert(alongU[0][i], alongU[1][i], alongU[2][i], alongU[3][i], column);
-    for (int j = 0; j < 4; ++j) out.cp[size_t(4 * i + j)] = column[j];  // row i (u), column j (v)
+    for (int j = 0; j < 4; ++j) out.cp[size_t(4 * i + j)] = patch.origin + column[j];  // row i (u), column j (v)
   }
   return out;
 }
@@ -189,7 +189,7 @@ std::vector<BezierPatch> approximatePoleCap(const Patch& cap, int split, int ang
         out.cp[size_t(i) * (dv + 1) + j] = sum;
       }
     // Row u = 0 is the pole itself (r = 0), not p0 times a partition of unity with round-off.
-    for (int j = 0; j <= dv; ++j) out.cp[size_t(j)] = cap.cp[0];
+    for (int j = 0; j <= dv; ++j) out.cp[size_t(j)] = cap.origin + cap.cp[0];
   }
   return pieces;
 }
@@ -233,14 +233,9 @@ double patchBoxDiagonal(const PatchSet& set) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   };
-  for (const Patch& patch : set.patches) {
-    if (patch.kind == PatchKind::PoleCap) {
-      add(patch.cp[0]);
-      for (int k = 6; k < 10; ++k) add(patch.cp[size_t(k)]);
-    } else {
-      for (const Point& p : patch.cp) add(p);
-    }
-  }
+  for (const Patch& patch : set.patches)
+    for (int k = 0; k < 16; ++k)
+      if (isPositionPoint(patch.kind, k)) add(patch.origin + patch.cp[size_t(k)]);
   return set.patches.empty() ? 0.0 : glm::length(hi - lo);
 }
 
@@ -249,7 +244,7 @@ BezierViewStats writeBezierView(std::ostream& out, const PatchSet& set, const Be
   // Refuse non-finite input before anything is written.
   for (size_t k = 0; k < set.patches.size(); ++k)
     for (const Point& p : set.patches[k].cp)
-      if (!isFinite(p))
+      if (!isFinite(p) || !isFinite(set.patches[k].origin))
         throw InputError(sourceName, 0,
                          "patch " + std::to_string(k) + " (" + patchKindName(set.patches[k].kind) +
                              ") has a non-finite control point: the input's coordinates are too large or degenerate");

@@ -185,8 +185,23 @@ SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
 }  // namespace
 
 SurfacePoint evaluatePatch(const Patch& patch, double u, double v) {
-  if (patch.kind == PatchKind::PoleCap) return evaluatePoleCap(patch, u, v);
-  return evaluateBSplinePatch(patch, u, v);
+  // Evaluated relative to the origin (the derivatives keep the precision of the relative points).
+  SurfacePoint sp = patch.kind == PatchKind::PoleCap ? evaluatePoleCap(patch, u, v) : evaluateBSplinePatch(patch, u, v);
+  sp.position += patch.origin;
+  return sp;
+}
+
+bool isPositionPoint(PatchKind kind, int k) {
+  if (kind != PatchKind::PoleCap) return k >= 0 && k < 16;
+  return k == 0 || (k >= 6 && k <= 9);
+}
+
+Patch withAbsolutePositions(const Patch& patch) {
+  Patch out = patch;
+  for (int k = 0; k < 16; ++k)
+    if (isPositionPoint(patch.kind, k)) out.cp[size_t(k)] += patch.origin;
+  out.origin = Point(0.0);
+  return out;
 }
 
 }  // namespace polarview

@@ -53,6 +53,11 @@ const char* patchKindName(PatchKind kind);
 
 struct Patch {
   std::array<Point, 16> cp{};
+  // The positions among cp (isPositionPoint) are relative to `origin`: a feature-adaptive
+  // refinement keeps each part of a level in a frame of its own (adaptive_refiner.h, Precision), so
+  // a patch at level 20 keeps double precision relative to its own size. Vectors (a PoleCap's
+  // p1..p5 and e_j) and parameters are not. Zero for patches of the uniform refinement.
+  Point origin{0.0};
   PatchKind kind = PatchKind::Regular;
   uint8_t level = 0;   // refinement level the patch was extracted at
   int32_t ring = -1;   // polar ring index m (PolarRing, PoleCap); -1 otherwise
@@ -69,7 +74,15 @@ struct SurfacePoint {
   double mean = 0.0;        // H (sign: positive where the surface bends towards the normal)
 };
 
-// Evaluates position, first and second derivatives, normal, K and H. [O(1)]
+// Evaluates position (absolute: origin added), first and second derivatives, normal, K and H.
+// [O(1)]
 SurfacePoint evaluatePatch(const Patch& patch, double u, double v);
+
+// Whether cp[k] of a patch of this kind is a position (relative to Patch::origin): all 16 of a
+// B-spline patch; p0 and b_j (cp[0], cp[6..9]) of a PoleCap. [O(1)]
+bool isPositionPoint(PatchKind kind, int k);
+// The patch with its origin added to its positions and then zero (absolute coordinates, rounded
+// there): for writers and comparisons that do not need the precision. [O(1)]
+Patch withAbsolutePositions(const Patch& patch);
 
 }  // namespace polarview

@@ -411,7 +411,9 @@ void polygonEndCaps(const PolyMesh& mesh, Index f, LimitFrames& limits, std::vec
 // [SECTION] pole caps
 
 // One PoleCap per column of a pole (patch.h layout), closing the disc inside link 2.
-void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vector<Patch>& out, int level, int pole) {
+// Positions relative to `origin` (the pole's frame).
+void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, const Point& origin, std::vector<Patch>& out, int level,
+              int pole) {
   const int n = grid.n;
   auto boundaryPoint = [&](int j) { return (grid.q(1, j) + 4.0 * grid.q(2, j) + grid.q(3, j)) / 6.0; };
   // Radial derivative of the ring patch between links 2-3 at link 2 (per unit r: link i at r = i).
@@ -419,6 +421,7 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, std::vect
   for (int j = 0; j < n; ++j) {
     Patch cap;
     cap.kind = PatchKind::PoleCap;
+    cap.origin = origin;
     for (int k = 0; k < 6; ++k) cap.cp[k] = taylor.p[k];
     for (int k = 0; k < 4; ++k) cap.cp[6 + k] = boundaryPoint(j - 1 + k);
     for (int k = 0; k < 4; ++k) cap.cp[12 + k] = crossDerivative(j - 1 + k);
@@ -536,6 +539,7 @@ void extractRegular(const LevelStack& refinement, int m, const LevelClasses& cla
       if (id >= 0) refinement.checkExact(m, id, f);
     Patch patch;
     fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
+    patch.origin = level.origin(ids[5]);  // a stencil lies in one frame (adaptive_refiner.h, Precision)
     const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
     patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
     for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
@@ -577,7 +581,7 @@ void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>
     refinement.checkExact(m, pole.pole, -1);
     for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) refinement.checkExact(m, pole.links[size_t(k)], -1);
     const int32_t firstCap = int32_t(out.patches.size());
-    poleCaps(level.poleGrids[p], level.poleTaylor[p], out.patches, m, int(p));
+    poleCaps(level.poleGrids[p], level.poleTaylor[p], level.origin(pole.pole), out.patches, m, int(p));
     auto markFaces = [&](Index v) {
       for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
         inHole[topo.vertexFaces[k]] = 1;
@@ -601,6 +605,7 @@ void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>
     if (mesh.faceSize(f) == 4) out.patches.push_back(quadEndCap(mesh, f, limits));
     else polygonEndCaps(mesh, f, limits, out.patches);
     for (size_t k = first; k < out.patches.size(); ++k) {
+      out.patches[k].origin = level.origin(mesh.faceVerts[mesh.faceStart[f]]);
       out.patches[k].kind = PatchKind::EndCap;
       out.patches[k].level = uint8_t(std::min(m, 255));
       out.patches[k].face = f;
@@ -683,19 +688,26 @@ void refreshFromStack(const LevelStack& refinement, const PatchSources& sources,
       // Caps come in runs (a pole's sectors, a polygon's quads): remake the run, keep the rest.
       made.clear();
       if (patch.kind == PatchKind::PoleCap) {
-        poleCaps(level.poleGrids[size_t(patch.pole)], level.poleTaylor[size_t(patch.pole)], made, patch.level, patch.pole);
+        poleCaps(level.poleGrids[size_t(patch.pole)], level.poleTaylor[size_t(patch.pole)],
+                 level.origin(level.poles[size_t(patch.pole)].pole), made, patch.level, patch.pole);
       } else {
         if (limitsLevel != patch.level) limits = std::make_unique<LimitFrames>(level.mesh, level.topology);
         limitsLevel = patch.level;
         if (level.mesh.faceSize(patch.face) == 4) made.push_back(quadEndCap(level.mesh, patch.face, *limits));
         else polygonEndCaps(level.mesh, patch.face, *limits, made);
       }
-      for (size_t i = 0; i < made.size() && k + i < set.patches.size(); ++i) set.patches[k + i].cp = made[i].cp;
+      const Point origin = patch.kind == PatchKind::PoleCap ? (made.empty() ? Point(0.0) : made.front().origin)
+                                                             : level.origin(level.mesh.faceVerts[level.mesh.faceStart[patch.face]]);
+      for (size_t i = 0; i < made.size() && k + i < set.patches.size(); ++i) {
+        set.patches[k + i].cp = made[i].cp;
+        set.patches[k + i].origin = origin;
+      }
       k += std::max<size_t>(made.size(), 1);
       continue;
     }
     for (int side = 0; side < 4; ++side) sideMissing[side] = (sources.sidesMissing[k] >> side) & 1;
     fillControlPoints(level.mesh.points, sources.stencil[k], sideMissing, patch.cp);
+    patch.origin = level.origin(sources.stencil[k][5]);
     ++k;
   }
 }

@@ -137,6 +137,10 @@ struct CopiedPart {
   std::vector<RadialRegion> regions, childRegions;  // radial parts: regions of sub and of the child
   // Per sub vertex: exact at level m, and whether its faces in sub are the uniform level's.
   std::vector<uint8_t> ok, full;
+  // Precision: per sub vertex its connected component (faces sharing vertices); per component the
+  // level m vertex its children's frame is anchored at (its pole where it has one).
+  std::vector<uint32_t> component;
+  std::vector<Index> anchors;
 };
 
 struct AdaptiveRefinement::Step {
@@ -145,9 +149,41 @@ struct AdaptiveRefinement::Step {
   // poles' regions were refined radially apart; their points come from each pole's own radial
   // grid, so the step keeps nothing of them.
   CopiedPart generic;
+  // The child's frames (RefinedLevel::frameOrigins): per frame the level m vertex it is anchored at
+  // (the generic part's components, then the tail's pole regions).
+  std::vector<Index> frameAnchors;
 };
 
 namespace {
+
+// Precision: the connected components of a part (faces sharing a vertex), each anchored at its
+// pole where it has one, else at its first vertex. Deep levels are made of small components
+// around poles and extraordinary vertices, each refined in a frame of its own. [O(part)]
+void markComponents(CopiedPart& part) {
+  const PolyMesh& mesh = part.sub.mesh;
+  std::vector<Index> parent(size_t(mesh.vertexCount()));
+  for (Index v = 0; v < mesh.vertexCount(); ++v) parent[size_t(v)] = v;
+  auto find = [&](Index v) {
+    while (parent[size_t(v)] != v) v = parent[size_t(v)] = parent[size_t(parent[size_t(v)])];
+    return v;
+  };
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    for (Index c = mesh.faceStart[f] + 1; c < mesh.faceStart[f + 1]; ++c) {
+      const Index a = find(mesh.faceVerts[mesh.faceStart[f]]), b = find(mesh.faceVerts[c]);
+      if (a != b) parent[size_t(std::max(a, b))] = std::min(a, b);
+    }
+  part.component.assign(size_t(mesh.vertexCount()), 0);
+  std::vector<int64_t> componentOfRoot(size_t(mesh.vertexCount()), -1);
+  for (Index v = 0; v < mesh.vertexCount(); ++v) {
+    int64_t& id = componentOfRoot[size_t(find(v))];
+    if (id < 0) {
+      id = int64_t(part.anchors.size());
+      part.anchors.push_back(part.subToLevel[size_t(v)]);
+    }
+    part.component[size_t(v)] = uint32_t(id);
+  }
+  for (const PolarConfig& config : part.sub.poles) part.anchors[part.component[size_t(config.pole)]] = part.subToLevel[size_t(config.pole)];
+}
 
 // Copies the selected faces of `level` out (faces in order, vertices numbered by first use), with
 // `poles` mapped and truncated to the links whose rows were selected whole.
@@ -192,6 +228,7 @@ CopiedPart copyOut(const RefinedLevel& level, const std::vector<uint8_t>& select
     part.ok.push_back(exact[w]);
     part.full.push_back(complete[w] && inside[w]);
   }
+  markComponents(part);
   return part;
 }
 
@@ -223,8 +260,9 @@ bool selectionsTouch(const RefinedLevel& level, const std::vector<uint8_t>& a, c
   return false;
 }
 
-// Appends `part` (a child level of its own) to `into`: vertices and faces after those there.
-void appendLevel(RefinedLevel& into, const RefinedLevel& part) {
+// Appends `part` (a child level of its own) to `into`: vertices and faces after those there, its
+// frames after `frameBase`.
+void appendLevel(RefinedLevel& into, const RefinedLevel& part, uint32_t frameBase) {
   const Index vertexBase = into.mesh.vertexCount();
   for (Index f = 0; f < part.mesh.faceCount(); ++f) {
     std::vector<Index> loop(part.mesh.face(f), part.mesh.face(f) + part.mesh.faceSize(f));
@@ -233,6 +271,8 @@ void appendLevel(RefinedLevel& into, const RefinedLevel& part) {
     into.faceParent.push_back(part.faceParent[f]);
   }
   into.mesh.points.resize(size_t(vertexBase) + part.mesh.points.size());
+  into.vertexFrame.resize(size_t(vertexBase), 0);
+  for (const uint32_t frame : part.vertexFrame) into.vertexFrame.push_back(frameBase + frame);
   for (PolarConfig config : part.poles) {
     config.pole += vertexBase;
     for (Index& v : config.links) v += vertexBase;
@@ -344,6 +384,12 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
       }
     }
   }
+  // Each child vertex lies in the frame of its parent face's component.
+  child.vertexFrame.assign(size_t(child.mesh.vertexCount()), 0);
+  for (Index f = 0; f < child.mesh.faceCount(); ++f) {
+    const uint32_t frame = part.component[size_t(part.sub.mesh.faceVerts[part.sub.mesh.faceStart[child.faceParent[f]]])];
+    for (Index c = child.mesh.faceStart[f]; c < child.mesh.faceStart[f + 1]; ++c) child.vertexFrame[size_t(child.mesh.faceVerts[c])] = frame;
+  }
   for (Index& parent : child.faceParent) parent = part.subFaces[parent];
 }
 
@@ -355,6 +401,7 @@ struct AdaptiveRefinement::LevelState {
   bool tail = false;                   // the poles' regions are refined radially apart (from here on)
   std::vector<uint8_t> complete;       // per vertex: its faces at this level are the uniform level's
   std::vector<PolarGrid> radialGrids;  // RTS/BPS in mixed meshes: each pole's own radial grid
+  std::vector<Point> gridOrigins;      // ... relative to these (its pole's frame at this level)
 };
 
 AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName,
@@ -462,6 +509,7 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
     childState.tail = tailStep;
     std::vector<uint8_t> childExact;
     refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childState.complete);
+    step.frameAnchors = step.generic.anchors;
     radialRefined_[m] = radial_ ? generic : polar;
     if (tailStep) {
       CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], state.complete, sourceName);
@@ -470,7 +518,8 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       refinePart(polarPart, true, scheme, sourceName, polarChild, polarExact, polarComplete);
       // The tail's points come from the poles' own (exact) radial grids: every row is exact.
       std::fill(polarExact.begin(), polarExact.end(), 1);
-      appendLevel(child, polarChild);
+      appendLevel(child, polarChild, uint32_t(step.generic.anchors.size()));
+      step.frameAnchors.insert(step.frameAnchors.end(), polarPart.anchors.begin(), polarPart.anchors.end());
       child.topology = buildTopology(child.mesh, sourceName);
       childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
       childState.complete.insert(childState.complete.end(), polarComplete.begin(), polarComplete.end());
@@ -507,6 +556,7 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
     grids.clear();
     if (radialPoles)
       for (const PolarConfig& config : levels_[0].poles) grids.push_back(gatherGrid(levels_[0].mesh.points, config, config.linkCount));
+    states_[0].gridOrigins.assign(grids.size(), Point(0.0));
     fillPoleData(levels_[0], scheme, radialPoles ? &grids : nullptr);
   }
 
@@ -517,10 +567,20 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
     RefinedLevel& child = levels_[m + 1];
     std::vector<PolarGrid>& radialGrids = states_[m + 1].radialGrids;
     radialGrids = states_[m].radialGrids;
+    states_[m + 1].gridOrigins = states_[m].gridOrigins;
     const bool uniformStep = options_.uniformFirstStep && m == 0;
     CopiedPart& part = step.generic;
+    // Precision (adaptive_refiner.h): the child's frames sit at their anchors; each component's
+    // points are gathered relative to its frame. Within a component every parent point shares one
+    // frame, so the shift is one vector for all and the differences the rules take stay exact to
+    // the component's own size.
+    child.frameOrigins.resize(step.frameAnchors.size());
+    for (size_t c = 0; c < step.frameAnchors.size(); ++c) child.frameOrigins[c] = level.absolutePoint(step.frameAnchors[c]);
     std::vector<Point>& subPoints = part.sub.mesh.points;
-    for (size_t v = 0; v < part.subToLevel.size(); ++v) subPoints[v] = level.mesh.points[part.subToLevel[v]];
+    for (size_t v = 0; v < part.subToLevel.size(); ++v) {
+      const Index w = part.subToLevel[v];
+      subPoints[v] = level.mesh.points[w] + (level.origin(w) - child.frameOrigins[part.component[v]]);
+    }
     std::vector<Point>& points = child.mesh.points;
     if (radial_) {
       for (size_t r = 0; r < part.regions.size(); ++r) {
@@ -551,6 +611,12 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
         }
       } else if (radialPoles) {
         PolarGrid& grid = radialGrids[k];
+        // The grid moves to its pole's frame in the child (the same rigid shift for all its points).
+        Point& gridOrigin = states_[m + 1].gridOrigins[k];
+        const Point shift = gridOrigin - child.origin(config.pole);
+        grid.pole += shift;
+        for (Point& q : grid.ring) q += shift;
+        gridOrigin = child.origin(config.pole);
         grid = rules.refineGrid(grid, uniformStep);
         // Links beyond the ones this and the next level own are never read: keep the grid small.
         const int keep = std::min(grid.links, config.linkCount + 2);

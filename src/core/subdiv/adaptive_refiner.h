@@ -16,6 +16,14 @@
 // vertex in S; edge point: both faces; face point: its corners; C2PS's rules (1)-(3): links 0..2
 // of the pole; radial rows: the parent rows of the cubic rules. Poles keep the uniform level's
 // index, orientation and first links (truncated where S ends).
+//
+// Precision: a level-20 ring is 1e-6 of the model and its points 1e-8 apart, so absolute doubles
+// near 1 (rounding 1e-16) would leave the second differences curvature is made of (~1e-16) to
+// round-off. Each step therefore refines every connected component of S in a frame of its own,
+// anchored at one of its parent vertices (its pole where it has one): level m+1's points are
+// relative to RefinedLevel::frameOrigins[vertexFrame[v]], and the rules' differences keep double
+// precision relative to the component's size at any depth. Patches carry the origin
+// (Patch::origin). RTS/BPS's radial grids move into their pole's frame each level.
 #pragma once
 
 #include <memory>

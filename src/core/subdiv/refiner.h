@@ -43,6 +43,17 @@ struct RefinedLevel {
   // this level's radial unit (link i at r = i), from which the viewer closes the hole.
   std::vector<PolarGrid> poleGrids;
   std::vector<TaylorCoefficients> poleTaylor;
+  // Feature-adaptive levels >= 1 (adaptive_refiner.h, Precision): mesh.points, poleGrids and
+  // poleTaylor's p0 are relative to the origin of their vertex's frame, one frame per connected
+  // part of the level, so deep rings keep double precision relative to their own size. Empty:
+  // absolute (the uniform refinement; level 0).
+  std::vector<Point> frameOrigins;
+  std::vector<uint32_t> vertexFrame;  // per vertex, index into frameOrigins
+
+  // The origin vertex v's point is relative to. [O(1)]
+  Point origin(Index v) const { return frameOrigins.empty() ? Point(0.0) : frameOrigins[vertexFrame[size_t(v)]]; }
+  // Vertex v's point in absolute coordinates (rounded to double there). [O(1)]
+  Point absolutePoint(Index v) const { return origin(v) + mesh.points[size_t(v)]; }
 };
 
 class Refinement {
