@@ -813,6 +813,9 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   if (view.prepare.valid()) {
     if (view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
     view.prepare.get();
+    // Room on the GPU for the level made ahead, now while idle rather than during the step.
+    if (view.shown && view.shown->hierarchy && view.shown->hierarchy->preparedLevel.load() > view.shown->key.level)
+      view.renderer->reserveFor(view.shown->hierarchy->preparedRegular.load(), view.shown->hierarchy->preparedCaps.load());
   }
   if (!options_.prepareNextLevel || v >= state_.viewCount || view.job.running() || editor_.dragging() || !view.shown ||
       !view.shown->hierarchy || view.shown->key != wanted)

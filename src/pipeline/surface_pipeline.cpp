@@ -377,6 +377,10 @@ void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_
     if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
     hierarchy.deepestMade = refinement.levelCount() - 1;
     hierarchy.cache.prepare(refinement, level);
+    const auto [regular, caps] = hierarchy.cache.preparedCounts(level);
+    hierarchy.preparedRegular = regular;
+    hierarchy.preparedCaps = caps;
+    hierarchy.preparedLevel = level;
   } catch (...) {
     // Over the budget, or out of memory: the level is made (or refused) when the user asks for it.
   }

@@ -47,6 +47,10 @@ struct SurfaceHierarchy {
   // made ahead and are dropped), and the deepest made (read without the mutex by the GL thread).
   int deepestShown = 0;
   std::atomic<int> deepestMade{0};
+  // The level prepareLevel made ahead: its set's regular patches and caps (a viewer reserves GPU
+  // room for them while idle, so the step does not grow buffers).
+  std::atomic<int> preparedLevel{-1};
+  std::atomic<size_t> preparedRegular{0}, preparedCaps{0};
   // The patch memory of a surface built from it that is gone, for the next assembly to reuse
   // (guarded by spareMutex: surfaces die on the GL thread while a job may assemble).
   std::mutex spareMutex;

@@ -20,6 +20,9 @@ namespace polarview {
 namespace {
 
 constexpr int kControlPointsPerPatch = 16;
+// Per control point: GPU form, world hi, world lo; per patch: its frame's texels.
+constexpr size_t kFloatsPerPoint = 9;
+constexpr size_t kFloatsPerPatch = kControlPointsPerPatch * kFloatsPerPoint;
 
 // [SECTION] Precision: each patch in its own frame, as differences
 //
@@ -47,6 +50,7 @@ constexpr int kControlPointsPerPatch = 16;
 // the frame.
 
 constexpr int kFrameTexelsPerPatch = 5;  // origin hi, origin lo, axes x, y, z (patch_frame.glsl)
+constexpr size_t kFloatsPerFrame = 3 * kFrameTexelsPerPatch;
 constexpr int kFrameTextureUnit = 3;     // texture units of u_patchFrames and u_patchKinds
 constexpr int kKindTextureUnit = 4;
 constexpr double kTwoPi = 6.283185307179586476925286766559;
@@ -329,6 +333,24 @@ struct PatchRenderer::Impl {
   std::vector<Point> netPointsWorld, polesWorld;  // kept to re-centre when patches change
 
   // Overlay vertices (overlay.vert): position hi, lo (relative to the centre), colour.
+  // Points the patch VAO and the texture buffers at the current buffers (after they were made or
+  // grown).
+  void attachBuffers() {
+    glBindVertexArray(patchVao);
+    glBindBuffer(GL_ARRAY_BUFFER, patchPositions);
+    // Locations 0 GPU form, 2 world hi, 3 world lo, at floats 0, 3, 6 of 9.
+    for (const auto& [location, offset] : {std::pair<GLuint, size_t>{0, 0}, {2, 3}, {3, 6}}) {
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), reinterpret_cast<void*>(offset * sizeof(float)));
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_BUFFER, frameTexture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, frameBuffer);
+    glBindTexture(GL_TEXTURE_BUFFER, kindTexture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, kindBuffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+  }
   void uploadOverlay(GLuint vao, GLuint buffer, const std::vector<Point>& points,
                      const glm::vec3& color, const glm::dvec3& center) {
     std::vector<float> data(points.size() * 9);
@@ -485,8 +507,6 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   // Per patch: its frame; per control point: the GPU form (see "Precision") and the world point
   // as hi + lo (for positions and tessellation levels), interleaved. Written in place (this runs
   // every frame of a vertex drag); only the patches not already on the GPU.
-  constexpr size_t kFloatsPerPoint = 9, kFloatsPerFrame = 3 * kFrameTexelsPerPatch;
-  constexpr size_t kFloatsPerPatch = kControlPointsPerPatch * kFloatsPerPoint;
   const size_t added = patches.size() - reused;
   const std::unique_ptr<float[]> positions(new float[added * kFloatsPerPatch]);  // every float written below
   std::vector<float> frameTexels(added * kFloatsPerFrame);
@@ -532,26 +552,24 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   g.kindBuffer = reserveBuffer(g.kindBuffer, &g.kindCapacity, 0, kindRings.size() * sizeof(int32_t));
   writeBuffer(GL_TEXTURE_BUFFER, g.kindBuffer, 0, kindRings.size(), sizeof(int32_t), kindRings.data());
 
-  glBindVertexArray(g.patchVao);
-  glBindBuffer(GL_ARRAY_BUFFER, g.patchPositions);
-  // Locations 0 GPU form, 2 world hi, 3 world lo, at floats 0, 3, 6 of 9.
-  for (const auto& [location, offset] : {std::pair<GLuint, size_t>{0, 0}, {2, 3}, {3, 6}}) {
-    glEnableVertexAttribArray(location);
-    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), reinterpret_cast<void*>(offset * sizeof(float)));
-  }
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  glBindTexture(GL_TEXTURE_BUFFER, g.frameTexture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, g.frameBuffer);
-  glBindTexture(GL_TEXTURE_BUFFER, g.kindTexture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, g.kindBuffer);
-  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  g.attachBuffers();
 
   // Overlays are stored relative to the centre too: re-upload them when it moved.
   if (!sameSequence) {
     g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
     g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {1.0f, 0.85f, 0.1f}, center_);
   }
+}
+
+void PatchRenderer::reserveFor(size_t regular, size_t other) {
+  Impl& g = *impl_;
+  const size_t slots = std::max(stableOnGpu_, regular) + other, inUse = slotsInUse();
+  const size_t pointBytes = kFloatsPerPatch * sizeof(float), frameBytes = kFloatsPerFrame * sizeof(float);
+  if (slots * pointBytes <= g.positionsCapacity && slots * frameBytes <= g.frameCapacity) return;
+  // What is drawn now stays valid: every slot in use is kept.
+  g.patchPositions = reserveBuffer(g.patchPositions, &g.positionsCapacity, inUse * pointBytes, slots * pointBytes);
+  g.frameBuffer = reserveBuffer(g.frameBuffer, &g.frameCapacity, inUse * frameBytes, slots * frameBytes);
+  g.attachBuffers();
 }
 
 size_t PatchRenderer::slotsInUse() const {

@@ -784,6 +784,12 @@ PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int fin
                      *cache.caps[size_t(finest)], sources, std::move(storage));
 }
 
+std::pair<size_t, size_t> LevelPatchCache::preparedCounts(int finest) const {
+  const Impl& cache = *impl_;
+  if (finest < 0 || size_t(finest) >= cache.caps.size() || !cache.caps[size_t(finest)]) return {0, 0};
+  return {sharedPrefix(finest, finest), cache.caps[size_t(finest)]->patches.size()};
+}
+
 size_t LevelPatchCache::sharedPrefix(int a, int b) const {
   size_t count = 0;
   for (int m = 0; m <= std::min(a, b) && m < int(impl_->regular.size()); ++m) count += impl_->regular[size_t(m)].patches.size();

@@ -51,6 +51,7 @@
 
 #include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/spline/patch.h"
@@ -111,6 +112,9 @@ class LevelPatchCache {
   // Extracts what patchSet(refinement, finest) needs without assembling it (a viewer makes the next
   // level ahead, in the background). [O(faces of new levels)]
   void prepare(const AdaptiveRefinement& refinement, int finest);
+  // The patch set of level `finest` once prepared: its regular patches (of all levels) and its
+  // caps; {0, 0} when not prepared. [O(levels)]
+  std::pair<size_t, size_t> preparedCounts(int finest) const;
   // How many patches the sets of levels a and b begin with in common (the regular patches of
   // levels 0..min(a, b); level jumps may differ). [O(levels)]
   size_t sharedPrefix(int a, int b) const;
