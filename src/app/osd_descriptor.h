@@ -17,6 +17,7 @@ struct OsdMeshDescriptor {
   std::vector<int> faceSizes;
   std::vector<Index> creasePairs, cornerIds;
   std::vector<float> creaseWeights, cornerWeights;
+  std::vector<Index> holeIds;
   OpenSubdiv::Far::TopologyDescriptor descriptor;
   OpenSubdiv::Sdc::Options options;
 
@@ -42,12 +43,16 @@ struct OsdMeshDescriptor {
     descriptor.numCorners = int(cornerWeights.size());
     descriptor.cornerVertexIndices = cornerIds.data();
     descriptor.cornerWeights = cornerWeights.data();
-    options.SetVtxBoundaryInterpolation(mesh.tags.boundary == BoundaryInterpolation::EdgeAndCorner
-                                            ? Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                            : Options::VTX_BOUNDARY_EDGE_ONLY);
+    holeIds = mesh.tags.holes;
+    descriptor.numHoles = int(holeIds.size());
+    descriptor.holeIndices = holeIds.data();
+    options.SetVtxBoundaryInterpolation(mesh.tags.boundary == BoundaryInterpolation::EdgeAndCorner ? Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                        : mesh.tags.boundary == BoundaryInterpolation::None        ? Options::VTX_BOUNDARY_NONE
+                                                                                                   : Options::VTX_BOUNDARY_EDGE_ONLY);
     options.SetCreasingMethod(mesh.tags.creaseMethod == CreaseMethod::Chaikin ? Options::CREASE_CHAIKIN
                                                                               : Options::CREASE_UNIFORM);
-    options.SetTriangleSubdivision(Options::TRI_SUB_CATMARK);
+    options.SetTriangleSubdivision(mesh.tags.triangles == TriangleSubdivision::Smooth ? Options::TRI_SUB_SMOOTH
+                                                                                      : Options::TRI_SUB_CATMARK);
   }
   OsdMeshDescriptor(const OsdMeshDescriptor&) = delete;  // `descriptor` points into this object
   OsdMeshDescriptor& operator=(const OsdMeshDescriptor&) = delete;

@@ -48,7 +48,7 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
 void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme scheme) {
   if (scheme == Scheme::CatmullClark) return;
   for (const PolarConfig& config : findPolarConfigs(base.mesh, base.topology)) {
-    if (config.rejection == PolarRejection::SharpFeature) {  // a pole, but tags keep the scheme off it
+    if (config.rejection == PolarRejection::SharpFeature || config.rejection == PolarRejection::Hole) {  // a pole, but tags keep the scheme off it
       ++surface.polesByCatmullClark;
       surface.fallbackReason = config.reason;
       continue;

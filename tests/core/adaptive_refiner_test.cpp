@@ -185,6 +185,18 @@ TEST_CASE("adaptive: the same patches as uniform refinement on generated shapes,
   checkAgainstUniform(shapes::torus(6, 4), "torus", 3);
 }
 
+TEST_CASE("adaptive: holes and interpolateboundary 0: the same patches as uniform refinement, every scheme") {
+  PolyMesh mushroom = shapes::mushroom(12);
+  mushroom.tags.holes = {Index(mushroom.faceCount() - 1), Index(mushroom.faceCount() - 7), 3};  // stem faces, and a fan face
+  checkAgainstUniform(mushroom, "mushroom with holes", 4);
+  PolyMesh cube = shapes::cube();
+  cube.tags.holes = {2};
+  checkAgainstUniform(cube, "cube with a hole", 4);
+  PolyMesh grid = shapes::grid(5, 4, [](double x, double y) { return x * y; });
+  grid.tags.boundary = BoundaryInterpolation::None;
+  checkAgainstUniform(grid, "grid, interpolateboundary 0", 4);
+}
+
 TEST_CASE("adaptive: RTS and BPS beyond level 5 outside caps and globes are the uniform surface with fewer columns") {
   for (const char* name : {"default.obj"})
     for (Scheme scheme : {Scheme::RTS, Scheme::BPS})

@@ -707,3 +707,41 @@ TEST_CASE("end caps around a valence-300 vertex: tangents are the Catmull-Clark 
   CHECK(unmatched == 3 * 2 * n);
   MESSAGE("valence " << n << ": " << checked << " spoke tangents, worst relative difference to the direct mask " << worst);
 }
+
+TEST_CASE("extraction: hole faces give no patches, at any level; the rest of the surface is unchanged") {
+  // A torus (every face regular): holes change no point, so the holed set is the plain set less the
+  // patches over the holes and their children, patch for patch.
+  PolyMesh torus = shapes::torus(8, 6);
+  const PatchSet plain = extract(torus, Scheme::CatmullClark, 2);
+  torus.tags.holes = {0, 9, 20};
+  const PatchSet holed = extract(torus, Scheme::CatmullClark, 2);
+  REQUIRE(plain.patches.size() == size_t(torus.faceCount()));
+  CHECK(holed.patches.size() == plain.patches.size() - 3);
+  size_t k = 0;
+  for (const Patch& patch : plain.patches) {
+    if (patch.face == 0 || patch.face == 9 || patch.face == 20) continue;
+    REQUIRE(k < holed.patches.size());
+    CHECK(holed.patches[k].face == patch.face);
+    CHECK(holed.patches[k].cp == patch.cp);
+    ++k;
+  }
+  // A cube: end caps around holes' corners are refined like the others, none over the holes.
+  PolyMesh cube = shapes::cube();
+  const size_t cubePatches = extract(cube, Scheme::CatmullClark, 3).patches.size();
+  cube.tags.holes = {4};
+  CHECK(extract(cube, Scheme::CatmullClark, 3).patches.size() == cubePatches * 5 / 6);
+}
+
+TEST_CASE("extraction: interpolateboundary 0 keeps the faces away from the boundary, with the same patches") {
+  PolyMesh grid = shapes::grid(6, 6, [](double x, double y) { return 0.3 * x * x - 0.2 * x * y; });
+  const PatchSet edgeOnly = extract(grid, Scheme::CatmullClark, 0);
+  grid.tags.boundary = BoundaryInterpolation::None;
+  const PatchSet none = extract(grid, Scheme::CatmullClark, 2);
+  // Faces touching a boundary vertex are holes: the inner 4 x 4 remain, regular at level 0.
+  CHECK(none.patches.size() == 16);
+  CHECK(none.count(PatchKind::Regular) == 16);
+  size_t matched = 0;
+  for (const Patch& patch : none.patches)
+    for (const Patch& same : edgeOnly.patches) matched += same.face == patch.face && same.cp == patch.cp;
+  CHECK(matched == 16);
+}

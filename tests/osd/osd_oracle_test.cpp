@@ -237,23 +237,37 @@ void compareWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
   CHECK(maxLimitDifference <= tolerance);
 }
 
+// Per face of `level`: whether it is a hole on both sides (faceMap: ours -> OpenSubdiv's); returns
+// how many are.
+size_t compareHoles(const RefinedLevel& level, const Far::TopologyLevel& osdLevel, const std::vector<int>& faceMap) {
+  size_t holes = 0, differ = 0;
+  for (Index f = 0; f < level.mesh.faceCount(); ++f) {
+    holes += level.isHole(f);
+    differ += level.isHole(f) != osdLevel.IsFaceHole(faceMap[size_t(f)]);
+  }
+  CHECK(differ == 0);
+  return holes;
+}
+
 // Refines `base` (with crease and corner tags) kLevels times with polarview's uniform Refinement
-// and with OpenSubdiv, and compares positions per level; also that each level's tags are the
-// base's less 1 a level, by refining the level-1 mesh with its own tags once more.
-void compareSharpWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
+// and with OpenSubdiv, and compares positions and hole faces per level; also that each level's tags
+// are the base's less 1 a level, by refining the level-1 mesh with its own tags once more.
+void compareSharpWithOpenSubdiv(const std::string& name, const PolyMesh& base, bool sharp = true) {
   CAPTURE(name);
   const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(base, kLevels);
   const Far::PrimvarRefinerReal<double> primvar(*refiner);
   const double tolerance = 1e-12 * boundingDiagonal(base.points);
   const Refinement ours(base, {Scheme::CatmullClark, kLevels, false});
   REQUIRE(ours.levelCount() == kLevels + 1);
-  CHECK_FALSE(ours.level(0).sharpness.empty());
+  CHECK(ours.level(0).sharpness.empty() == !sharp);
 
   std::vector<OsdPoint> osdPoints(base.vertexCount());
   for (Index v = 0; v < base.vertexCount(); ++v) osdPoints[v].p = base.points[v];
   std::vector<int> vertexMap(base.vertexCount()), faceMap(base.faceCount());
   for (size_t i = 0; i < vertexMap.size(); ++i) vertexMap[i] = int(i);
   for (size_t i = 0; i < faceMap.size(); ++i) faceMap[i] = int(i);
+  const size_t baseHoleCount = compareHoles(ours.level(0), refiner->GetLevel(0), faceMap);
+  CHECK((baseHoleCount > 0) == refiner->HasHoles());
   for (int level = 1; level <= kLevels; ++level) {
     CAPTURE(level);
     const RefinedLevel& parent = ours.level(level - 1);
@@ -268,7 +282,8 @@ void compareSharpWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
     double maxDifference = 0;
     for (Index v = 0; v < child.vertexCount(); ++v)
       maxDifference = std::max(maxDifference, glm::length(child.points[v] - osdChildPoints[childVertexMap[v]].p));
-    MESSAGE(name, " level ", level, ": max |ours - OpenSubdiv| = ", maxDifference);
+    const size_t holes = compareHoles(ours.level(level), osdChild, childFaceMap);
+    MESSAGE(name, " level ", level, ": max |ours - OpenSubdiv| = ", maxDifference, ", ", holes, " hole faces");
     CHECK(maxDifference <= tolerance);
     osdPoints = std::move(osdChildPoints);
     vertexMap = std::move(childVertexMap);
@@ -350,6 +365,32 @@ TEST_CASE("opensubdiv oracle: interpolateboundary 1 (edge and corner) sharpens c
   tagRandomly(tagged, 21);
   tagged.tags.boundary = BoundaryInterpolation::EdgeAndCorner;
   compareSharpWithOpenSubdiv("open mixed grid, edge-and-corner boundary, random creases", tagged);
+}
+
+TEST_CASE("opensubdiv oracle: holes, and interpolateboundary 0 (boundary faces become holes), tag the same faces") {
+  PolyMesh grid = cellGrid(6, 5, false, true, 5);
+  grid.tags.holes = {3, 11, 12};
+  compareSharpWithOpenSubdiv("open mixed grid, three holes", grid, false);
+  PolyMesh none = cellGrid(7, 6, false, true, 8);
+  none.tags.boundary = BoundaryInterpolation::None;
+  compareSharpWithOpenSubdiv("open mixed grid, interpolateboundary 0", none, false);
+  // A boundary edge tagged infinitely sharp keeps the faces at its ends (where no other boundary
+  // edge is smooth) out of the holes; semi-sharp tags do not.
+  PolyMesh tagged = cellGrid(7, 5, false, true, 13);
+  tagRandomly(tagged, 13);
+  tagged.tags.boundary = BoundaryInterpolation::None;
+  tagged.tags.holes = {2, 9};
+  compareSharpWithOpenSubdiv("open mixed grid, interpolateboundary 0, holes, random creases", tagged);
+}
+
+TEST_CASE("opensubdiv oracle: smoothtriangles smooth (TRI_SUB_SMOOTH) weighs triangles' face points as OpenSubdiv") {
+  PolyMesh mixed = cellGrid(6, 5, false, true, 3);
+  mixed.tags.triangles = TriangleSubdivision::Smooth;
+  compareSharpWithOpenSubdiv("open mixed grid, smooth triangles", mixed);
+  PolyMesh tagged = cellGrid(6, 6, true, true, 17);
+  tagRandomly(tagged, 17);
+  tagged.tags.triangles = TriangleSubdivision::Smooth;
+  compareSharpWithOpenSubdiv("closed mixed grid, smooth triangles, random creases", tagged);
 }
 
 TEST_CASE("opensubdiv oracle: a closed cube refines identically") { compareWithOpenSubdiv("cube", cube()); }

@@ -583,11 +583,11 @@ class ObjParser {
       warn(std::to_string(tags.creases.size()) + " crease edges and " + std::to_string(tags.corners.size()) + " corners ('t' tags):" +
            kOnlyUniformCatmullClark);
     if (tags.boundary == BoundaryInterpolation::EdgeAndCorner) warn(std::string("'t interpolateboundary 1' (sharp corners):") + kOnlyUniformCatmullClark);
-    if (tags.boundary == BoundaryInterpolation::None)
-      warn("'t interpolateboundary 0' read but not applied: boundaries follow OpenSubdiv's edge-only rule");
-    if (!tags.holes.empty()) warn(std::to_string(tags.holes.size()) + " hole faces ('t hole') read but not applied: they are refined as faces");
+    // Holes ('t hole', and the boundary faces of 't interpolateboundary 0') are applied by every
+    // scheme: they give no patches (a pole touching one is left to Catmull-Clark).
     if (tags.triangles != TriangleSubdivision::Catmark)
-      warn("'t smoothtriangles smooth' read but not applied: triangles get Catmull-Clark's rules");
+      warn(std::string("'t smoothtriangles smooth' (OpenSubdiv's TRI_SUB_SMOOTH edge weights next to triangles):") +
+           kOnlyUniformCatmullClark);
     if (faceVaryingTags_ > 0) warn(std::to_string(faceVaryingTags_) + " face-varying 't' tags ignored (polarview has no face-varying data)");
     if (hierarchicalEditTags_ > 0)
       warn(std::to_string(hierarchicalEditTags_) + " hierarchical-edit 't' tags ignored (OpenSubdiv 3 does not apply them either)");

@@ -69,6 +69,7 @@ LevelClasses classifyLevel(const LevelStack& stack, int m, const LevelClasses& p
   markSharpVertices(topo, level.sharpness, classes.vertex.data());
   classes.faceRegular.assign(mesh.faceCount(), 0);
   for (Index f = 0; f < mesh.faceCount(); ++f) {
+    if (level.isHole(f)) continue;  // no patch
     if (inherit && parent.faceRegular[level.faceParent[f]]) {
       classes.faceRegular[f] = 1;
       continue;
@@ -450,13 +451,17 @@ bool hasFaceSides(const Patch& patch, const LevelStack& refinement) {
 // the ancestor of its own face at Q's level. [O(faces of all levels + patches * level jump)]
 void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_t>>& cover, std::vector<Patch>& patches) {
   const int levels = refinement.count();
+  constexpr int32_t kHole = -2;  // a hole face (and its children): no surface across a side facing it
+  for (int m = 0; m < levels; ++m)
+    for (size_t f = 0; f < refinement.level(m).faceHole.size(); ++f)
+      if (refinement.level(m).faceHole[f]) cover[m][f] = kHole;
   for (size_t k = 0; k < patches.size(); ++k)
-    if (hasFaceSides(patches[k], refinement) && cover[patches[k].level][patches[k].face] < 0)
+    if (hasFaceSides(patches[k], refinement) && cover[patches[k].level][patches[k].face] == -1)
       cover[patches[k].level][patches[k].face] = int32_t(k);
   for (int m = 1; m < levels; ++m) {
     const std::vector<Index>& parent = refinement.level(m).faceParent;
     for (size_t f = 0; f < cover[m].size(); ++f)
-      if (cover[m][f] < 0) cover[m][f] = cover[m - 1][parent[f]];
+      if (cover[m][f] == -1) cover[m][f] = cover[m - 1][parent[f]];
   }
   // Levels apart: a side's neighbour is looked up for every patch, its level decides.
   std::vector<uint8_t> patchLevel(patches.size());
@@ -469,6 +474,7 @@ void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_
       const Index across = level.topology.faceAcross(level.topology.cornerEdge[level.mesh.faceStart[patch.face] + s], patch.face);
       if (across < 0) continue;
       const int32_t q = cover[m][across];
+      if (q == kHole) continue;
       if (q < 0) {  // refined further: this is the coarse side (the fine sides set the exact jump)
         // unless refined radially: the finer rings keep the columns, so the side meets them whole
         if (!refinement.refinedRadially(m, across)) patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
@@ -594,7 +600,7 @@ void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>
   // End caps for everything else not covered.
   LimitFrames limits(mesh, topo);
   for (Index f = 0; f < mesh.faceCount(); ++f) {
-    if (faceRegular[f] || inHole[f] || !refinement.isNeeded(m, f)) continue;
+    if (faceRegular[f] || inHole[f] || level.isHole(f) || !refinement.isNeeded(m, f)) continue;
     if (refinement.adaptive())  // the limit frames read the faces around each corner
       for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
         for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {

@@ -212,6 +212,7 @@ CopiedPart copyOut(const RefinedLevel& level, const std::vector<uint8_t>& select
   if (!level.sharpness.empty()) {
     CreaseSharpness& sharpness = part.sub.sharpness;
     sharpness.chaikin = level.sharpness.chaikin;
+    sharpness.smoothTriangles = level.sharpness.smoothTriangles;
     sharpness.edge.assign(size_t(part.sub.topology.edgeCount), 0.0f);
     sharpness.vertex.assign(part.subToLevel.size(), 0.0f);
     for (Index e = 0; e < part.sub.topology.edgeCount; ++e) {
@@ -418,7 +419,10 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   // not have them yet).
   if (scheme == Scheme::CatmullClark && !base.tags.empty()) level0.sharpness = baseSharpness(base, level0.topology);
   radial_ = schemeTraits(scheme).keepsValence && !findRadialRegions(level0).empty();
+  // Holes give no patches: not needed (their points still support the faces around them).
+  level0.faceHole = baseHoles(base, level0.topology);
   needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
+  for (size_t f = 0; f < level0.faceHole.size(); ++f) needed_.back()[f] = !level0.faceHole[f];
   exact_.push_back(std::vector<uint8_t>(base.vertexCount(), 1));
   states_.emplace_back();
   states_.back().complete.assign(base.vertexCount(), 1);
@@ -524,6 +528,7 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
       childState.complete.insert(childState.complete.end(), polarComplete.begin(), polarComplete.end());
     }
+    inheritHoles(level, child);
     std::vector<uint8_t> childNeeded(child.mesh.faceCount());
     for (Index f = 0; f < child.mesh.faceCount(); ++f) childNeeded[f] = refine[child.faceParent[f]];
     totalFaces_ += subFaces + size_t(child.mesh.faceCount());

@@ -123,8 +123,19 @@ VertexRule vertexRule(float vertexSharpness, int sharpEdges) {
 // Smooth edge point 1/4 (v0 + v1 + f0 + f1), or (1 - w) of it plus w of the midpoint: the
 // transition of an edge of sharpness w not both of whose halves stay sharp (Sdc
 // ComputeEdgeVertexMask; w is not clamped to 1 there either).
-inline Point edgePoint(const Point& ends, const Point& faces, double crease) {
-  return (crease * 0.5 + (1.0 - crease) * 0.25) * ends + (1.0 - crease) * 0.25 * faces;
+inline Point edgePoint(const Point& ends, const Point& faces, double crease, double endWeight = 0.25, double faceWeight = 0.25) {
+  return (crease * 0.5 + (1.0 - crease) * endWeight) * ends + (1.0 - crease) * faceWeight * faces;
+}
+
+// Sdc's smooth edge mask under TRI_SUB_SMOOTH (catmarkScheme.h, "mimics Hbr's order of
+// operations"): a triangle's face weighs 0.47, a quad's 0.25, both faces get their mean and the
+// ends the rest. False (weights untouched) when neither face is a triangle.
+bool smoothTriangleWeights(Index size0, Index size1, double& endWeight, double& faceWeight) {
+  if (size0 != 3 && size1 != 3) return false;
+  const double f0 = size0 == 3 ? 0.470 : 0.25, f1 = size1 == 3 ? 0.470 : 0.25;
+  faceWeight = 0.5 * (f0 + f1);
+  endWeight = 0.5 * (1.0 - 2.0 * faceWeight);
+  return true;
 }
 
 // Smooth vertex point of an interior vertex of valence k (also a dart's).
@@ -141,16 +152,21 @@ inline Point smoothVertexPoint(const MeshTopology& topo, const Point* p, const P
 
 // Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside;
 // with `sharpness` (and its `decay`), the crease rules.
-void computeEdgePoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* edgePoints, Index begin,
-                       Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
+void computeEdgePoints(const MeshTopology& topo, const PolyMesh& parent, const Point* p, const Point* facePoints, Point* edgePoints,
+                       Index begin, Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
+  const bool smoothTriangles = sharpness && sharpness->smoothTriangles;
   for (Index e = begin; e < end; ++e) {
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
     const float s = sharpness ? sharpness->edge[e] : 0.0f;
     const bool staysSharp = s > 0.0f && decay->edgeAt(e, edgeVerts[2 * e]) > 0.0f && decay->edgeAt(e, edgeVerts[2 * e + 1]) > 0.0f;
+    double endWeight = 0.25, faceWeight = 0.25;
     if (edgeFaces[2 * e + 1] < 0 || staysSharp)
       edgePoints[e] = 0.5 * ends;  // the boundary always
+    else if (smoothTriangles && smoothTriangleWeights(parent.faceSize(edgeFaces[2 * e]), parent.faceSize(edgeFaces[2 * e + 1]), endWeight, faceWeight))
+      edgePoints[e] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(std::max(s, 0.0f)),
+                                endWeight, faceWeight);
     else if (s > 0.0f)
       edgePoints[e] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(s));
     else
@@ -239,7 +255,7 @@ void computePoints(const MeshTopology& topo, const PolyMesh& parent, const Point
   parallelRanges(topo.faceCount, parts,
                  [&](Index begin, Index end) { computeFacePoints(parent, parentPoints, facePoints, begin, end); });
   runParts(parts, [&](unsigned k) {
-    computeEdgePoints(topo, parentPoints, facePoints, edgePoints, partBound(topo.edgeCount, parts, k),
+    computeEdgePoints(topo, parent, parentPoints, facePoints, edgePoints, partBound(topo.edgeCount, parts, k),
                       partBound(topo.edgeCount, parts, k + 1), sharpness, decay.get());
     computeVertexPoints(topo, parentPoints, facePoints, vertexPoints, partBound(topo.vertexCount, parts, k),
                         partBound(topo.vertexCount, parts, k + 1), sharpness, decay.get());
@@ -274,19 +290,46 @@ bool sharpInside(const MeshTopology& topo, const CreaseSharpness& s) {
 CreaseSharpness finishSharpness(const MeshTopology& topo, CreaseSharpness s) {
   for (Index e = 0; e < topo.edgeCount; ++e)
     if (topo.edgeOnBoundary(e)) s.edge[e] = kInfinite;
-  return sharpInside(topo, s) ? s : CreaseSharpness{};
+  return sharpInside(topo, s) || s.smoothTriangles ? s : CreaseSharpness{};
 }
 
 }  // namespace
 
+std::vector<uint8_t> baseHoles(const PolyMesh& mesh, const MeshTopology& topo) {
+  const SubdivTags& tags = mesh.tags;
+  if (tags.holes.empty() && tags.boundary != BoundaryInterpolation::None) return {};
+  std::vector<uint8_t> hole(size_t(mesh.faceCount()), 0);
+  for (const Index f : tags.holes) hole[size_t(f)] = 1;
+  if (tags.boundary == BoundaryInterpolation::None) {
+    // Far's prepareComponentTagsAndSharpness: the faces around a vertex with a boundary edge that
+    // the tags did not make infinitely sharp (the boundary's own sharpening comes after).
+    std::vector<uint8_t> infinite(size_t(topo.edgeCount), 0);
+    for (const CreaseEdge& crease : tags.creases)
+      if (crease.sharpness >= kInfiniteSharpness)
+        if (const Index e = topo.edgeBetween(crease.v0, crease.v1); e >= 0) infinite[size_t(e)] = 1;
+    for (Index v = 0; v < topo.vertexCount; ++v) {
+      bool exclude = false;
+      for (Index k = topo.vertexEdgeStart[v]; k < topo.vertexEdgeStart[v + 1] && !exclude; ++k)
+        exclude = topo.edgeOnBoundary(topo.vertexEdges[k]) && !infinite[size_t(topo.vertexEdges[k])];
+      if (exclude)
+        for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) hole[size_t(topo.vertexFaces[k])] = 1;
+    }
+  }
+  return std::any_of(hole.begin(), hole.end(), [](uint8_t h) { return h != 0; }) ? hole : std::vector<uint8_t>{};
+}
+
 CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo) {
   const SubdivTags& tags = mesh.tags;
   const bool sharpCorners = tags.boundary == BoundaryInterpolation::EdgeAndCorner;
-  if (!tags.hasSharpFeatures() && !sharpCorners) return {};
+  bool triangles = false;
+  if (tags.triangles == TriangleSubdivision::Smooth)
+    for (Index f = 0; f < mesh.faceCount() && !triangles; ++f) triangles = mesh.faceSize(f) == 3;
+  if (!tags.hasSharpFeatures() && !sharpCorners && !triangles) return {};
   CreaseSharpness s;
   s.edge.assign(size_t(topo.edgeCount), 0.0f);
   s.vertex.assign(size_t(topo.vertexCount), 0.0f);
   s.chaikin = tags.creaseMethod == CreaseMethod::Chaikin;
+  s.smoothTriangles = triangles;
   for (const CreaseEdge& crease : tags.creases) {
     const Index e = topo.edgeBetween(crease.v0, crease.v1);
     if (e < 0) throw std::invalid_argument("baseSharpness: crease " + std::to_string(crease.v0) + "-" + std::to_string(crease.v1) + " is not an edge");

@@ -42,9 +42,17 @@ struct CreaseSharpness {
   std::vector<float> edge;    // per edge
   std::vector<float> vertex;  // per vertex
   bool chaikin = false;       // the decay rule: CREASE_CHAIKIN, else CREASE_UNIFORM
+  // Sdc::Options::TRI_SUB_SMOOTH (level 0 only: Catmull-Clark leaves no triangles after a step):
+  // an edge point next to a triangle weighs that triangle's face point 0.47 instead of 0.25.
+  bool smoothTriangles = false;
   bool empty() const { return edge.empty(); }
 };
 
+// Hole faces (Far's face tag `_hole`): `t hole` tags, and under `t interpolateboundary 0`
+// (VTX_BOUNDARY_NONE) every face at a boundary vertex with a boundary edge that is not tagged
+// infinitely sharp. Holes change no point (the rules ignore them); they give no patches. Empty when
+// there is none. [O(faces + edges)]
+std::vector<uint8_t> baseHoles(const PolyMesh& mesh, const MeshTopology& topo);
 // Level 0's sharpness from mesh.tags (the crease edges must be edges of `topo`, as loadObj checks).
 // [O(edges + vertices + tags valence)]
 CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo);

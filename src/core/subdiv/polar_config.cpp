@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/subdiv/catmull_clark.h"
+
 namespace polarview {
 
 namespace {
@@ -200,6 +202,24 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
     }
   }
 
+  // Holes (`t hole`, `t interpolateboundary 0`): the caps would close over them, so a configuration
+  // with a hole at its pole or links 1-3 is left to Catmull-Clark (whose patches skip holes).
+  if (const std::vector<uint8_t> holes = baseHoles(mesh, topo); !holes.empty()) {
+    auto touchesHole = [&](Index v) {
+      for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
+        if (holes[size_t(topo.vertexFaces[k])]) return true;
+      return false;
+    };
+    for (PolarConfig& config : configs) {
+      if (!config.refinable) continue;
+      Index at = touchesHole(config.pole) ? config.pole : -1;
+      const size_t count = size_t(std::min(config.linkCount, 3)) * size_t(config.valence);
+      for (size_t k = 0; k < count && k < config.links.size() && at < 0; ++k)
+        if (touchesHole(config.links[k])) at = config.links[k];
+      if (at >= 0) reject(config, PolarRejection::Hole, "a hole face touches it at vertex " + std::to_string(at));
+    }
+  }
+
   // Poles whose rule stencils (fan and 1-link) overlap cannot both be refined as poles.
   for (size_t k = 0; k < configs.size(); ++k) {
     PolarConfig& config = configs[k];
@@ -228,6 +248,7 @@ const char* polarRejectionKey(PolarRejection rejection) {
     case PolarRejection::NoLink2: return "no_link2";
     case PolarRejection::StencilOverlap: return "stencil_overlap";
     case PolarRejection::SharpFeature: return "sharp_feature";
+    case PolarRejection::Hole: return "hole";
   }
   return "?";
 }
@@ -243,6 +264,7 @@ const char* polarRejectionWords(PolarRejection rejection) {
     case PolarRejection::NoLink2: return "no 2-link (ring of quads)";
     case PolarRejection::StencilOverlap: return "its stencil overlaps another pole's";
     case PolarRejection::SharpFeature: return "a crease or corner tag touches it";
+    case PolarRejection::Hole: return "a hole face touches it";
   }
   return "?";
 }

@@ -24,6 +24,7 @@ enum class PolarRejection {
   NoLink2,             // no ring of quads beyond the 1-link
   StencilOverlap,      // its fan and 1-link overlap those of another pole
   SharpFeature,        // a crease or corner tag touches its pole or links 1-3 (the polar rules have no creases)
+  Hole,                // a hole face touches its pole or links 1-3 (its caps would close over the hole)
 };
 
 struct PolarConfig {

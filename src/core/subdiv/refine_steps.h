@@ -17,6 +17,9 @@ PolarGrid gatherGrid(const std::vector<Point>& points, const PolarConfig& config
 // Repeats periodic refinement (5) `times` times: n points -> n 2^times points.
 void refinePeriodically(const Point* link, int n, int times, std::vector<Point>& out, std::vector<Point>& scratch);
 
+// child.faceHole from the parent's (children of holes are holes), by child.faceParent. [O(faces)]
+void inheritHoles(const RefinedLevel& parent, RefinedLevel& child);
+
 // Fills level.poleGrids (links 0..min(5, K) of each pole) and level.poleTaylor (expansion (32) of
 // the scheme, from `schemeGrids` where RTS/BPS keep their own radially refined grids, else from
 // poleGrids); both empty for Catmull-Clark. [O(poles n)]

@@ -305,6 +305,13 @@ void refineRegionRadially(const std::vector<Point>& rows, const RadialRegion& pa
   }
 }
 
+void inheritHoles(const RefinedLevel& parent, RefinedLevel& child) {
+  child.faceHole.clear();
+  if (parent.faceHole.empty()) return;
+  child.faceHole.resize(child.faceParent.size());
+  for (size_t f = 0; f < child.faceParent.size(); ++f) child.faceHole[f] = parent.faceHole[size_t(child.faceParent[f])];
+}
+
 void fillPoleData(RefinedLevel& level, Scheme scheme, const std::vector<PolarGrid>* schemeGrids) {
   const int gridLinks = 5;  // links kept in poleGrids: enough for ring 0 and the cap
   level.poleGrids.clear();
@@ -373,6 +380,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
   // Creases and corners: Catmull-Clark's own rules; the polar schemes do not have them yet.
   const bool creases = options.scheme == Scheme::CatmullClark && !base.tags.empty();
   if (creases) level0.sharpness = baseSharpness(base, level0.topology);
+  level0.faceHole = baseHoles(base, level0.topology);
   levels_.push_back(std::move(level0));
 
   // RTS/BPS on caps and globes: radial refinement of the whole mesh.
@@ -398,6 +406,12 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
         child.mesh.tags = sharpnessTags(child.topology, child.sharpness, base.tags);
       }
     }
+    inheritHoles(levels_[levels_.size() - 2], levels_.back());
+    // The refined mesh says which of its faces are holes (`refine` writes them as `t hole`).
+    RefinedLevel& child = levels_.back();
+    child.mesh.tags.holes.clear();
+    for (size_t f = 0; f < child.faceHole.size(); ++f)
+      if (child.faceHole[f]) child.mesh.tags.holes.push_back(Index(f));
   }
   updatePositions(base.points);
 }

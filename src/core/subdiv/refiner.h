@@ -37,6 +37,10 @@ struct RefinedLevel {
   // Catmull-Clark only: the sharpness of this level's creases and corners (the base mesh's `t`
   // tags, 1 less a level); empty when nothing is sharp but the boundary.
   CreaseSharpness sharpness;
+  // Per face: 1 when it is a hole (baseHoles; children of holes are holes): refined like any face,
+  // no patch. Empty when there is none.
+  std::vector<uint8_t> faceHole;
+  bool isHole(Index f) const { return !faceHole.empty() && faceHole[size_t(f)]; }
   std::vector<PolarConfig> poles;  // polar configurations the scheme treats as poles here
   // Parallel to `poles` (filled for C2PS, RTS and BPS; empty for CC): the pole's points in
   // PolarGrid order (links 0..3 of this level's mesh) and the scheme's Taylor expansion (32) in
