@@ -111,7 +111,18 @@ std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps, 
     pos.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     timing.outVertices = refiner->GetLevel(levels).GetNumVertices();
     timing.outFaces = refiner->GetLevel(levels).GetNumFaces();
-    if (check && rep + 1 == reps && check->finest().mesh.points.size() == timing.outVertices) {
+    if (check && rep + 1 == reps && check->splitInput()) {
+      // A non-manifold mesh: ours is refined split (manifold_split.h); the merged points against
+      // OpenSubdiv's as point sets.
+      std::vector<OsdPoint<double>> exact(refiner->GetNumVerticesTotal());
+      for (Index v = 0; v < mesh.vertexCount(); ++v) exact[v] = {mesh.points[v].x, mesh.points[v].y, mesh.points[v].z};
+      const OsdPoint<double>* finest = interpolateLevels<double, Far::PrimvarRefinerReal<double>>(*refiner, levels, exact);
+      std::vector<Point> theirs(timing.outVertices);
+      for (size_t v = 0; v < theirs.size(); ++v) theirs[v] = Point(finest[v].x, finest[v].y, finest[v].z);
+      const PolyMesh ours = check->outputMesh();
+      timing.checked = ours.faceCount() == Index(timing.outFaces);
+      timing.maxDifference = timing.checked ? pointSetDistance(ours.points, theirs, 1e-9) : INFINITY;
+    } else if (check && rep + 1 == reps && check->finest().mesh.points.size() == timing.outVertices) {
       std::vector<OsdPoint<double>> exact(refiner->GetNumVerticesTotal());
       for (Index v = 0; v < mesh.vertexCount(); ++v) exact[v] = {mesh.points[v].x, mesh.points[v].y, mesh.points[v].z};
       const OsdPoint<double>* finest = interpolateLevels<double, Far::PrimvarRefinerReal<double>>(*refiner, levels, exact);

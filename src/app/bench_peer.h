@@ -17,7 +17,8 @@ struct PeerTiming {
   size_t outVertices = 0, outFaces = 0;
   double peakRssMb = 0;  // the peer's own peak (VmHWM reset before it runs; 0 where that fails)
   // With `check`: OpenSubdiv's finest points (double weights, untimed) in the order of check's
-  // finest level, and the largest coordinate difference from check's points.
+  // finest level, and the largest coordinate difference from check's points (a non-manifold
+  // input, refined split: the distance between the merged points and OpenSubdiv's as sets).
   bool checked = false;
   double maxDifference = 0;
 };

@@ -21,6 +21,7 @@
 #include "app/json_writer.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/input_error.h"
+#include "core/mesh/manifold_split.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/figure_shapes.h"
 #include "core/mesh/shapes.h"
@@ -304,7 +305,9 @@ int runRefine(const Args& args) {
   PolyMesh mesh = loadInput(o.input);
   const size_t maxFaces = checkMemoryBudget(mesh, o);
   Refinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, maxFaces);
-  saveObj(o.output, refinement.finest().mesh, o.input);
+  // A non-manifold input was refined split: its copies merge back (the input's topology refined).
+  if (refinement.splitInput()) saveObj(o.output, refinement.outputMesh(), o.input);
+  else saveObj(o.output, refinement.finest().mesh, o.input);
   return 0;
 }
 
@@ -351,7 +354,9 @@ int runConvert(const Args& args) {
 
 int runInfo(const Args& args) {
   CommonOptions o = parseOptions("info", args, {"--json"});
-  PolyMesh mesh = loadInput(o.input);
+  const PolyMesh input = loadInput(o.input);
+  ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
+  const PolyMesh& mesh = refinableMesh(input, split);
   MeshTopology topo = buildTopology(mesh, o.input);
   // Poles (configurations a polar scheme refines) apart from vertices that only look polar: on a
   // triangle mesh nearly every vertex is such a candidate, and Catmull-Clark refines it.
@@ -372,6 +377,8 @@ int runInfo(const Args& args) {
   for (const PolarConfig& c : poles) isPole[c.pole] = 1;
   int used = 0, triangles = 0, quads = 0, polygons = 0;
   for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
+  const int copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
+  used -= copies;
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     int k = mesh.faceSize(f);
     triangles += k == 3;
@@ -396,6 +403,7 @@ int runInfo(const Args& args) {
     w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", triangles);
     w.field("quads", quads).field("polygons", polygons).field("boundary_loops", loops);
     w.field("closed", loops == 0).field("radial_mesh", radialMesh);
+    w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
     w.key("poles").beginArray();
     for (const PolarConfig& c : poles) {
       w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
@@ -430,7 +438,11 @@ int runInfo(const Args& args) {
 
   std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
               o.input.c_str(), used, mesh.faceCount(), triangles, quads, polygons, topo.edgeCount, loops, loops == 1 ? "" : "s");
-  if (topo.vertexCount > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - used);
+  if (topo.vertexCount - copies > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - copies - used);
+  if (!split.empty())
+    std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
+                " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",
+                split.nonManifoldEdges, split.nonManifoldVertices, copies);
   std::printf("poles: %zu\n", poles.size());
   for (const PolarConfig& c : poles) {
     std::printf("  vertex %d: valence %d, %d link%s (%d regular), ends at %s", c.pole, c.valence, c.linkCount,

@@ -3,6 +3,7 @@
 // Sdc options of its boundary rule and creasing method. Header-only: the oracle test includes it.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -11,6 +12,34 @@
 #include "core/mesh/poly_mesh.h"
 
 namespace polarview {
+
+// The largest distance from a point of either set to the nearest point of the other (bench's and
+// the oracle test's check of a non-manifold mesh, whose split refinement numbers its points its own
+// way). Points sorted by x; each searched within the distance found so far plus `window`, so
+// `window` at least the expected distance keeps it near-linear. [O(n log n) for close sets]
+inline double pointSetDistance(std::vector<Point> a, std::vector<Point> b, double window) {
+  auto byX = [](const Point& p, const Point& q) { return p.x < q.x; };
+  std::sort(a.begin(), a.end(), byX);
+  std::sort(b.begin(), b.end(), byX);
+  double worst = 0.0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::vector<Point>& from = pass == 0 ? a : b;
+    const std::vector<Point>& to = pass == 0 ? b : a;
+    for (const Point& p : from) {
+      double best = INFINITY;
+      for (double reach = window;; reach *= 16.0) {
+        const auto lo = std::lower_bound(to.begin(), to.end(), Point(p.x - reach, 0, 0), byX);
+        for (auto it = lo; it != to.end() && it->x <= p.x + reach; ++it) {
+          const Point d = *it - p;
+          best = std::min(best, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+        }
+        if (best <= reach || reach > 1e300) break;
+      }
+      worst = std::max(worst, best);
+    }
+  }
+  return worst;
+}
 
 // Owns the arrays `descriptor` points into: keep it alive while a refiner is created from it.
 struct OsdMeshDescriptor {

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/manifold_split.h"
 #include "core/mesh/constants.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
@@ -20,7 +21,9 @@
 namespace polarview {
 namespace {
 
-PolarConfig findPole(const PolyMesh& mesh, Index vertex) {
+PolarConfig findPole(const PolyMesh& input, Index vertex) {
+  ManifoldSplit split;
+  const PolyMesh& mesh = refinableMesh(input, split);
   const MeshTopology topo = buildTopology(mesh);
   for (PolarConfig& config : findPolarConfigs(mesh, topo))
     if (config.refinable && config.pole == vertex) return config;
@@ -101,8 +104,10 @@ void catmullClarkRings(const PolyMesh& mesh, Index vertex, int rings, PoleInspec
 
 }  // namespace
 
-std::vector<Index> modelPoles(const PolyMesh& mesh) {
+std::vector<Index> modelPoles(const PolyMesh& input) {
   std::vector<Index> poles;
+  ManifoldSplit split;
+  const PolyMesh& mesh = refinableMesh(input, split);
   const MeshTopology topo = buildTopology(mesh);
   for (const PolarConfig& config : findPolarConfigs(mesh, topo))
     if (config.refinable) poles.push_back(config.pole);

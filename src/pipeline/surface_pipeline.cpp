@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/mesh/input_error.h"
+#include "core/mesh/manifold_split.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
@@ -150,7 +151,8 @@ float weightedSymmetricRange(const std::vector<float>& values, const std::vector
 
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
   try {
-    buildTopology(mesh, name);  // throws InputError for non-manifold or unsupported meshes
+    ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)
+    buildTopology(refinableMesh(mesh, split), name);  // throws InputError for meshes even that cannot refine
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -202,8 +204,10 @@ bool refinesPoles(const Model& model, Scheme scheme) {
   const auto [at, added] = cache.try_emplace({model.generation, int(scheme)}, false);
   if (added) {
     try {
-      const MeshTopology topology = buildTopology(*model.mesh, model.name);
-      for (const PolarConfig& config : findPolarConfigs(*model.mesh, topology))
+      ManifoldSplit split;
+      const PolyMesh& mesh = refinableMesh(*model.mesh, split);
+      const MeshTopology topology = buildTopology(mesh, model.name);
+      for (const PolarConfig& config : findPolarConfigs(mesh, topology))
         at->second = at->second || schemeRefinesPole(scheme, config);
     } catch (const std::exception&) {
       // not refinable: building says why

@@ -417,3 +417,106 @@ TEST_CASE("opensubdiv oracle: a valence-16 triangle-fan pole refines identically
   compareWithOpenSubdiv("open cap, valence-16 pole", poleMesh(16, 3, false));
   compareWithOpenSubdiv("globe, two valence-16 poles", poleMesh(16, 4, true));
 }
+
+// [SECTION] non-manifold meshes (manifold_split.h)
+
+namespace {
+
+// Refines a non-manifold `base` 1..kLevels times with both libraries: the same faces, and the merged
+// points (Refinement::outputMesh) as OpenSubdiv's as point sets (the split numbers its own way),
+// to round-off. Returns OpenSubdiv's vertex count less ours at the finest level (the two halves of
+// an edge whose ends are one vertex are two vertices there, one here).
+int compareSplitWithOpenSubdiv(const std::string& name, const PolyMesh& base) {
+  CAPTURE(name);
+  const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(base, kLevels);
+  const Far::PrimvarRefinerReal<double> primvar(*refiner);
+  const double scale = boundingDiagonal(base.points);
+  std::vector<OsdPoint> osdPoints(base.vertexCount());
+  for (Index v = 0; v < base.vertexCount(); ++v) osdPoints[v].p = base.points[v];
+  int missing = 0;
+  for (int level = 1; level <= kLevels; ++level) {
+    CAPTURE(level);
+    std::vector<OsdPoint> child(refiner->GetLevel(level).GetNumVertices());
+    OsdPoint* dst = child.data();
+    primvar.Interpolate(level, osdPoints.data(), dst);
+    osdPoints = std::move(child);
+    const Refinement ours(base, {Scheme::CatmullClark, level, false});
+    REQUIRE(ours.splitInput());
+    const PolyMesh merged = ours.outputMesh();
+    CHECK(merged.faceCount() == refiner->GetLevel(level).GetNumFaces());
+    std::vector<Point> theirs;
+    for (const OsdPoint& p : osdPoints) theirs.push_back(p.p);
+    const double distance = pointSetDistance(merged.points, theirs, 1e-9 * scale);
+    MESSAGE(name, " level ", level, ": ", merged.vertexCount(), " vertices (OpenSubdiv ", theirs.size(),
+            "), point sets ", distance, " apart");
+    CHECK(distance <= 1e-12 * scale);
+    missing = int(theirs.size()) - merged.vertexCount();
+  }
+  return missing;
+}
+
+}  // namespace
+
+TEST_CASE("opensubdiv oracle: non-manifold meshes (fins, bow ties, repeated vertices, flipped faces) refine alike") {
+  // Three quads of a grid's strip raised as fins on one edge, the grid jittered.
+  PolyMesh fins = cellGrid(5, 4, false, false, 31);
+  {
+    const Index a = 8, b = 9;  // an interior edge of the grid
+    const Index top = fins.vertexCount();
+    fins.points.emplace_back(fins.points[a] + Point(0.1, 0.2, 1.0));
+    fins.points.emplace_back(fins.points[b] + Point(-0.1, 0.1, 0.9));
+    fins.points.emplace_back(fins.points[a] + Point(0.2, -0.3, -0.8));
+    fins.points.emplace_back(fins.points[b] + Point(0.0, -0.2, -1.1));
+    fins.addFace({a, b, top + 1, top});
+    fins.addFace({b, a, top + 2, top + 3});
+  }
+  CHECK(compareSplitWithOpenSubdiv("grid with two fins on an interior edge", fins) == 0);
+  {  // creases on every third face side, a corner on every fifth vertex (tagRandomly needs a manifold mesh)
+    std::mt19937 rng(5);
+    const float kSharpness[] = {0.5f, 1.0f, 2.6f, 10.0f};
+    for (size_t c = 0; c < fins.faceVerts.size(); c += 3) {
+      const Index f = Index(std::upper_bound(fins.faceStart.begin(), fins.faceStart.end(), Index(c)) - fins.faceStart.begin()) - 1;
+      const Index a = fins.faceVerts[c], b = fins.faceVerts[Index(c) + 1 < fins.faceStart[f + 1] ? c + 1 : size_t(fins.faceStart[f])];
+      fins.tags.creases.push_back({std::min(a, b), std::max(a, b), kSharpness[rng() % 4]});
+    }
+    std::sort(fins.tags.creases.begin(), fins.tags.creases.end(),
+              [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1; });
+    fins.tags.creases.erase(std::unique(fins.tags.creases.begin(), fins.tags.creases.end(),
+                                        [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 == y.v0 && x.v1 == y.v1; }),
+                            fins.tags.creases.end());
+    for (Index v = 2; v < fins.vertexCount(); v += 5) fins.tags.corners.push_back({v, kSharpness[rng() % 4]});
+  }
+  CHECK(compareSplitWithOpenSubdiv("grid with fins, creases and corners", fins) == 0);
+
+  // Two closed cones sharing their tip (a bow tie of closed fans).
+  PolyMesh cones;
+  for (const Point& p : {Point(0, 0, 0), Point(1, 0, 1), Point(0, 1, 1.2), Point(-1, -1, 1), Point(1, 0.1, -1), Point(0, 1, -1.1),
+                         Point(-1, -1, -0.9)})
+    cones.points.push_back(p);
+  for (const auto& f : std::vector<std::vector<Index>>{{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}, {0, 5, 4}, {0, 6, 5}, {0, 4, 6}, {4, 5, 6}})
+    cones.addFace(f.data(), f.size());
+  CHECK(compareSplitWithOpenSubdiv("two cones touching at their tips", cones) == 0);
+
+  // OpenSubdiv's quad pole: quads (a, b, p, p) around p, a degenerate edge each.
+  PolyMesh quadPole;
+  const int n = 7;
+  quadPole.points.emplace_back(0, 0, 0.3);
+  for (int r = 1; r <= 2; ++r)
+    for (int j = 0; j < n; ++j) quadPole.points.emplace_back(r * std::cos(2 * kPi * j / n), r * std::sin(2 * kPi * j / n), 0.1 * r * (j % 3));
+  auto q = [&](int r, int j) { return Index(1 + (r - 1) * n + (j % n)); };
+  for (int j = 0; j < n; ++j) quadPole.addFace({q(1, j), q(1, j + 1), 0, 0});
+  for (int j = 0; j < n; ++j) quadPole.addFace({q(2, j), q(2, j + 1), q(1, j + 1), q(1, j)});
+  // OpenSubdiv keeps each degenerate edge, and the two halves of each at every level, apart (all at
+  // p); the merged output keeps one vertex per position there: fewer vertices, the same points.
+  CHECK(compareSplitWithOpenSubdiv("quads with a degenerate edge around a vertex", quadPole) > 0);
+
+  // A face turned against its neighbours, and a face repeating a vertex across it.
+  PolyMesh flipped = cellGrid(4, 4, false, true, 9);
+  std::reverse(flipped.faceVerts.begin() + flipped.faceStart[5], flipped.faceVerts.begin() + flipped.faceStart[6]);
+  CHECK(compareSplitWithOpenSubdiv("mixed grid with a flipped face", flipped) == 0);
+  PolyMesh repeat = cellGrid(3, 3, false, false, 4);
+  const Index extra = repeat.vertexCount();
+  repeat.points.emplace_back(1.5, 1.5, 1.0);
+  repeat.addFace({4, 5, 4, extra});  // runs 4-5 and back: an edge repeated in one face
+  CHECK(compareSplitWithOpenSubdiv("grid with a face repeating a vertex", repeat) >= 0);
+}

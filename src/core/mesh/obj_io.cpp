@@ -339,25 +339,9 @@ class ObjParser {
       mesh_.faceVerts.push_back(parseFaceIndex(token, line));
     const size_t k = mesh_.faceVerts.size() - begin;
     if (k < 3) fail(line, "face has " + std::to_string(k) + " vertices (at least 3 needed)");
-    rejectRepeatedVertex(mesh_.faceVerts.data() + begin, k, line);
+    // A vertex repeated in a face is OpenSubdiv's degenerate edge: refined as it does (manifold_split.h).
     mesh_.faceStart.push_back(static_cast<Index>(mesh_.faceVerts.size()));
     mesh_.faceLine.push_back(line);
-  }
-
-  void rejectRepeatedVertex(const Index* loop, size_t k, int64_t line) {
-    constexpr size_t kSmallFace = 16;  // pairwise check is fastest for ordinary faces
-    Index repeated = -1;
-    if (k <= kSmallFace) {
-      for (size_t i = 0; i < k && repeated < 0; ++i)
-        for (size_t j = i + 1; j < k; ++j)
-          if (loop[i] == loop[j]) { repeated = loop[i]; break; }
-    } else {
-      scratch_.assign(loop, loop + k);
-      std::sort(scratch_.begin(), scratch_.end());
-      auto it = std::adjacent_find(scratch_.begin(), scratch_.end());
-      if (it != scratch_.end()) repeated = *it;
-    }
-    if (repeated >= 0) fail(line, "face repeats vertex " + std::to_string(repeated + 1));
   }
 
   // Positive indices may point forward; once all vertices are known every index must be in range.
@@ -610,7 +594,6 @@ class ObjParser {
   int64_t statementLine_ = 0;    // the continued statement's first line
   bool anyContent_ = false;
 
-  std::vector<Index> scratch_;
   std::vector<uint8_t> referenced_;
   std::vector<std::string_view> tagValues_;
   std::vector<TaggedItem> creaseItems_, cornerItems_, holeItems_;

@@ -20,7 +20,6 @@ class TopologyBuilder {
     t_.vertexCount = mesh_.vertexCount();
     t_.faceCount = mesh_.faceCount();
     validateFaces();
-    rejectDuplicateFaces();
     buildEdges();
     buildVertexRings();
     return std::move(t_);
@@ -74,37 +73,6 @@ class TopologyBuilder {
     scratch_.assign(loop, loop + k);
     std::sort(scratch_.begin(), scratch_.end());
     return std::adjacent_find(scratch_.begin(), scratch_.end()) != scratch_.end();
-  }
-
-  // Two faces with the same vertex set: an order-independent hash groups candidates, an exact
-  // comparison of the sorted loops confirms. [O(F log F + corners)]
-  void rejectDuplicateFaces() {
-    std::vector<std::pair<uint64_t, Index>> keyed(t_.faceCount);
-    for (Index f = 0; f < t_.faceCount; ++f) {
-      uint64_t h = uint64_t(mesh_.faceSize(f)) * 0x9E3779B97F4A7C15ull;
-      for (Index i = 0; i < mesh_.faceSize(f); ++i) h += mix(uint64_t(uint32_t(mesh_.face(f)[i])));
-      keyed[f] = {h, f};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    for (size_t i = 0; i + 1 < keyed.size(); ++i) {
-      for (size_t j = i + 1; j < keyed.size() && keyed[j].first == keyed[i].first; ++j) {
-        const Index a = std::min(keyed[i].second, keyed[j].second), b = std::max(keyed[i].second, keyed[j].second);
-        if (sameVertexSet(a, b)) fail(b, "duplicate face (same vertices as " + faceName(a) + ")");
-      }
-    }
-  }
-  static uint64_t mix(uint64_t x) {  // splitmix64 finaliser
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-  }
-  bool sameVertexSet(Index a, Index b) const {
-    if (mesh_.faceSize(a) != mesh_.faceSize(b)) return false;
-    std::vector<Index> sa(mesh_.face(a), mesh_.face(a) + mesh_.faceSize(a)), sb(mesh_.face(b), mesh_.face(b) + mesh_.faceSize(b));
-    std::sort(sa.begin(), sa.end());
-    std::sort(sb.begin(), sb.end());
-    return sa == sb;
   }
 
   // Groups the corners' half-edges by edge, numbers edges in order of first use, and checks

@@ -49,11 +49,13 @@ struct MeshTopology {
   }
 };
 
-// Builds the tables. Throws InputError naming `sourceName` and the face's OBJ line (mesh.faceLine)
-// for: a face with fewer than 3 vertices, a repeated vertex in one face, an index out of range,
-// an edge shared by more than two faces or used twice in the same direction (inconsistent
-// orientation), duplicate faces, and non-manifold vertices (faces around a vertex forming more
-// than one fan). [O(corners log)]
+// Builds the tables of a manifold mesh. Throws InputError naming `sourceName` and the face's OBJ
+// line (mesh.faceLine) for: a face with fewer than 3 vertices, a repeated vertex in one face, an
+// index out of range, an edge shared by more than two faces or used twice in the same direction
+// (inconsistent orientation), and non-manifold vertices (faces around a vertex forming more than
+// one fan). Two faces back to back (the same vertices, opposite orientation) are a closed surface
+// and accepted. Refinements take non-manifold meshes through their manifold split
+// (manifold_split.h). [O(corners log)]
 MeshTopology buildTopology(const PolyMesh& mesh, const std::string& sourceName = "<mesh>");
 
 }  // namespace polarview

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/mesh/input_error.h"
+#include "core/mesh/manifold_split.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/face_regularity.h"
 #include "core/subdiv/refine_steps.h"
@@ -405,11 +406,16 @@ struct AdaptiveRefinement::LevelState {
   std::vector<Point> gridOrigins;      // ... relative to these (its pole's frame at this level)
 };
 
-AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName,
+AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const RefineOptions& options, const std::string& sourceName,
                                        size_t maxFaces)
     : options_(options), sourceName_(sourceName) {
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
   const Scheme scheme = options.scheme;
+  // Non-manifold input: refined as its manifold split with OpenSubdiv's sharpening (manifold_split.h).
+  ManifoldSplit split = splitNonManifold(input);
+  const PolyMesh& base = split.empty() ? input : split.mesh;
+  inputVertices_ = size_t(input.vertexCount());
+  sourceVertex_ = std::move(split.sourceVertex);
   RefinedLevel level0;
   level0.mesh = base;
   level0.topology = buildTopology(base, sourceName);
@@ -432,7 +438,7 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& base, const RefineOptions
   radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
   options_.levels = 0;
   addLevels(options.levels, maxFaces);
-  updatePositions(base.points);
+  updatePositions(input.points);
 }
 
 AdaptiveRefinement::~AdaptiveRefinement() = default;
@@ -544,10 +550,14 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
 }
 
 void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
-  if (basePoints.size() != levels_[0].mesh.points.size())
+  if (basePoints.size() != inputVertices_)
     throw std::invalid_argument("updatePositions: " + std::to_string(basePoints.size()) + " points for a mesh of " +
-                                std::to_string(levels_[0].mesh.points.size()));
-  levels_[0].mesh.points = basePoints;
+                                std::to_string(inputVertices_));
+  if (sourceVertex_.empty()) {
+    levels_[0].mesh.points = basePoints;
+  } else {
+    for (size_t v = 0; v < sourceVertex_.size(); ++v) levels_[0].mesh.points[v] = basePoints[size_t(sourceVertex_[v])];
+  }
   computePoints(0);
 }
 

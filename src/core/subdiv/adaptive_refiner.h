@@ -38,6 +38,8 @@ class AdaptiveRefinement {
  public:
   // Refines `base` (already validated) `options.levels` times adaptively. Throws InputError when
   // the levels together would hold more than `maxFaces` faces (checked before each level is made).
+  // A non-manifold `base` is refined as its manifold split (manifold_split.h): level 0 is the split
+  // mesh; updatePositions still takes the input's points.
   AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName = "<mesh>",
                      size_t maxFaces = size_t(1) << 26);
   ~AdaptiveRefinement();
@@ -78,6 +80,8 @@ class AdaptiveRefinement {
   void computePoints(size_t firstStep);
   RefineOptions options_;
   std::string sourceName_;
+  size_t inputVertices_ = 0;
+  std::vector<Index> sourceVertex_;  // non-manifold input: per level-0 vertex, the input's (manifold_split.h)
   bool radial_ = false;
   std::vector<RefinedLevel> levels_;
   std::vector<std::vector<uint8_t>> needed_, exact_;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/mesh/input_error.h"
+#include "core/mesh/manifold_split.h"
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_rules.h"
@@ -329,6 +330,8 @@ void fillPoleData(RefinedLevel& level, Scheme scheme, const std::vector<PolarGri
 
 struct Refinement::Plan {
   bool radial = false;
+  size_t inputVertices = 0;
+  std::vector<Index> sourceVertex;  // non-manifold input: per level-0 vertex, the input's (manifold_split.h)
   std::vector<std::vector<RadialRegion>> regions;  // radial mode: per level
   std::string source;
 };
@@ -357,9 +360,14 @@ size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options, boo
   return size_t(std::min(faces * 1.25, 1e18));
 }
 
-Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName, size_t maxFaces)
+Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, const std::string& sourceName, size_t maxFaces)
     : options_(options), plan_(std::make_unique<Plan>()) {
   plan_->source = sourceName;
+  // Non-manifold input: refined as its manifold split with OpenSubdiv's sharpening (manifold_split.h).
+  ManifoldSplit split = splitNonManifold(input);
+  const PolyMesh& base = split.empty() ? input : split.mesh;
+  plan_->inputVertices = size_t(input.vertexCount());
+  plan_->sourceVertex = std::move(split.sourceVertex);
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
   // Catmull-Clark growth unless RTS/BPS refine the whole mesh radially (checked below, once the
   // base topology is known): refuse at once what cannot fit either way.
@@ -413,7 +421,7 @@ Refinement::Refinement(const PolyMesh& base, const RefineOptions& options, const
     for (size_t f = 0; f < child.faceHole.size(); ++f)
       if (child.faceHole[f]) child.mesh.tags.holes.push_back(Index(f));
   }
-  updatePositions(base.points);
+  updatePositions(input.points);
 }
 
 // The big tables go to the pool for the next refinement (table_pool.h).
@@ -436,11 +444,74 @@ Refinement& Refinement::operator=(Refinement&&) noexcept = default;
 
 bool Refinement::radialOnly() const { return plan_->radial; }
 
+bool Refinement::splitInput() const { return !plan_->sourceVertex.empty(); }
+
+PolyMesh Refinement::outputMesh() const {
+  if (plan_->sourceVertex.empty() || plan_->radial) return finest().mesh;
+  // merged[v]: the output vertex of split vertex v at the current level.
+  std::vector<Index> merged(plan_->sourceVertex), childMerged;
+  Index mergedCount = Index(plan_->inputVertices);
+  std::vector<std::pair<uint64_t, Index>> edgeKeys;
+  for (int m = 0; m + 1 < levelCount(); ++m) {
+    const MeshTopology& topo = levels_[size_t(m)].topology;
+    // Output edges: split edges with the same merged ends are one.
+    edgeKeys.resize(size_t(topo.edgeCount));
+    for (Index e = 0; e < topo.edgeCount; ++e) {
+      const uint64_t a = uint64_t(merged[size_t(topo.edgeVerts[2 * e])]), b = uint64_t(merged[size_t(topo.edgeVerts[2 * e + 1])]);
+      edgeKeys[size_t(e)] = {std::min(a, b) << 32 | std::max(a, b), e};
+    }
+    std::sort(edgeKeys.begin(), edgeKeys.end());
+    std::vector<Index> edgeId(size_t(topo.edgeCount));
+    Index edges = 0;
+    for (size_t i = 0; i < edgeKeys.size(); ++i) {
+      if (i > 0 && edgeKeys[i].first != edgeKeys[i - 1].first) ++edges;
+      edgeId[size_t(edgeKeys[i].second)] = edges;
+    }
+    if (!edgeKeys.empty()) ++edges;
+    childMerged.assign(size_t(ccChildVertexCount(topo)), 0);
+    for (Index f = 0; f < topo.faceCount; ++f) childMerged[size_t(ccFacePoint(topo, f))] = f;
+    for (Index e = 0; e < topo.edgeCount; ++e) childMerged[size_t(ccEdgePoint(topo, e))] = topo.faceCount + edgeId[size_t(e)];
+    for (Index v = 0; v < topo.vertexCount; ++v) childMerged[size_t(ccVertexPoint(topo, v))] = topo.faceCount + edges + merged[size_t(v)];
+    mergedCount = topo.faceCount + edges + mergedCount;
+    merged.swap(childMerged);
+  }
+  const PolyMesh& split = finest().mesh;
+  PolyMesh out;
+  out.points.assign(size_t(mergedCount), Point(0.0));
+  for (size_t v = 0; v < split.points.size(); ++v) out.points[size_t(merged[v])] = split.points[v];
+  out.faceStart = split.faceStart;
+  out.faceVerts.resize(split.faceVerts.size());
+  for (size_t c = 0; c < split.faceVerts.size(); ++c) out.faceVerts[c] = merged[size_t(split.faceVerts[c])];
+  // Tags: the split's, on the merged ids (its sharpened copies say what OpenSubdiv sharpens too).
+  out.tags = split.tags;
+  for (CreaseEdge& crease : out.tags.creases) {
+    const Index a = merged[size_t(crease.v0)], b = merged[size_t(crease.v1)];
+    crease.v0 = std::min(a, b), crease.v1 = std::max(a, b);
+  }
+  std::sort(out.tags.creases.begin(), out.tags.creases.end(), [](const CreaseEdge& x, const CreaseEdge& y) {
+    return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 != y.v1 ? x.v1 < y.v1 : x.sharpness > y.sharpness;
+  });
+  out.tags.creases.erase(std::unique(out.tags.creases.begin(), out.tags.creases.end(),
+                                     [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 == y.v0 && x.v1 == y.v1; }),
+                         out.tags.creases.end());
+  for (CornerVertex& corner : out.tags.corners) corner.vertex = merged[size_t(corner.vertex)];
+  std::sort(out.tags.corners.begin(), out.tags.corners.end(),
+            [](const CornerVertex& x, const CornerVertex& y) { return x.vertex != y.vertex ? x.vertex < y.vertex : x.sharpness > y.sharpness; });
+  out.tags.corners.erase(std::unique(out.tags.corners.begin(), out.tags.corners.end(),
+                                     [](const CornerVertex& x, const CornerVertex& y) { return x.vertex == y.vertex; }),
+                         out.tags.corners.end());
+  return out;
+}
+
 void Refinement::updatePositions(const std::vector<Point>& basePoints) {
-  if (basePoints.size() != levels_[0].mesh.points.size())
+  if (basePoints.size() != plan_->inputVertices)
     throw std::invalid_argument("updatePositions: " + std::to_string(basePoints.size()) + " points for a mesh of " +
-                                std::to_string(levels_[0].mesh.points.size()));
-  levels_[0].mesh.points = basePoints;
+                                std::to_string(plan_->inputVertices));
+  if (plan_->sourceVertex.empty()) {
+    levels_[0].mesh.points = basePoints;
+  } else {
+    for (size_t v = 0; v < plan_->sourceVertex.size(); ++v) levels_[0].mesh.points[v] = basePoints[size_t(plan_->sourceVertex[v])];
+  }
   const Scheme scheme = options_.scheme;
   auto fillPoleData = [&](RefinedLevel& level, const std::vector<PolarGrid>* schemeGrids) {
     polarview::fillPoleData(level, scheme, schemeGrids);
@@ -452,7 +523,7 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
     std::vector<std::vector<Point>> rows;
     for (const RadialRegion& region : plan_->regions[0]) {
       rows.emplace_back();
-      for (Index id : region.vertexIds) rows.back().push_back(basePoints[id]);
+      for (Index id : region.vertexIds) rows.back().push_back(levels_[0].mesh.points[size_t(id)]);
     }
     fillPoleData(levels_[0], nullptr);
     std::vector<Point> childRows;
@@ -474,7 +545,7 @@ void Refinement::updatePositions(const std::vector<Point>& basePoints) {
   const bool radialPoles = rules.keepsValence;
   std::vector<PolarGrid> radialGrids;  // RTS/BPS: each pole's own radially refined configuration
   if (radialPoles)
-    for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(basePoints, config, config.linkCount));
+    for (const PolarConfig& config : levels_[0].poles) radialGrids.push_back(gatherGrid(levels_[0].mesh.points, config, config.linkCount));
   fillPoleData(levels_[0], radialPoles ? &radialGrids : nullptr);
 
   std::vector<Point> link1, link2, refined, scratch;

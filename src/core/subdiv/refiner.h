@@ -63,7 +63,9 @@ struct RefinedLevel {
 class Refinement {
  public:
   // Refines `base` (already validated) `options.levels` times. Throws InputError when a level would
-  // exceed the memory budget (`maxFaces` faces at the finest level).
+  // exceed the memory budget (`maxFaces` faces at the finest level). A non-manifold `base` is
+  // refined as its manifold split (manifold_split.h, OpenSubdiv's points): level 0 is the split
+  // mesh; updatePositions still takes the input's points, and outputMesh merges the copies back.
   Refinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName = "<mesh>",
              size_t maxFaces = size_t(1) << 26);
   ~Refinement();
@@ -76,6 +78,14 @@ class Refinement {
   const RefinedLevel& finest() const { return levels_.back(); }
   // True when RTS/BPS refined the whole mesh radially (valence fixed; caps and globes).
   bool radialOnly() const;
+
+  // Whether the input was non-manifold and level 0 is its manifold split. [O(1)]
+  bool splitInput() const;
+  // The finest level as the input's refinement: the split's copies of one vertex, edge or face
+  // point merged back (OpenSubdiv's vertices, but for the two halves of an edge whose ends are one
+  // vertex, which merge), tags mapped. The finest mesh itself when nothing was split.
+  // [O(corners of all levels)]
+  PolyMesh outputMesh() const;
 
   // Recomputes every level's points from new base points (same count as the base, else
   // std::invalid_argument). [O(output)]
