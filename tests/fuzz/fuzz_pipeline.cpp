@@ -31,6 +31,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/mesh/input_error.h"
+#include "core/mesh/manifold_split.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
@@ -297,17 +298,21 @@ void runPipeline(const std::string& text) {
     lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
 
-  gStage = "buildTopology";
+  // Non-manifold input goes through its manifold split, as the refiners take it (manifold_split.h).
+  gStage = "splitNonManifold + buildTopology";
   MeshTopology topology;
+  ManifoldSplit split;
+  const PolyMesh* refinable = &mesh;
   try {
-    topology = buildTopology(mesh, kSource);
+    refinable = &refinableMesh(mesh, split);
+    topology = buildTopology(*refinable, kSource);
   } catch (const InputError&) {
     return;
   }
   if (mesh.faceCount() == 0) return;
 
   gStage = "findPolarConfigs";
-  checkPolarConfigs(mesh, findPolarConfigs(mesh, topology));
+  checkPolarConfigs(*refinable, findPolarConfigs(*refinable, topology));
 
   // Moderate inputs (coordinates <= 1e6, the model not tinier than 1e-6) must give finite curvature
   // everywhere; the edit moves a vertex by 1% of the model's size.
