@@ -10,10 +10,13 @@ layout(location = 2) in vec3 a_positionLo;
 out vec3 v_color;
 uniform float u_depthBias;  // pulls overlays towards the eye so they win against the surface
 uniform float u_pointSize;
-uniform vec4 u_colorOverride;  // a > 0: this colour instead of a_color (control net passes)
+uniform vec4 u_colorOverride;  // a > 0: this colour instead of a grey a_color (control net passes)
 
 void main() {
-  v_color = u_colorOverride.a > 0.0 ? u_colorOverride.rgb : a_color;
+  // Crease edges keep their colour (pipeline/control_net.h: orange to red); the smooth net's grey
+  // takes the pass's colour (dark over the surface, light over the background).
+  bool grey = abs(a_color.r - a_color.g) < 0.01 && abs(a_color.g - a_color.b) < 0.01;
+  v_color = u_colorOverride.a > 0.0 && grey ? u_colorOverride.rgb : a_color;
   gl_Position = u_viewRotationProjection * vec4(relativeToEye(a_positionHi, a_positionLo), 1.0);
   gl_Position.z -= u_depthBias * gl_Position.w;
   gl_PointSize = u_pointSize;

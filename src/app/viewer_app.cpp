@@ -534,7 +534,7 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   }
   view.keptPatches = view.renderer->lastReusedPatches();
   view.uploadMs = millisecondsSince(start);
-  view.renderer->setControlMesh(surface->controlMesh);
+  view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
   view.renderer->setPoleMarkers(surface->poles);
   view.shown = std::move(surface);
 }

@@ -312,6 +312,7 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   surface->sources = std::move(sources);
   surface->patches = std::move(patchSet.patches);
   surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
+  surface->netSegments = controlNetSegments(surface->controlMesh);
   surface->poles = polePositions(surface->patches, refinement.level(level));
   countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
   surface->refinement = std::shared_ptr<AdaptiveRefinement>(reuse, hierarchy.refinement.get());

@@ -19,6 +19,7 @@
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
 #include "core/spline/patch_extraction.h"
+#include "pipeline/control_net.h"
 #include "pipeline/scheme_choice.h"
 
 namespace polarview {
@@ -112,6 +113,7 @@ struct BuiltSurface {
   int patchLevel = 0;  // the level whose patch set is shown (patchLevelFor: key.level, or deeper)
   std::vector<Patch> patches;
   PolyMesh controlMesh;              // the base cage the view draws as its control net (the model)
+  std::vector<NetSegment> netSegments;  // its edges once, crease edges marked (control_net.h)
   std::vector<Point> poles;          // limit positions of the poles (markers)
   std::array<int, kPatchKindCount> patchesPerKind{};
   // Shared between a surface and its refreshed successors while a drag goes on (sampling every

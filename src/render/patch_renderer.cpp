@@ -331,6 +331,7 @@ struct PatchRenderer::Impl {
   int timerIndex = 0;
   GLsizei netVertexCount = 0, poleCount = 0;
   std::vector<Point> netPointsWorld, polesWorld;  // kept to re-centre when patches change
+  std::vector<glm::vec3> netColors;              // per net point (crease edges stand out)
 
   // Overlay vertices (overlay.vert): position hi, lo (relative to the centre), colour.
   // Points the patch VAO and the texture buffers at the current buffers (after they were made or
@@ -351,12 +352,14 @@ struct PatchRenderer::Impl {
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, kindBuffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
   }
+  // `colors`: one per point, or one for all.
   void uploadOverlay(GLuint vao, GLuint buffer, const std::vector<Point>& points,
-                     const glm::vec3& color, const glm::dvec3& center) {
+                     const std::vector<glm::vec3>& colors, const glm::dvec3& center) {
     std::vector<float> data(points.size() * 9);
     for (size_t k = 0; k < points.size(); ++k) {
       float* vertex = data.data() + 9 * k;
       splitHiLo(points[k] - center, vertex, vertex + 3);
+      const glm::vec3& color = colors[colors.size() == points.size() ? k : 0];
       for (int c = 0; c < 3; ++c) vertex[6 + c] = color[c];
     }
     constexpr GLsizei kStride = 9 * sizeof(float);
@@ -556,8 +559,8 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
 
   // Overlays are stored relative to the centre too: re-upload them when it moved.
   if (!sameSequence) {
-    g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
-    g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {1.0f, 0.85f, 0.1f}, center_);
+    g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_);
+    g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_);
   }
 }
 
@@ -578,28 +581,29 @@ size_t PatchRenderer::slotsInUse() const {
   return slots;
 }
 
-void PatchRenderer::setControlMesh(const PolyMesh& mesh) {
+void PatchRenderer::setControlMesh(const PolyMesh& mesh, const std::vector<NetSegment>& segments) {
   Impl& g = *impl_;
   g.netPointsWorld.clear();
-  g.netPointsWorld.reserve(mesh.faceVerts.size() * 2);
-  // Each face's loop as line pairs (shared edges are drawn twice; cheaper than an edge map).
-  for (Index f = 0; f < mesh.faceCount(); ++f) {
-    const Index* loop = mesh.face(f);
-    const Index k = mesh.faceSize(f);
-    for (Index e = 0; e < k; ++e) {
-      g.netPointsWorld.push_back(mesh.points[loop[e]]);
-      g.netPointsWorld.push_back(mesh.points[loop[(e + 1) % k]]);
-    }
+  g.netColors.clear();
+  g.netPointsWorld.reserve(segments.size() * 2);
+  g.netColors.reserve(segments.size() * 2);
+  for (const NetSegment& segment : segments) {
+    const glm::vec3 color(netSegmentColor(segment.sharpness));
+    g.netPointsWorld.push_back(mesh.points[size_t(segment.a)]);
+    g.netPointsWorld.push_back(mesh.points[size_t(segment.b)]);
+    g.netColors.insert(g.netColors.end(), {color, color});
   }
   g.netVertexCount = static_cast<GLsizei>(g.netPointsWorld.size());
-  g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, {0.1f, 0.1f, 0.1f}, center_);
+  g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_);
 }
+
+void PatchRenderer::setControlMesh(const PolyMesh& mesh) { setControlMesh(mesh, controlNetSegments(mesh)); }
 
 void PatchRenderer::setPoleMarkers(const std::vector<Point>& poles) {
   Impl& g = *impl_;
   g.polesWorld = poles;
   g.poleCount = static_cast<GLsizei>(poles.size());
-  g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {1.0f, 0.85f, 0.1f}, center_);
+  g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_);
 }
 
 // [SECTION] Drawing

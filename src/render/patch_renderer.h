@@ -18,6 +18,7 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
+#include "pipeline/control_net.h"
 #include "pipeline/shading.h"
 
 namespace polarview {
@@ -78,6 +79,8 @@ class PatchRenderer {
   };
   // Uploads the control mesh drawn by DisplayFlags::controlNet (its edges). [O(edges)]
   void setControlMesh(const PolyMesh& mesh);
+  // The same with its edges given (control_net.h: each once, crease edges coloured by sharpness).
+  void setControlMesh(const PolyMesh& mesh, const std::vector<NetSegment>& segments);
   // Uploads the pole positions drawn by DisplayFlags::poleMarkers.
   void setPoleMarkers(const std::vector<Point>& poles);
 
