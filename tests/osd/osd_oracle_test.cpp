@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <string>
@@ -17,6 +21,7 @@
 
 #include "app/osd_descriptor.h"
 
+#include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
@@ -519,4 +524,55 @@ TEST_CASE("opensubdiv oracle: non-manifold meshes (fins, bow ties, repeated vert
   repeat.points.emplace_back(1.5, 1.5, 1.0);
   repeat.addFace({4, 5, 4, extra});  // runs 4-5 and back: an edge repeated in one face
   CHECK(compareSplitWithOpenSubdiv("grid with a face repeating a vertex", repeat) >= 0);
+}
+
+// [SECTION] OpenSubdiv's own regression shapes
+
+TEST_CASE("opensubdiv oracle: OpenSubdiv's regression shapes, with their tags, refine alike (where the shapes are kept)") {
+  // The workplace keeps them beside the project (shared/meshes/opensubdiv; POLARVIEW_OSD_SHAPES
+  // overrides), their `t` tags commented out as `#t`: read with the tags.
+  const char* override = std::getenv("POLARVIEW_OSD_SHAPES");
+  const std::filesystem::path dir = override ? override : POLARVIEW_OSD_SHAPES;
+  if (!std::filesystem::is_directory(dir)) {
+    MESSAGE("OpenSubdiv's regression shapes not found at ", dir.string(), ": skipped");
+    return;
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().extension() == ".obj") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  constexpr int kShapeLevels = 3;
+  size_t compared = 0, split = 0;
+  double worst = 0.0;
+  for (const std::filesystem::path& file : files) {
+    CAPTURE(file.string());
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (size_t at = text.find("\n#t "); at != std::string::npos; at = text.find("\n#t ", at + 1)) text.erase(at + 1, 1);
+    const PolyMesh mesh = parseObjText(text, file.filename().string());
+    const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(mesh, kShapeLevels);
+    const Far::PrimvarRefinerReal<double> primvar(*refiner);
+    std::vector<OsdPoint> points(mesh.vertexCount());
+    for (Index v = 0; v < mesh.vertexCount(); ++v) points[v].p = mesh.points[v];
+    for (int level = 1; level <= kShapeLevels; ++level) {
+      std::vector<OsdPoint> child(refiner->GetLevel(level).GetNumVertices());
+      OsdPoint* dst = child.data();
+      primvar.Interpolate(level, points.data(), dst);
+      points = std::move(child);
+    }
+    const Refinement ours(mesh, {Scheme::CatmullClark, kShapeLevels, false});
+    const PolyMesh merged = ours.outputMesh();
+    CHECK(merged.faceCount() == refiner->GetLevel(kShapeLevels).GetNumFaces());
+    std::vector<Point> theirs;
+    for (const OsdPoint& p : points) theirs.push_back(p.p);
+    const double scale = boundingDiagonal(mesh.points);
+    const double distance = pointSetDistance(merged.points, theirs, 1e-9 * scale) / scale;
+    CHECK(distance <= 1e-12);
+    worst = std::max(worst, distance);
+    ++compared;
+    split += ours.splitInput();
+  }
+  MESSAGE(compared, " shapes (", split, " non-manifold) at level ", kShapeLevels,
+          ": largest distance to OpenSubdiv's points ", worst, " of the shape's size");
+  CHECK(compared == files.size());
 }
