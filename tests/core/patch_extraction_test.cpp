@@ -10,8 +10,10 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "core/mesh/shapes.h"
@@ -744,4 +746,79 @@ TEST_CASE("extraction: interpolateboundary 0 keeps the faces away from the bound
   for (const Patch& patch : none.patches)
     for (const Patch& same : edgeOnly.patches) matched += same.face == patch.face && same.cp == patch.cp;
   CHECK(matched == 16);
+}
+
+namespace {
+
+// Points of every patch on a (k+1) x (k+1) grid of its parameter square.
+std::vector<Point> surfaceSamples(const PatchSet& set, int k) {
+  std::vector<Point> points;
+  for (const Patch& patch : set.patches)
+    for (int i = 0; i <= k; ++i)
+      for (int j = 0; j <= k; ++j) points.push_back(evaluatePatch(patch, double(i) / k, double(j) / k).position);
+  return points;
+}
+
+// The largest distance from a point of `from` to the nearest of `to`. [O(|from| |to|)]
+double farthestFrom(const std::vector<Point>& from, const std::vector<Point>& to) {
+  double worst = 0.0;
+  for (const Point& p : from) {
+    double best = INFINITY;
+    for (const Point& q : to) best = std::min(best, glm::length(p - q));
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("extraction: faces at infinitely sharp creases are boundary patches cut by the crease, exact at every level") {
+  // A torus with one closed crease loop around its tube (vertices 0-5: valence 4, the sharp
+  // edges opposite), and a cube with every edge infinitely sharp (corners where three meet).
+  PolyMesh torus = shapes::torus(8, 6);
+  {
+    const MeshTopology topo = buildTopology(torus);
+    for (Index e = 0; e < topo.edgeCount; ++e) {
+      const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+      if (a < 6 && b < 6) torus.tags.creases.push_back({std::min(a, b), std::max(a, b), kInfiniteSharpness});
+    }
+    std::sort(torus.tags.creases.begin(), torus.tags.creases.end(),
+              [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1; });
+    REQUIRE(torus.tags.creases.size() == 6);
+  }
+  PolyMesh cube = shapes::cube();
+  {
+    const MeshTopology topo = buildTopology(cube);
+    for (Index e = 0; e < topo.edgeCount; ++e)
+      cube.tags.creases.push_back({std::min(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]),
+                                   std::max(topo.edgeVerts[2 * e], topo.edgeVerts[2 * e + 1]), kInfiniteSharpness});
+    std::sort(cube.tags.creases.begin(), cube.tags.creases.end(),
+              [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1; });
+  }
+  for (const auto& [name, mesh, boundaryPatches] :
+       {std::tuple<std::string, PolyMesh, size_t>{"creased torus", torus, 12}, {"cube, every edge sharp", cube, 6}}) {
+    CAPTURE(name);
+    const PatchSet coarse = extract(mesh, Scheme::CatmullClark, 0);
+    CHECK(coarse.patches.size() == size_t(mesh.faceCount()));  // every face a patch at level 0
+    CHECK(coarse.count(PatchKind::Boundary) == boundaryPatches);
+    CHECK(coarse.count(PatchKind::EndCap) == 0);
+    // Two levels of the crease rules, then the same extraction of that mesh (with its tags): the
+    // same surface, the level-2 patches' points on the level-0 patches to round-off.
+    const Refinement refined(mesh, {Scheme::CatmullClark, 2, false});
+    const PatchSet fine = extractPatches(Refinement(refined.finest().mesh, {Scheme::CatmullClark, 0, false}));
+    CHECK(fine.patches.size() == 16 * coarse.patches.size());
+    const double distance = farthestFrom(surfaceSamples(fine, 2), surfaceSamples(coarse, 8));
+    MESSAGE(name, ": level-2 patches' points are within ", distance, " of the level-0 patches");
+    CHECK(distance <= 1e-12);
+  }
+  // The cube's sharp limit is the cube itself: every point on a face plane.
+  Point lo(INFINITY), hi(-INFINITY);
+  for (const Point& p : cube.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  double offPlane = 0.0;
+  for (const Point& p : surfaceSamples(extract(cube, Scheme::CatmullClark, 0), 6)) {
+    double nearest = INFINITY;
+    for (int axis = 0; axis < 3; ++axis) nearest = std::min({nearest, std::abs(p[axis] - lo[axis]), std::abs(p[axis] - hi[axis])});
+    offPlane = std::max(offPlane, nearest);
+  }
+  CHECK(offPlane <= 1e-14);
 }

@@ -66,7 +66,7 @@ LevelClasses classifyLevel(const LevelStack& stack, int m, const LevelClasses& p
   const bool inherit = !stack.adaptive() && !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
   LevelClasses classes;
   classes.vertex.assign(mesh.vertexCount(), VertexClass::Unknown);
-  markSharpVertices(topo, level.sharpness, classes.vertex.data());
+  markSharpVertices(mesh, topo, level.sharpness, classes.vertex.data());
   classes.faceRegular.assign(mesh.faceCount(), 0);
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     if (level.isHole(f)) continue;  // no patch
@@ -117,9 +117,9 @@ Index cornerAt(const PolyMesh& mesh, Index face, Index vertex) {
 
 // The 16 stencil vertex ids of a regular face, ids[4*j + i] as in patch.h; -1 where the point is a
 // phantom beyond the boundary. `sideMissing[s]` tells whether side s (corner s -> s+1) is a
-// boundary edge.
-void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, Index f, std::array<Index, 16>& ids,
-                   std::array<bool, 4>& sideMissing) {
+// boundary edge or infinitely sharp (face_regularity.h: a crease cuts like a boundary).
+void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, const CreaseSharpness& sharpness, Index f,
+                   std::array<Index, 16>& ids, std::array<bool, 4>& sideMissing) {
   ids.fill(-1);
   const Index* loop = mesh.face(f);
   // Grid positions (i, j) of the face corners, of the outward points of each side (at its first
@@ -132,8 +132,8 @@ void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, Index f, std:
   for (int s = 0; s < 4; ++s) {
     const Index edge = topo.cornerEdge[mesh.faceStart[f] + s];
     const Index g = topo.faceAcross(edge, f);
-    sideMissing[s] = g < 0;
-    if (g < 0) continue;
+    sideMissing[s] = isPatchCut(topo, &sharpness, edge);
+    if (sideMissing[s]) continue;
     // g runs v_{s+1} -> v_s; after v_s come the point outward of v_s, then the one outward of v_{s+1}.
     const Index c = nextCorner(mesh, g, cornerAt(mesh, g, loop[s]));
     at(kOutward[s][0]) = mesh.faceVerts[c];
@@ -141,7 +141,9 @@ void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, Index f, std:
   }
   for (int c = 0; c < 4; ++c) {
     const Index v = loop[c];
-    if (topo.vertexOnBoundary[v]) continue;  // mirrored later
+    bool cut = false;  // on the boundary or a crease: the diagonal is mirrored later
+    for (Index k = topo.vertexEdgeStart[v]; k < topo.vertexEdgeStart[v + 1] && !cut; ++k) cut = isPatchCut(topo, &sharpness, topo.vertexEdges[k]);
+    if (cut) continue;
     // Interior valence 4: the face two steps round v from f is diagonal; take its corner opposite v.
     const Index first = topo.vertexFaceStart[v];
     Index k = first;
@@ -540,7 +542,7 @@ void extractRegular(const LevelStack& refinement, int m, const LevelClasses& cla
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     if (!classes.faceRegular[f]) continue;
     if (!refinement.adaptive() && m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
-    gatherStencil(mesh, topo, f, ids, sideMissing);
+    gatherStencil(mesh, topo, level.sharpness, f, ids, sideMissing);
     for (Index id : ids)
       if (id >= 0) refinement.checkExact(m, id, f);
     Patch patch;

@@ -39,7 +39,7 @@ constexpr int kRadialTailLevel = 5;
 // Faces of `level` to refine: needed and not regular. [O(faces)]
 std::vector<uint8_t> facesToRefine(const RefinedLevel& level, const std::vector<uint8_t>& needed) {
   std::vector<VertexClass> classes(level.mesh.vertexCount(), VertexClass::Unknown);
-  markSharpVertices(level.topology, level.sharpness, classes.data());
+  markSharpVertices(level.mesh, level.topology, level.sharpness, classes.data());
   std::vector<uint8_t> refine(level.mesh.faceCount(), 0);
   for (Index f = 0; f < level.mesh.faceCount(); ++f)
     refine[f] = needed[f] && !isRegularFace(level.mesh, level.topology, f, classes.data());
