@@ -439,3 +439,31 @@ TEST_CASE("adaptive: deep rings keep their curvature (each part refined in a fra
     }
   }
 }
+
+TEST_CASE("adaptive: creases away from the poles in C2PS, RTS and BPS meshes: Catmull-Clark's rules there, as uniform") {
+  // The mushroom's stem, creased infinitely sharp along its lowest edges; its cap's pole is untouched.
+  PolyMesh mushroom = shapes::mushroom(12);
+  double low = INFINITY, high = -INFINITY;
+  for (const Point& p : mushroom.points) low = std::min(low, p.z), high = std::max(high, p.z);
+  const MeshTopology topo = buildTopology(mushroom);
+  for (Index e = 0; e < topo.edgeCount; ++e) {
+    const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+    if (!topo.edgeOnBoundary(e) && std::max(mushroom.points[size_t(a)].z, mushroom.points[size_t(b)].z) < low + 0.3 * (high - low))
+      mushroom.tags.creases.push_back({std::min(a, b), std::max(a, b), kInfiniteSharpness});
+  }
+  std::sort(mushroom.tags.creases.begin(), mushroom.tags.creases.end(),
+            [](const CreaseEdge& x, const CreaseEdge& y) { return std::tie(x.v0, x.v1) < std::tie(y.v0, y.v1); });
+  REQUIRE_FALSE(mushroom.tags.creases.empty());
+  checkAgainstUniform(mushroom, "mushroom, creased stem", 4);
+  // C2PS applies them (its stem is Catmull-Clark's) and still refines the pole.
+  PolyMesh smooth = mushroom;
+  smooth.tags = SubdivTags{};
+  for (const Scheme scheme : {Scheme::C2PS, Scheme::RTS}) {
+    const RefineOptions options{scheme, 3, false};
+    const AdaptiveRefinement creased(mushroom, options), plain(smooth, options);
+    CHECK(creased.level(0).poles.size() == 1);
+    const PatchSet a = extractPatches(creased), b = extractPatches(plain);
+    CHECK(a.count(PatchKind::PoleCap) == b.count(PatchKind::PoleCap));
+    CHECK(a.count(PatchKind::Boundary) > b.count(PatchKind::Boundary));
+  }
+}

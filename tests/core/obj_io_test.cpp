@@ -382,11 +382,11 @@ TEST_CASE("obj: t tags give creases, corners, holes and options, merged as OpenS
   CHECK(m.tags.triangles == TriangleSubdivision::Smooth);
   CAPTURE(warnings);
   REQUIRE(warnings.size() == 3);  // creasemethod applies with the creases, holes in every scheme
-  CHECK(warnings[0] == "4 crease edges and 3 corners ('t' tags): Catmull-Clark applies them (refine, view, render, "
-                       "export with --scheme cc: faces at sharp features are refined to the last level); the polar "
-                       "schemes treat them as smooth");
-  CHECK(warnings[1].find("'t interpolateboundary 1' (sharp corners): Catmull-Clark applies") == 0);
-  CHECK(warnings[2].find("'t smoothtriangles smooth' (OpenSubdiv's TRI_SUB_SMOOTH edge weights next to triangles): Catmull-Clark applies") == 0);
+  CHECK(warnings[0] == "4 crease edges and 3 corners ('t' tags): Catmull-Clark's rules apply them in every scheme (a pole "
+                       "they touch is left to Catmull-Clark; faces at semi-sharp features are refined to the last level), "
+                       "except RTS/BPS's radial refinement of caps and globes");
+  CHECK(warnings[1].find("'t interpolateboundary 1' (sharp corners): Catmull-Clark's rules apply") == 0);
+  CHECK(warnings[2].find("'t smoothtriangles smooth' (OpenSubdiv's TRI_SUB_SMOOTH edge weights next to triangles): Catmull-Clark's rules apply") == 0);
 
   // OpenSubdiv's own options are the defaults; tags it has but polarview cannot use are named.
   warnings.clear();

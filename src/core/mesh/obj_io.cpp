@@ -561,8 +561,8 @@ class ObjParser {
     // limit surface refines the faces at sharp features to the last level.
     const SubdivTags& tags = mesh_.tags;
     const char* kOnlyUniformCatmullClark =
-        " Catmull-Clark applies them (refine, view, render, export with --scheme cc: faces at sharp features are"
-        " refined to the last level); the polar schemes treat them as smooth";
+        " Catmull-Clark's rules apply them in every scheme (a pole they touch is left to Catmull-Clark; faces at"
+        " semi-sharp features are refined to the last level), except RTS/BPS's radial refinement of caps and globes";
     if (tags.hasSharpFeatures())
       warn(std::to_string(tags.creases.size()) + " crease edges and " + std::to_string(tags.corners.size()) + " corners ('t' tags):" +
            kOnlyUniformCatmullClark);

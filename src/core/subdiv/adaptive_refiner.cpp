@@ -421,10 +421,11 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const RefineOption
   level0.topology = buildTopology(base, sourceName);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
-  // Creases and corners: Catmull-Clark's own rules, as the uniform refiner (the polar schemes do
-  // not have them yet).
-  if (scheme == Scheme::CatmullClark && !base.tags.empty()) level0.sharpness = baseSharpness(base, level0.topology);
+  // Creases and corners: Catmull-Clark's rules wherever Catmull-Clark's connectivity refines (every
+  // scheme but RTS/BPS's radial refinement of caps and globes; poles they touch are left to
+  // Catmull-Clark by findPolarConfigs), as the uniform refiner.
   radial_ = schemeTraits(scheme).keepsValence && !findRadialRegions(level0).empty();
+  if (!base.tags.empty() && !radial_) level0.sharpness = baseSharpness(base, level0.topology);
   // Holes give no patches: not needed (their points still support the faces around them).
   level0.faceHole = baseHoles(base, level0.topology);
   needed_.push_back(std::vector<uint8_t>(base.faceCount(), 1));
@@ -530,7 +531,23 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       std::fill(polarExact.begin(), polarExact.end(), 1);
       appendLevel(child, polarChild, uint32_t(step.generic.anchors.size()));
       step.frameAnchors.insert(step.frameAnchors.end(), polarPart.anchors.begin(), polarPart.anchors.end());
+      const MeshTopology genericTopology = std::move(child.topology);
       child.topology = buildTopology(child.mesh, sourceName);
+      // The generic part's creases on the joined tables (its vertex ids are kept; the tail is smooth).
+      if (!child.sharpness.empty()) {
+        CreaseSharpness joined;
+        joined.chaikin = child.sharpness.chaikin;
+        joined.edge.assign(size_t(child.topology.edgeCount), 0.0f);
+        joined.vertex.assign(size_t(child.topology.vertexCount), 0.0f);
+        std::copy(child.sharpness.vertex.begin(), child.sharpness.vertex.end(), joined.vertex.begin());
+        for (Index e = 0; e < genericTopology.edgeCount; ++e)
+          if (child.sharpness.edge[size_t(e)] > 0.0f)
+            joined.edge[size_t(child.topology.edgeBetween(genericTopology.edgeVerts[2 * e], genericTopology.edgeVerts[2 * e + 1]))] =
+                child.sharpness.edge[size_t(e)];
+        for (Index e = 0; e < child.topology.edgeCount; ++e)
+          if (child.topology.edgeOnBoundary(e)) joined.edge[size_t(e)] = float(kInfiniteSharpness);
+        child.sharpness = std::move(joined);
+      }
       childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
       childState.complete.insert(childState.complete.end(), polarComplete.begin(), polarComplete.end());
     }

@@ -183,7 +183,8 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
   }
 
   // Creases and corners (`t` tags): the polar rules have none, so a configuration whose pole or links
-  // 1-3 carry one is left to Catmull-Clark.
+  // 1-3 carry one is left to Catmull-Clark; one carrying them further out ends before the first link
+  // they touch (RTS and BPS refine every link radially, Catmull-Clark's rules take the creases).
   if (mesh.tags.hasSharpFeatures()) {
     std::vector<uint8_t> sharp(size_t(topo.vertexCount), 0);
     for (const CreaseEdge& crease : mesh.tags.creases)
@@ -196,9 +197,22 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
       const size_t count = size_t(std::min(config.linkCount, 3)) * size_t(config.valence);
       for (size_t k = 0; k < count && k < config.links.size() && tagged < 0; ++k)
         if (sharp[size_t(config.links[k])]) tagged = config.links[k];
-      if (tagged >= 0)
+      if (tagged >= 0) {
         reject(config, PolarRejection::SharpFeature,
                "a crease or corner tag touches it at vertex " + std::to_string(tagged) + " (the polar rules have none)");
+        continue;
+      }
+      for (int link = 4; link <= config.linkCount; ++link) {
+        bool touched = false;
+        for (int j = 0; j < config.valence && !touched; ++j) touched = sharp[size_t(config.links[size_t(link - 1) * config.valence + j])];
+        if (!touched) continue;
+        config.linkCount = link - 1;
+        config.links.resize(size_t(config.linkCount) * size_t(config.valence));
+        config.regularLinks = std::min(config.regularLinks, config.linkCount);
+        config.outer = PolarConfig::Outer::Mesh;
+        config.oppositePole = -1;
+        break;
+      }
     }
   }
 

@@ -385,8 +385,10 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
   level0.topology = buildTopology(base, sourceName);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(options.scheme, config)) level0.poles.push_back(std::move(config));
-  // Creases and corners: Catmull-Clark's own rules; the polar schemes do not have them yet.
-  const bool creases = options.scheme == Scheme::CatmullClark && !base.tags.empty();
+  // Creases and corners: Catmull-Clark's rules wherever Catmull-Clark's connectivity refines (every
+  // scheme but RTS/BPS's radial refinement of caps and globes, below; poles they touch are left to
+  // Catmull-Clark by findPolarConfigs).
+  bool creases = !base.tags.empty();
   if (creases) level0.sharpness = baseSharpness(base, level0.topology);
   level0.faceHole = baseHoles(base, level0.topology);
   levels_.push_back(std::move(level0));
@@ -396,6 +398,7 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
     std::vector<RadialRegion> regions = findRadialRegions(levels_[0]);
     plan_->radial = !regions.empty();
     if (plan_->radial) plan_->regions.push_back(std::move(regions));
+    if (plan_->radial) levels_[0].sharpness = {}, creases = false;  // the radial rules have no creases
   }
   if (!plan_->radial) refuseOver(estimateFaceCount(base, options));
   std::vector<Index> links;  // generic levels: the current finest level's corner links
