@@ -455,6 +455,11 @@ TEST_CASE("adaptive: creases away from the poles in C2PS, RTS and BPS meshes: Ca
             [](const CreaseEdge& x, const CreaseEdge& y) { return std::tie(x.v0, x.v1) < std::tie(y.v0, y.v1); });
   REQUIRE_FALSE(mushroom.tags.creases.empty());
   checkAgainstUniform(mushroom, "mushroom, creased stem", 4);
+  // Semi-sharp creases under Chaikin's rule (a half edge decays with its neighbours' mean).
+  PolyMesh chaikin = mushroom;
+  for (size_t k = 0; k < chaikin.tags.creases.size(); ++k) chaikin.tags.creases[k].sharpness = 0.5 + 0.7 * double(k % 4);
+  chaikin.tags.creaseMethod = CreaseMethod::Chaikin;
+  checkAgainstUniform(chaikin, "mushroom, Chaikin semi-sharp stem", 4);
   // C2PS applies them (its stem is Catmull-Clark's) and still refines the pole.
   PolyMesh smooth = mushroom;
   smooth.tags = SubdivTags{};
