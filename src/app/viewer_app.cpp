@@ -822,7 +822,7 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
     return;
   if (wanted.level + 1 > state_.status[size_t(v)].deepestLevel) return;
   const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);
-  if (view.shown->hierarchy->deepestMade.load() >= next) return;
+  if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
   size_t faces = estimatedLevelFaces(model_, wanted.scheme, next);
   for (int w = 0; w < state_.viewCount; ++w)
@@ -830,9 +830,10 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
                                  patchLevelFor(model_, state_.views[size_t(w)].scheme, state_.views[size_t(w)].level,
                                                options_.faceBudget));
   if (faces > options_.faceBudget) return;
-  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, points = model_.points, next,
-                                                 budget = options_.faceBudget] {
-    prepareLevel(*hierarchy, points, next, budget);
+  SurfaceKey key = wanted;
+  key.level = wanted.level + 1;
+  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, model = model_, key, budget = options_.faceBudget] {
+    prepareLevel(*hierarchy, model, key, budget);
   });
 }
 

@@ -264,12 +264,49 @@ void SurfaceHierarchy::renewStamp() {
   stamp = next.fetch_add(1);
 }
 
-std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget,
-                                                 std::shared_ptr<SurfaceHierarchy> reuse) {
-  auto start = std::chrono::steady_clock::now();
+namespace {
+
+// The surface of `key` at patch level `level` from `hierarchy` (its mutex held, its points the
+// model's): patches, poles, statistics and curvature samples; the hierarchy pointers are the
+// caller's to set. Adds the time of each part to the surface's counters.
+std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceKey& key, SurfaceHierarchy& hierarchy, int level) {
   auto surface = std::make_shared<BuiltSurface>();
   surface->key = key;
   surface->key.points = model.points;
+  surface->patchLevel = level;
+  AdaptiveRefinement& refinement = *hierarchy.refinement;
+  const auto patchesStart = std::chrono::steady_clock::now();
+  auto sources = std::make_shared<PatchSources>();
+  std::vector<Patch> storage;
+  {
+    const std::lock_guard<std::mutex> spareLock(hierarchy.spareMutex);
+    storage = std::move(hierarchy.spare);
+  }
+  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get(), std::move(storage));
+  surface->regularCount = hierarchy.cache.sharedPrefix(level, level);
+  surface->stamp = hierarchy.stamp;
+  surface->sources = std::move(sources);
+  surface->patches = std::move(patchSet.patches);
+  surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
+  if (hierarchy.netSegments.empty()) hierarchy.netSegments = controlNetSegments(surface->controlMesh);
+  surface->netSegments = hierarchy.netSegments;
+  surface->poles = polePositions(surface->patches, refinement.level(level));
+  countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
+  surface->patchesMs = millisecondsSince(patchesStart);
+
+  // Statistics and curvature samples (the shared automatic colour range is taken over all views).
+  const auto samplesStart = std::chrono::steady_clock::now();
+  for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
+  surface->samples = sampleCurvatures(surface->patches, curvatureSamplesPerPatch(surface->patches.size()), model.points);
+  surface->samplesMs = millisecondsSince(samplesStart);
+  return surface;
+}
+
+}  // namespace
+
+std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const SurfaceKey& key, size_t faceBudget,
+                                                 std::shared_ptr<SurfaceHierarchy> reuse) {
+  auto start = std::chrono::steady_clock::now();
 
   // Refine feature-adaptively and extract the limit patches. The level limit (deepestLevel) comes
   // from the estimate; the refiner's own hard limit leaves it room (the estimate is an upper bound
@@ -292,38 +329,29 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
     hierarchy.cache.forget();
     hierarchy.renewStamp();
     hierarchy.points = model.points;
+    hierarchy.ahead.reset();
+    hierarchy.aheadLevel = -1;
   }
   const int level = patchLevelFor(model, key.scheme, key.level, faceBudget);
-  surface->patchLevel = level;
-  if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
-  hierarchy.deepestShown = std::max(hierarchy.deepestShown, level);
-  hierarchy.deepestMade = refinement.levelCount() - 1;
-  surface->refineOnlyMs = millisecondsSince(start);
-  const auto patchesStart = std::chrono::steady_clock::now();
-  auto sources = std::make_shared<PatchSources>();
-  std::vector<Patch> storage;
-  {
-    const std::lock_guard<std::mutex> spareLock(hierarchy.spareMutex);
-    storage = std::move(hierarchy.spare);
+  // Made ahead while the view was idle (prepareLevel): handed out as it is.
+  std::shared_ptr<BuiltSurface> surface = std::move(hierarchy.ahead);
+  hierarchy.ahead.reset();
+  hierarchy.aheadLevel = -1;
+  const bool madeAhead = surface && surface->key.sameTopology(key) && surface->key.points == model.points &&
+                         surface->stamp == hierarchy.stamp;
+  if (madeAhead) {
+    surface->refineOnlyMs = surface->patchesMs = surface->samplesMs = 0.0;
+  } else {
+    surface.reset();  // a stale one goes (its memory with it)
+    if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
+    hierarchy.deepestMade = refinement.levelCount() - 1;
+    const double refineMs = millisecondsSince(start);
+    surface = assembleSurface(model, key, hierarchy, level);
+    surface->refineOnlyMs = refineMs;
   }
-  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get(), std::move(storage));
-  surface->regularCount = hierarchy.cache.sharedPrefix(level, level);
-  surface->stamp = hierarchy.stamp;
-  surface->sources = std::move(sources);
-  surface->patches = std::move(patchSet.patches);
-  surface->controlMesh = *model.mesh;  // the base cage: what the user edits (deep levels are partial)
-  surface->netSegments = controlNetSegments(surface->controlMesh);
-  surface->poles = polePositions(surface->patches, refinement.level(level));
-  countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
+  hierarchy.deepestShown = std::max(hierarchy.deepestShown, level);
   surface->refinement = std::shared_ptr<AdaptiveRefinement>(reuse, hierarchy.refinement.get());
   surface->hierarchy = std::move(reuse);
-  surface->patchesMs = millisecondsSince(patchesStart);
-
-  // Statistics and curvature samples (the shared automatic colour range is taken over all views).
-  const auto samplesStart = std::chrono::steady_clock::now();
-  for (const Patch& patch : surface->patches) ++surface->patchesPerKind[size_t(patch.kind)];
-  surface->samples = sampleCurvatures(surface->patches, curvatureSamplesPerPatch(surface->patches.size()), model.points);
-  surface->samplesMs = millisecondsSince(samplesStart);
   surface->refineMs = millisecondsSince(start);
   return surface;
 }
@@ -351,6 +379,8 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
     hierarchy.cache.forget();  // its patches are of the old points
     hierarchy.renewStamp();
     hierarchy.points = model.points;
+    hierarchy.ahead.reset();  // of the old points too
+    hierarchy.aheadLevel = -1;
   }
   measured.positionsMs = millisecondsSince(start);
 
@@ -374,11 +404,12 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   return refreshed;
 }
 
-void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_t faceBudget) noexcept {
+void prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept {
   try {
     const std::lock_guard<std::mutex> lock(hierarchy.mutex);
     AdaptiveRefinement& refinement = *hierarchy.refinement;
-    if (hierarchy.points != points) return;
+    if (hierarchy.points != model.points) return;
+    const int level = patchLevelFor(model, key.scheme, key.level, faceBudget);
     if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
     hierarchy.deepestMade = refinement.levelCount() - 1;
     hierarchy.cache.prepare(refinement, level);
@@ -386,8 +417,14 @@ void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_
     hierarchy.preparedRegular = regular;
     hierarchy.preparedCaps = caps;
     hierarchy.preparedLevel = level;
+    hierarchy.ahead.reset();  // an older one's memory first
+    hierarchy.aheadLevel = -1;
+    hierarchy.ahead = assembleSurface(model, key, hierarchy, level);
+    hierarchy.aheadLevel = key.level;
   } catch (...) {
     // Over the budget, or out of memory: the level is made (or refused) when the user asks for it.
+    hierarchy.ahead.reset();
+    hierarchy.aheadLevel = -1;
   }
 }
 

@@ -31,6 +31,10 @@ class AdaptiveRefinement;
 // LevelPatchCache, and the GPU keeps the patches two levels share (PatchRenderer::setPatches'
 // prefix). Shared by the surfaces built from it; `mutex` guards it (jobs extend it off the GL
 // thread, edits move its points on the GL thread).
+struct BuiltSurface;
+struct Model;
+struct SurfaceKey;
+
 struct SurfaceHierarchy {
   explicit SurfaceHierarchy(std::unique_ptr<AdaptiveRefinement> refinement);
   ~SurfaceHierarchy();
@@ -56,12 +60,18 @@ struct SurfaceHierarchy {
   // (guarded by spareMutex: surfaces die on the GL thread while a job may assemble).
   std::mutex spareMutex;
   std::vector<Patch> spare;
+  // The next level's whole surface (patches, samples), assembled while the view was idle; the
+  // build of its key hands it out at once (guarded by mutex; it holds no pointer back here).
+  std::shared_ptr<BuiltSurface> ahead;
+  std::atomic<int> aheadLevel{-1};  // its key's level, -1 when there is none (read without the mutex)
+  std::vector<NetSegment> netSegments;  // the model's control net (its topology: made once)
 };
 
-// Makes level `level` of `hierarchy` ahead of the user (extend + LevelPatchCache::prepare) when it
-// is still at the model's points revision `points`; a refusal (budget) or
-// any failure leaves it as it was and is not reported. [O(new levels)]
-void prepareLevel(SurfaceHierarchy& hierarchy, uint64_t points, int level, size_t faceBudget) noexcept;
+// Makes the surface of `key` (the level after the one shown) ahead of the user in `hierarchy`:
+// its levels (extend), its patches and curvature samples, kept as SurfaceHierarchy::ahead for
+// buildSurface, when the hierarchy is still at the model's points; a refusal (budget) or any
+// failure leaves it as it was and is not reported. [O(new levels + patches of the set)]
+void prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept;
 
 // Memory one view's surface may take while it is built, and what a face of the feature-adaptive
 // refinement costs there (levels, copied-out parts, patches: peak RSS 447 MB for 989,082 faces,

@@ -127,9 +127,12 @@ TEST_CASE("viewer surface: an edit drops the levels made ahead, then refreshes t
   Model model = defaultModel();
   const SurfaceKey key{model.generation, SchemeChoice::C2PS, 2, model.points};
   const auto surface = buildSurface(model, key, kDefaultFaceBudget);
-  prepareLevel(*surface->hierarchy, model.points, 4, kDefaultFaceBudget);
+  prepareLevel(*surface->hierarchy, model, SurfaceKey{model.generation, SchemeChoice::C2PS, 4, model.points}, kDefaultFaceBudget);
   CHECK(surface->hierarchy->deepestMade.load() == 4);
-  prepareLevel(*surface->hierarchy, model.points + 1, 5, kDefaultFaceBudget);  // other points: nothing made
+  CHECK(surface->hierarchy->aheadLevel.load() == 4);
+  Model otherPoints = model;
+  ++otherPoints.points;  // other points: nothing made
+  prepareLevel(*surface->hierarchy, otherPoints, SurfaceKey{model.generation, SchemeChoice::C2PS, 5, otherPoints.points}, kDefaultFaceBudget);
   CHECK(surface->hierarchy->deepestMade.load() == 4);
   auto moved = std::make_shared<PolyMesh>(*model.mesh);
   moved->points[3] += Point(0.02, -0.01, 0.03);
@@ -137,6 +140,7 @@ TEST_CASE("viewer surface: an edit drops the levels made ahead, then refreshes t
   ++model.points;
   const auto refreshed = refreshSurface(*surface, model, false);
   CHECK(surface->hierarchy->deepestMade.load() == 2);
+  CHECK(surface->hierarchy->aheadLevel.load() == -1);  // the surface made ahead was of the old points
   CHECK(surface->hierarchy->refinement->levelCount() == 3);
   const PatchSet fresh = extractPatches(AdaptiveRefinement(*moved, refineOptionsFor(SchemeChoice::C2PS, 2)));
   REQUIRE(fresh.patches.size() == refreshed->patches.size());
@@ -200,6 +204,40 @@ TEST_CASE("viewer surface: a pole touched by a crease or corner tag is left to C
   plain.tags = SubdivTags{};
   const Model plainModel{std::make_shared<const PolyMesh>(plain), "cap", 2};
   CHECK(buildSurface(plainModel, SurfaceKey{2, SchemeChoice::C2PS, 2}, kDefaultFaceBudget)->polesByScheme == 1);
+}
+
+}  // namespace polarview
+
+namespace polarview {
+
+TEST_CASE("viewer surface: the next level made ahead while idle is handed out as the step's surface, equal to a fresh build") {
+  const Model model = defaultModel();
+  const SurfaceKey shown{model.generation, SchemeChoice::C2PS, 3, model.points};
+  const auto surface = buildSurface(model, shown, kDefaultFaceBudget);
+  SurfaceKey next = shown;
+  next.level = 4;
+  prepareLevel(*surface->hierarchy, model, next, kDefaultFaceBudget);
+  REQUIRE(surface->hierarchy->aheadLevel.load() == 4);
+  const auto stepped = buildSurface(model, next, kDefaultFaceBudget, surface->hierarchy);
+  CHECK(surface->hierarchy->aheadLevel.load() == -1);  // handed out
+  CHECK(stepped->patchesMs == 0.0);                    // nothing assembled during the step
+  CHECK(stepped->key == next);
+  CHECK(stepped->hierarchy.get() == surface->hierarchy.get());
+  REQUIRE(bool(stepped->samples));
+  const auto fresh = buildSurface(model, next, kDefaultFaceBudget);
+  REQUIRE(fresh->patches.size() == stepped->patches.size());
+  size_t differ = 0;
+  for (size_t k = 0; k < fresh->patches.size(); ++k)
+    differ += fresh->patches[k].cp != stepped->patches[k].cp || fresh->patches[k].origin != stepped->patches[k].origin;
+  CHECK(differ == 0);
+  CHECK(stepped->samples->gaussian == fresh->samples->gaussian);
+  // A stale one (other level asked for) is not handed out.
+  prepareLevel(*surface->hierarchy, model, next, kDefaultFaceBudget);
+  SurfaceKey other = shown;
+  other.level = 2;
+  const auto back = buildSurface(model, other, kDefaultFaceBudget, surface->hierarchy);
+  CHECK(back->key == other);
+  CHECK(back->patchLevel == 2);
 }
 
 }  // namespace polarview
