@@ -817,8 +817,9 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
     if (view.shown && view.shown->hierarchy && view.shown->hierarchy->preparedLevel.load() > view.shown->key.level)
       view.renderer->reserveFor(view.shown->hierarchy->preparedRegular.load(), view.shown->hierarchy->preparedCaps.load());
   }
-  if (!options_.prepareNextLevel || v >= state_.viewCount || view.job.running() || editor_.dragging() || !view.shown ||
-      !view.shown->hierarchy || view.shown->key != wanted)
+  // Only the active view (the one the level keys step) is made ahead: memory for one surface more.
+  if (!options_.prepareNextLevel || v >= state_.viewCount || v != std::clamp(state_.activeView, 0, state_.viewCount - 1) ||
+      view.job.running() || editor_.dragging() || !view.shown || !view.shown->hierarchy || view.shown->key != wanted)
     return;
   if (wanted.level + 1 > state_.status[size_t(v)].deepestLevel) return;
   const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);

@@ -65,8 +65,9 @@ struct ViewerOptions {
   bool persistRecent = true;   // keep recent files in ~/.config/polarview/recent.txt
   bool vsync = true;
   size_t faceBudget = kDefaultFaceBudget;
-  // While a view is idle, make its next level ahead (prepareLevel) when all views' levels and it
-  // together fit one view's face budget: the key press that asks for it then only assembles.
+  // While the active view is idle, make its next level's surface ahead (prepareLevel) when all
+  // views' levels and it together fit one view's face budget: the key press that asks for it then
+  // only uploads.
   bool prepareNextLevel = true;
 };
 
@@ -184,7 +185,8 @@ class ViewerApp {
   void updatePoleInspector();
   // The Spectrum panel's eigenvalue lines, when it is open and the valence changed.
   void updateSpectrum();
-  // Starts making view v's next level ahead when it is idle (ViewerOptions::prepareNextLevel).
+  // Starts making view v's next level ahead when it is the active view and idle
+  // (ViewerOptions::prepareNextLevel).
   void prepareNextLevel(int v, const SurfaceKey& wanted);
   // Positions-only updates of the visible views whose surface has the model's topology but older
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]

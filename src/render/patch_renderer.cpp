@@ -181,21 +181,17 @@ int32_t packKindLevelJumps(const Patch& patch) {
   return static_cast<int32_t>(packed);
 }
 
-// World length of one level-0 parameter unit along the T-junction edges: the mean over their
-// coarse sides of chord * 2^level (chord between the face's corner control points); 0 if none.
-double transitionUnitLength(const std::vector<Patch>& patches) {
+// The transition unit length: the world length of one level-0 parameter unit along the T-junction
+// edges, the mean over their coarse sides of chord * 2^level (chord between the face's corner
+// control points); 0 if none. One patch's part: the sum over its coarse sides and their count.
+void addTransitionSides(const Patch& patch, double& sum, size_t& sides) {
   static constexpr int kEdgeCorners[4][2] = {{5, 6}, {6, 10}, {10, 9}, {9, 5}};  // patch.h order
-  double sum = 0.0;
-  int sides = 0;
-  for (const Patch& patch : patches) {
-    if (patch.kind == PatchKind::PoleCap) continue;
-    for (int s = 0; s < 4; ++s)
-      if (patch.edgeLevelDelta[s] > 0) {
-        sum += std::ldexp(glm::length(patch.cp[kEdgeCorners[s][0]] - patch.cp[kEdgeCorners[s][1]]), patch.level);
-        ++sides;
-      }
-  }
-  return sides > 0 ? sum / sides : 0.0;
+  if (patch.kind == PatchKind::PoleCap) return;
+  for (int s = 0; s < 4; ++s)
+    if (patch.edgeLevelDelta[s] > 0) {
+      sum += std::ldexp(glm::length(patch.cp[kEdgeCorners[s][0]] - patch.cp[kEdgeCorners[s][1]]), patch.level);
+      ++sides;
+    }
 }
 
 // Program specs: every shader file and variant the renderer uses.
@@ -323,7 +319,7 @@ struct PatchRenderer::Impl {
   // Per patch (patch_frame.glsl's texels): frame; kind, level, jumps and ring.
   GLuint frameBuffer = 0, frameTexture = 0, kindBuffer = 0, kindTexture = 0;
   size_t positionsCapacity = 0, frameCapacity = 0, kindCapacity = 0;  // bytes allocated in each
-  double transitionUnitLength = 0.0;  // see transitionUnitLength(): sets the transition density
+  double transitionUnitLength = 0.0;  // see addTransitionSides: sets the transition density
   GLuint netVao = 0, netBuffer = 0;
   GLuint poleVao = 0, poleBuffer = 0;
   GLuint timerQueries[2] = {0, 0};
@@ -513,14 +509,28 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   const size_t added = patches.size() - reused;
   const std::unique_ptr<float[]> positions(new float[added * kFloatsPerPatch]);  // every float written below
   std::vector<float> frameTexels(added * kFloatsPerFrame);
-  // Kinds and level jumps by slot (the jumps change with the level: all of them).
+  // Kinds and level jumps by slot (the jumps change with the level: all of them), and the
+  // transition unit length, in one pass over all patches split over the cores: fixed chunks summed
+  // in order, so the sum does not depend on the number of threads.
   std::vector<int32_t> kindRings(totalSlots * 2, 0);
-  for (const DrawRange& range : drawRanges_)
-    for (size_t k = 0; k < range.count; ++k) {
-      const Patch& patch = patches[range.firstIndex + k];
-      kindRings[2 * (range.firstSlot + k)] = packKindLevelJumps(patch);
-      kindRings[2 * (range.firstSlot + k) + 1] = patch.ring;
-    }
+  constexpr size_t kChunk = 4096;
+  const size_t chunks = (patches.size() + kChunk - 1) / kChunk;
+  std::vector<double> chunkSums(chunks, 0.0);
+  std::vector<size_t> chunkSides(chunks, 0);
+  const unsigned scanParts = threadsFor(patches.size() * 4);
+  runParts(scanParts, [&](unsigned part) {
+    for (size_t c = part; c < chunks; c += scanParts)
+      for (size_t p = c * kChunk; p < std::min(patches.size(), (c + 1) * kChunk); ++p) {
+        const Patch& patch = patches[p];
+        const size_t slot = p < stableCount ? p : stableSlots + (p - stableCount);
+        kindRings[2 * slot] = packKindLevelJumps(patch);
+        kindRings[2 * slot + 1] = patch.ring;
+        addTransitionSides(patch, chunkSums[c], chunkSides[c]);
+      }
+  });
+  double transitionSum = 0.0;
+  size_t transitionSides = 0;
+  for (size_t c = 0; c < chunks; ++c) transitionSum += chunkSums[c], transitionSides += chunkSides[c];
   // Each patch's frame and forward differences are computed in double: split over the cores.
   const unsigned parts = threadsFor(added * 8);
   runParts(parts, [&](unsigned part) {
@@ -541,7 +551,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
       }
     }
   });
-  impl_->transitionUnitLength = transitionUnitLength(patches);
+  impl_->transitionUnitLength = transitionSides > 0 ? transitionSum / double(transitionSides) : 0.0;
 
   // The new stable patches go after the valid ones, the rest after every stable slot.
   const size_t newStable = stableCount - reused;
