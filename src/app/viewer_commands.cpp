@@ -406,30 +406,39 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
   return r;
 }
 
-// --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does; per
-// step the CPU split of what the new frame waited for (refinement, patch set, samples off the GL
-// thread; packing + upload on it), how many patches stayed on the GPU, and the first frame's time
-// (upload and draw). As JSON: [{"from":..,"to":..,"refine_ms":..,...}, ...].
+// --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
+// after a pause long enough for the view to make its next level ahead), then toggles its scheme to
+// Catmull-Clark and back as `S` does; per step the CPU split of what the new frame waited for
+// (refinement, patch set, samples off the GL thread; packing + upload on it), how many patches
+// stayed on the GPU, and the first frame's time (upload and draw).
+// As JSON: [{"from":..,"to":..,"scheme":..,"refine_ms":..,...}, ...].
 std::string runLevelSteps(ViewerApp& app, int level) {
   ViewerState& state = app.state();
   std::ostringstream json;
   json << "[";
   int from = state.views[0].level;
-  const int targets[] = {level, level - 1, level};
-  for (size_t k = 0; k < std::size(targets); ++k) {
-    requestLevel(state, targets[k]);
+  const SchemeChoice scheme = state.views[0].scheme;
+  struct Step {
+    int level;
+    SchemeChoice scheme;
+  };
+  const Step steps[] = {{level, scheme}, {level - 1, scheme}, {level, scheme}, {level, SchemeChoice::CatmullClark}, {level, scheme}};
+  for (size_t k = 0; k < std::size(steps); ++k) {
+    requestLevel(state, steps[k].level);
+    state.views[0].scheme = steps[k].scheme;
     app.runFrame();  // starts the job
     app.waitUntilIdle();
     app.runFrame();  // shows it: upload + draw
     const ViewStatus& status = state.status[0];
-    char entry[400];
+    char entry[480];
     std::snprintf(entry, sizeof entry,
-                  "%s{\"from\":%d,\"to\":%d,\"shown\":%d,\"refine_ms\":%.2f,\"patches_ms\":%.2f,\"samples_ms\":%.2f,"
-                  "\"upload_ms\":%.2f,\"cpu_ms\":%.2f,\"kept_patches\":%d,\"patches\":%d,\"frame_ms\":%.2f}",
-                  k ? "," : "", from, targets[k], status.shownLevel, status.refineOnlyMs, status.patchesMs, status.samplesMs,
-                  status.uploadMs, status.refineMs + status.uploadMs, status.keptPatches, status.patchCount, state.frameMs);
+                  "%s{\"from\":%d,\"to\":%d,\"scheme\":\"%s\",\"shown\":%d,\"refine_ms\":%.2f,\"patches_ms\":%.2f,"
+                  "\"samples_ms\":%.2f,\"upload_ms\":%.2f,\"cpu_ms\":%.2f,\"kept_patches\":%d,\"patches\":%d,\"frame_ms\":%.2f}",
+                  k ? "," : "", from, steps[k].level, schemeChoiceCliName(steps[k].scheme), status.shownLevel, status.refineOnlyMs,
+                  status.patchesMs, status.samplesMs, status.uploadMs, status.refineMs + status.uploadMs, status.keptPatches,
+                  status.patchCount, state.frameMs);
     json << entry;
-    from = targets[k];
+    from = steps[k].level;
   }
   json << "]";
   return json.str();
