@@ -496,7 +496,8 @@ TEST_CASE("viewer app: level steps reuse the view's refinement, the next level i
   app->waitUntilIdle();
   runFrames(*app, 1);
   const AdaptiveRefinement* refinement = app->shownSurface(0)->refinement.get();
-  for (int level : {3, 4, 2, 5, 4}) {
+  int previous = 2;
+  for (int level : {3, 4, 2, 5, 4, 5}) {
     CAPTURE(level);
     state.views[0].level = state.views[1].level = level;
     app->waitUntilIdle();
@@ -504,8 +505,12 @@ TEST_CASE("viewer app: level steps reuse the view's refinement, the next level i
     REQUIRE(showsWanted(*app, 0));
     const BuiltSurface& shown = *app->shownSurface(0);
     CHECK(shown.refinement.get() == refinement);  // one refinement, stepped
-    // Made ahead while idle: the next level is there before it is asked for.
+    // Made ahead while idle: the next level is there before it is asked for, in the active view
+    // its whole surface, which a step up hands out with nothing to assemble.
     CHECK(shown.hierarchy->deepestMade.load() >= level + 1);
+    CHECK(shown.hierarchy->aheadLevel.load() == level + 1);
+    if (level == previous + 1) CHECK(state.status[0].patchesMs == 0.0);
+    previous = level;
     CHECK(state.status[0].keptPatches > 0);  // regular patches of shared levels stayed on the GPU
     for (int v = 0; v < 2; ++v) {
       const BuiltSurface& surface = *app->shownSurface(v);
