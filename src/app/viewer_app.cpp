@@ -812,9 +812,9 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   ViewRuntime& view = views_[size_t(v)];
   if (view.prepare.valid()) {
     if (view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-    view.prepare.get();
+    if (!view.prepare.get()) view.prepareFailed = view.preparing;
     // Room on the GPU for the level made ahead, now while idle rather than during the step.
-    if (view.shown && view.shown->hierarchy && view.shown->hierarchy->preparedLevel.load() > view.shown->key.level)
+    if (view.shown && view.shown->hierarchy && view.shown->hierarchy->preparedLevel.load() > view.shown->patchLevel)
       view.renderer->reserveFor(view.shown->hierarchy->preparedRegular.load(), view.shown->hierarchy->preparedCaps.load());
   }
   // Only the active view (the one the level keys step) is made ahead: memory for one surface more.
@@ -833,8 +833,18 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   if (faces > options_.faceBudget) return;
   SurfaceKey key = wanted;
   key.level = wanted.level + 1;
-  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, model = model_, key, budget = options_.faceBudget] {
-    prepareLevel(*hierarchy, model, key, budget);
+  if (view.prepareFailed && *view.prepareFailed == key) return;
+  // One view's surface ahead at a time: the other views' go (the active view follows the mouse).
+  std::vector<std::shared_ptr<SurfaceHierarchy>> others;
+  for (int w = 0; w < int(views_.size()); ++w)
+    if (w != v && views_[size_t(w)].shown && views_[size_t(w)].shown->hierarchy &&
+        views_[size_t(w)].shown->hierarchy != view.shown->hierarchy && views_[size_t(w)].shown->hierarchy->aheadLevel.load() >= 0)
+      others.push_back(views_[size_t(w)].shown->hierarchy);
+  view.preparing = key;
+  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, others = std::move(others), model = model_, key,
+                                                 budget = options_.faceBudget] {
+    for (const auto& other : others) dropAhead(*other);
+    return prepareLevel(*hierarchy, model, key, budget);
   });
 }
 
@@ -1017,7 +1027,8 @@ void ViewerApp::startExport(bool bezierView) {
       std::string done;
       {
         const Refinement refinement(*model.mesh, options, model.name, budget);
-        const PolyMesh& refined = refinement.finest().mesh;
+        // A non-manifold model was refined split: its copies merge back, as `refine` writes it.
+        const PolyMesh refined = refinement.splitInput() ? refinement.outputMesh() : refinement.finest().mesh;
         saveObj(path, refined, model.name);
         done = "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
                " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +

@@ -157,7 +157,9 @@ class ViewerApp {
     SurfaceJob job;
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
     std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
-    std::future<void> prepare;  // the next level made ahead (prepareLevel), if running
+    std::future<bool> prepare;  // the next level made ahead (prepareLevel), if running
+    std::optional<SurfaceKey> prepareFailed;  // a key prepareLevel could not make (not retried)
+    SurfaceKey preparing;                     // the key of the running (or last) prepare
     int zoomShown = -1;         // the pole zoom ring the renderer holds (-1: the whole surface)
     double uploadMs = 0.0;  // the last show(): packing + upload
     size_t keptPatches = 0;  // patches of it that stayed on the GPU

@@ -404,11 +404,12 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
   return refreshed;
 }
 
-void prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept {
+bool prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept {
+  // Locked across the failure path too: a step's build may be taking `ahead` meanwhile.
+  const std::lock_guard<std::mutex> lock(hierarchy.mutex);
   try {
-    const std::lock_guard<std::mutex> lock(hierarchy.mutex);
     AdaptiveRefinement& refinement = *hierarchy.refinement;
-    if (hierarchy.points != model.points) return;
+    if (hierarchy.points != model.points) return true;  // an edit came first: nothing to make
     const int level = patchLevelFor(model, key.scheme, key.level, faceBudget);
     if (refinement.levelCount() - 1 < level) refinement.extend(level - (refinement.levelCount() - 1), 2 * faceBudget);
     hierarchy.deepestMade = refinement.levelCount() - 1;
@@ -421,11 +422,20 @@ void prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const Surface
     hierarchy.aheadLevel = -1;
     hierarchy.ahead = assembleSurface(model, key, hierarchy, level);
     hierarchy.aheadLevel = key.level;
+    return true;
   } catch (...) {
     // Over the budget, or out of memory: the level is made (or refused) when the user asks for it.
     hierarchy.ahead.reset();
     hierarchy.aheadLevel = -1;
+    hierarchy.preparedLevel = -1;
+    return false;
   }
+}
+
+void dropAhead(SurfaceHierarchy& hierarchy) {
+  const std::lock_guard<std::mutex> lock(hierarchy.mutex);
+  hierarchy.ahead.reset();
+  hierarchy.aheadLevel = -1;
 }
 
 SurfaceJob::~SurfaceJob() {

@@ -69,9 +69,12 @@ struct SurfaceHierarchy {
 
 // Makes the surface of `key` (the level after the one shown) ahead of the user in `hierarchy`:
 // its levels (extend), its patches and curvature samples, kept as SurfaceHierarchy::ahead for
-// buildSurface, when the hierarchy is still at the model's points; a refusal (budget) or any
-// failure leaves it as it was and is not reported. [O(new levels + patches of the set)]
-void prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept;
+// buildSurface, when the hierarchy is still at the model's points. False when it could not (the
+// budget, memory): the level is made, or refused with a message, when the user asks for it; the
+// caller should not try the same key again. [O(new levels + patches of the set)]
+bool prepareLevel(SurfaceHierarchy& hierarchy, const Model& model, const SurfaceKey& key, size_t faceBudget) noexcept;
+// Frees the surface made ahead (another view is made ahead now: one at a time). [O(1)]
+void dropAhead(SurfaceHierarchy& hierarchy);
 
 // Memory one view's surface may take while it is built, and what a face of the feature-adaptive
 // refinement costs there (levels, copied-out parts, patches: peak RSS 447 MB for 989,082 faces,

@@ -493,6 +493,20 @@ TEST_CASE("opensubdiv oracle: non-manifold meshes (fins, bow ties, repeated vert
   }
   CHECK(compareSplitWithOpenSubdiv("grid with fins, creases and corners", fins) == 0);
 
+  // Three sheets on one line (an interior non-manifold crease through vertex 1), with a crease tag
+  // on a sheet's edge at that vertex: three sharp edges there, Far's corner rule at every copy while
+  // the tag lasts (infinitely sharp, semi-sharp 2 and 2.5).
+  for (const double sharpness : {10.0, 2.0, 2.5}) {
+    PolyMesh book;
+    for (const Point& p : {Point(0, -1, 0), Point(0.1, 0.2, 0.3), Point(0, 1, 0), Point(1, -1, 0), Point(1, 0, 0), Point(1, 1, 0),
+                           Point(-1, -1, 0), Point(-1, 0, 0), Point(-1, 1, 0), Point(0, -1, 1), Point(0, 0, 1), Point(0, 1, 1)})
+      book.points.push_back(p);
+    for (const auto& f : std::vector<std::vector<Index>>{{0, 1, 4, 3}, {1, 2, 5, 4}, {1, 0, 6, 7}, {2, 1, 7, 8}, {0, 1, 10, 9}, {1, 2, 11, 10}})
+      book.addFace(f.data(), f.size());
+    book.tags.creases.push_back({1, 4, sharpness});  // vertex 1: the line's middle
+    CHECK(compareSplitWithOpenSubdiv("three sheets on a line, a tag at its vertex, sharpness " + std::to_string(sharpness), book) == 0);
+  }
+
   // Two closed cones sharing their tip (a bow tie of closed fans).
   PolyMesh cones;
   for (const Point& p : {Point(0, 0, 0), Point(1, 0, 1), Point(0, 1, 1.2), Point(-1, -1, 1), Point(1, 0.1, -1), Point(0, 1, -1.1),

@@ -22,6 +22,7 @@ struct EdgeInstances {
   std::vector<Index> firstSide, secondSide;  // per edge: its first two sides (corners; -1: none)
   std::vector<int> sides;         // per edge: how many sides joined it
   std::vector<uint8_t> nonManifold;
+  std::vector<uint8_t> firstOfPair;  // per edge: the first made for its vertex pair (tags name it)
 
   size_t count() const { return from.size(); }
   bool manifold(size_t e) const { return !nonManifold[e] && sides[e] == 2; }
@@ -40,7 +41,7 @@ EdgeInstances makeEdges(const PolyMesh& mesh) {
   std::vector<Index> lastFace;
   auto make = [&](Index a, Index b) {
     g.from.push_back(a), g.to.push_back(b), g.firstSide.push_back(-1), g.secondSide.push_back(-1);
-    g.sides.push_back(0), g.nonManifold.push_back(0), lastFace.push_back(-1);
+    g.sides.push_back(0), g.nonManifold.push_back(0), g.firstOfPair.push_back(0), lastFace.push_back(-1);
     return Index(g.from.size() - 1);
   };
   for (Index f = 0; f < mesh.faceCount(); ++f)
@@ -64,6 +65,7 @@ EdgeInstances makeEdges(const PolyMesh& mesh) {
           }
         } else {
           e = at->second = make(v0, v1);
+          g.firstOfPair[size_t(e)] = 1;
         }
       }
       if (g.sides[size_t(e)] == 0) g.firstSide[size_t(e)] = c;
@@ -174,11 +176,17 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
     const Index a = out.faceVerts[size_t(c)], b = out.faceVerts[size_t(edges.next[size_t(c)])];
     tags.creases.push_back({std::min(a, b), std::max(a, b), sharpness});
   };
+  // A tag names a vertex pair: Far's FindEdge gives it to the pair's first edge.
   std::vector<uint8_t> infiniteEdge(edges.count(), 0);
+  std::vector<double> userSharpest(vertices, 0.0);  // the sharpest tag on a manifold edge, per end
   for (size_t e = 0; e < edges.count(); ++e) {
-    const double user = edges.from[e] == edges.to[e] ? 0.0 : userCrease(std::min(edges.from[e], edges.to[e]), std::max(edges.from[e], edges.to[e]));
+    if (!edges.firstOfPair[e]) continue;
+    const double user = userCrease(std::min(edges.from[e], edges.to[e]), std::max(edges.from[e], edges.to[e]));
     infiniteEdge[e] = user >= kInfiniteSharpness;
-    if (!edges.nonManifold[e] && user > 0.0) addCrease(edges.firstSide[e], user);
+    if (!edges.nonManifold[e] && user > 0.0) {
+      addCrease(edges.firstSide[e], user);
+      for (const Index v : {edges.from[e], edges.to[e]}) userSharpest[size_t(v)] = std::max(userSharpest[size_t(v)], user);
+    }
   }
   for (size_t c = 0; c < corners; ++c)
     if (edges.nonManifold[size_t(edges.edgeOf[c])]) addCrease(Index(c), kInfiniteSharpness);
@@ -196,6 +204,12 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
     const bool interiorCrease = nonManifoldEdges[v] == 2 && boundaryEdges[v] == 0 && cornerCount[v] > edgeCount[v];
     if ((topologicalCorner && in.boundary == BoundaryInterpolation::EdgeAndCorner) || (nonManifold[v] && !interiorCrease))
       vertexSharpness[v] = kInfiniteSharpness;
+    // An interior non-manifold crease with a tagged edge more has three sharp edges, Far's corner
+    // rule, until the tag decays; each copy's fan sees only its own edges, so every copy gets the
+    // tag's sharpness as a vertex sharpness: the same rule, decay and transition weight under
+    // CREASE_UNIFORM for one tagged edge (with several, the sharpest: an approximation).
+    else if (interiorCrease && userSharpest[v] > 0.0)
+      vertexSharpness[v] = std::max(vertexSharpness[v], userSharpest[v]);
   }
   for (size_t w = 0; w < split.sourceVertex.size(); ++w)
     if (const double s = vertexSharpness[size_t(split.sourceVertex[w])]; s > 0.0) tags.corners.push_back({Index(w), s});

@@ -28,7 +28,7 @@ namespace polarview {
 struct ManifoldSplit {
   PolyMesh mesh;                    // manifold, with the tags above; empty when nothing was split
   std::vector<Index> sourceVertex;  // per vertex of `mesh`: the input's vertex (empty: nothing split)
-  size_t nonManifoldEdges = 0;      // of the input (OpenSubdiv's count: edges by vertex pair)
+  size_t nonManifoldEdges = 0;      // of the input, counted as Far makes edges (a loop or repeat is one more)
   size_t nonManifoldVertices = 0;
 
   bool empty() const { return sourceVertex.empty(); }

@@ -339,7 +339,9 @@ class ObjParser {
       mesh_.faceVerts.push_back(parseFaceIndex(token, line));
     const size_t k = mesh_.faceVerts.size() - begin;
     if (k < 3) fail(line, "face has " + std::to_string(k) + " vertices (at least 3 needed)");
-    // A vertex repeated in a face is OpenSubdiv's degenerate edge: refined as it does (manifold_split.h).
+    // A vertex repeated in a face is OpenSubdiv's degenerate edge: refined as it does (manifold_split.h),
+    // but where the face's corners at the vertex lie in one fan of it (no manifold split keeps that
+    // surface): refused when the mesh is refined ("face repeats a vertex").
     mesh_.faceStart.push_back(static_cast<Index>(mesh_.faceVerts.size()));
     mesh_.faceLine.push_back(line);
   }
