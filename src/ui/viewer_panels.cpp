@@ -545,9 +545,10 @@ std::string viewTitle(const ViewStatus& status) {
   if (status.polesByCatmullClark == 0) return scheme + level;
   // The scheme fell back to Catmull-Clark at some poles: the title must not claim it drew them.
   if (status.polesByScheme == 0) {
-    // Why, in a word: the valence (RTS, BPS need 5) or a crease or corner tag on the pole.
+    // Why, in a word: the valence (RTS, BPS need 5), a crease or corner tag or a hole at the pole.
     const bool tags = status.fallbackReason.find("crease or corner tag") != std::string::npos;
-    return scheme + level + " \xC2\xB7 poles by CC (" + (tags ? "creases" : "valence < 5") + ")";
+    const bool hole = status.fallbackReason.find("hole face") != std::string::npos;
+    return scheme + level + " \xC2\xB7 poles by CC (" + (tags ? "creases" : hole ? "holes" : "valence < 5") + ")";
   }
   return scheme + level + " \xC2\xB7 " + std::to_string(status.polesByCatmullClark) + " of " +
          std::to_string(status.polesByScheme + status.polesByCatmullClark) + " poles by CC";

@@ -1,0 +1,25 @@
+// View titles: the scheme and level drawn, and why poles fell back to Catmull-Clark.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "ui/viewer_panels.h"
+
+using namespace polarview;
+
+TEST_CASE("view title: says in a word why every pole fell back to Catmull-Clark") {
+  ViewStatus status;
+  status.shownScheme = SchemeChoice::C2PS;
+  status.shownLevel = 3;
+  status.hasSurface = true;
+  CHECK(viewTitle(status) == "C2PS \xC2\xB7 3");
+  status.polesByCatmullClark = 1;
+  status.fallbackReason = "a crease or corner tag touches it at vertex 4 (the polar rules have none)";
+  CHECK(viewTitle(status).find("poles by CC (creases)") != std::string::npos);
+  status.fallbackReason = "a hole face touches it at vertex 4";
+  CHECK(viewTitle(status).find("poles by CC (holes)") != std::string::npos);
+  status.fallbackReason = "RTS needs valence >= 5";
+  CHECK(viewTitle(status).find("poles by CC (valence < 5)") != std::string::npos);
+  status.polesByScheme = 2;
+  CHECK(viewTitle(status).find("1 of 3 poles by CC") != std::string::npos);
+}
