@@ -379,6 +379,9 @@ int runInfo(const Args& args) {
   for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
   const int copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
   used -= copies;
+  // Hole faces (`t hole`, and the boundary faces of `t interpolateboundary 0`): no surface there.
+  const std::vector<uint8_t> holes = baseHoles(mesh, topo);
+  const int holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     int k = mesh.faceSize(f);
     triangles += k == 3;
@@ -404,6 +407,7 @@ int runInfo(const Args& args) {
     w.field("quads", quads).field("polygons", polygons).field("boundary_loops", loops);
     w.field("closed", loops == 0).field("radial_mesh", radialMesh);
     w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
+    w.field("hole_faces", holeFaces);
     w.key("poles").beginArray();
     for (const PolarConfig& c : poles) {
       w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
@@ -439,6 +443,8 @@ int runInfo(const Args& args) {
   std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
               o.input.c_str(), used, mesh.faceCount(), triangles, quads, polygons, topo.edgeCount, loops, loops == 1 ? "" : "s");
   if (topo.vertexCount - copies > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - copies - used);
+  if (holeFaces > 0)
+    std::printf("holes: %d faces ('t hole' or 'interpolateboundary 0'): refined, no surface there\n", holeFaces);
   if (!split.empty())
     std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
                 " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",

@@ -33,5 +33,11 @@ difference=$(paste <(grep '^v ' "$tmp/two_by_one.obj") <(grep '^v ' "$tmp/two.ob
 awk -v d="$difference" 'BEGIN { exit !(d != "" && d + 0 <= 1e-12 && d !~ /count/) }' ||
   fail "level 1 refined again differs from level 2: $difference"
 
+# Holes: `info` counts them, `refine` keeps them as `t hole` on their children (4 per hole face).
+printf "${cube}t hole 1/0/0 2\n" > "$tmp/holed.obj"
+"$exe" info "$tmp/holed.obj" 2> /dev/null | grep -q '^holes: 1 faces' || fail "info does not count the hole: $("$exe" info "$tmp/holed.obj" 2>&1)"
+"$exe" refine "$tmp/holed.obj" -o "$tmp/holed1.obj" --scheme cc --levels 1 2> /dev/null || fail "refine of the holed cube"
+[ "$(grep -c '^t hole 1/0/0 ' "$tmp/holed1.obj")" = 4 ] || fail "level-1 hole tags: $(grep '^t ' "$tmp/holed1.obj")"
+
 echo "creases: $failures failures"
 [ $failures -eq 0 ]
