@@ -33,7 +33,9 @@ void main() {
   // neighbours (watertight edges, see positionFromEye).
   vec3 fromEye;
   if (kind == kPatchPoleCap) {
-    fromEye = tc_originFromEye + tc_axes * s.position;
+    vec3 shared[16];
+    for (int k = 0; k < 16; ++k) shared[k] = tc_fromEye[k];
+    fromEye = capPositionFromEye(shared, u, v);
   } else {
     vec3 points[16];
     for (int k = 0; k < 16; ++k) points[k] = tc_fromEye[k];

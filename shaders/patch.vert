@@ -18,8 +18,14 @@ out vec3 vc_fromEye;
 // multi-draw, where gl_PrimitiveID restarts (patch_renderer.cpp draws runs of patches).
 flat out int vc_patchIndex;
 
+const int kPoleCapKind = 3;  // patch_eval.glsl's kPatchPoleCap
+
 void main() {
   vc_controlPoint = a_localPoint;
-  vc_fromEye = relativeToEye(a_pointHi, a_pointLo);
   vc_patchIndex = gl_VertexID / 16;
+  // A cap's vector and parameter slots (all but p0 and b_j: 0, 6..9) hold world vectors and
+  // (j, n, R) as they are (patch_renderer.cpp, capSharedSlot).
+  int slot = gl_VertexID % 16;
+  bool capData = (patchKindRing(vc_patchIndex).x & 0xFF) == kPoleCapKind && slot != 0 && (slot < 6 || slot > 9);
+  vc_fromEye = capData ? a_pointHi + a_pointLo : relativeToEye(a_pointHi, a_pointLo);
 }

@@ -46,6 +46,30 @@ PatchFrame patchFrame(int patchIndex) {
   return frame;
 }
 
+// Position of a PoleCap (patch_eval.glsl, evaluatePoleCap) in world axes relative to the eye, from
+// what neighbouring sectors share: p0 and b_j relative to the eye, p1..p5 and e_j as world vectors,
+// (j, n, R) in slot 10 and the Taylor order in slot 11 (patch_renderer.cpp, capSharedSlot). The angle is 2 pi (j + v) / n, so a
+// radial edge (v = 0 of sector j, v = 1 of sector j - 1) gets the same angle, basis and sums, and the
+// same position bits in both; the pole (u = 0) is p0 in every sector.
+vec3 capPositionFromEye(vec3 d[16], float u, float v) {
+  if (d[11].x < 1.5) d[3] = d[4] = d[5] = vec3(0.0);  // BPS: the tangent plane only (taylorOrder 1)
+  float n = d[10].y, R = d[10].z;
+  float turn = d[10].x + v;  // whole at the edges; the last sector's end is sector 0's start
+  if (turn >= n) turn -= n;
+  float theta = 6.28318530717958647692 * (turn / n);
+  float c = cos(theta), s = sin(theta), r = u * R, x = r * c, y = r * s;
+  float c2 = c * c - s * s, s2 = 2.0 * s * c;
+  float sv = 1.0 - v;
+  vec4 bv = vec4(sv * sv * sv, (3.0 * v - 6.0) * v * v + 4.0, ((-3.0 * v + 3.0) * v + 3.0) * v + 1.0, v * v * v) / 6.0;
+  vec3 C = ((bv[0] * d[6] + bv[1] * d[7]) + bv[2] * d[8]) + bv[3] * d[9];
+  vec3 E = ((bv[0] * d[12] + bv[1] * d[13]) + bv[2] * d[14]) + bv[3] * d[15];
+  vec3 T = d[0] + (x * d[1] + y * d[2]) + ((x * x + y * y) * d[3] + (x * x - y * y) * d[4] + (2.0 * x * y) * d[5]);
+  vec3 Tb = d[0] + R * (c * d[1] + s * d[2]) + R * R * (d[3] + c2 * d[4] + s2 * d[5]);
+  vec3 Tr = c * d[1] + s * d[2] + 2.0 * R * (d[3] + c2 * d[4] + s2 * d[5]);
+  float h = u * u * u * (4.0 - 3.0 * u), g = u * u * u * (u - 1.0);
+  return T + (h * (C - Tb) + (R * g) * (E - Tr));
+}
+
 // Position of a B-spline patch (patch.h order) from its control points relative to the eye, in the
 // uniform B-spline basis, summed relative to its point 5 (a corner of the face) and moved back once:
 // the differences to that point are exact or small, so the result carries one rounding at the

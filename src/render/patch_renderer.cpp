@@ -116,6 +116,21 @@ void toForwardDifferences(std::array<glm::dvec3, 16>& c, int first, int stride) 
   c3 = d3;
 }
 
+// What a cap's non-position slot holds beside its GPU form (patch.vert passes it on as it is, not
+// relative to the eye): p1..p5 and e_j as world vectors, slot 10 (j, n, R) for sector j of n and
+// slot 11 the Taylor order.
+// Neighbouring sectors place their shared radial edge from these and the shared world points in the
+// same operations (patch.tese, capPositionFromEye), so the edge is the same bits on both sides;
+// each sector's rotated frame alone left pinholes between 49,152 sub-pixel sectors (C2PS level 12).
+glm::dvec3 capSharedSlot(const Patch& patch, int k) {
+  if (patch.kind != PatchKind::PoleCap) return glm::dvec3(0.0);
+  if (k == 10) {
+    const double n = std::round(1.0 / patch.cp[10].y);
+    return glm::dvec3(std::round(patch.cp[10].x * n), n, patch.cp[10].z);
+  }
+  return patch.cp[k];
+}
+
 // A patch as the GPU evaluates it (see the section's top), with its frame.
 struct GpuPatch {
   PatchFrameCpu frame;
@@ -547,7 +562,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
       for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
         const glm::vec3 local(gpu.cp[k]);
         point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionPoint(patch.kind, k) ? (patch.origin - center_) + patch.cp[k] : glm::dvec3(0.0), point + 3, point + 6);
+        splitHiLo(isPositionPoint(patch.kind, k) ? (patch.origin - center_) + patch.cp[k] : capSharedSlot(patch, k), point + 3, point + 6);
       }
     }
   });

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <random>
+#include <map>
 #include <set>
 
+#include "core/mesh/obj_io.h"
+#include "core/spline/patch_extraction.h"
+#include "core/subdiv/adaptive_refiner.h"
 #include "render_test_support.h"
 
 namespace polarview {
@@ -233,4 +237,43 @@ TEST_CASE("tessellation: neighbouring patches get equal levels on their shared e
 }
 
 }  // namespace
+}  // namespace polarview
+
+namespace polarview {
+
+TEST_CASE("gpu evaluator: neighbouring pole-cap sectors place their shared radial edge bit for bit alike") {
+  // C2PS level 6 on the default model: 768 sectors, each drawn in its own rotated frame for K and H,
+  // positioned from what the neighbours share (patch.tese): no pinholes between sub-pixel sectors.
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  const PatchSet set = extractPatches(AdaptiveRefinement(mesh, RefineOptions{Scheme::C2PS, 6, false}));
+  std::map<long, int> capOfSector;  // sector j -> patch index
+  int n = 0;
+  for (size_t k = 0; k < set.patches.size(); ++k)
+    if (set.patches[k].kind == PatchKind::PoleCap && set.patches[k].pole == 0) {
+      n = int(std::lround(1.0 / set.patches[k].cp[10].y));
+      capOfSector[std::lround(set.patches[k].cp[10].x * n)] = int(k);
+    }
+  REQUIRE(n == 768);
+  REQUIRE(capOfSector.size() == size_t(n));
+  renderer->setPatches(set.patches);
+  const std::vector<SurfaceProbe> probes = renderer->probeSurface(4);
+  std::map<std::pair<int, long>, glm::dvec3> atEdge;  // (patch, u * 1e4) -> position, on v = 0
+  for (const SurfaceProbe& p : probes)
+    if (p.v == 0.0f) atEdge[{p.patch, std::lround(p.u * 1e4)}] = p.position;
+  size_t compared = 0, differ = 0;
+  for (const SurfaceProbe& p : probes) {
+    if (p.v != 1.0f || set.patches[size_t(p.patch)].kind != PatchKind::PoleCap) continue;
+    const long j = std::lround(set.patches[size_t(p.patch)].cp[10].x * n);
+    const auto next = atEdge.find({capOfSector[(j + 1) % n], std::lround(p.u * 1e4)});
+    if (next == atEdge.end()) continue;
+    ++compared;
+    differ += next->second != p.position;
+  }
+  MESSAGE(compared << " radial-edge vertices compared, " << differ << " differ");
+  CHECK(compared >= size_t(n) * 4);
+  CHECK(differ == 0);
+}
+
 }  // namespace polarview
