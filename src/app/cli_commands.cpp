@@ -356,8 +356,8 @@ int runInfo(const Args& args) {
   CommonOptions o = parseOptions("info", args, {"--json"});
   const PolyMesh input = loadInput(o.input);
   ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
-  const PolyMesh& mesh = refinableMesh(input, split);
-  MeshTopology topo = buildTopology(mesh, o.input);
+  MeshTopology topo;
+  const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
   // Poles (configurations a polar scheme refines) apart from vertices that only look polar: on a
   // triangle mesh nearly every vertex is such a candidate, and Catmull-Clark refines it.
   std::vector<PolarConfig> poles, rejected;

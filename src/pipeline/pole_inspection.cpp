@@ -23,8 +23,8 @@ namespace {
 
 PolarConfig findPole(const PolyMesh& input, Index vertex) {
   ManifoldSplit split;
-  const PolyMesh& mesh = refinableMesh(input, split);
-  const MeshTopology topo = buildTopology(mesh);
+  MeshTopology topo;
+  const PolyMesh& mesh = refinableMesh(input, split, topo);
   for (PolarConfig& config : findPolarConfigs(mesh, topo))
     if (config.refinable && config.pole == vertex) return config;
   throw std::invalid_argument("inspectPole: vertex " + std::to_string(vertex) + " is not a pole of the mesh");
@@ -107,8 +107,8 @@ void catmullClarkRings(const PolyMesh& mesh, Index vertex, int rings, PoleInspec
 std::vector<Index> modelPoles(const PolyMesh& input) {
   std::vector<Index> poles;
   ManifoldSplit split;
-  const PolyMesh& mesh = refinableMesh(input, split);
-  const MeshTopology topo = buildTopology(mesh);
+  MeshTopology topo;
+  const PolyMesh& mesh = refinableMesh(input, split, topo);
   for (const PolarConfig& config : findPolarConfigs(mesh, topo))
     if (config.refinable) poles.push_back(config.pole);
   return poles;

@@ -152,7 +152,8 @@ float weightedSymmetricRange(const std::vector<float>& values, const std::vector
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
   try {
     ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)
-    buildTopology(refinableMesh(mesh, split), name);  // throws InputError for meshes even that cannot refine
+    MeshTopology topology;
+    refinableMesh(mesh, split, topology, name);  // throws InputError for meshes even that cannot refine
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -205,8 +206,8 @@ bool refinesPoles(const Model& model, Scheme scheme) {
   if (added) {
     try {
       ManifoldSplit split;
-      const PolyMesh& mesh = refinableMesh(*model.mesh, split);
-      const MeshTopology topology = buildTopology(mesh, model.name);
+      MeshTopology topology;
+      const PolyMesh& mesh = refinableMesh(*model.mesh, split, topology, model.name);
       for (const PolarConfig& config : findPolarConfigs(mesh, topology))
         at->second = at->second || schemeRefinesPole(scheme, config);
     } catch (const std::exception&) {

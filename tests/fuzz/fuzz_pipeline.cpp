@@ -304,8 +304,7 @@ void runPipeline(const std::string& text) {
   ManifoldSplit split;
   const PolyMesh* refinable = &mesh;
   try {
-    refinable = &refinableMesh(mesh, split);
-    topology = buildTopology(*refinable, kSource);
+    refinable = &refinableMesh(mesh, split, topology, kSource);
   } catch (const InputError&) {
     return;
   }

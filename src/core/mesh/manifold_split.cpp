@@ -1,6 +1,8 @@
 // Non-manifold meshes split into manifold ones with OpenSubdiv's sharpening (manifold_split.h).
 #include "core/mesh/manifold_split.h"
 
+#include "core/mesh/input_error.h"
+
 #include <algorithm>
 #include <numeric>
 #include <unordered_map>
@@ -235,9 +237,18 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
   return split;
 }
 
-const PolyMesh& refinableMesh(const PolyMesh& mesh, ManifoldSplit& storage) {
-  storage = splitNonManifold(mesh);
-  return storage.empty() ? mesh : storage.mesh;
+const PolyMesh& refinableMesh(const PolyMesh& mesh, ManifoldSplit& storage, MeshTopology& topology,
+                              const std::string& sourceName) {
+  storage = ManifoldSplit{};
+  try {
+    topology = buildTopology(mesh, sourceName);  // the common case: no split to make
+    return mesh;
+  } catch (const InputError&) {
+    storage = splitNonManifold(mesh);
+    if (storage.empty()) throw;  // not a matter of manifoldness: the tables' own error
+  }
+  topology = buildTopology(storage.mesh, sourceName);
+  return storage.mesh;
 }
 
 }  // namespace polarview

@@ -19,9 +19,11 @@
 // midpoint, a crease vertex's reads the same two neighbours), so the split surface is the input's.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/mesh/poly_mesh.h"
+#include "core/mesh/topology.h"
 
 namespace polarview {
 
@@ -40,9 +42,12 @@ struct ManifoldSplit {
 // when `mesh` is manifold and consistently oriented. [O(corners log corners)]
 ManifoldSplit splitNonManifold(const PolyMesh& mesh);
 
-// The mesh refinements start from: `mesh` itself, or its split (kept in `storage`). Its first
-// vertex ids are the input's, so a vertex picked on the input names the same vertex there.
+// The mesh refinements start from, with its tables in `topology`: `mesh` itself when its tables
+// build (manifold and consistently oriented: nothing more is done), else its split (kept in
+// `storage`). Its first vertex ids are the input's, so a vertex picked on the input names the same
+// vertex there. Throws buildTopology's InputError for what even the split cannot refine.
 // [O(corners log corners)]
-const PolyMesh& refinableMesh(const PolyMesh& mesh, ManifoldSplit& storage);
+const PolyMesh& refinableMesh(const PolyMesh& mesh, ManifoldSplit& storage, MeshTopology& topology,
+                              const std::string& sourceName = "<mesh>");
 
 }  // namespace polarview

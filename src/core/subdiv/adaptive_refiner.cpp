@@ -412,13 +412,14 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const RefineOption
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
   const Scheme scheme = options.scheme;
   // Non-manifold input: refined as its manifold split with OpenSubdiv's sharpening (manifold_split.h).
-  ManifoldSplit split = splitNonManifold(input);
-  const PolyMesh& base = split.empty() ? input : split.mesh;
+  ManifoldSplit split;
+  MeshTopology baseTopology;
+  const PolyMesh& base = refinableMesh(input, split, baseTopology, sourceName);
   inputVertices_ = size_t(input.vertexCount());
   sourceVertex_ = std::move(split.sourceVertex);
   RefinedLevel level0;
   level0.mesh = base;
-  level0.topology = buildTopology(base, sourceName);
+  level0.topology = std::move(baseTopology);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
   // Creases and corners: Catmull-Clark's rules wherever Catmull-Clark's connectivity refines (every

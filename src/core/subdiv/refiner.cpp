@@ -364,8 +364,9 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
     : options_(options), plan_(std::make_unique<Plan>()) {
   plan_->source = sourceName;
   // Non-manifold input: refined as its manifold split with OpenSubdiv's sharpening (manifold_split.h).
-  ManifoldSplit split = splitNonManifold(input);
-  const PolyMesh& base = split.empty() ? input : split.mesh;
+  ManifoldSplit split;
+  MeshTopology baseTopology;
+  const PolyMesh& base = refinableMesh(input, split, baseTopology, sourceName);
   plan_->inputVertices = size_t(input.vertexCount());
   plan_->sourceVertex = std::move(split.sourceVertex);
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
@@ -382,7 +383,7 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
 
   RefinedLevel level0;
   level0.mesh = base;
-  level0.topology = buildTopology(base, sourceName);
+  level0.topology = std::move(baseTopology);
   for (PolarConfig& config : findPolarConfigs(base, level0.topology))
     if (schemeRefinesPole(options.scheme, config)) level0.poles.push_back(std::move(config));
   // Creases and corners: Catmull-Clark's rules wherever Catmull-Clark's connectivity refines (every
