@@ -125,7 +125,10 @@ ViewerApp::~ViewerApp() {
   }
   if (window_) {
     glfwMakeContextCurrent(window_);
-    for (ViewRuntime& view : views_) view.renderer.reset();
+    for (ViewRuntime& view : views_) {
+      view.renderer.reset();
+      view.parkedRenderer.reset();
+    }
     shaders_.reset();
     if (imguiReady_) {
       ImGui_ImplOpenGL3_Shutdown();
@@ -533,10 +536,64 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
     view.zoomShown = -1;
   }
   view.keptPatches = view.renderer->lastReusedPatches();
+  view.unparked = false;
   view.uploadMs = millisecondsSince(start);
   view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
   view.renderer->setPoleMarkers(surface->poles);
   view.shown = std::move(surface);
+}
+
+size_t ViewerApp::parkedFaces() const {
+  size_t faces = 0;
+  for (const ViewRuntime& view : views_)
+    if (view.parked) faces += estimatedLevelFaces(model_, view.parked->key.scheme, view.parked->patchLevel);
+  return faces;
+}
+
+void ViewerApp::parkShown(int v, const BuiltSurface& next) {
+  ViewRuntime& view = views_[size_t(v)];
+  if (!view.shown || view.zoomShown >= 0 || view.shown->key.model != next.key.model ||
+      view.shown->key.points != next.key.points || view.shown->key.scheme == next.key.scheme)
+    return;
+  // Memory: every view's surface, the new one and the parked ones within the budget (as the
+  // surfaces made ahead are); the older parked surface of this view goes first.
+  size_t faces = parkedFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel);
+  if (view.parked) faces -= estimatedLevelFaces(model_, view.parked->key.scheme, view.parked->patchLevel);
+  for (int w = 0; w < state_.viewCount; ++w)
+    if (views_[size_t(w)].shown)
+      faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
+  view.parked.reset();
+  if (faces > options_.faceBudget) return;
+  // The shown surface keeps its renderer; the new one goes to the other (made on first use).
+  std::swap(view.renderer, view.parkedRenderer);
+  view.parked = std::move(view.shown);
+  if (!view.renderer) {
+    auto renderer = std::make_unique<PatchRenderer>();
+    std::string log;
+    if (!renderer->init(&log, shaders_)) {  // not expected: the shaders compiled for the first one
+      std::swap(view.renderer, view.parkedRenderer);
+      view.shown = std::move(view.parked);
+      return;
+    }
+    view.renderer = std::move(renderer);
+  }
+}
+
+bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
+  ViewRuntime& view = views_[size_t(v)];
+  if (!view.parked || view.parked->key != wanted || state_.poleInspector.zoomRing >= 0) return false;
+  const auto start = std::chrono::steady_clock::now();
+  std::swap(view.renderer, view.parkedRenderer);
+  std::swap(view.shown, view.parked);  // the one shown so far is parked in turn
+  if (view.parked && (view.zoomShown >= 0 || view.parked->key.model != wanted.model || view.parked->key.points != wanted.points)) {
+    view.parked.reset();
+    view.parkedRenderer.reset();
+  }
+  view.zoomShown = -1;
+  view.keptPatches = view.shown->patches.size();
+  view.unparked = true;
+  view.uploadMs = millisecondsSince(start);
+  return true;
 }
 
 void ViewerApp::refreshEditedViews() {
@@ -610,6 +667,7 @@ void ViewerApp::updateSurfaces() {
         view.failed = outcome->key;
         status.message = outcome->error;
       } else if (outcome->surface->key.sameTopology(wantedKey(v))) {
+        parkShown(v, *outcome->surface);
         show(v, outcome->surface);
         status.message.clear();
       }
@@ -628,6 +686,11 @@ void ViewerApp::updateSurfaces() {
 
     // Start what the settings ask for: reuse another view's surface, else refine in the background.
     // A surface of this topology at older points waits for its positions-only update instead.
+    // A parked surface of another model or older points is of no use any more.
+    if (view.parked && (!visible || view.parked->key.model != model_.generation || view.parked->key.points != model_.points)) {
+      view.parked.reset();
+      view.parkedRenderer.reset();
+    }
     const bool refreshable = view.shown && view.shown->refinement && view.shown->key.sameTopology(wanted) &&
                              !(view.refreshFailed && *view.refreshFailed == wanted);
     bool dirty = visible && (!view.shown || view.shown->key != wanted) && !refreshable &&
@@ -637,16 +700,36 @@ void ViewerApp::updateSurfaces() {
       for (const ViewRuntime& other : views_) {
         if (other.shown && other.shown->key == wanted) twin = other.shown;
       }
-      if (twin) {
+      if (unpark(v, wanted)) {
+        status.message.clear();
+      } else if (twin) {
+        parkShown(v, *twin);
         show(v, twin);
       } else if (std::string refusal = checkFaceBudget(model_, wanted, options_.faceBudget); !refusal.empty()) {
         view.failed = wanted;
         status.message = refusal;
       } else {
-        // The view's own hierarchy (same model and scheme) is stepped to the new level.
-        const bool reusable = view.shown && view.shown->hierarchy && view.shown->key.model == wanted.model &&
-                              view.shown->key.scheme == wanted.scheme;
-        view.job.start(model_, wanted, options_.faceBudget, reusable ? view.shown->hierarchy : nullptr);
+        // The view's own hierarchy (same model and scheme) is stepped to the new level; so is its
+        // parked one's (the parked surface goes: its hierarchy will be at another level).
+        std::shared_ptr<SurfaceHierarchy> reusable;
+        if (view.shown && view.shown->hierarchy && view.shown->key.model == wanted.model && view.shown->key.scheme == wanted.scheme)
+          reusable = view.shown->hierarchy;
+        else if (view.parked && view.parked->hierarchy && view.parked->key.model == wanted.model &&
+                 view.parked->key.scheme == wanted.scheme)
+          reusable = view.parked->hierarchy;
+        // Parked surfaces give their memory to a new refinement that would not fit beside them.
+        size_t faces = parkedFaces() + estimatedLevelFaces(model_, wanted.scheme,
+                                                           patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget));
+        for (int w = 0; w < state_.viewCount; ++w)
+          if (views_[size_t(w)].shown)
+            faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
+        if (faces > options_.faceBudget || (view.parked && view.parked->hierarchy == reusable))
+          for (ViewRuntime& other : views_)
+            if (other.parked && (faces > options_.faceBudget || &other == &view)) {
+              other.parked.reset();
+              other.parkedRenderer.reset();
+            }
+        view.job.start(model_, wanted, options_.faceBudget, reusable);
       }
     }
 
@@ -664,10 +747,12 @@ void ViewerApp::updateSurfaces() {
       status.patchCount = int(view.shown->patches.size());
       status.patchesPerKind = view.shown->patchesPerKind;
       status.controlFaces = view.shown->controlMesh.faceCount();
-      status.refineMs = view.shown->refineMs;
-      status.refineOnlyMs = view.shown->refineOnlyMs;
-      status.patchesMs = view.shown->patchesMs;
-      status.samplesMs = view.shown->samplesMs;
+      // A surface shown again from the park cost nothing to build this time.
+      status.unparked = view.unparked;
+      status.refineMs = view.unparked ? 0.0 : view.shown->refineMs;
+      status.refineOnlyMs = view.unparked ? 0.0 : view.shown->refineOnlyMs;
+      status.patchesMs = view.unparked ? 0.0 : view.shown->patchesMs;
+      status.samplesMs = view.unparked ? 0.0 : view.shown->samplesMs;
       status.uploadMs = view.uploadMs;
       status.patchLevel = view.shown->patchLevel;
       status.zoomRing = view.zoomShown;
@@ -825,7 +910,7 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);
   if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
-  size_t faces = estimatedLevelFaces(model_, wanted.scheme, next);
+  size_t faces = estimatedLevelFaces(model_, wanted.scheme, next) + parkedFaces();
   for (int w = 0; w < state_.viewCount; ++w)
     faces += estimatedLevelFaces(model_, state_.views[size_t(w)].scheme,
                                  patchLevelFor(model_, state_.views[size_t(w)].scheme, state_.views[size_t(w)].level,
@@ -834,12 +919,14 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   SurfaceKey key = wanted;
   key.level = wanted.level + 1;
   if (view.prepareFailed && *view.prepareFailed == key) return;
-  // One view's surface ahead at a time: the other views' go (the active view follows the mouse).
+  // One view's surface ahead at a time: the other views' and the parked ones' go (the active view
+  // follows the mouse).
   std::vector<std::shared_ptr<SurfaceHierarchy>> others;
   for (int w = 0; w < int(views_.size()); ++w)
-    if (w != v && views_[size_t(w)].shown && views_[size_t(w)].shown->hierarchy &&
-        views_[size_t(w)].shown->hierarchy != view.shown->hierarchy && views_[size_t(w)].shown->hierarchy->aheadLevel.load() >= 0)
-      others.push_back(views_[size_t(w)].shown->hierarchy);
+    for (const auto* surface : {views_[size_t(w)].shown.get(), views_[size_t(w)].parked.get()})
+      if (surface && surface->hierarchy && surface->hierarchy != view.shown->hierarchy &&
+          surface->hierarchy->aheadLevel.load() >= 0)
+        others.push_back(surface->hierarchy);
   view.preparing = key;
   view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, others = std::move(others), model = model_, key,
                                                  budget = options_.faceBudget] {

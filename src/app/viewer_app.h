@@ -154,6 +154,11 @@ class ViewerApp {
   struct ViewRuntime {
     std::unique_ptr<PatchRenderer> renderer;
     std::shared_ptr<const BuiltSurface> shown;
+    // The surface this view showed before its scheme changed, still on the GPU in its own
+    // renderer: toggling back swaps the two (no refinement, no upload). Dropped when the model or
+    // its points change, or when memory is wanted (parkedFaces counts it against the budget).
+    std::unique_ptr<PatchRenderer> parkedRenderer;
+    std::shared_ptr<const BuiltSurface> parked;
     SurfaceJob job;
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
     std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
@@ -163,6 +168,7 @@ class ViewerApp {
     int zoomShown = -1;         // the pole zoom ring the renderer holds (-1: the whole surface)
     double uploadMs = 0.0;  // the last show(): packing + upload
     size_t keptPatches = 0;  // patches of it that stayed on the GPU
+    bool unparked = false;   // shown by unpark: nothing was built for it this time
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
@@ -190,6 +196,13 @@ class ViewerApp {
   // Starts making view v's next level ahead when it is the active view and idle
   // (ViewerOptions::prepareNextLevel).
   void prepareNextLevel(int v, const SurfaceKey& wanted);
+  // Keeps view v's shown surface (and its renderer) when `next` replaces it with another scheme's
+  // surface of the same model and points at the same level, so a toggle back is a swap.
+  void parkShown(int v, const BuiltSurface& next);
+  // Shows view v's parked surface again (swapping renderers); false when it is not `wanted`.
+  bool unpark(int v, const SurfaceKey& wanted);
+  // Faces of the refinements the views keep parked (estimatedLevelFaces), against the budget.
+  size_t parkedFaces() const;
   // Positions-only updates of the visible views whose surface has the model's topology but older
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
   void refreshEditedViews();

@@ -408,7 +408,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
 
 // --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
 // after a pause long enough for the view to make its next level ahead), then toggles its scheme to
-// Catmull-Clark and back as `S` does; per step the CPU split of what the new frame waited for
+// Catmull-Clark and back twice as `S` does (the second time both are parked); per step the CPU split of what the new frame waited for
 // (refinement, patch set, samples off the GL thread; packing + upload on it), how many patches
 // stayed on the GPU, and the first frame's time (upload and draw).
 // As JSON: [{"from":..,"to":..,"scheme":..,"refine_ms":..,...}, ...].
@@ -422,7 +422,13 @@ std::string runLevelSteps(ViewerApp& app, int level) {
     int level;
     SchemeChoice scheme;
   };
-  const Step steps[] = {{level, scheme}, {level - 1, scheme}, {level, scheme}, {level, SchemeChoice::CatmullClark}, {level, scheme}};
+  const Step steps[] = {{level, scheme},
+                        {level - 1, scheme},
+                        {level, scheme},
+                        {level, SchemeChoice::CatmullClark},
+                        {level, scheme},
+                        {level, SchemeChoice::CatmullClark},
+                        {level, scheme}};
   for (size_t k = 0; k < std::size(steps); ++k) {
     requestLevel(state, steps[k].level);
     state.views[0].scheme = steps[k].scheme;

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
+#endif
 #include <GLFW/glfw3.h>  // key codes and modifier bits only
 #include <glm/gtc/quaternion.hpp>
 #include <imgui.h>
@@ -380,7 +382,10 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::Indent();
     ImGui::Text("refine %.1f, patches %.1f, samples %.1f, upload %.1f ms", s.refineOnlyMs, s.patchesMs, s.samplesMs,
                 s.uploadMs);
-    if (s.keptPatches > 0) ImGui::Text("(a level step: %d patches stayed on the GPU)", s.keptPatches);
+    if (s.unparked)
+      ImGui::Text("(a scheme toggle back: its %d patches stayed on the GPU)", s.keptPatches);
+    else if (s.keptPatches > 0)
+      ImGui::Text("(a level step: %d patches stayed on the GPU)", s.keptPatches);
     if (s.patchLevel > s.shownLevel)
       ImGui::TextWrapped("Poles closed at level %d: %s is not C2 there, so its cap at level %d would show a curvature "
                          "of its own; the rings between are the limit surface.",

@@ -9,6 +9,7 @@
 #include "app/export_command.h"
 #include "app/viewer_app.h"
 #include "pipeline/vertex_edit.h"
+#include "render/patch_renderer.h"
 #include "pipeline/surface_pipeline.h"
 #include "core/mesh/obj_io.h"
 #include "core/subdiv/adaptive_refiner.h"
@@ -440,6 +441,54 @@ TEST_CASE("export from the viewer: a refined control mesh over the budget is ref
   CHECK(state.edit.error.find("refined control mesh refused: C2PS level " + std::to_string(deepest)) == 0);
   CHECK(state.edit.error.find("over the budget of " + std::to_string(uniformBudget)) != std::string::npos);
   CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same surface and image), not after an edit") {
+  auto app = makeEditingApp(4);
+  ViewerState& state = app->state();
+  state.views[0].scheme = SchemeChoice::C2PS;
+  app->waitUntilIdle();
+  app->runFrame();
+  const BuiltSurface* c2ps = app->shownSurface(0);
+  const RgbaImage before = app->renderImage(400, 300, 1, false);
+
+  auto toggle = [&](SchemeChoice scheme) {
+    state.views[0].scheme = scheme;
+    app->runFrame();
+    app->waitUntilIdle();
+    app->runFrame();
+    REQUIRE(app->shownSurface(0)->key.scheme == scheme);
+  };
+  toggle(SchemeChoice::CatmullClark);
+  const BuiltSurface* catmullClark = app->shownSurface(0);
+  CHECK(catmullClark != c2ps);
+  CHECK_FALSE(state.status[0].unparked);
+  CHECK(app->renderer(0).patchCount() == int(catmullClark->patches.size()));
+
+  toggle(SchemeChoice::C2PS);
+  CHECK(app->shownSurface(0) == c2ps);  // not rebuilt
+  CHECK(state.status[0].unparked);
+  CHECK(state.status[0].patchesMs == 0.0);
+  CHECK(app->renderer(0).patchCount() == int(c2ps->patches.size()));
+  const RgbaImage again = app->renderImage(400, 300, 1, false);
+  CHECK(again.pixels == before.pixels);
+
+  toggle(SchemeChoice::CatmullClark);  // and forth: the Catmull-Clark surface was parked in turn
+  CHECK(app->shownSurface(0) == catmullClark);
+  CHECK(state.status[0].unparked);
+
+  // Moved points: the parked C2PS surface is stale, toggling back builds the edited one.
+  const ScreenVertex target = centralVertex(*app);
+  REQUIRE(target.vertex >= 0);
+  drag(*app, target.x, target.y, target.x + 20.0f, target.y - 15.0f);
+  app->waitUntilIdle();
+  REQUIRE(app->editor().undoCount() == 1);
+  toggle(SchemeChoice::C2PS);
+  const BuiltSurface* edited = app->shownSurface(0);
+  CHECK_FALSE(state.status[0].unparked);
+  CHECK(edited->key.points == app->model().points);
+  const double scale = glm::length(app->modelMax() - app->modelMin());
+  checkSamePatches(edited->patches, buildSurface(app->model(), edited->key, kDefaultFaceBudget)->patches, 1e-12 * scale);
 }
 
 }  // namespace polarview
