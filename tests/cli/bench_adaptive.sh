@@ -15,7 +15,7 @@ field() { python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
 for scheme in rts bps cc; do
   uniform=$("$exe" bench "$tmp/cap64.obj" --scheme $scheme --levels 5 --reps 1 --json | field out_faces)
   json=$("$exe" bench "$tmp/cap64.obj" --scheme $scheme --levels 10 --adaptive --edit --reps 1 --json)
-  for key in topology_ms positions_ms patches_ms patches peak_rss_mb edit_ms total_faces; do
+  for key in topology_ms positions_ms patches_ms patches peak_rss_mb edit_ms total_faces made_ahead_ms level_up_made_ahead_ms; do
     echo "$json" | field $key > /dev/null || fail "$scheme: no $key in $json"
   done
   faces=$(echo "$json" | field total_faces)
