@@ -306,7 +306,9 @@ int runRefine(const Args& args) {
   if (o.levels < 0) throw UsageError{"refine needs --levels L"};
   PolyMesh mesh = loadInput(o.input);
   const size_t maxFaces = checkMemoryBudget(mesh, o);
-  Refinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, maxFaces);
+  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  options.finestVertexRings = false;  // only the finest level's faces and points are written
+  Refinement refinement(mesh, options, o.input, maxFaces);
   // A non-manifold input was refined split: its copies merge back (the input's topology refined).
   if (refinement.splitInput()) saveObj(o.output, refinement.outputMesh(), o.input);
   else saveObj(o.output, refinement.finest().mesh, o.input);
@@ -584,15 +586,21 @@ double positionsTrafficBytes(const Refinement& refinement) {
   return bytes;
 }
 
-// Bytes of the finest level's arrays: points, faces, face parents and every topology table.
-double finestLevelBytes(const Refinement& refinement) {
-  const RefinedLevel& level = refinement.finest();
+// Bytes of one level's arrays: points, faces, face parents and every topology table it holds.
+double levelBytes(const RefinedLevel& level) {
   const MeshTopology& t = level.topology;
   double bytes = double(level.mesh.points.size()) * sizeof(Point) + double(t.vertexOnBoundary.size() + t.vertexUsed.size());
   for (const std::vector<Index>* table : {&level.mesh.faceStart, &level.mesh.faceVerts, &level.faceParent, &t.cornerEdge,
                                           &t.cornerFace, &t.edgeVerts, &t.edgeFaces, &t.vertexFaceStart, &t.vertexFaces,
                                           &t.vertexEdgeStart, &t.vertexEdges, &t.vertexCorners})
     bytes += double(table->size()) * sizeof(Index);
+  return bytes;
+}
+
+// The arrays a refinement holds (every level: a library user reads any of them), as built.
+double refinementBytes(const Refinement& refinement) {
+  double bytes = 0;
+  for (int m = 0; m < refinement.levelCount(); ++m) bytes += levelBytes(refinement.level(m));
   return bytes;
 }
 
@@ -708,10 +716,13 @@ int runBench(const Args& args) {
   PolyMesh mesh = loadInput(o.input);
   if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);
-  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  // Topology as `refine` builds it (and OpenSubdiv's RefineUniform): no vertex rings at the finest
+  // level; the patches need them, so patches_ms includes making them.
+  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  options.finestVertexRings = false;
   std::vector<double> build, positions, patches;
   size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
-  double trafficBytes = 0, outputBytes = 0;
+  double trafficBytes = 0, outputBytes = 0, finestBytes = 0, refinePeakRssMb = 0;
   std::optional<Refinement> kept;  // --vs-opensubdiv: the last repetition's, for the check
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
@@ -720,7 +731,13 @@ int runBench(const Args& args) {
     t0 = std::chrono::steady_clock::now();
     refinement.updatePositions(mesh.points);
     positions.push_back(millisecondsSince(t0));
+    if (rep == 0) {  // the refinement as `refine` has it: its own peak and its arrays
+      refinePeakRssMb = peakResidentMegabytes();
+      outputBytes = refinementBytes(refinement);
+      finestBytes = levelBytes(refinement.finest());
+    }
     t0 = std::chrono::steady_clock::now();
+    refinement.completeFinestTopology();
     PatchSet set = extractPatches(refinement);
     patches.push_back(millisecondsSince(t0));
     outVertices = refinement.finest().mesh.points.size();
@@ -728,7 +745,6 @@ int runBench(const Args& args) {
     patchCount = set.patches.size();
     polesRefined = refinement.level(0).poles.size();
     trafficBytes = positionsTrafficBytes(refinement);
-    outputBytes = finestLevelBytes(refinement);
     if (o.vsOpenSubdiv && rep + 1 == o.reps) kept.emplace(std::move(refinement));
   }
   const double peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
@@ -786,8 +802,11 @@ int runBench(const Args& args) {
   w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
   w.field("cold_topology_ms", coldTopologyMs).field("cold_over_warm", coldTopologyMs / std::max(topologyMs, 1e-9));
   w.field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
-  w.field("patches", patchCount).field("peak_rss_mb", peakRssMb).field("output_mb", outputBytes / (1 << 20));
+  // Memory (docs/performance.md): the refinement's peak against the arrays it holds, all levels.
+  w.field("patches", patchCount).field("peak_rss_mb", refinePeakRssMb).field("peak_rss_with_patches_mb", peakRssMb);
+  w.field("output_mb", outputBytes / (1 << 20)).field("peak_over_output", refinePeakRssMb * (1 << 20) / std::max(outputBytes, 1.0));
   w.field("output_bytes_per_vertex", outputBytes / double(std::max<size_t>(outVertices, 1)));
+  w.field("finest_mb", finestBytes / (1 << 20));
   w.field("positions_gbs", positionsGbs).field("triad_gbs", triadGbs).field("positions_over_triad", positionsGbs / triadGbs);
   if (peer) {
     w.key("peer").beginObject().field("what", peerWhat).field("name", peer->name).field("topology_ms", peer->topologyMs);
@@ -808,9 +827,9 @@ int runBench(const Args& args) {
     std::cout << w.str() << "\n";
   } else {
     std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
-                "%zu patches; peak RSS %.1f MB\n",
+                "%zu patches; peak RSS %.1f MB refining (arrays held: %.1f MB, all levels), %.1f MB with the patches\n",
                 o.input.c_str(), scheme.c_str(), o.levels, topologyMs, coldTopologyMs, positionsMs, median(patches), outVertices,
-                outFaces, patchCount, peakRssMb);
+                outFaces, patchCount, refinePeakRssMb, outputBytes / (1 << 20), peakRssMb);
     std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", positionsGbs, triadGbs, 100.0 * positionsGbs / triadGbs);
     if (peer)
       std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", peer->name.c_str(),

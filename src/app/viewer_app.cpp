@@ -1113,7 +1113,9 @@ void ViewerApp::startExport(bool bezierView) {
     exportJob_ = std::async(std::launch::async, [model, options, path, budget, scheme, level] {
       std::string done;
       {
-        const Refinement refinement(*model.mesh, options, model.name, budget);
+        RefineOptions written = options;
+        written.finestVertexRings = false;  // only its faces and points are written
+        const Refinement refinement(*model.mesh, written, model.name, budget);
         // A non-manifold model was refined split: its copies merge back, as `refine` writes it.
         const PolyMesh refined = refinement.splitInput() ? refinement.outputMesh() : refinement.finest().mesh;
         saveObj(path, refined, model.name);

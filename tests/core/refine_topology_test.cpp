@@ -11,6 +11,9 @@
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refine_topology.h"
+#include "core/subdiv/refiner.h"
+#include "core/spline/patch_extraction.h"
+#include <stdexcept>
 #include "support/reference_catmull_clark.h"
 
 using namespace polarview;
@@ -104,6 +107,22 @@ void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Sp
       CHECK(out.links == cornerLinks(reference, rebuilt));
     else
       CHECK(out.links.empty());
+
+    // Without the rings (a finest level): the same faces, edges and vertex flags, no rings; the
+    // rings made afterwards are the full step's.
+    ConnectivityOptions ringless = options;
+    ringless.vertexRings = false;
+    RefinedConnectivity lazy;
+    refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy, ringless);
+    CHECK(lazy.mesh.faceVerts == reference.faceVerts);
+    CHECK(lazy.topology.cornerEdge == rebuilt.cornerEdge);
+    CHECK(lazy.topology.edgeFaces == rebuilt.edgeFaces);
+    CHECK(lazy.topology.vertexOnBoundary == rebuilt.vertexOnBoundary);
+    CHECK(lazy.topology.vertexUsed == rebuilt.vertexUsed);
+    CHECK(lazy.topology.vertexFaces.empty());
+    CHECK(lazy.topology.vertexEdgeStart.empty());
+    completeVertexRings(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy.topology, ringless);
+    requireSameTopology(lazy.topology, rebuilt);
 
     mesh = out.mesh;
     topo = out.topology;
@@ -202,6 +221,14 @@ std::vector<std::pair<std::string, PolyMesh>> testMeshes() {
           {"triangulated grid", randomlyTriangulatedGrid(5, 4, 11)}};
 }
 
+// A cube with a crease and a corner (their sharpness decays through the child's rings).
+PolyMesh creasedCube() {
+  PolyMesh mesh = shapes::cube();
+  mesh.tags.creases.push_back({mesh.faceVerts[0], mesh.faceVerts[1], 2.0});
+  mesh.tags.corners.push_back({mesh.faceVerts[2], 3.0});
+  return mesh;
+}
+
 }  // namespace
 
 // 1 thread, and 2, 3, 7 threads whose parts meet at arbitrary faces and vertices.
@@ -250,4 +277,34 @@ TEST_CASE("Catmull-Clark points are bit-identical on 1, 2, 3 and 7 threads") {
       mesh = std::move(child);
     }
   }
+}
+
+TEST_CASE("a refinement without the finest level's rings: same faces, points and tags; rings made on demand equal the full ones") {
+  const std::vector<std::pair<std::string, PolyMesh>> meshes = {
+      {"mushroom", shapes::mushroom(12)}, {"cap", shapes::polarCap(5, 3)}, {"open grid", shapes::grid(4, 3)}, {"creased cube", creasedCube()}};
+  for (const auto& [name, mesh] : meshes)
+    for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS}) {
+      CAPTURE(name);
+      CAPTURE(int(scheme));
+      RefineOptions options{scheme, 3};
+      const Refinement full(mesh, options);
+      options.finestVertexRings = false;
+      Refinement lazy(mesh, options);
+      const RefinedLevel &a = full.finest(), &b = lazy.finest();
+      CHECK(b.mesh.faceVerts == a.mesh.faceVerts);
+      CHECK(b.mesh.points == a.mesh.points);
+      CHECK(b.topology.edgeVerts == a.topology.edgeVerts);
+      // RTS refines the cap radially, creases decay through the rings: both keep them.
+      if (!lazy.radialOnly() && mesh.tags.creases.empty()) {
+        CHECK_FALSE(lazy.finestHasVertexRings());
+        CHECK(b.topology.vertexFaces.empty());
+        CHECK_THROWS_AS(extractPatches(lazy), std::logic_error);
+      }
+      lazy.completeFinestTopology();
+      CHECK(lazy.finestHasVertexRings());
+      requireSameTopology(b.topology, a.topology);
+      const PatchSet fromFull = extractPatches(full), fromLazy = extractPatches(lazy);
+      REQUIRE(fromLazy.patches.size() == fromFull.patches.size());
+      for (size_t k = 0; k < fromFull.patches.size(); ++k) CHECK(fromLazy.patches[k].cp == fromFull.patches[k].cp);
+    }
 }

@@ -186,7 +186,12 @@ void runRefinements(const PolyMesh& mesh, const Variant& variant, int levels, bo
   PatchSet uniform;
   bool haveUniform = false;
   try {
-    Refinement refinement(mesh, options, kSource, kMaxFinestFaces);
+    // As `refine` and `bench` make it: the finest level's rings left out, then made on demand.
+    RefineOptions ringless = options;
+    ringless.finestVertexRings = false;
+    Refinement refinement(mesh, ringless, kSource, kMaxFinestFaces);
+    gStage = where + ": completeFinestTopology";
+    refinement.completeFinestTopology();
     gStage = where + ": extractPatches(uniform)";
     uniform = extractPatches(refinement);
     haveUniform = true;

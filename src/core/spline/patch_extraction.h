@@ -77,7 +77,9 @@ struct PatchSources {
 };
 
 // Extracts the patches of every level of `refinement` (rules above), with Patch::edgeLevelDelta
-// filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). [O(faces of all levels)]
+// filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). The finest level needs
+// its vertex rings (std::logic_error otherwise: RefineOptions::finestVertexRings,
+// Refinement::completeFinestTopology). [O(faces of all levels)]
 PatchSet extractPatches(const Refinement& refinement);
 // The same patches from a feature-adaptive refinement: only its needed faces give patches, end caps
 // and level jumps (adaptive_refiner.h), so the set equals extractPatches of the uniform refinement

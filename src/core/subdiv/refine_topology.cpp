@@ -103,6 +103,26 @@ class ConnectivityBuilder {
     numberChildFaces();
     sizeTables();
     buildFacesAndEdges();
+    if (options_.vertexRings)
+      buildVertexRings();
+    else
+      buildVertexFlags();
+    releaseToPool(firstChildFace_);
+  }
+
+  // The ring pass alone, over a child whose faces and edges a build without rings made.
+  void completeRings() {
+    parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
+    parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
+    countParts();
+    numberChildFaces();
+    vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
+    childCorners_ = 4 * parentCorners_ + 2 * splitCount_;
+    MeshTopology& t = out_.topology;
+    POLARVIEW_CHECK_EQ(Index(t.cornerEdge.size()), childCorners_);
+    cornerEdge_ = t.cornerEdge.data();
+    ringTables_ = ringJobs();
+    for (const TableJob& job : ringTables_) job.reserve(job.table, job.size);
     buildVertexRings();
     releaseToPool(firstChildFace_);
   }
@@ -199,13 +219,47 @@ class ConnectivityBuilder {
                    tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)), tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
                    tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1)};
     if (options_.childLinks) faceTables_.push_back(tableJob(out_.links, 2 * corners));
-    ringTables_ = {tableJob(mesh.points, vertices), tableJob(t.vertexFaces, corners), tableJob(t.vertexCorners, corners),
-                   tableJob(t.vertexEdges, ringEdges), tableJob(t.vertexFaceStart, vertices + 1),
-                   tableJob(t.vertexEdgeStart, vertices + 1), tableJob(t.vertexOnBoundary, vertices),
-                   tableJob(t.vertexUsed, vertices)};
+    ringTables_ = ringJobs();
+    ringTables_.push_back(tableJob(mesh.points, vertices));
+    if (!options_.vertexRings) ringTables_ = {tableJob(mesh.points, vertices), tableJob(t.vertexOnBoundary, vertices),
+                                              tableJob(t.vertexUsed, vertices)};
     // Allocate (or take from the pool) on the calling thread, in its malloc arena; touch later, on the parts.
     for (const TableJob& job : faceTables_) job.reserve(job.table, job.size);
     for (const TableJob& job : ringTables_) job.reserve(job.table, job.size);
+  }
+
+  // The tables of the ring pass (the points are sized with them when the faces are built).
+  std::vector<TableJob> ringJobs() {
+    MeshTopology& t = out_.topology;
+    const size_t corners = size_t(childCorners_), vertices = size_t(t.vertexCount);
+    const size_t ringEdges = corners + size_t(counts_[parts_].boundaryLeaders + counts_[parts_].boundaryVertices);
+    return {tableJob(t.vertexFaces, corners),       tableJob(t.vertexCorners, corners),
+            tableJob(t.vertexEdges, ringEdges),     tableJob(t.vertexFaceStart, vertices + 1),
+            tableJob(t.vertexEdgeStart, vertices + 1), tableJob(t.vertexOnBoundary, vertices),
+            tableJob(t.vertexUsed, vertices)};
+  }
+
+  // Without rings: the child vertices' boundary and use flags as the ring pass would set them (a
+  // face point is interior, an edge point lies on the boundary with its edge, a vertex point as its
+  // vertex; an unused parent vertex's point is unused).
+  void buildVertexFlags() {
+    touchTables(ringTables_);
+    MeshTopology& t = out_.topology;
+    const Index F = topo_.faceCount, E = topo_.edgeCount, V = topo_.vertexCount;
+    runParts(parts_, [&](unsigned k) {
+      for (Index f = partBound(F, parts_, k); f < partBound(F, parts_, k + 1); ++f) {
+        t.vertexOnBoundary[f] = 0;
+        t.vertexUsed[f] = 1;
+      }
+      for (Index e = partBound(E, parts_, k); e < partBound(E, parts_, k + 1); ++e) {
+        t.vertexOnBoundary[F + e] = topo_.edgeOnBoundary(e);
+        t.vertexUsed[F + e] = 1;
+      }
+      for (Index v = partBound(V, parts_, k); v < partBound(V, parts_, k + 1); ++v) {
+        t.vertexOnBoundary[F + E + v] = topo_.vertexOnBoundary[v];
+        t.vertexUsed[F + E + v] = topo_.vertexUsed[v];
+      }
+    });
   }
 
   // Sizes (first touch: the kernel's page faults, the zero fill) a pass's tables on all parts,
@@ -448,6 +502,18 @@ class ConnectivityBuilder {
 };
 
 }  // namespace
+
+void completeVertexRings(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
+                         const std::vector<uint8_t>* splitCorner, MeshTopology& child, const ConnectivityOptions& options) {
+  // The builder writes a RefinedConnectivity's topology: lend it the child's.
+  RefinedConnectivity connectivity;
+  connectivity.topology = std::move(child);
+  if (splitCorner)
+    ConnectivityBuilder<true>(parent, topo, links, splitCorner->data(), connectivity, options).completeRings();
+  else
+    ConnectivityBuilder<false>(parent, topo, links, nullptr, connectivity, options).completeRings();
+  child = std::move(connectivity.topology);
+}
 
 void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
                                     const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,

@@ -32,6 +32,11 @@ struct RefinedConnectivity {
 
 struct ConnectivityOptions {
   bool childLinks = true;  // fill RefinedConnectivity::links (not needed at the finest level)
+  // Fill the child's vertex rings (vertexFaceStart, vertexFaces, vertexEdgeStart, vertexEdges,
+  // vertexCorners). Without them (a finest level nobody walks around: OpenSubdiv's
+  // fullTopologyInLastLevel = false) those tables stay empty, vertexOnBoundary and vertexUsed are
+  // still filled, and completeVertexRings adds the rings later: a third fewer bytes to write.
+  bool vertexRings = true;
   unsigned threads = 0;    // 0: as many as pay for the mesh size (parallel_for.h); results never depend on it
 };
 
@@ -41,5 +46,11 @@ struct ConnectivityOptions {
 void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
                                     const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
                                     const ConnectivityOptions& options = {});
+
+// The vertex rings a refineCatmullClarkConnectivity(..., vertexRings = false) left out, from the same
+// parent, `links` and `splitCorner`: `child` then equals what the full step gives. [O(corners)]
+void completeVertexRings(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
+                         const std::vector<uint8_t>* splitCorner, MeshTopology& child,
+                         const ConnectivityOptions& options = {});
 
 }  // namespace polarview

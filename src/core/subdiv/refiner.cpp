@@ -135,7 +135,10 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
 // and the child's on return (none after the `finest` level).
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links) {
+namespace {
+
+// The parent corners whose quads C2PS splits (those at its poles); empty when none.
+std::vector<uint8_t> poleCornerSplits(const RefinedLevel& parent, bool splitPoleQuads) {
   std::vector<uint8_t> split;
   if (splitPoleQuads && !parent.poles.empty()) {
     reserveFromPool(split, parent.mesh.faceVerts.size());
@@ -144,19 +147,36 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
       for (Index k = parent.topology.vertexFaceStart[pole.pole]; k < parent.topology.vertexFaceStart[pole.pole + 1]; ++k)
         split[parent.topology.vertexCorners[k]] = 1;
   }
+  return split;
+}
+
+}  // namespace
+
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
+                                   bool vertexRings) {
+  std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
   RefinedConnectivity connectivity;
   ConnectivityOptions options;
   options.childLinks = !finest;
+  options.vertexRings = vertexRings || !finest;
   refineCatmullClarkConnectivity(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, connectivity, options);
   RefinedLevel child;
   child.mesh = std::move(connectivity.mesh);
   child.topology = std::move(connectivity.topology);
   child.faceParent = std::move(connectivity.faceParent);
-  links.swap(connectivity.links);
-  releaseToPool(connectivity.links);  // the parent's, no longer needed
+  if (options.vertexRings) {
+    links.swap(connectivity.links);
+    releaseToPool(connectivity.links);  // the parent's, no longer needed
+  }
   releaseToPool(split);
   for (const PolarConfig& pole : parent.poles) child.poles.push_back(deriveChildConfig(pole, parent.mesh, parent.topology));
   return child;
+}
+
+void completeGenericRings(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child) {
+  std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
+  completeVertexRings(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, child.topology);
+  releaseToPool(split);
 }
 
 // [SECTION] radial levels: RTS/BPS on meshes made only of polar regions
@@ -334,6 +354,10 @@ struct Refinement::Plan {
   std::vector<Index> sourceVertex;  // non-manifold input: per level-0 vertex, the input's (manifold_split.h)
   std::vector<std::vector<RadialRegion>> regions;  // radial mode: per level
   std::string source;
+  // The finest level made without vertex rings (RefineOptions::finestVertexRings): its parent's
+  // corner links, kept for completeFinestTopology.
+  bool finestRingsMissing = false;
+  std::vector<Index> finestParentLinks;
 };
 
 bool refinesRadially(const PolyMesh& base, Scheme scheme) {
@@ -410,7 +434,10 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
       levels_.push_back(refineRadialTopology(plan_->regions.back(), childRegions, sourceName));
       plan_->regions.push_back(std::move(childRegions));
     } else {
-      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links));
+      // Creases decay along the child's edges, found through its rings (childSharpness): kept then.
+      const bool finestRings = options.finestVertexRings || creases;
+      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links,
+                                              finestRings));
       if (creases) {
         const RefinedLevel& parent = levels_[levels_.size() - 2];
         RefinedLevel& child = levels_.back();
@@ -425,7 +452,20 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
     for (size_t f = 0; f < child.faceHole.size(); ++f)
       if (child.faceHole[f]) child.mesh.tags.holes.push_back(Index(f));
   }
+  if (!plan_->radial && options.levels > 0 && !options.finestVertexRings && !creases) {
+    plan_->finestRingsMissing = true;
+    plan_->finestParentLinks = std::move(links);
+  }
   updatePositions(input.points);
+}
+
+bool Refinement::finestHasVertexRings() const { return !plan_->finestRingsMissing; }
+
+void Refinement::completeFinestTopology() {
+  if (!plan_->finestRingsMissing) return;
+  completeGenericRings(levels_[levels_.size() - 2], schemeTraits(options_.scheme).polar(), plan_->finestParentLinks, levels_.back());
+  releaseToPool(plan_->finestParentLinks);
+  plan_->finestRingsMissing = false;
 }
 
 // The big tables go to the pool for the next refinement (table_pool.h).

@@ -87,6 +87,13 @@ class Refinement {
   // [O(corners of all levels)]
   PolyMesh outputMesh() const;
 
+  // Whether the finest level has its vertex rings (RefineOptions::finestVertexRings, or
+  // completeFinestTopology since). Extracting patches or walking around its vertices needs them.
+  bool finestHasVertexRings() const;
+  // Builds the finest level's vertex rings when they were left out; then its MeshTopology equals
+  // buildTopology(finest mesh). [O(corners of the finest level)]
+  void completeFinestTopology();
+
   // Recomputes every level's points from new base points (same count as the base, else
   // std::invalid_argument). [O(output)]
   void updatePositions(const std::vector<Point>& basePoints);

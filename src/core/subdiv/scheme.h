@@ -63,6 +63,11 @@ struct RefineOptions {
   Scheme scheme = Scheme::C2PS;
   int levels = 3;
   bool uniformFirstStep = false;  // paper Section 6: first step's 2-link by uniform bi-3 rules
+  // Refinement (uniform): false leaves the finest level's vertex rings out where Catmull-Clark's
+  // connectivity made it, as OpenSubdiv's RefineUniform does by default (fullTopologyInLastLevel):
+  // a third fewer bytes for a caller that only reads its faces and points (`refine`). Walking
+  // around its vertices (patch extraction) needs Refinement::completeFinestTopology first.
+  bool finestVertexRings = true;
 };
 
 }  // namespace polarview
