@@ -383,9 +383,9 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::Text("refine %.1f, patches %.1f, samples %.1f, upload %.1f ms", s.refineOnlyMs, s.patchesMs, s.samplesMs,
                 s.uploadMs);
     if (s.unparked)
-      ImGui::Text("(a scheme toggle back: its %d patches stayed on the GPU)", s.keptPatches);
+      ImGui::TextWrapped("(a scheme toggle back: the surface stayed on the GPU, nothing was built)");
     else if (s.keptPatches > 0)
-      ImGui::Text("(a level step: %d patches stayed on the GPU)", s.keptPatches);
+      ImGui::TextWrapped("(a level step: %d patches stayed on the GPU)", s.keptPatches);
     if (s.patchLevel > s.shownLevel)
       ImGui::TextWrapped("Poles closed at level %d: %s is not C2 there, so its cap at level %d would show a curvature "
                          "of its own; the rings between are the limit surface.",
