@@ -536,7 +536,7 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
     view.zoomShown = -1;
   }
   view.keptPatches = view.renderer->lastReusedPatches();
-  view.unparked = false;
+  view.unparked = view.reshown = false;
   view.uploadMs = millisecondsSince(start);
   view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
   view.renderer->setPoleMarkers(surface->poles);
@@ -546,8 +546,24 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
 size_t ViewerApp::parkedFaces() const {
   size_t faces = 0;
   for (const ViewRuntime& view : views_)
-    if (view.parked) faces += estimatedLevelFaces(model_, view.parked->key.scheme, view.parked->patchLevel);
+    for (const BuiltSurface* kept : {view.parked.get(), view.previousLevel.get()})
+      if (kept) faces += estimatedLevelFaces(model_, kept->key.scheme, kept->patchLevel);
   return faces;
+}
+
+void ViewerApp::keepPreviousLevel(int v, const BuiltSurface& next) {
+  ViewRuntime& view = views_[size_t(v)];
+  const BuiltSurface* shown = view.shown.get();
+  const bool step = shown && shown->key.model == next.key.model && shown->key.scheme == next.key.scheme &&
+                    shown->key.points == next.key.points && shown->key.level != next.key.level;
+  if (!step) return;
+  size_t faces = parkedFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel);
+  if (view.previousLevel) faces -= estimatedLevelFaces(model_, view.previousLevel->key.scheme, view.previousLevel->patchLevel);
+  for (int w = 0; w < state_.viewCount; ++w)
+    if (views_[size_t(w)].shown)
+      faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
+  view.previousLevel.reset();
+  if (faces <= options_.faceBudget) view.previousLevel = view.shown;
 }
 
 void ViewerApp::parkShown(int v, const BuiltSurface& next) {
@@ -592,6 +608,8 @@ bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
   view.zoomShown = -1;
   view.keptPatches = view.shown->patches.size();
   view.unparked = true;
+  view.reshown = false;
+  view.previousLevel.reset();  // of the other scheme
   view.uploadMs = millisecondsSince(start);
   return true;
 }
@@ -668,6 +686,7 @@ void ViewerApp::updateSurfaces() {
         status.message = outcome->error;
       } else if (outcome->surface->key.sameTopology(wantedKey(v))) {
         parkShown(v, *outcome->surface);
+        keepPreviousLevel(v, *outcome->surface);
         show(v, outcome->surface);
         status.message.clear();
       }
@@ -691,6 +710,10 @@ void ViewerApp::updateSurfaces() {
       view.parked.reset();
       view.parkedRenderer.reset();
     }
+    if (view.previousLevel && (!visible || view.previousLevel->key.model != model_.generation ||
+                               view.previousLevel->key.points != model_.points || !view.shown ||
+                               view.shown->key.scheme != view.previousLevel->key.scheme))
+      view.previousLevel.reset();
     const bool refreshable = view.shown && view.shown->refinement && view.shown->key.sameTopology(wanted) &&
                              !(view.refreshFailed && *view.refreshFailed == wanted);
     bool dirty = visible && (!view.shown || view.shown->key != wanted) && !refreshable &&
@@ -701,6 +724,13 @@ void ViewerApp::updateSurfaces() {
         if (other.shown && other.shown->key == wanted) twin = other.shown;
       }
       if (unpark(v, wanted)) {
+        status.message.clear();
+      } else if (view.previousLevel && view.previousLevel->key == wanted && state_.poleInspector.zoomRing < 0) {
+        // A step back to the level shown before: its surface again (the GPU keeps the shared patches).
+        std::shared_ptr<const BuiltSurface> previous = std::move(view.previousLevel);
+        view.previousLevel = view.shown;
+        show(v, std::move(previous));
+        view.reshown = true;
         status.message.clear();
       } else if (twin) {
         parkShown(v, *twin);
@@ -724,11 +754,13 @@ void ViewerApp::updateSurfaces() {
           if (views_[size_t(w)].shown)
             faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
         if (faces > options_.faceBudget || (view.parked && view.parked->hierarchy == reusable))
-          for (ViewRuntime& other : views_)
+          for (ViewRuntime& other : views_) {
             if (other.parked && (faces > options_.faceBudget || &other == &view)) {
               other.parked.reset();
               other.parkedRenderer.reset();
             }
+            if (faces > options_.faceBudget) other.previousLevel.reset();
+          }
         view.job.start(model_, wanted, options_.faceBudget, reusable);
       }
     }
@@ -749,10 +781,12 @@ void ViewerApp::updateSurfaces() {
       status.controlFaces = view.shown->controlMesh.faceCount();
       // A surface shown again from the park cost nothing to build this time.
       status.unparked = view.unparked;
-      status.refineMs = view.unparked ? 0.0 : view.shown->refineMs;
-      status.refineOnlyMs = view.unparked ? 0.0 : view.shown->refineOnlyMs;
-      status.patchesMs = view.unparked ? 0.0 : view.shown->patchesMs;
-      status.samplesMs = view.unparked ? 0.0 : view.shown->samplesMs;
+      status.reshown = view.reshown;
+      const bool built = !view.unparked && !view.reshown;
+      status.refineMs = built ? view.shown->refineMs : 0.0;
+      status.refineOnlyMs = built ? view.shown->refineOnlyMs : 0.0;
+      status.patchesMs = built ? view.shown->patchesMs : 0.0;
+      status.samplesMs = built ? view.shown->samplesMs : 0.0;
       status.uploadMs = view.uploadMs;
       status.patchLevel = view.shown->patchLevel;
       status.zoomRing = view.zoomShown;
@@ -909,6 +943,7 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   if (wanted.level + 1 > state_.status[size_t(v)].deepestLevel) return;
   const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);
   if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
+  if (view.previousLevel && view.previousLevel->key.level == wanted.level + 1) return;  // kept from before
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
   size_t faces = estimatedLevelFaces(model_, wanted.scheme, next) + parkedFaces();
   for (int w = 0; w < state_.viewCount; ++w)

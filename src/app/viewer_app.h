@@ -159,6 +159,10 @@ class ViewerApp {
     // its points change, or when memory is wanted (parkedFaces counts it against the budget).
     std::unique_ptr<PatchRenderer> parkedRenderer;
     std::shared_ptr<const BuiltSurface> parked;
+    // The surface of the level shown before the last level step (same model, scheme and points):
+    // a step back shows it again (an upload of what the GPU does not hold, nothing built). Counted
+    // and dropped as the parked one.
+    std::shared_ptr<const BuiltSurface> previousLevel;
     SurfaceJob job;
     std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
     std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
@@ -169,6 +173,7 @@ class ViewerApp {
     double uploadMs = 0.0;  // the last show(): packing + upload
     size_t keptPatches = 0;  // patches of it that stayed on the GPU
     bool unparked = false;   // shown by unpark: nothing was built for it this time
+    bool reshown = false;    // the previous level's surface shown again: nothing built, uploaded
   };
 
   static void onDrop(GLFWwindow* window, int count, const char** paths);
@@ -201,8 +206,12 @@ class ViewerApp {
   void parkShown(int v, const BuiltSurface& next);
   // Shows view v's parked surface again (swapping renderers); false when it is not `wanted`.
   bool unpark(int v, const SurfaceKey& wanted);
-  // Faces of the refinements the views keep parked (estimatedLevelFaces), against the budget.
+  // Faces of the refinements the views keep parked or as their previous level
+  // (estimatedLevelFaces), against the budget.
   size_t parkedFaces() const;
+  // Keeps view v's shown surface as its previous level when `next` is a level step of it (same
+  // model, scheme and points), within the budget.
+  void keepPreviousLevel(int v, const BuiltSurface& next);
   // Positions-only updates of the visible views whose surface has the model's topology but older
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
   void refreshEditedViews();

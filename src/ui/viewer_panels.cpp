@@ -384,6 +384,8 @@ void drawStatsPanel(const ViewerState& state) {
                 s.uploadMs);
     if (s.unparked)
       ImGui::TextWrapped("(a scheme toggle back: the surface stayed on the GPU, nothing was built)");
+    else if (s.reshown)
+      ImGui::TextWrapped("(back to the level shown before: nothing was built, %d patches stayed on the GPU)", s.keptPatches);
     else if (s.keptPatches > 0)
       ImGui::TextWrapped("(a level step: %d patches stayed on the GPU)", s.keptPatches);
     if (s.patchLevel > s.shownLevel)

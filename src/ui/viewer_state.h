@@ -49,6 +49,7 @@ struct ViewStatus {
   double uploadMs = 0.0;           // then packing + upload on the GL thread,
   int keptPatches = 0;             //   where this many patches stayed on the GPU (a level step)
   bool unparked = false;           //   shown again from the view's parked surface (a scheme toggle back)
+  bool reshown = false;            //   the level shown before the last step, shown again (nothing built)
   int zoomRing = -1;               // >= 0: the view shows rings zoomRing.. of a pole, zoomed (Poles panel)
   int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
                                    //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
