@@ -127,7 +127,7 @@ ViewerApp::~ViewerApp() {
     glfwMakeContextCurrent(window_);
     for (ViewRuntime& view : views_) {
       view.renderer.reset();
-      view.parkedRenderer.reset();
+      dropParked(view);
     }
     shaders_.reset();
     if (imguiReady_) {
@@ -545,10 +545,29 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
 
 size_t ViewerApp::parkedFaces() const {
   size_t faces = 0;
-  for (const ViewRuntime& view : views_)
-    for (const BuiltSurface* kept : {view.parked.get(), view.previousLevel.get()})
-      if (kept) faces += estimatedLevelFaces(model_, kept->key.scheme, kept->patchLevel);
+  for (const ViewRuntime& view : views_) {
+    // A parked surface keeps its whole hierarchy: every level made, ahead ones too.
+    if (const BuiltSurface* parked = view.parked.get())
+      faces += estimatedLevelFaces(model_, parked->key.scheme,
+                                   std::max(parked->patchLevel, parked->hierarchy ? parked->hierarchy->deepestMade.load() : 0));
+    // The previous level shares the shown surface's hierarchy: its own patches (at most a level's).
+    if (const BuiltSurface* previous = view.previousLevel.get())
+      faces += estimatedLevelFaces(model_, previous->key.scheme, previous->patchLevel);
+  }
   return faces;
+}
+
+size_t ViewerApp::shownFaces() const {
+  size_t faces = 0;
+  for (int w = 0; w < state_.viewCount; ++w)
+    if (const BuiltSurface* shown = views_[size_t(w)].shown.get())
+      faces += estimatedLevelFaces(model_, shown->key.scheme, shown->patchLevel);
+  return faces;
+}
+
+void ViewerApp::dropParked(ViewRuntime& view) {
+  view.parked.reset();
+  view.parkedRenderer.reset();  // its GPU buffers too
 }
 
 void ViewerApp::keepPreviousLevel(int v, const BuiltSurface& next) {
@@ -557,42 +576,29 @@ void ViewerApp::keepPreviousLevel(int v, const BuiltSurface& next) {
   const bool step = shown && shown->key.model == next.key.model && shown->key.scheme == next.key.scheme &&
                     shown->key.points == next.key.points && shown->key.level != next.key.level;
   if (!step) return;
-  size_t faces = parkedFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel);
-  if (view.previousLevel) faces -= estimatedLevelFaces(model_, view.previousLevel->key.scheme, view.previousLevel->patchLevel);
-  for (int w = 0; w < state_.viewCount; ++w)
-    if (views_[size_t(w)].shown)
-      faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
-  view.previousLevel.reset();
-  if (faces <= options_.faceBudget) view.previousLevel = view.shown;
+  view.previousLevel.reset();  // the older one goes first
+  // Memory: every view's surface, the new one and the kept ones within the budget.
+  if (parkedFaces() + shownFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel) <= options_.faceBudget)
+    view.previousLevel = view.shown;
 }
 
 void ViewerApp::parkShown(int v, const BuiltSurface& next) {
   ViewRuntime& view = views_[size_t(v)];
-  if (!view.shown || view.zoomShown >= 0 || view.shown->key.model != next.key.model ||
-      view.shown->key.points != next.key.points || view.shown->key.scheme == next.key.scheme)
+  if (!view.shown || view.shown->key.model != next.key.model || view.shown->key.points != next.key.points ||
+      view.shown->key.scheme == next.key.scheme)
     return;
-  // Memory: every view's surface, the new one and the parked ones within the budget (as the
-  // surfaces made ahead are); the older parked surface of this view goes first.
-  size_t faces = parkedFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel);
-  if (view.parked) faces -= estimatedLevelFaces(model_, view.parked->key.scheme, view.parked->patchLevel);
-  for (int w = 0; w < state_.viewCount; ++w)
-    if (views_[size_t(w)].shown)
-      faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
-  view.parked.reset();
-  if (faces > options_.faceBudget) return;
+  dropParked(view);  // the older parked surface goes first (also when this one cannot be parked)
+  // A zoomed renderer holds other patches than the surface's; memory as in keepPreviousLevel.
+  if (view.zoomShown >= 0 ||
+      parkedFaces() + shownFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel) > options_.faceBudget)
+    return;
   // The shown surface keeps its renderer; the new one goes to the other (made on first use).
-  std::swap(view.renderer, view.parkedRenderer);
+  auto renderer = std::make_unique<PatchRenderer>();
+  std::string log;
+  if (!renderer->init(&log, shaders_)) return;  // not expected: the shaders compiled for the first one
+  view.parkedRenderer = std::move(view.renderer);
+  view.renderer = std::move(renderer);
   view.parked = std::move(view.shown);
-  if (!view.renderer) {
-    auto renderer = std::make_unique<PatchRenderer>();
-    std::string log;
-    if (!renderer->init(&log, shaders_)) {  // not expected: the shaders compiled for the first one
-      std::swap(view.renderer, view.parkedRenderer);
-      view.shown = std::move(view.parked);
-      return;
-    }
-    view.renderer = std::move(renderer);
-  }
 }
 
 bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
@@ -601,10 +607,8 @@ bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
   const auto start = std::chrono::steady_clock::now();
   std::swap(view.renderer, view.parkedRenderer);
   std::swap(view.shown, view.parked);  // the one shown so far is parked in turn
-  if (view.parked && (view.zoomShown >= 0 || view.parked->key.model != wanted.model || view.parked->key.points != wanted.points)) {
-    view.parked.reset();
-    view.parkedRenderer.reset();
-  }
+  if (view.parked && (view.zoomShown >= 0 || view.parked->key.model != wanted.model || view.parked->key.points != wanted.points))
+    dropParked(view);
   view.zoomShown = -1;
   view.keptPatches = view.shown->patches.size();
   view.unparked = true;
@@ -705,11 +709,10 @@ void ViewerApp::updateSurfaces() {
 
     // Start what the settings ask for: reuse another view's surface, else refine in the background.
     // A surface of this topology at older points waits for its positions-only update instead.
-    // A parked surface of another model or older points is of no use any more.
-    if (view.parked && (!visible || view.parked->key.model != model_.generation || view.parked->key.points != model_.points)) {
-      view.parked.reset();
-      view.parkedRenderer.reset();
-    }
+    // A parked surface of another model or older points, or of the scheme shown, is of no use.
+    if (view.parked && (!visible || view.parked->key.model != model_.generation || view.parked->key.points != model_.points ||
+                        (view.shown && view.shown->key.scheme == view.parked->key.scheme)))
+      dropParked(view);
     if (view.previousLevel && (!visible || view.previousLevel->key.model != model_.generation ||
                                view.previousLevel->key.points != model_.points || !view.shown ||
                                view.shown->key.scheme != view.previousLevel->key.scheme))
@@ -747,19 +750,16 @@ void ViewerApp::updateSurfaces() {
         else if (view.parked && view.parked->hierarchy && view.parked->key.model == wanted.model &&
                  view.parked->key.scheme == wanted.scheme)
           reusable = view.parked->hierarchy;
-        // Parked surfaces give their memory to a new refinement that would not fit beside them.
-        size_t faces = parkedFaces() + estimatedLevelFaces(model_, wanted.scheme,
-                                                           patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget));
-        for (int w = 0; w < state_.viewCount; ++w)
-          if (views_[size_t(w)].shown)
-            faces += estimatedLevelFaces(model_, views_[size_t(w)].shown->key.scheme, views_[size_t(w)].shown->patchLevel);
-        if (faces > options_.faceBudget || (view.parked && view.parked->hierarchy == reusable))
+        if (view.parked && view.parked->hierarchy == reusable) dropParked(view);
+        // Kept surfaces give their memory to a new refinement that would not fit beside them.
+        const bool fits = parkedFaces() + shownFaces() +
+                              estimatedLevelFaces(model_, wanted.scheme,
+                                                  patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget)) <=
+                          options_.faceBudget;
+        if (!fits)
           for (ViewRuntime& other : views_) {
-            if (other.parked && (faces > options_.faceBudget || &other == &view)) {
-              other.parked.reset();
-              other.parkedRenderer.reset();
-            }
-            if (faces > options_.faceBudget) other.previousLevel.reset();
+            dropParked(other);
+            other.previousLevel.reset();
           }
         view.job.start(model_, wanted, options_.faceBudget, reusable);
       }

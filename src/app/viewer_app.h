@@ -145,6 +145,7 @@ class ViewerApp {
   glm::dvec3 modelMax() const { return modelMax_; }
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
   const BuiltSurface* shownSurface(int v) const { return views_[size_t(v)].shown.get(); }
+  const BuiltSurface* parkedSurface(int v) const { return views_[size_t(v)].parked.get(); }
   // View v's renderer (what is on the GPU), for tests.
   const PatchRenderer& renderer(int v) const { return *views_[size_t(v)].renderer; }
   uint64_t modelGeneration() const { return model_.generation; }
@@ -176,6 +177,8 @@ class ViewerApp {
     bool reshown = false;    // the previous level's surface shown again: nothing built, uploaded
   };
 
+  // Frees a view's parked surface and its renderer's GPU buffers (needs the GL context).
+  static void dropParked(ViewRuntime& view);
   static void onDrop(GLFWwindow* window, int count, const char** paths);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   // Hands this frame's share of the queued input events to ImGui's GLFW backend.
@@ -202,12 +205,14 @@ class ViewerApp {
   // (ViewerOptions::prepareNextLevel).
   void prepareNextLevel(int v, const SurfaceKey& wanted);
   // Keeps view v's shown surface (and its renderer) when `next` replaces it with another scheme's
-  // surface of the same model and points at the same level, so a toggle back is a swap.
+  // surface of the same model and points, within the budget, so a toggle back is a swap.
   void parkShown(int v, const BuiltSurface& next);
+  // The faces of the surfaces the visible views show (estimatedLevelFaces of their patch levels).
+  size_t shownFaces() const;
   // Shows view v's parked surface again (swapping renderers); false when it is not `wanted`.
   bool unpark(int v, const SurfaceKey& wanted);
-  // Faces of the refinements the views keep parked or as their previous level
-  // (estimatedLevelFaces), against the budget.
+  // Faces of the refinements the views keep parked (every level their hierarchies made) or as their
+  // previous level (estimatedLevelFaces), against the budget.
   size_t parkedFaces() const;
   // Keeps view v's shown surface as its previous level when `next` is a level step of it (same
   // model, scheme and points), within the budget.

@@ -25,6 +25,12 @@ done
 a=$("$exe" bench "$tmp/cap64.obj" --scheme c2ps --levels 3 --adaptive --reps 1 --json | field patches)
 u=$("$exe" bench "$tmp/cap64.obj" --scheme c2ps --levels 3 --reps 1 --json | field patches)
 [ "$a" -eq "$u" ] || fail "c2ps level 3: $a adaptive patches, $u uniform"
+# A level the viewer does not offer (its cap is 24): the bench still times its own path and says why
+# it did not time the viewer's step.
+"$exe" shape cap --valence 7 --links 3 -o "$tmp/cap7.obj"
+json=$("$exe" bench "$tmp/cap7.obj" --scheme rts --levels 25 --adaptive --reps 1 --json) || fail "rts level 25: bench failed"
+echo "$json" | python3 -c "import json,sys; d=json.load(sys.stdin); assert d['made_ahead_ms'] is None and 'refused' in d['viewer_step'] and d['patches'] > 0, d" \
+  || fail "rts level 25: $json"
 # --edit without --adaptive is a usage error.
 set +e
 "$exe" bench "$tmp/cap64.obj" --scheme cc --levels 1 --edit > /dev/null 2>&1

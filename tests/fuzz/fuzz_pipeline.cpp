@@ -186,10 +186,11 @@ void runRefinements(const PolyMesh& mesh, const Variant& variant, int levels, bo
   PatchSet uniform;
   bool haveUniform = false;
   try {
-    // As `refine` and `bench` make it: the finest level's rings left out, then made on demand.
-    RefineOptions ringless = options;
-    ringless.finestVertexRings = false;
-    Refinement refinement(mesh, ringless, kSource, kMaxFinestFaces);
+    // Every other input as `refine` and `bench` make it: the finest level's rings left out, then
+    // made on demand (both paths stay fuzzed).
+    RefineOptions uniformOptions = options;
+    uniformOptions.finestVertexRings = (mesh.faceVerts.size() + size_t(levels)) % 2 == 0;
+    Refinement refinement(mesh, uniformOptions, kSource, kMaxFinestFaces);
     gStage = where + ": completeFinestTopology";
     refinement.completeFinestTopology();
     gStage = where + ": extractPatches(uniform)";

@@ -468,7 +468,6 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   toggle(SchemeChoice::C2PS);
   CHECK(app->shownSurface(0) == c2ps);  // not rebuilt
   CHECK(state.status[0].unparked);
-  CHECK(state.status[0].patchesMs == 0.0);
   CHECK(app->renderer(0).patchCount() == int(c2ps->patches.size()));
   const RgbaImage again = app->renderImage(400, 300, 1, false);
   CHECK(again.pixels == before.pixels);
@@ -489,6 +488,34 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   CHECK(edited->key.points == app->model().points);
   const double scale = glm::length(app->modelMax() - app->modelMin());
   checkSamePatches(edited->patches, buildSurface(app->model(), edited->key, kDefaultFaceBudget)->patches, 1e-12 * scale);
+}
+
+TEST_CASE("scheme toggles: a parked surface counts every level its refinement holds against the budget") {
+  // A budget for one C2PS level 8 and a half: a parked C2PS surface shown at level 4 still holds
+  // level 8 (stepped down from it), so C2PS-U 8 beside it would not fit: the parked one goes.
+  std::unique_ptr<ViewerApp> probe = makeHiddenApp(400, 300);
+  probe->loadDefaultModel();
+  const size_t level8 = estimatedLevelFaces(probe->model(), SchemeChoice::C2PS, 8);
+  probe.reset();
+  auto app = makeHiddenApp(400, 300, level8 + level8 / 2);
+  app->loadDefaultModel();
+  ViewerState& state = app->state();
+  auto show = [&](SchemeChoice scheme, int level) {
+    state.views[0].scheme = scheme;
+    state.views[0].level = level;
+    app->runFrame();
+    app->waitUntilIdle();
+    app->runFrame();
+    REQUIRE(app->shownSurface(0)->key.scheme == scheme);
+    REQUIRE(app->shownSurface(0)->key.level == level);
+  };
+  show(SchemeChoice::C2PS, 8);
+  show(SchemeChoice::C2PS, 4);  // the same refinement, stepped down: it keeps level 8
+  REQUIRE(app->shownSurface(0)->hierarchy->deepestMade.load() >= 8);
+  show(SchemeChoice::C2PSUniformFirstStep, 4);
+  REQUIRE(app->parkedSurface(0) != nullptr);  // C2PS parked (8 + 4 + 4 levels' faces fit)
+  show(SchemeChoice::C2PSUniformFirstStep, 8);
+  CHECK(app->parkedSurface(0) == nullptr);  // it went for C2PS-U 8's refinement
 }
 
 }  // namespace polarview

@@ -97,10 +97,7 @@ class ConnectivityBuilder {
       : parent_(parent), topo_(topo), parentLinks_(links.data()), split_(splitCorner), out_(out), options_(options) {}
 
   void build() {
-    parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
-    parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
-    countParts();
-    numberChildFaces();
+    countAndNumber();
     sizeTables();
     buildFacesAndEdges();
     if (options_.vertexRings)
@@ -112,12 +109,7 @@ class ConnectivityBuilder {
 
   // The ring pass alone, over a child whose faces and edges a build without rings made.
   void completeRings() {
-    parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
-    parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
-    countParts();
-    numberChildFaces();
-    vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
-    childCorners_ = 4 * parentCorners_ + 2 * splitCount_;
+    countAndNumber();
     MeshTopology& t = out_.topology;
     POLARVIEW_CHECK_EQ(Index(t.cornerEdge.size()), childCorners_);
     cornerEdge_ = t.cornerEdge.data();
@@ -128,6 +120,17 @@ class ConnectivityBuilder {
   }
 
  private:
+  // What both passes need first: the parts, their counts, the split corners' child faces, and
+  // where the child's vertex points and corners start.
+  void countAndNumber() {
+    parentCorners_ = static_cast<Index>(parent_.faceVerts.size());
+    parts_ = options_.threads ? options_.threads : threadsFor(size_t(parentCorners_));
+    countParts();
+    numberChildFaces();
+    vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
+    childCorners_ = 4 * parentCorners_ + 2 * splitCount_;
+  }
+
   // Parent corner links (cornerLinks): the twin of c and the corner after the twin.
   Index twinOf(Index c) const { return parentLinks_[2 * size_t(c)]; }
   Index twinNextOf(Index c) const { return parentLinks_[2 * size_t(c) + 1]; }
@@ -202,15 +205,12 @@ class ConnectivityBuilder {
   // and 1 per corner (+1 per split).
   void sizeTables() {
     const Index C = parentCorners_;
-    vertexPointBase_ = topo_.faceCount + topo_.edgeCount;
-    childCorners_ = 4 * C + 2 * splitCount_;
     MeshTopology& t = out_.topology;
     t.vertexCount = topo_.faceCount + topo_.edgeCount + topo_.vertexCount;
     t.faceCount = C + splitCount_;
     t.edgeCount = 2 * topo_.edgeCount + C + splitCount_;
     POLARVIEW_CHECK_EQ(counts_[parts_].newEdges, t.edgeCount);
     const size_t corners = size_t(childCorners_), faces = size_t(t.faceCount) + 1, vertices = size_t(t.vertexCount);
-    const size_t ringEdges = corners + size_t(counts_[parts_].boundaryLeaders + counts_[parts_].boundaryVertices);
     PolyMesh& mesh = out_.mesh;
     mesh.faceLine.clear();
     if (!options_.childLinks) out_.links.clear();

@@ -131,10 +131,6 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 
 }  // namespace
 
-// One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
-// with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
-// into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
-// and the child's on return (none after the `finest` level).
 namespace {
 
 // The parent corners whose quads C2PS splits (those at its poles); empty when none.
@@ -152,6 +148,11 @@ std::vector<uint8_t> poleCornerSplits(const RefinedLevel& parent, bool splitPole
 
 }  // namespace
 
+// One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
+// with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
+// into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
+// and the child's on return (none after the `finest` level; the parent's still when that one is
+// made without `vertexRings`, for completeGenericRings).
 RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
                                    bool vertexRings) {
   std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
