@@ -17,6 +17,7 @@
 
 #include "core/mesh/check.h"
 #include "core/subdiv/parallel_for.h"
+#include "core/subdiv/prefetch.h"
 #include "core/subdiv/table_pool.h"
 
 namespace polarview {
@@ -74,14 +75,6 @@ TableJob tableJob(std::vector<T>& table, size_t size) {
           &table, size};
 }
 
-// Asks for a cache line that a later iteration reads at a data-dependent place.
-inline void prefetch(const void* address) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address);
-#else
-  (void)address;
-#endif
-}
 constexpr Index kPrefetchDistance = 16;  // ring entries ahead
 
 // Where a ring-writing pass stands: the child vertex, its ring's first entry, the next entries.
