@@ -332,9 +332,15 @@ class ConnectivityBuilder {
     auto emit = [&](Index x, Index vertex, Index nextVertex, Index face, Index twin, Index twinNext) {
       emitCorner(x, vertex, nextVertex, face, twin, twinNext, partFirstCorner, nextEdge, deferred);
     };
+    const Index cornerEnd = parent_.faceStart[fEnd];
     for (Index f = fBegin; f < fEnd; ++f) {
       const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
       for (Index c = begin; c < end; ++c) {
+        // The twins' edges a few corners ahead lie elsewhere in the child (their own faces).
+        if (c + kPrefetchDistance < cornerEnd) {
+          const Index ahead = c + kPrefetchDistance;
+          if (twinNextOf(ahead) >= 0) prefetch(cornerEdge_ + base(twinNextOf(ahead)));
+        }
         const Index prev = c == begin ? end - 1 : c - 1, next = c + 1 == end ? begin : c + 1;
         const Index V = vertexPointBase_ + parentVerts[c], Ea = edgePointBase + parentEdge[c],
                     Eb = edgePointBase + parentEdge[prev], F = f;
