@@ -3,6 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <tuple>
@@ -470,5 +474,30 @@ TEST_CASE("adaptive: creases away from the poles in C2PS, RTS and BPS meshes: Ca
     const PatchSet a = extractPatches(creased), b = extractPatches(plain);
     CHECK(a.count(PatchKind::PoleCap) == b.count(PatchKind::PoleCap));
     CHECK(a.count(PatchKind::Boundary) > b.count(PatchKind::Boundary));
+  }
+}
+
+TEST_CASE("adaptive: the same patches as uniform refinement on OpenSubdiv's regression shapes (where kept), every scheme") {
+  // The workplace keeps them beside the project (shared/meshes/opensubdiv; POLARVIEW_OSD_SHAPES
+  // overrides), their `t` tags commented out as `#t`: read with the tags. The sparse steps meet
+  // creases, holes, non-manifold splits, boundaries and n-gons here.
+  const char* override = std::getenv("POLARVIEW_OSD_SHAPES");
+  const std::filesystem::path dir = override ? override : POLARVIEW_OSD_SHAPES;
+  if (!std::filesystem::is_directory(dir)) {
+    MESSAGE("OpenSubdiv's regression shapes not found at ", dir.string(), ": skipped");
+    return;
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().extension() == ".obj") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const std::filesystem::path& file : files) {
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (size_t at = text.find("\n#t "); at != std::string::npos; at = text.find("\n#t ", at + 1)) text.erase(at + 1, 1);
+    const PolyMesh mesh = parseObjText(text, file.filename().string());
+    // Levels as deep as keep the uniform side small (it grows as 4^L).
+    const int levels = mesh.faceCount() > 2000 ? 3 : mesh.faceCount() > 200 ? 4 : 5;
+    checkAgainstUniform(mesh, file.filename().string(), levels);
   }
 }

@@ -1,7 +1,8 @@
 // Feature-adaptive refinement (rules and exactness: adaptive_refiner.h).
 // [SECTION] selecting the faces to refine
 // [SECTION] the selection as a mesh of its own
-// [SECTION] which child vertices are exact
+// [SECTION] the radial step (RTS/BPS caps and globes, the tail's poles)
+// [SECTION] the sparse step (Catmull-Clark and C2PS connectivity)
 // [SECTION] AdaptiveRefinement
 #include "core/subdiv/adaptive_refiner.h"
 
@@ -21,10 +22,9 @@ namespace polarview {
 
 namespace {
 
-// Rings of support around the faces refined: Catmull-Clark's stencils reach one ring, and a child
-// face's 4x4 stencil reads children of the parent's next ring, so two rings keep every needed
-// stencil exact. Radial steps read up to two rows beyond (the cubic radial rules and (11)): three.
-constexpr int kGenericSupportRings = 2;
+// Rings of support around the faces a radial step refines (RTS/BPS caps and globes, the tail's
+// poles), copied out whole: the cubic radial rules and (11) read up to two rows beyond. Catmull-Clark
+// and C2PS steps are sparse and need none (adaptive_refiner.h).
 constexpr int kRadialSupportRings = 3;
 // RTS/BPS outside caps and globes run on C2PS's connectivity (the polar valence doubles a level,
 // with points from each pole's own radial grid refined periodically). From this level on a pole's
@@ -116,7 +116,9 @@ PolarConfig truncatedConfig(const PolarConfig& config, const std::vector<uint8_t
   sub.pole = toSub[config.pole];
   sub.links.resize(size_t(links) * config.valence);
   for (size_t k = 0; k < sub.links.size(); ++k) sub.links[k] = toSub[config.links[k]];
-  if (links < config.linkCount) {
+  // A radial part must end at a boundary or a pole: where its configuration runs into the rest of
+  // a (sparse) level, its last link is a cut.
+  if (links < config.linkCount || (radial && config.outer == PolarConfig::Outer::Mesh)) {
     sub.linkCount = links;
     sub.regularLinks = std::min(config.regularLinks, links);
     // The cut is a boundary of the copied-out mesh: a radial step then treats the part as a cap.
@@ -144,14 +146,24 @@ struct CopiedPart {
   std::vector<Index> anchors;
 };
 
+// A sparse Catmull-Clark/C2PS step of level m (adaptive_refiner.h): the children of its faces at
+// the corners of the selected vertices, made from level m itself. What the points need again.
+struct SparsePart {
+  SparseChildVertices children;       // per child vertex its parent element (catmull_clark.h)
+  std::vector<Index> parentVertices;  // the level m vertices the rules read: the corners of the faces refined
+  std::vector<uint32_t> parentFrame;  // ... and the child frame (component) each is read in
+  std::vector<Index> anchors;         // per component: the level m vertex its frame is anchored at
+};
+
 struct AdaptiveRefinement::Step {
-  // Refined by Catmull-Clark's connectivity (+ C2PS's split pole corners), or radially in caps and
-  // globes (radial_). In a tail step (RTS/BPS outside caps and globes, from kRadialTailLevel on) the
-  // poles' regions were refined radially apart; their points come from each pole's own radial
-  // grid, so the step keeps nothing of them.
-  CopiedPart generic;
+  // Refined sparsely by Catmull-Clark's connectivity (+ C2PS's split pole corners), or (radial_)
+  // radially in caps and globes, copied out. In a tail step (RTS/BPS outside caps and globes, from
+  // kRadialTailLevel on) the poles' regions were refined radially apart; their points come from
+  // each pole's own radial grid, so the step keeps nothing of them.
+  SparsePart sparse;
+  CopiedPart radial;
   // The child's frames (RefinedLevel::frameOrigins): per frame the level m vertex it is anchored at
-  // (the generic part's components, then the tail's pole regions).
+  // (the sparse or radial part's components, then the tail's pole regions).
   std::vector<Index> frameAnchors;
 };
 
@@ -283,106 +295,44 @@ void appendLevel(RefinedLevel& into, const RefinedLevel& part, uint32_t frameBas
   }
 }
 
-// [SECTION] which child vertices are exact
+// [SECTION] the radial step (RTS/BPS caps and globes, the tail's poles)
 
-// Catmull-Clark (and C2PS) step: exactness and completeness of the child vertices [F | E | V] of
-// `sub`, from those of the parent (`ok`: exact, per sub vertex; `full`: its faces in sub are the
-// uniform level's) (adaptive_refiner.h).
-void markGenericChildren(const RefinedLevel& sub, const std::vector<uint8_t>& ok, const std::vector<uint8_t>& full,
-                         const RefinedLevel& child, std::vector<uint8_t>& exact, std::vector<uint8_t>& complete) {
-  const MeshTopology& topo = sub.topology;
-  const PolyMesh& mesh = sub.mesh;
-  exact.assign(child.mesh.vertexCount(), 0);
-  complete.assign(child.mesh.vertexCount(), 0);
-  std::vector<uint8_t> faceOk(mesh.faceCount(), 1);
-  for (Index f = 0; f < mesh.faceCount(); ++f)
-    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) faceOk[f] &= ok[mesh.faceVerts[c]];
-  for (Index f = 0; f < topo.faceCount; ++f) {
-    exact[ccFacePoint(topo, f)] = faceOk[f];
-    complete[ccFacePoint(topo, f)] = 1;
-  }
-  for (Index e = 0; e < topo.edgeCount; ++e) {
-    const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
-    const Index child0 = ccEdgePoint(topo, e);
-    if (!topo.edgeOnBoundary(e)) {
-      exact[child0] = faceOk[topo.edgeFaces[2 * e]] && faceOk[topo.edgeFaces[2 * e + 1]];
-      complete[child0] = 1;
-    } else {  // a real boundary when an end sees all its uniform faces
-      const bool real = full[a] || full[b];
-      exact[child0] = real && ok[a] && ok[b];
-      complete[child0] = real;
-    }
-  }
-  for (Index v = 0; v < topo.vertexCount; ++v) {
-    bool all = full[v];
-    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1] && all; ++k) all = faceOk[topo.vertexFaces[k]];
-    exact[ccVertexPoint(topo, v)] = all;
-    complete[ccVertexPoint(topo, v)] = full[v];
-  }
-}
-
-// Refines a copied-out part one step: radially (its regions) or by Catmull-Clark's connectivity
-// with the scheme's polar overrides; the child's faceParent is mapped back to level m, and the
-// exactness and completeness of its vertices follow the rules in adaptive_refiner.h.
-void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::string& source, RefinedLevel& child,
-                std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) {
+// Refines a copied-out part one radial step (its regions); the child's faceParent is mapped back to
+// level m, and the exactness and completeness of its vertices follow the rows the rules read.
+void refineRadialPart(CopiedPart& part, const std::string& source, RefinedLevel& child, std::vector<uint8_t>& childExact,
+                      std::vector<uint8_t>& childComplete) {
   const std::vector<uint8_t>& ok = part.ok;
   const std::vector<uint8_t>& full = part.full;
-  if (radialPart) {
-    part.regions = findRadialRegions(part.sub);
-    if (part.regions.empty() && part.sub.mesh.faceCount() > 0)
-      throw std::logic_error("adaptive refinement: the selection is not made of polar regions");
-    child = refineRadialTopology(part.regions, part.childRegions, source);
-    childExact.assign(child.mesh.vertexCount(), 0);
-    childComplete.assign(child.mesh.vertexCount(), 0);
-    for (size_t r = 0; r < part.regions.size(); ++r) {
-      const RadialRegion& parent = part.regions[r];
-      const RadialRegion& region = part.childRegions[r];
-      // Parent rows exact in a row (0..K, then B); the last ring of an open region counts when
-      // it is a real boundary (kept in place by the rule) and not a cut.
-      auto rowOk = [&](int row) {
-        const int n = parent.n;
-        for (int j = 0; j < (row == 0 || row == parent.links + 1 ? 1 : n); ++j) {
-          const Index v = parent.vertexIds[row == 0 ? 0 : row == parent.links + 1 ? parent.vertexIds.size() - 1 : 1 + size_t(row - 1) * n + j];
-          if (!ok[v] || (!parent.closed && row == parent.links && !full[v])) return false;
-        }
-        return true;
-      };
-      std::vector<uint8_t> prefixOk(size_t(parent.rowCount()), 0);  // rows 0..r all exact
-      for (int row = 0; row < parent.rowCount(); ++row) prefixOk[row] = rowOk(row) && (row == 0 || prefixOk[row - 1]);
-      const bool realRim = parent.closed || prefixOk[parent.links];
-      for (int row = 0; row < region.rowCount(); ++row) {
-        // A child row reads parent rows up to row / 2 + 2 (a closed region: all of them).
-        const int reads = parent.closed ? parent.rowCount() - 1 : std::min(parent.links, row / 2 + 2);
-        const bool rowExact = prefixOk[reads];
-        const bool rowComplete = parent.closed || row < region.links || realRim;
-        for (int j = 0; j < (row == 0 || row == region.links + 1 ? 1 : region.n); ++j) {
-          childExact[region.vertex(row, j)] = rowExact;
-          childComplete[region.vertex(row, j)] = rowComplete;
-        }
+  part.regions = findRadialRegions(part.sub);
+  if (part.regions.empty() && part.sub.mesh.faceCount() > 0)
+    throw std::logic_error("adaptive refinement: the selection is not made of polar regions");
+  child = refineRadialTopology(part.regions, part.childRegions, source);
+  childExact.assign(child.mesh.vertexCount(), 0);
+  childComplete.assign(child.mesh.vertexCount(), 0);
+  for (size_t r = 0; r < part.regions.size(); ++r) {
+    const RadialRegion& parent = part.regions[r];
+    const RadialRegion& region = part.childRegions[r];
+    // Parent rows exact in a row (0..K, then B); the last ring of an open region counts when
+    // it is a real boundary (kept in place by the rule) and not a cut.
+    auto rowOk = [&](int row) {
+      const int n = parent.n;
+      for (int j = 0; j < (row == 0 || row == parent.links + 1 ? 1 : n); ++j) {
+        const Index v = parent.vertexIds[row == 0 ? 0 : row == parent.links + 1 ? parent.vertexIds.size() - 1 : 1 + size_t(row - 1) * n + j];
+        if (!ok[v] || (!parent.closed && row == parent.links && !full[v])) return false;
       }
-    }
-  } else {
-    std::vector<Index> links = cornerLinks(part.sub.mesh, part.sub.topology);
-    const SchemeTraits& traits = schemeTraits(scheme);
-    child = refineGenericTopology(part.sub, traits.polar(), true, links);
-    if (!part.sub.sharpness.empty()) child.sharpness = childSharpness(part.sub.topology, part.sub.sharpness, child.topology);
-    markGenericChildren(part.sub, ok, full, child, childExact, childComplete);
-    if (traits.polar() && !traits.keepsValence) {
-      // C2PS: rules (1)-(3) read links 0..2 of the parent pole and write the child's pole, links 1, 2.
-      for (size_t k = 0; k < child.poles.size(); ++k) {
-        const PolarConfig& parent = part.sub.poles[k];
-        bool gridOk = ok[parent.pole];
-        for (size_t i = 0; i < size_t(std::min(2, parent.linkCount)) * parent.valence; ++i) gridOk = gridOk && ok[parent.links[i]];
-        const PolarConfig& config = child.poles[k];
-        childExact[config.pole] = gridOk;
-        for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[config.links[i]] = gridOk;
-      }
-    } else if (traits.keepsValence) {
-      // The pole's own radial grid (kept whole to the links used) owns the configuration's links.
-      for (const PolarConfig& config : child.poles) {
-        childExact[config.pole] = 1;
-        for (Index v : config.links) childExact[v] = 1;
+      return true;
+    };
+    std::vector<uint8_t> prefixOk(size_t(parent.rowCount()), 0);  // rows 0..r all exact
+    for (int row = 0; row < parent.rowCount(); ++row) prefixOk[row] = rowOk(row) && (row == 0 || prefixOk[row - 1]);
+    const bool realRim = parent.closed || prefixOk[parent.links];
+    for (int row = 0; row < region.rowCount(); ++row) {
+      // A child row reads parent rows up to row / 2 + 2 (a closed region: all of them).
+      const int reads = parent.closed ? parent.rowCount() - 1 : std::min(parent.links, row / 2 + 2);
+      const bool rowExact = prefixOk[reads];
+      const bool rowComplete = parent.closed || row < region.links || realRim;
+      for (int j = 0; j < (row == 0 || row == region.links + 1 ? 1 : region.n); ++j) {
+        childExact[region.vertex(row, j)] = rowExact;
+        childComplete[region.vertex(row, j)] = rowComplete;
       }
     }
   }
@@ -393,6 +343,267 @@ void refinePart(CopiedPart& part, bool radialPart, Scheme scheme, const std::str
     for (Index c = child.mesh.faceStart[f]; c < child.mesh.faceStart[f + 1]; ++c) child.vertexFrame[size_t(child.mesh.faceVerts[c])] = frame;
   }
   for (Index& parent : child.faceParent) parent = part.subFaces[parent];
+}
+
+// [SECTION] the sparse step (Catmull-Clark and C2PS connectivity)
+
+// Whether the selected corners of face f form more than one run around it. [O(face size)]
+bool selectedCornersSplit(const PolyMesh& mesh, Index f, const std::vector<uint8_t>& selected) {
+  const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+  int runs = 0;
+  for (Index c = begin; c < end; ++c)
+    runs += selected[size_t(mesh.faceVerts[c])] && !selected[size_t(mesh.faceVerts[c == begin ? end - 1 : c - 1])];
+  return runs > 1;
+}
+
+// The vertices whose corners a sparse step refines: the corners of the faces to refine, closed so
+// that the selected corners of every face are consecutive (two runs would join two fans of child
+// faces at its face point: not manifold). [O(faces around the selection)]
+std::vector<uint8_t> selectVertices(const RefinedLevel& level, const std::vector<uint8_t>& refine) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  std::vector<uint8_t> selected(size_t(mesh.vertexCount()), 0);
+  std::vector<Index> queue;
+  auto select = [&](Index f) {
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+      if (!selected[size_t(mesh.faceVerts[c])]) selected[size_t(mesh.faceVerts[c])] = 1, queue.push_back(mesh.faceVerts[c]);
+  };
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    if (refine[size_t(f)]) select(f);
+  while (!queue.empty()) {
+    const Index v = queue.back();
+    queue.pop_back();
+    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
+      if (selectedCornersSplit(mesh, topo.vertexFaces[k], selected)) select(topo.vertexFaces[k]);
+  }
+  return selected;
+}
+
+// Faces with a selected corner: those a sparse step gives children. [O(corners)]
+std::vector<uint8_t> facesTouching(const RefinedLevel& level, const std::vector<uint8_t>& selected) {
+  const PolyMesh& mesh = level.mesh;
+  std::vector<uint8_t> touched(size_t(mesh.faceCount()), 0);
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1] && !touched[size_t(f)]; ++c)
+      touched[size_t(f)] = selected[size_t(mesh.faceVerts[c])];
+  return touched;
+}
+
+// C2PS's split corners (each quad at a pole's corner becomes two triangles): per corner of `level`;
+// empty when there is no pole.
+std::vector<uint8_t> splitPoleCorners(const RefinedLevel& level, const std::vector<PolarConfig>& poles) {
+  std::vector<uint8_t> split;
+  if (poles.empty()) return split;
+  split.assign(level.mesh.faceVerts.size(), 0);
+  for (const PolarConfig& pole : poles)
+    for (Index k = level.topology.vertexFaceStart[pole.pole]; k < level.topology.vertexFaceStart[pole.pole + 1]; ++k)
+      split[size_t(level.topology.vertexCorners[k])] = 1;
+  return split;
+}
+
+// Faces a sparse step makes: one per selected corner, two where split. [O(corners)]
+size_t sparseChildFaces(const RefinedLevel& level, const std::vector<uint8_t>& selected, const std::vector<uint8_t>& split) {
+  size_t faces = 0;
+  for (size_t c = 0; c < level.mesh.faceVerts.size(); ++c)
+    if (selected[size_t(level.mesh.faceVerts[c])]) faces += split.empty() || !split[c] ? 1 : 2;
+  return faces;
+}
+
+// A pole's configuration in the sparse child: deriveChildConfig of its links up to the first that
+// is not wholly selected (I selected links give child links 1..2I, and 2I+1 from the radial edges
+// and faces beyond when there is a link I+1), mapped to the child's numbering by `childOf`.
+template <class ChildOf>
+PolarConfig sparseChildConfig(const RefinedLevel& level, const PolarConfig& config, const std::vector<uint8_t>& selected,
+                              ChildOf childOf) {
+  if (!selected[size_t(config.pole)]) throw std::logic_error("adaptive refinement: a pole's fan was not refined");
+  const int n = config.valence, K = config.linkCount;
+  int whole = 0;  // links 1..whole are selected
+  while (whole < K) {
+    bool all = true;
+    for (int j = 0; j < n && all; ++j) all = selected[size_t(config.links[size_t(whole) * n + j])];
+    if (!all) break;
+    ++whole;
+  }
+  PolarConfig parent = config;
+  parent.linkCount = std::min(K, whole + 1);
+  parent.regularLinks = std::min(parent.regularLinks, parent.linkCount);
+  parent.links.resize(size_t(parent.linkCount) * n);
+  PolarConfig child = deriveChildConfig(parent, level.mesh, level.topology);
+  const int links = whole == K ? 2 * K : 2 * whole + 1;
+  child.linkCount = links;
+  child.regularLinks = std::min(child.regularLinks, links);
+  child.links.resize(size_t(links) * child.valence);
+  child.pole = childOf(child.pole);
+  for (Index& v : child.links) {
+    v = childOf(v);
+    if (v < 0) throw std::logic_error("adaptive refinement: a pole's link was not refined");
+  }
+  if (whole < K || (config.oppositePole >= 0 && !selected[size_t(config.oppositePole)])) {
+    child.outer = PolarConfig::Outer::Mesh;
+    child.oppositePole = -1;
+  } else if (config.oppositePole >= 0) {
+    child.oppositePole = childOf(child.oppositePole);
+  }
+  return child;
+}
+
+// Precision (adaptive_refiner.h): the components of the faces refined (sharing corners), each
+// anchored at its pole where it has one, else at its first vertex; every point a rule reads lies
+// in one of them. Fills part.parentVertices, parentFrame, anchors; returns the component of each
+// level m vertex (-1: not read). [O(level m)]
+std::vector<int32_t> sparseComponents(const RefinedLevel& level, const std::vector<uint8_t>& touched, const std::vector<PolarConfig>& poles,
+                                      SparsePart& part) {
+  const PolyMesh& mesh = level.mesh;
+  std::vector<Index> parent(size_t(mesh.vertexCount()), -1);
+  auto find = [&](Index v) {
+    while (parent[size_t(v)] != v) v = parent[size_t(v)] = parent[size_t(parent[size_t(v)])];
+    return v;
+  };
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    if (touched[size_t(f)])
+      for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) parent[size_t(mesh.faceVerts[c])] = mesh.faceVerts[c];
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    if (touched[size_t(f)])
+      for (Index c = mesh.faceStart[f] + 1; c < mesh.faceStart[f + 1]; ++c) {
+        const Index a = find(mesh.faceVerts[mesh.faceStart[f]]), b = find(mesh.faceVerts[c]);
+        if (a != b) parent[size_t(std::max(a, b))] = std::min(a, b);
+      }
+  std::vector<int32_t> component(size_t(mesh.vertexCount()), -1);
+  for (Index v = 0; v < mesh.vertexCount(); ++v) {
+    if (parent[size_t(v)] < 0) continue;
+    const Index root = find(v);
+    if (component[size_t(root)] < 0) {
+      component[size_t(root)] = int32_t(part.anchors.size());
+      part.anchors.push_back(v);
+    }
+    component[size_t(v)] = component[size_t(root)];
+    part.parentVertices.push_back(v);
+    part.parentFrame.push_back(uint32_t(component[size_t(v)]));
+  }
+  for (const PolarConfig& config : poles) part.anchors[size_t(component[size_t(config.pole)])] = config.pole;
+  return component;
+}
+
+// Exactness and completeness of a sparse child's vertices (refineSparse). [O(corners around them)]
+void markSparseChildren(const RefinedLevel& level, const SparsePart& part, const std::vector<uint8_t>& selected,
+                        const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete, std::vector<uint8_t>& childExact,
+                        std::vector<uint8_t>& childComplete) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  const SparseChildVertices& children = part.children;
+  childExact.assign(children.count(), 0);
+  childComplete.assign(children.count(), 0);
+  std::vector<uint8_t> faceOk(size_t(topo.faceCount), 0);
+  size_t i = 0;
+  for (Index f : children.faces) {
+    bool ok = true, all = true;
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+      ok = ok && exact[size_t(mesh.faceVerts[c])], all = all && selected[size_t(mesh.faceVerts[c])];
+    faceOk[size_t(f)] = ok;
+    childExact[i] = ok;
+    childComplete[i++] = all;
+  }
+  for (Index e : children.edges) {
+    const Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
+    const bool boundary = topo.edgeOnBoundary(e);
+    const bool real = !boundary || complete[size_t(a)] || complete[size_t(b)];  // a boundary, not a cut
+    const bool facesOk = faceOk[size_t(topo.edgeFaces[2 * e])] && (boundary || faceOk[size_t(topo.edgeFaces[2 * e + 1])]);
+    childExact[i] = real && exact[size_t(a)] && exact[size_t(b)] && facesOk;
+    childComplete[i++] = real && selected[size_t(a)] && selected[size_t(b)];
+  }
+  for (Index v : children.vertices) {
+    bool ok = complete[size_t(v)];
+    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1] && ok; ++k) ok = faceOk[size_t(topo.vertexFaces[k])];
+    childExact[i] = ok;
+    childComplete[i++] = complete[size_t(v)];
+  }
+}
+
+// One sparse step of `level` (adaptive_refiner.h): per face, the child faces at its selected corners
+// (Catmull-Clark's quads, or C2PS's two triangles at a split pole corner); the child vertices they
+// use, numbered [face points | edge points | vertex points] by parent id; the child's tables,
+// creases and the configurations of `poles`. Exactness and completeness: markSparseChildren, and
+// C2PS's pole and links 1, 2 are exact when links 0..2 of the parent are (rules (1)-(3)), RTS/BPS's
+// configurations always (their own radial grids). [O(level m)]
+SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& selected, const std::vector<PolarConfig>& poles,
+                        Scheme scheme, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete,
+                        const std::string& source, RefinedLevel& child, std::vector<uint8_t>& childExact,
+                        std::vector<uint8_t>& childComplete) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  const SchemeTraits& traits = schemeTraits(scheme);
+  SparsePart part;
+  const std::vector<uint8_t> touched = facesTouching(level, selected);
+  std::vector<Index> faceChild(size_t(topo.faceCount), -1), edgeChild(size_t(topo.edgeCount), -1), vertexChild(size_t(topo.vertexCount), -1);
+  SparseChildVertices& children = part.children;
+  for (Index f = 0; f < topo.faceCount; ++f)
+    if (touched[size_t(f)]) faceChild[size_t(f)] = Index(children.faces.size()), children.faces.push_back(f);
+  const Index faceCount = Index(children.faces.size());
+  for (Index e = 0; e < topo.edgeCount; ++e)
+    if (selected[size_t(topo.edgeVerts[2 * e])] || selected[size_t(topo.edgeVerts[2 * e + 1])])
+      edgeChild[size_t(e)] = faceCount + Index(children.edges.size()), children.edges.push_back(e);
+  const Index edgeEnd = faceCount + Index(children.edges.size());
+  for (Index v = 0; v < topo.vertexCount; ++v)
+    if (selected[size_t(v)]) vertexChild[size_t(v)] = edgeEnd + Index(children.vertices.size()), children.vertices.push_back(v);
+
+  // Child faces in parent face and corner order, shaped as refine_topology.h's.
+  const std::vector<uint8_t> split = traits.polar() ? splitPoleCorners(level, poles) : std::vector<uint8_t>{};
+  const size_t childFaces = sparseChildFaces(level, selected, split);
+  child.mesh.faceStart.reserve(childFaces + 1);
+  child.mesh.faceVerts.reserve(childFaces * 4);
+  child.faceParent.reserve(childFaces);
+  for (Index f : children.faces) {
+    const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+    for (Index c = begin; c < end; ++c) {
+      if (!selected[size_t(mesh.faceVerts[c])]) continue;
+      const Index prev = c == begin ? end - 1 : c - 1;
+      const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = faceChild[size_t(f)];
+      const Index next = edgeChild[size_t(topo.cornerEdge[c])], before = edgeChild[size_t(topo.cornerEdge[prev])];
+      if (!split.empty() && split[size_t(c)]) {
+        child.mesh.addFace({vertex, next, face});
+        child.mesh.addFace({vertex, face, before});
+        child.faceParent.push_back(f);
+      } else {
+        child.mesh.addFace({vertex, next, face, before});
+      }
+      child.faceParent.push_back(f);
+    }
+  }
+  child.mesh.points.assign(children.count(), Point(0.0));
+  child.topology = buildTopology(child.mesh, source);
+  if (!level.sharpness.empty()) child.sharpness = sparseChildSharpness(topo, level.sharpness, children, child.topology);
+  auto childOf = [&](Index full) {  // catmull_clark.h's full child numbering -> the sparse child's
+    if (full < topo.faceCount) return faceChild[size_t(full)];
+    if (full < topo.faceCount + topo.edgeCount) return edgeChild[size_t(full - topo.faceCount)];
+    return vertexChild[size_t(full - topo.faceCount - topo.edgeCount)];
+  };
+  for (const PolarConfig& config : poles) child.poles.push_back(sparseChildConfig(level, config, selected, childOf));
+
+  markSparseChildren(level, part, selected, exact, complete, childExact, childComplete);
+  for (size_t k = 0; k < poles.size(); ++k) {
+    const PolarConfig& parent = poles[k];
+    const PolarConfig& config = child.poles[k];
+    if (!traits.keepsValence) {  // C2PS: rules (1)-(3) read links 0..2 of the parent, write the child's pole, links 1, 2
+      bool gridOk = exact[size_t(parent.pole)] && parent.linkCount >= 2;
+      for (size_t i = 0; i < size_t(std::min(2, parent.linkCount)) * parent.valence; ++i) gridOk = gridOk && exact[size_t(parent.links[i])];
+      childExact[size_t(config.pole)] = gridOk;
+      for (size_t i = 0; i < size_t(std::min(2, config.linkCount)) * config.valence; ++i) childExact[size_t(config.links[i])] = gridOk;
+    } else {  // RTS/BPS outside caps and globes: the pole's own radial grid owns the configuration's links
+      childExact[size_t(config.pole)] = 1;
+      for (Index v : config.links) childExact[size_t(v)] = 1;
+    }
+  }
+
+  // Frames: each child vertex in its parent element's component.
+  const std::vector<int32_t> component = sparseComponents(level, touched, poles, part);
+  child.vertexFrame.resize(children.count());
+  for (size_t i = 0; i < children.faces.size(); ++i)
+    child.vertexFrame[i] = uint32_t(component[size_t(mesh.faceVerts[mesh.faceStart[children.faces[i]]])]);
+  for (size_t i = 0; i < children.edges.size(); ++i)
+    child.vertexFrame[size_t(faceCount) + i] = uint32_t(component[size_t(topo.edgeVerts[2 * children.edges[i]])]);
+  for (size_t i = 0; i < children.vertices.size(); ++i)
+    child.vertexFrame[size_t(edgeEnd) + i] = uint32_t(component[size_t(children.vertices[i])]);
+  return part;
 }
 
 }  // namespace
@@ -475,8 +686,8 @@ void AdaptiveRefinement::truncate(int levels) {
 }
 
 // Topology of `count` more levels (their points: computePoints). Level m+1 from level m: the
-// needed faces that are not regular, grown by the support rings, copied out and refined one step
-// (adaptive_refiner.h).
+// needed faces that are not regular, refined sparsely (their corners' children and nothing else),
+// or radially with their support rings copied out (adaptive_refiner.h).
 void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
   const Scheme scheme = options_.scheme;
   const std::string& sourceName = sourceName_;
@@ -487,75 +698,59 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
     const LevelState& state = states_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
     Step step;
-    bool tailStep = false;
     // RTS/BPS outside caps and globes: from kRadialTailLevel on, each pole's region is refined
     // radially with its columns kept (the tail), once it is apart from the other faces refined.
-    std::vector<uint8_t> generic = refine, polar(refine.size(), 0);
-    if (mixedRadialPoles && !level.poles.empty() && (state.tail || m >= kRadialTailLevel)) {
-      const std::vector<uint8_t> rows = poleRows(level);
-      for (size_t f = 0; f < refine.size(); ++f)
-        if (refine[f] && rows[f]) polar[f] = 1, generic[f] = 0;
-      growSelection(level, polar, kRadialSupportRings);
-      growSelection(level, generic, kGenericSupportRings);
-      tailStep = !selectionsTouch(level, polar, generic);
-      if (!tailStep && state.tail) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
-      if (!tailStep) generic = refine;
+    std::vector<uint8_t> sparseFaces = refine, polar(refine.size(), 0);
+    std::vector<uint8_t> selected;
+    bool tailStep = false;
+    if (radial_) {
+      growSelection(level, sparseFaces, kRadialSupportRings);
+    } else {
+      if (mixedRadialPoles && !level.poles.empty() && (state.tail || m >= kRadialTailLevel)) {
+        const std::vector<uint8_t> rows = poleRows(level);
+        for (size_t f = 0; f < refine.size(); ++f)
+          if (refine[f] && rows[f]) polar[f] = 1, sparseFaces[f] = 0;
+        growSelection(level, polar, kRadialSupportRings);
+        selected = selectVertices(level, sparseFaces);
+        tailStep = !selectionsTouch(level, polar, facesTouching(level, selected));
+        if (!tailStep && state.tail) throw std::logic_error("adaptive refinement: a pole's tail meets the other refined faces");
+        if (!tailStep) std::fill(polar.begin(), polar.end(), 0), sparseFaces = refine;
+      }
+      if (!tailStep) selected = selectVertices(level, sparseFaces);
     }
-    if (!tailStep) growSelection(level, generic, radial_ ? kRadialSupportRings : kGenericSupportRings);
 
-    size_t subFaces = 0, childFaces = 0;
+    // The budget, before anything of the level is made.
+    size_t copiedFaces = 0, childFaces = 0;
     for (size_t f = 0; f < refine.size(); ++f) {
-      subFaces += generic[f] || polar[f];
-      childFaces += generic[f] ? size_t(level.mesh.faceSize(Index(f))) * 5 / 4 + 1 : polar[f] ? 2 : 0;
+      copiedFaces += (radial_ && sparseFaces[f]) || polar[f];
+      childFaces += (radial_ && sparseFaces[f]) || polar[f] ? 2 : 0;
     }
-    if (totalFaces_ + subFaces + childFaces > maxFaces)
+    if (!radial_) childFaces += sparseChildFaces(level, selected, schemeTraits(scheme).polar() && !tailStep ? splitPoleCorners(level, level.poles) : std::vector<uint8_t>{});
+    if (totalFaces_ + copiedFaces + childFaces > maxFaces)
       throw InputError(sourceName, 0,
                        "level " + std::to_string(target) + " would need more than " + std::to_string(maxFaces) +
                            " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
-
-    step.generic = copyOut(level, generic, tailStep ? std::vector<PolarConfig>{} : level.poles, radial_, exact_[m],
-                           state.complete, sourceName);
 
     RefinedLevel child;
     LevelState childState;
     childState.tail = tailStep;
     std::vector<uint8_t> childExact;
-    refinePart(step.generic, radial_, scheme, sourceName, child, childExact, childState.complete);
-    step.frameAnchors = step.generic.anchors;
-    radialRefined_[m] = radial_ ? generic : polar;
-    if (tailStep) {
-      CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], state.complete, sourceName);
-      RefinedLevel polarChild;
-      std::vector<uint8_t> polarExact, polarComplete;
-      refinePart(polarPart, true, scheme, sourceName, polarChild, polarExact, polarComplete);
-      // The tail's points come from the poles' own (exact) radial grids: every row is exact.
-      std::fill(polarExact.begin(), polarExact.end(), 1);
-      appendLevel(child, polarChild, uint32_t(step.generic.anchors.size()));
-      step.frameAnchors.insert(step.frameAnchors.end(), polarPart.anchors.begin(), polarPart.anchors.end());
-      const MeshTopology genericTopology = std::move(child.topology);
-      child.topology = buildTopology(child.mesh, sourceName);
-      // The generic part's creases on the joined tables (its vertex ids are kept; the tail is smooth).
-      if (!child.sharpness.empty()) {
-        CreaseSharpness joined;
-        joined.chaikin = child.sharpness.chaikin;
-        joined.edge.assign(size_t(child.topology.edgeCount), 0.0f);
-        joined.vertex.assign(size_t(child.topology.vertexCount), 0.0f);
-        std::copy(child.sharpness.vertex.begin(), child.sharpness.vertex.end(), joined.vertex.begin());
-        for (Index e = 0; e < genericTopology.edgeCount; ++e)
-          if (child.sharpness.edge[size_t(e)] > 0.0f)
-            joined.edge[size_t(child.topology.edgeBetween(genericTopology.edgeVerts[2 * e], genericTopology.edgeVerts[2 * e + 1]))] =
-                child.sharpness.edge[size_t(e)];
-        for (Index e = 0; e < child.topology.edgeCount; ++e)
-          if (child.topology.edgeOnBoundary(e)) joined.edge[size_t(e)] = float(kInfiniteSharpness);
-        child.sharpness = std::move(joined);
-      }
-      childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
-      childState.complete.insert(childState.complete.end(), polarComplete.begin(), polarComplete.end());
+    if (radial_) {
+      step.radial = copyOut(level, sparseFaces, level.poles, true, exact_[m], state.complete, sourceName);
+      refineRadialPart(step.radial, sourceName, child, childExact, childState.complete);
+      step.frameAnchors = step.radial.anchors;
+      radialRefined_[m] = sparseFaces;
+    } else {
+      step.sparse = refineSparse(level, selected, tailStep ? std::vector<PolarConfig>{} : level.poles, scheme, exact_[m], state.complete,
+                                 sourceName, child, childExact, childState.complete);
+      step.frameAnchors = step.sparse.anchors;
+      radialRefined_[m] = polar;
     }
+    if (tailStep) appendTail(level, polar, m, step, child, childExact, childState.complete);
     inheritHoles(level, child);
     std::vector<uint8_t> childNeeded(child.mesh.faceCount());
     for (Index f = 0; f < child.mesh.faceCount(); ++f) childNeeded[f] = refine[child.faceParent[f]];
-    totalFaces_ += subFaces + size_t(child.mesh.faceCount());
+    totalFaces_ += copiedFaces + size_t(child.mesh.faceCount());
     totalFacesAt_.push_back(totalFaces_);
     radialRefined_.push_back(std::vector<uint8_t>(child.mesh.faceCount(), 0));
     levels_.push_back(std::move(child));
@@ -565,6 +760,39 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
     steps_.push_back(std::move(step));
     options_.levels = m + 1;
   }
+}
+
+// A tail step's poles (RTS/BPS outside caps and globes): their regions (`polar`) copied out, refined
+// radially and appended to the child after the sparse part, tables rebuilt over both.
+void AdaptiveRefinement::appendTail(const RefinedLevel& level, const std::vector<uint8_t>& polar, int m, Step& step, RefinedLevel& child,
+                                    std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) const {
+  CopiedPart polarPart = copyOut(level, polar, level.poles, true, exact_[m], states_[m].complete, sourceName_);
+  RefinedLevel polarChild;
+  std::vector<uint8_t> polarExact, polarComplete;
+  refineRadialPart(polarPart, sourceName_, polarChild, polarExact, polarComplete);
+  // The tail's points come from the poles' own (exact) radial grids: every row is exact.
+  std::fill(polarExact.begin(), polarExact.end(), 1);
+  appendLevel(child, polarChild, uint32_t(step.sparse.anchors.size()));
+  step.frameAnchors.insert(step.frameAnchors.end(), polarPart.anchors.begin(), polarPart.anchors.end());
+  const MeshTopology sparseTopology = std::move(child.topology);
+  child.topology = buildTopology(child.mesh, sourceName_);
+  // The sparse part's creases on the joined tables (its vertex ids are kept; the tail is smooth).
+  if (!child.sharpness.empty()) {
+    CreaseSharpness joined;
+    joined.chaikin = child.sharpness.chaikin;
+    joined.edge.assign(size_t(child.topology.edgeCount), 0.0f);
+    joined.vertex.assign(size_t(child.topology.vertexCount), 0.0f);
+    std::copy(child.sharpness.vertex.begin(), child.sharpness.vertex.end(), joined.vertex.begin());
+    for (Index e = 0; e < sparseTopology.edgeCount; ++e)
+      if (child.sharpness.edge[size_t(e)] > 0.0f)
+        joined.edge[size_t(child.topology.edgeBetween(sparseTopology.edgeVerts[2 * e], sparseTopology.edgeVerts[2 * e + 1]))] =
+            child.sharpness.edge[size_t(e)];
+    for (Index e = 0; e < child.topology.edgeCount; ++e)
+      if (child.topology.edgeOnBoundary(e)) joined.edge[size_t(e)] = float(kInfiniteSharpness);
+    child.sharpness = std::move(joined);
+  }
+  childExact.insert(childExact.end(), polarExact.begin(), polarExact.end());
+  childComplete.insert(childComplete.end(), polarComplete.begin(), polarComplete.end());
 }
 
 void AdaptiveRefinement::updatePositions(const std::vector<Point>& basePoints) {
@@ -593,7 +821,7 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
     fillPoleData(levels_[0], scheme, radialPoles ? &grids : nullptr);
   }
 
-  std::vector<Point> rows, childRows, link1, link2, refined, scratch;
+  std::vector<Point> rows, childRows, link1, link2, refined, scratch, shifted, facePoints;
   for (size_t m = firstStep; m < steps_.size(); ++m) {
     Step& step = steps_[m];
     const RefinedLevel& level = levels_[m];
@@ -602,20 +830,20 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
     radialGrids = states_[m].radialGrids;
     states_[m + 1].gridOrigins = states_[m].gridOrigins;
     const bool uniformStep = options_.uniformFirstStep && m == 0;
-    CopiedPart& part = step.generic;
     // Precision (adaptive_refiner.h): the child's frames sit at their anchors; each component's
-    // points are gathered relative to its frame. Within a component every parent point shares one
+    // points are read relative to its frame. Within a component every parent point shares one
     // frame, so the shift is one vector for all and the differences the rules take stay exact to
     // the component's own size.
     child.frameOrigins.resize(step.frameAnchors.size());
     for (size_t c = 0; c < step.frameAnchors.size(); ++c) child.frameOrigins[c] = level.absolutePoint(step.frameAnchors[c]);
-    std::vector<Point>& subPoints = part.sub.mesh.points;
-    for (size_t v = 0; v < part.subToLevel.size(); ++v) {
-      const Index w = part.subToLevel[v];
-      subPoints[v] = level.mesh.points[w] + (level.origin(w) - child.frameOrigins[part.component[v]]);
-    }
     std::vector<Point>& points = child.mesh.points;
     if (radial_) {
+      CopiedPart& part = step.radial;
+      std::vector<Point>& subPoints = part.sub.mesh.points;
+      for (size_t v = 0; v < part.subToLevel.size(); ++v) {
+        const Index w = part.subToLevel[v];
+        subPoints[v] = level.mesh.points[w] + (level.origin(w) - child.frameOrigins[part.component[v]]);
+      }
       for (size_t r = 0; r < part.regions.size(); ++r) {
         const RadialRegion& region = part.regions[r];
         rows.clear();
@@ -626,12 +854,18 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
       fillPoleData(child, scheme, nullptr);
       continue;
     }
-    if (part.sub.mesh.faceCount() > 0)
-      computeCatmullClarkPoints(part.sub.topology, part.sub.mesh, subPoints.data(), points.data(), part.sub.sharpness);
+    const SparsePart& part = step.sparse;
+    shifted.resize(level.mesh.points.size());
+    for (size_t i = 0; i < part.parentVertices.size(); ++i) {
+      const Index w = part.parentVertices[i];
+      shifted[size_t(w)] = level.mesh.points[size_t(w)] + (level.origin(w) - child.frameOrigins[part.parentFrame[i]]);
+    }
+    if (part.children.count() > 0)
+      computeSparseCatmullClarkPoints(level.topology, level.mesh, shifted.data(), part.children, level.sharpness, facePoints, points.data());
     for (size_t k = 0; k < child.poles.size(); ++k) {
       const PolarConfig& config = child.poles[k];
       if (!rules.keepsValence) {  // C2PS: rules (1)-(3)
-        const PolarGrid grid = gatherGrid(subPoints, part.sub.poles[k], 2);
+        const PolarGrid grid = gatherGrid(shifted, level.poles[k], 2);
         const int n2 = config.valence;
         link1.resize(n2);
         link2.resize(n2);

@@ -77,6 +77,8 @@ class AdaptiveRefinement {
   // which vertices see all their uniform faces, RTS/BPS's own radial grids of mixed meshes).
   struct LevelState;
   void addLevels(int count, size_t maxFaces);
+  void appendTail(const RefinedLevel& level, const std::vector<uint8_t>& polar, int m, Step& step, RefinedLevel& child,
+                  std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) const;
   void computePoints(size_t firstStep);
   RefineOptions options_;
   std::string sourceName_;

@@ -161,27 +161,30 @@ inline Point smoothVertexPoint(const MeshTopology& topo, const Point* p, const P
   return smoothVertexWeight(k) * p[v] + smoothNeighbourWeight(k) * (edgeSum + faceSum);
 }
 
-// Edge points of edges [begin, end): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside;
-// with `sharpness` (and its `decay`), the crease rules.
+// Edge points of edges [begin, end) into edgePoints[i] (or, with `ids`, of edges ids[i]: a sparse
+// step's): midpoint on the boundary, 1/4 (v0 + v1 + f0 + f1) inside; with `sharpness` (and its
+// `decay`), the crease rules.
 void computeEdgePoints(const MeshTopology& topo, const PolyMesh& parent, const Point* p, const Point* facePoints, Point* edgePoints,
-                       Index begin, Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
+                       Index begin, Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay,
+                       const Index* ids = nullptr) {
   const Index* edgeVerts = topo.edgeVerts.data();
   const Index* edgeFaces = topo.edgeFaces.data();
   const bool smoothTriangles = sharpness && sharpness->smoothTriangles;
-  for (Index e = begin; e < end; ++e) {
+  for (Index i = begin; i < end; ++i) {
+    const Index e = ids ? ids[i] : i;
     const Point ends = p[edgeVerts[2 * e]] + p[edgeVerts[2 * e + 1]];
     const float s = sharpness ? sharpness->edge[e] : 0.0f;
     const bool staysSharp = s > 0.0f && decay->edgeAt(e, edgeVerts[2 * e]) > 0.0f && decay->edgeAt(e, edgeVerts[2 * e + 1]) > 0.0f;
     double endWeight = 0.25, faceWeight = 0.25;
     if (edgeFaces[2 * e + 1] < 0 || staysSharp)
-      edgePoints[e] = 0.5 * ends;  // the boundary always
+      edgePoints[i] = 0.5 * ends;  // the boundary always
     else if (smoothTriangles && smoothTriangleWeights(parent.faceSize(edgeFaces[2 * e]), parent.faceSize(edgeFaces[2 * e + 1]), endWeight, faceWeight))
-      edgePoints[e] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(std::max(s, 0.0f)),
+      edgePoints[i] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(std::max(s, 0.0f)),
                                 endWeight, faceWeight);
     else if (s > 0.0f)
-      edgePoints[e] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(s));
+      edgePoints[i] = edgePoint(ends, facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]], double(s));
     else
-      edgePoints[e] = 0.25 * (ends + facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]]);
+      edgePoints[i] = 0.25 * (ends + facePoints[edgeFaces[2 * e]] + facePoints[edgeFaces[2 * e + 1]]);
   }
 }
 
@@ -233,36 +236,38 @@ Point sharpVertexPoint(const MeshTopology& topo, const Point* p, const Point* fa
   return double(weight) * parentPoint + (1.0 - double(weight)) * pointByRule(childRule, childEnds);
 }
 
-// Vertex points of vertices [begin, end): crease rule on the boundary, smooth rule inside, unused
-// vertices copied; with `sharpness`, the rules of sharp features.
+// Vertex points of vertices [begin, end) into vertexPoints[i] (or, with `ids`, of vertices ids[i]):
+// crease rule on the boundary, smooth rule inside, unused vertices copied; with `sharpness`, the
+// rules of sharp features.
 void computeVertexPoints(const MeshTopology& topo, const Point* p, const Point* facePoints, Point* vertexPoints, Index begin,
-                         Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay) {
+                         Index end, const CreaseSharpness* sharpness, const SharpnessDecay* decay, const Index* ids = nullptr) {
   // The rings' reads are scattered over the level: fetched in two stages ahead of their use (the
   // face points and edge ends 16 vertices ahead, the neighbours' points through those ends 8
   // ahead): 10-18% off the positions of a 10,000-quad torus at level 5, one core.
   constexpr Index kAhead = 8;  // vertices
-  for (Index v = begin; v < end; ++v) {
-    if (v + 2 * kAhead < end) {
-      const Index w = v + 2 * kAhead;
-      for (Index i = topo.vertexFaceStart[w]; i < topo.vertexFaceStart[w + 1]; ++i) prefetch(facePoints + topo.vertexFaces[i]);
-      for (Index i = topo.vertexEdgeStart[w]; i < topo.vertexEdgeStart[w + 1]; ++i)
-        prefetch(topo.edgeVerts.data() + 2 * topo.vertexEdges[i]);
-      const Index u = v + kAhead;
-      for (Index i = topo.vertexEdgeStart[u]; i < topo.vertexEdgeStart[u + 1]; ++i) {
-        const Index e = topo.vertexEdges[i];
+  for (Index i = begin; i < end; ++i) {
+    const Index v = ids ? ids[i] : i;
+    if (i + 2 * kAhead < end) {
+      const Index w = ids ? ids[i + 2 * kAhead] : i + 2 * kAhead;
+      for (Index k = topo.vertexFaceStart[w]; k < topo.vertexFaceStart[w + 1]; ++k) prefetch(facePoints + topo.vertexFaces[k]);
+      for (Index k = topo.vertexEdgeStart[w]; k < topo.vertexEdgeStart[w + 1]; ++k)
+        prefetch(topo.edgeVerts.data() + 2 * topo.vertexEdges[k]);
+      const Index u = ids ? ids[i + kAhead] : i + kAhead;
+      for (Index k = topo.vertexEdgeStart[u]; k < topo.vertexEdgeStart[u + 1]; ++k) {
+        const Index e = topo.vertexEdges[k];
         prefetch(p + (topo.edgeVerts[2 * e] ^ topo.edgeVerts[2 * e + 1] ^ u));
       }
     }
     if (!topo.vertexUsed[v]) {
-      vertexPoints[v] = p[v];
+      vertexPoints[i] = p[v];
     } else if (sharpness) {
-      vertexPoints[v] = sharpVertexPoint(topo, p, facePoints, *sharpness, *decay, v);
+      vertexPoints[i] = sharpVertexPoint(topo, p, facePoints, *sharpness, *decay, v);
     } else if (topo.vertexOnBoundary[v]) {
       Index a, b;
       boundaryNeighbours(topo, v, a, b);
-      vertexPoints[v] = kBoundaryVertexWeight * p[v] + kBoundaryNeighbourWeight * (p[a] + p[b]);
+      vertexPoints[i] = kBoundaryVertexWeight * p[v] + kBoundaryNeighbourWeight * (p[a] + p[b]);
     } else {
-      vertexPoints[v] = smoothVertexPoint(topo, p, facePoints, v);
+      vertexPoints[i] = smoothVertexPoint(topo, p, facePoints, v);
     }
   }
 }
@@ -298,6 +303,31 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
 void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
                                Point* childPoints, const CreaseSharpness& sharpness, unsigned threads) {
   computePoints(topo, parent, parentPoints, childPoints, sharpness.empty() ? nullptr : &sharpness, threads);
+}
+
+void computeSparseCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
+                                     const SparseChildVertices& which, const CreaseSharpness& sharpness,
+                                     std::vector<Point>& facePoints, Point* childPoints, unsigned threads) {
+  const CreaseSharpness* sharp = sharpness.empty() ? nullptr : &sharpness;
+  facePoints.resize(size_t(topo.faceCount));
+  const Index faces = Index(which.faces.size()), edges = Index(which.edges.size()), vertices = Index(which.vertices.size());
+  const unsigned parts = threads ? threads : threadsFor(size_t(faces + edges + vertices) * 4);
+  std::unique_ptr<SharpnessDecay> decay;
+  if (sharp) decay = std::make_unique<SharpnessDecay>(topo, sharpness);
+  // Face points by parent id first (the edge and vertex rules read them there), then copied out.
+  parallelRanges(faces, parts, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) {
+      const Index f = which.faces[size_t(i)];
+      computeFacePoints(parent, parentPoints, facePoints.data(), f, f + 1);
+      childPoints[i] = facePoints[size_t(f)];
+    }
+  });
+  runParts(parts, [&](unsigned k) {
+    computeEdgePoints(topo, parent, parentPoints, facePoints.data(), childPoints + faces, partBound(edges, parts, k),
+                      partBound(edges, parts, k + 1), sharp, decay.get(), which.edges.data());
+    computeVertexPoints(topo, parentPoints, facePoints.data(), childPoints + faces + edges, partBound(vertices, parts, k),
+                        partBound(vertices, parts, k + 1), sharp, decay.get(), which.vertices.data());
+  });
 }
 
 // [SECTION] sharpness per level
@@ -385,6 +415,33 @@ CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharp
     }
   }
   for (Index v = 0; v < parentTopo.vertexCount; ++v) child.vertex[ccVertexPoint(parentTopo, v)] = decay.vertex(v);
+  return finishSharpness(childTopo, std::move(child));
+}
+
+CreaseSharpness sparseChildSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const SparseChildVertices& which,
+                                     const MeshTopology& childTopo) {
+  if (parent.empty()) return {};
+  const SharpnessDecay decay(parentTopo, parent);
+  CreaseSharpness child;
+  child.edge.assign(size_t(childTopo.edgeCount), 0.0f);
+  child.vertex.assign(size_t(childTopo.vertexCount), 0.0f);
+  child.chaikin = parent.chaikin;
+  const Index firstEdgePoint = Index(which.faces.size()), firstVertexPoint = firstEdgePoint + Index(which.edges.size());
+  std::vector<Index> vertexPoint(size_t(parentTopo.vertexCount), -1);
+  for (size_t i = 0; i < which.vertices.size(); ++i) {
+    vertexPoint[size_t(which.vertices[i])] = firstVertexPoint + Index(i);
+    child.vertex[size_t(firstVertexPoint) + i] = decay.vertex(which.vertices[i]);
+  }
+  for (size_t i = 0; i < which.edges.size(); ++i) {
+    const Index e = which.edges[i];
+    if (parent.edge[size_t(e)] <= 0.0f) continue;
+    for (int end = 0; end < 2; ++end) {  // the halves that exist: at the ends whose vertex points do
+      const Index v = parentTopo.edgeVerts[2 * e + end];
+      if (vertexPoint[size_t(v)] < 0) continue;
+      const Index half = childTopo.edgeBetween(firstEdgePoint + Index(i), vertexPoint[size_t(v)]);
+      if (half >= 0) child.edge[size_t(half)] = decay.edgeAt(e, v);
+    }
+  }
   return finishSharpness(childTopo, std::move(child));
 }
 

@@ -74,6 +74,24 @@ void computeCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent,
                                Point* childPoints, const CreaseSharpness& sharpness, unsigned threads = 0);
 
 
+// A sparse step (OpenSubdiv's sparse refinement, adaptive_refiner.h): the child vertices that exist,
+// by parent element, numbered in this order: face points of `faces`, then edge points of `edges`,
+// then vertex points of `vertices`.
+struct SparseChildVertices {
+  std::vector<Index> faces, edges, vertices;
+  size_t count() const { return faces.size() + edges.size() + vertices.size(); }
+};
+// The points of `which` from the parent's (the rules above, every neighbour the rule reads taken
+// from the parent level as it is). `facePoints`: scratch, resized to the parent's face count.
+// [O(corners around the elements of `which`) + O(parent faces) for the scratch]
+void computeSparseCatmullClarkPoints(const MeshTopology& topo, const PolyMesh& parent, const Point* parentPoints,
+                                     const SparseChildVertices& which, const CreaseSharpness& sharpness,
+                                     std::vector<Point>& facePoints, Point* childPoints, unsigned threads = 0);
+// childSharpness for a sparse child numbered as `which`: the halves of the parent's edges at the ends
+// whose vertex points exist, decayed; vertex points decayed. [O(child edges)]
+CreaseSharpness sparseChildSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const SparseChildVertices& which,
+                                     const MeshTopology& childTopo);
+
 // Limit positions of the vertices of an all-quad mesh (e.g. any level >= 1): smooth valence k:
 // k/(k+5) v + 4/(k(k+5)) sum of edge ends + 1/(k(k+5)) sum of face diagonals; boundary:
 // 2/3 v + 1/6 (a + b); unused vertices copied. Interior valence 2 gets the same formula, the true

@@ -25,6 +25,9 @@ void inheritHoles(const RefinedLevel& parent, RefinedLevel& child);
 // poleGrids); both empty for Catmull-Clark. [O(poles n)]
 void fillPoleData(RefinedLevel& level, Scheme scheme, const std::vector<PolarGrid>* schemeGrids);
 
+// The configuration one Catmull-Clark/C2PS step makes of `parent` (column j -> 2j, links K -> 2K),
+// in the full child numbering of catmull_clark.h (ccVertexPoint ...) of `mesh`, `topo`. [O(n K)]
+PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, const MeshTopology& topo);
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence; the child's poles are derived from the parent's

@@ -83,8 +83,6 @@ void refinePeriodically(const Point* link, int n, int times, std::vector<Point>&
 
 // [SECTION] generic levels: Catmull-Clark connectivity (+ C2PS's split pole quads)
 
-namespace {
-
 // The configuration one Catmull-Clark/C2PS step makes of `parent` (column j -> 2j). Link 2i holds
 // the vertex points of link i (even columns) and the edge points of its edges (odd); link 2i+1
 // the edge points of the radial edges i->i+1 (even) and the face points between (odd).
@@ -128,8 +126,6 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
   child.refinable = true;
   return child;
 }
-
-}  // namespace
 
 namespace {
 
