@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -162,6 +163,30 @@ void compareTail(const PatchSet& uniform, const PatchSet& adaptive, double size,
   CHECK(missing == 0);
 }
 
+// Every level's tables (the sparse steps derive them from the parent's twins) equal those built
+// from its mesh, entry for entry.
+void checkLevelTables(const AdaptiveRefinement& refinement, const std::string& what) {
+  INFO(what);
+  for (int m = 1; m < refinement.levelCount(); ++m) {
+    const RefinedLevel& level = refinement.level(m);
+    const MeshTopology built = buildTopology(level.mesh);
+    const MeshTopology& t = level.topology;
+    CAPTURE(m);
+    CHECK(built.edgeCount == t.edgeCount);
+    CHECK(built.cornerEdge == t.cornerEdge);
+    CHECK(built.cornerFace == t.cornerFace);
+    CHECK(built.edgeVerts == t.edgeVerts);
+    CHECK(built.edgeFaces == t.edgeFaces);
+    CHECK(built.vertexFaceStart == t.vertexFaceStart);
+    CHECK(built.vertexFaces == t.vertexFaces);
+    CHECK(built.vertexCorners == t.vertexCorners);
+    CHECK(built.vertexEdgeStart == t.vertexEdgeStart);
+    CHECK(built.vertexEdges == t.vertexEdges);
+    CHECK(built.vertexOnBoundary == t.vertexOnBoundary);
+    CHECK(built.vertexUsed == t.vertexUsed);
+  }
+}
+
 void checkAgainstUniform(const PolyMesh& mesh, const std::string& name, int maxLevel) {
   const double size = modelSize(mesh);
   for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS})
@@ -172,8 +197,11 @@ void checkAgainstUniform(const PolyMesh& mesh, const std::string& name, int maxL
         const std::string what = name + " " + schemeName(scheme) + (uniformFirst ? "-u" : "") + " level " + std::to_string(level);
         const PatchSet uniform = extractPatches(Refinement(mesh, options));
         PatchSet adaptive;
-        REQUIRE_NOTHROW(adaptive = extractPatches(AdaptiveRefinement(mesh, options)));
+        std::optional<AdaptiveRefinement> refinement;
+        REQUIRE_NOTHROW(refinement.emplace(mesh, options));
+        REQUIRE_NOTHROW(adaptive = extractPatches(*refinement));
         comparePatchSets(uniform, adaptive, size, what);
+        if (level == maxLevel) checkLevelTables(*refinement, what);
       }
     }
 }

@@ -25,6 +25,18 @@ class TopologyBuilder {
     return std::move(t_);
   }
 
+  // The same tables from known half-edge twins (a refinement's child): no validation, no sorting.
+  MeshTopology buildFromTwins(const std::vector<Index>& twin) {
+    t_.vertexCount = mesh_.vertexCount();
+    t_.faceCount = mesh_.faceCount();
+    t_.cornerFace.resize(mesh_.faceVerts.size());
+    for (Index f = 0; f < t_.faceCount; ++f)
+      std::fill(t_.cornerFace.begin() + mesh_.faceStart[f], t_.cornerFace.begin() + mesh_.faceStart[f + 1], f);
+    buildEdgesFromTwins(twin);
+    buildVertexRings();
+    return std::move(t_);
+  }
+
  private:
   [[noreturn]] void fail(Index face, const std::string& what) const {
     int64_t line = 0;
@@ -128,6 +140,34 @@ class TopologyBuilder {
     }
   }
 
+  // buildEdges' numbering (by first use: an edge's leader is its smaller corner) from the twins.
+  void buildEdgesFromTwins(const std::vector<Index>& twin) {
+    const Index cornerCount = static_cast<Index>(mesh_.faceVerts.size());
+    const std::vector<Index>& fv = mesh_.faceVerts;
+    t_.cornerEdge.resize(cornerCount);
+    edgeCorners_.clear();
+    edgeCorners_.reserve(size_t(cornerCount));
+    t_.edgeVerts.reserve(size_t(cornerCount));
+    t_.edgeFaces.reserve(size_t(cornerCount));
+    for (Index c = 0; c < cornerCount; ++c) {
+      const Index other = twin[size_t(c)];
+      if (other >= 0 && other < c) {
+        const Index e = t_.cornerEdge[other];
+        t_.cornerEdge[c] = e;
+        t_.edgeFaces[2 * e + 1] = t_.cornerFace[c];
+        edgeCorners_[2 * e + 1] = c;
+        continue;
+      }
+      t_.cornerEdge[c] = t_.edgeCount++;
+      t_.edgeVerts.push_back(fv[c]);
+      t_.edgeVerts.push_back(fv[cornerNext(c)]);
+      t_.edgeFaces.push_back(t_.cornerFace[c]);
+      t_.edgeFaces.push_back(-1);
+      edgeCorners_.push_back(c);
+      edgeCorners_.push_back(-1);
+    }
+  }
+
   void checkEdgeRun(const Index* run, const Index* runEnd) const {
     const std::vector<Index>& fv = mesh_.faceVerts;
     const Index a = fv[run[0]], b = fv[cornerNext(run[0])];
@@ -224,6 +264,11 @@ class TopologyBuilder {
 
 MeshTopology buildTopology(const PolyMesh& mesh, const std::string& sourceName) {
   return TopologyBuilder(mesh, sourceName).build();
+}
+
+MeshTopology buildTopologyFromTwins(const PolyMesh& mesh, const std::vector<Index>& twin) {
+  static const std::string source = "<refined>";
+  return TopologyBuilder(mesh, source).buildFromTwins(twin);
 }
 
 }  // namespace polarview

@@ -519,6 +519,60 @@ void markSparseChildren(const RefinedLevel& level, const SparsePart& part, const
   }
 }
 
+// The corner of level m's face across corner c's edge that starts the opposite half-edge (-1 on a
+// boundary). [O(size of that face)]
+Index parentTwin(const PolyMesh& mesh, const MeshTopology& topo, Index c) {
+  const Index e = topo.cornerEdge[c];
+  const Index g = topo.faceAcross(e, topo.cornerFace[c]);
+  if (g < 0) return -1;
+  for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d)
+    if (topo.cornerEdge[d] == e) return d;
+  return -1;
+}
+
+// The half-edge twins of a sparse child's corners (buildTopologyFromTwins), from level m's.
+// `childCorner[c]`: the first corner of parent corner c's child face (-1: none), a quad
+// (V, E(c), F, E(prev)), or at a split corner two triangles (V, E(c), F) (V, F, E(prev)). Each child
+// face's four half-edges (V->E(c), E(c)->F, F->E(prev), E(prev)->V) meet the child faces of the
+// corners next to c in its face and across its two edges at the same vertex. [O(corners)]
+std::vector<Index> sparseChildTwins(const RefinedLevel& level, const std::vector<Index>& childCorner, const std::vector<uint8_t>& split) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
+  struct Slots {
+    Index toEdge, toFace, fromFace, fromEdge;  // V->E(c), E(c)->F, F->E(prev), E(prev)->V
+  };
+  auto slots = [&](Index c) {
+    const Index base = childCorner[size_t(c)];
+    if (!split.empty() && split[size_t(c)]) return Slots{base, base + 1, base + 4, base + 5};
+    return Slots{base, base + 1, base + 2, base + 3};
+  };
+  std::vector<Index> twin;
+  size_t childCorners = 0;
+  for (Index c = 0; c < Index(childCorner.size()); ++c)
+    if (childCorner[size_t(c)] >= 0) childCorners += !split.empty() && split[size_t(c)] ? 6 : 4;
+  twin.assign(childCorners, -1);
+  for (Index f = 0; f < mesh.faceCount(); ++f) {
+    const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+    for (Index c = begin; c < end; ++c) {
+      if (childCorner[size_t(c)] < 0) continue;
+      const Index prev = c == begin ? end - 1 : c - 1, next = c + 1 == end ? begin : c + 1;
+      const Slots mine = slots(c);
+      if (const Index across = parentTwin(mesh, topo, c); across >= 0) {  // its face's corner at v_c follows it
+        const Index g = topo.cornerFace[across];
+        twin[size_t(mine.toEdge)] = slots(across + 1 == mesh.faceStart[g + 1] ? mesh.faceStart[g] : across + 1).fromEdge;
+      }
+      if (childCorner[size_t(next)] >= 0) twin[size_t(mine.toFace)] = slots(next).fromFace;
+      if (childCorner[size_t(prev)] >= 0) twin[size_t(mine.fromFace)] = slots(prev).toFace;
+      if (const Index across = parentTwin(mesh, topo, prev); across >= 0) twin[size_t(mine.fromEdge)] = slots(across).toEdge;
+      if (!split.empty() && split[size_t(c)]) {  // the diagonal V - F
+        twin[size_t(mine.toEdge + 2)] = mine.toEdge + 3;
+        twin[size_t(mine.toEdge + 3)] = mine.toEdge + 2;
+      }
+    }
+  }
+  return twin;
+}
+
 // One sparse step of `level` (adaptive_refiner.h): per face, the child faces at its selected corners
 // (Catmull-Clark's quads, or C2PS's two triangles at a split pole corner); the child vertices they
 // use, numbered [face points | edge points | vertex points] by parent id; the child's tables,
@@ -526,8 +580,7 @@ void markSparseChildren(const RefinedLevel& level, const SparsePart& part, const
 // C2PS's pole and links 1, 2 are exact when links 0..2 of the parent are (rules (1)-(3)), RTS/BPS's
 // configurations always (their own radial grids). [O(level m)]
 SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& selected, const std::vector<PolarConfig>& poles,
-                        Scheme scheme, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete,
-                        const std::string& source, RefinedLevel& child, std::vector<uint8_t>& childExact,
+                        Scheme scheme, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete, RefinedLevel& child, std::vector<uint8_t>& childExact,
                         std::vector<uint8_t>& childComplete) {
   const PolyMesh& mesh = level.mesh;
   const MeshTopology& topo = level.topology;
@@ -552,6 +605,7 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
   child.mesh.faceStart.reserve(childFaces + 1);
   child.mesh.faceVerts.reserve(childFaces * 4);
   child.faceParent.reserve(childFaces);
+  std::vector<Index> childCorner(mesh.faceVerts.size(), -1);  // per parent corner: its child face's first corner
   for (Index f : children.faces) {
     const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
     for (Index c = begin; c < end; ++c) {
@@ -559,6 +613,7 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
       const Index prev = c == begin ? end - 1 : c - 1;
       const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = faceChild[size_t(f)];
       const Index next = edgeChild[size_t(topo.cornerEdge[c])], before = edgeChild[size_t(topo.cornerEdge[prev])];
+      childCorner[size_t(c)] = Index(child.mesh.faceVerts.size());
       if (!split.empty() && split[size_t(c)]) {
         child.mesh.addFace({vertex, next, face});
         child.mesh.addFace({vertex, face, before});
@@ -570,7 +625,7 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
     }
   }
   child.mesh.points.assign(children.count(), Point(0.0));
-  child.topology = buildTopology(child.mesh, source);
+  child.topology = buildTopologyFromTwins(child.mesh, sparseChildTwins(level, childCorner, split));
   if (!level.sharpness.empty()) child.sharpness = sparseChildSharpness(topo, level.sharpness, children, child.topology);
   auto childOf = [&](Index full) {  // catmull_clark.h's full child numbering -> the sparse child's
     if (full < topo.faceCount) return faceChild[size_t(full)];
@@ -742,7 +797,7 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       radialRefined_[m] = sparseFaces;
     } else {
       step.sparse = refineSparse(level, selected, tailStep ? std::vector<PolarConfig>{} : level.poles, scheme, exact_[m], state.complete,
-                                 sourceName, child, childExact, childState.complete);
+                                 child, childExact, childState.complete);
       step.frameAnchors = step.sparse.anchors;
       radialRefined_[m] = polar;
     }
