@@ -6,12 +6,20 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #ifdef POLARVIEW_HAVE_OSD
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
 
 #include "app/osd_descriptor.h"
 #endif
@@ -146,9 +154,114 @@ std::optional<PeerTiming> benchPeer(const PolyMesh& mesh, int levels, int reps, 
   timing.positionsMs = medianOf(pos);
   return timing;
 }
+
+struct AdaptivePeer::Impl {
+  const PolyMesh& mesh;
+  int levels;
+  OsdMeshDescriptor described;
+  std::vector<double> topo, patches, pos;
+  AdaptivePeerTiming last;  // counts of the latest repetition
+  Impl(const PolyMesh& m, int l) : mesh(m), levels(l), described(m) {}
+};
+
+AdaptivePeer::AdaptivePeer(const PolyMesh& mesh, int levels) {
+  if (levels > kMaxLevels)
+    unavailable_ = "OpenSubdiv isolates at most " + std::to_string(kMaxLevels) + " levels";
+  else
+    impl_ = std::make_unique<Impl>(mesh, levels);
+}
+
+AdaptivePeer::~AdaptivePeer() = default;
+
+bool AdaptivePeer::run() {
+  using namespace OpenSubdiv;
+  if (!impl_) return false;
+  Impl& p = *impl_;
+  const bool first = p.topo.empty();
+#ifdef __GLIBC__
+  // The bench's own path ran before and freed its memory, which malloc may still hold: handed back
+  // first, so that the peak measured from here is the peer's, over what the process holds live.
+  if (first) malloc_trim(0);
+#endif
+  const bool peakReset = first && resetPeakResident();
+
+  auto t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<Far::TopologyRefiner> refiner(p.described.create());
+  if (!refiner) {
+    unavailable_ = "OpenSubdiv refused the mesh";
+    impl_.reset();
+    return false;
+  }
+  Far::TopologyRefiner::AdaptiveOptions adaptive(p.levels);
+  adaptive.useInfSharpPatch = true;
+  adaptive.useSingleCreasePatch = false;
+  adaptive.considerFVarChannels = false;
+  refiner->RefineAdaptive(adaptive);
+  p.topo.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+
+  Far::PatchTableFactory::Options options(unsigned(p.levels));
+  options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS);
+  options.useInfSharpPatch = true;
+  options.useSingleCreasePatch = false;
+  options.generateFVarTables = false;
+  options.generateVaryingTables = false;  // our path makes no varying data either
+  t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, options));
+  p.patches.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+
+  // Every refined vertex, then the end caps' local points (the tutorials' layout), allocated and
+  // touched before the clock starts, as benchPeer's.
+  const int refined = refiner->GetNumVerticesTotal(), local = table->GetNumLocalPoints();
+  std::vector<OsdPoint<float>> points(size_t(refined + local));
+  for (Index v = 0; v < p.mesh.vertexCount(); ++v) {
+    const Point& q = p.mesh.points[v];
+    points[v] = {q.x, q.y, q.z};
+  }
+  t0 = std::chrono::steady_clock::now();
+  interpolateLevels<float, Far::PrimvarRefiner>(*refiner, refiner->GetMaxLevel(), points);
+  if (local > 0) table->GetLocalPointStencilTable()->UpdateValues(points.data(), points.data() + refined);
+  p.pos.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+
+  AdaptivePeerTiming& t = p.last;
+  t.patches = size_t(table->GetNumPatchesTotal());
+  t.totalFaces = size_t(refiner->GetNumFacesTotal());
+  t.totalVertices = size_t(refined);
+  t.localPoints = size_t(local);
+  t.levelFaces.clear();
+  for (int level = 0; level <= refiner->GetMaxLevel(); ++level)
+    t.levelFaces.push_back(size_t(refiner->GetLevel(level).GetNumFaces()));
+  volatile double sink = points.back().x;  // the points are used
+  (void)sink;
+  if (peakReset) t.peakRssMb = peakResidentMegabytes();
+  return true;
+}
+
+AdaptivePeerTiming AdaptivePeer::result() const {
+  AdaptivePeerTiming t;
+  if (!impl_ || impl_->topo.empty()) return t;
+  t = impl_->last;
+  t.name = "opensubdiv-3.5";
+  t.topologyMs = medianOf(impl_->topo);
+  t.patchesMs = medianOf(impl_->patches);
+  t.positionsMs = medianOf(impl_->pos);
+  return t;
+}
 #else
 std::optional<PeerTiming> benchPeer(const PolyMesh&, int, int, const Refinement*) { return std::nullopt; }
+
+struct AdaptivePeer::Impl {};
+AdaptivePeer::AdaptivePeer(const PolyMesh&, int) : unavailable_("built without OpenSubdiv") {}
+AdaptivePeer::~AdaptivePeer() = default;
+bool AdaptivePeer::run() { return false; }
+AdaptivePeerTiming AdaptivePeer::result() const { return {}; }
 #endif
+
+std::optional<AdaptivePeerTiming> benchAdaptivePeer(const PolyMesh& mesh, int levels, int reps) {
+  AdaptivePeer peer(mesh, levels);
+  for (int rep = 0; rep < std::max(reps, 1); ++rep)
+    if (!peer.run()) return std::nullopt;
+  return peer.result();
+}
 
 double triadGigabytesPerSecond(size_t bytesPerArray, unsigned threads, int reps) {
   const Index n = Index(bytesPerArray / sizeof(double));

@@ -269,6 +269,8 @@ const char* usageText() {
          "  polarview info IN.obj [--json]\n"
          "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
          "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--vs-opensubdiv] [--json]\n"
+         "                 --vs-opensubdiv: OpenSubdiv 3.5 in the same run (uniform: its points checked against\n"
+         "                 ours; --adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)\n"
          "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
          "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
          "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--vectors] [--json]\n"
@@ -614,6 +616,8 @@ double refinementBytes(const Refinement& refinement) {
 // The viewer's own step (surface_pipeline.h): level L-1 shown, level L's whole surface made ahead
 // while idle (made_ahead_ms: prepareLevel, refinement, patches and curvature samples), then the step
 // (level_up_made_ahead_ms: buildSurface handing it out; the GPU upload is not in it).
+// --vs-opensubdiv: OpenSubdiv's RefineAdaptive + PatchTableFactory beside it (AdaptivePeer), its
+// numbers in "peer", the ratios and patches_agree at the top level (docs/performance.md).
 int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
   const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
@@ -622,9 +626,11 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
   const Model model{std::make_shared<const PolyMesh>(mesh), o.input, 1, 0, refinesRadially(mesh, Scheme::RTS)};
   const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
-  size_t patchCount = 0, totalFaces = 0, finestFaces = 0;
+  size_t patchCount = 0, totalFaces = 0, finestFaces = 0, polesRefined = 0;
+  std::vector<size_t> levelFaces;
   double peakRssMb = 0.0;
-  for (int rep = 0; rep < o.reps; ++rep) {
+  // One repetition of our path: the refinement, its patches, the edit and the level steps.
+  auto runOurs = [&](int rep) {
     auto t0 = std::chrono::steady_clock::now();
     AdaptiveRefinement refinement(mesh, options, o.input, budgetFaces);
     build.push_back(millisecondsSince(t0));
@@ -640,6 +646,10 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
     if (rep == 0) peakRssMb = peakResidentMegabytes();
     totalFaces = refinement.totalFaces();
     finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
+    polesRefined = refinement.level(0).poles.size();
+    levelFaces.clear();
+    for (int m = 0; m < refinement.levelCount(); ++m)
+      levelFaces.push_back(size_t(refinement.level(m).mesh.faceCount()));
     if (o.edit) {  // drag vertex 0 by 1% of the first edge's length, as the viewer does per frame
       std::vector<Point> moved = mesh.points;
       moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
@@ -664,27 +674,73 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
       cache.patchSet(stepped, o.levels, &stepSources);
       levelUpAgain.push_back(millisecondsSince(t0));
 
-      if (!viewerStepRefusal.empty()) continue;
+      if (!viewerStepRefusal.empty()) return;
       const SurfaceKey shownKey{model.generation, *parseSchemeChoice(scheme), o.levels - 1, model.points};
       SurfaceKey nextKey = shownKey;
       nextKey.level = o.levels;
       // The viewer offers fewer levels than the bench refines (its level cap, its bytes a face):
       // where it would refuse these, the bench says so instead of timing them.
       viewerStepRefusal = checkFaceBudget(model, nextKey, viewFaceBudget);
-      if (!viewerStepRefusal.empty()) continue;
+      if (!viewerStepRefusal.empty()) return;
       const std::shared_ptr<const BuiltSurface> shown = buildSurface(model, shownKey, viewFaceBudget);
       t0 = std::chrono::steady_clock::now();
       if (!prepareLevel(*shown->hierarchy, model, nextKey, viewFaceBudget)) {
         viewerStepRefusal = "level " + std::to_string(o.levels) + " could not be made ahead (memory)";
-        continue;
+        return;
       }
       madeAhead.push_back(millisecondsSince(t0));
       t0 = std::chrono::steady_clock::now();
       const std::shared_ptr<const BuiltSurface> next = buildSurface(model, nextKey, viewFaceBudget, shown->hierarchy);
       levelUpMadeAhead.push_back(millisecondsSince(t0));
     }
+  };
+
+  // --vs-opensubdiv: OpenSubdiv's own feature-adaptive path (bench_peer.h), alternated with ours
+  // repetition by repetition (ours first on even repetitions, the peer first on odd ones) so that a
+  // noisy machine's drift falls on both. It computes Catmull-Clark only: run where this run's
+  // surface is the same (cc, or a polar scheme that refines no pole of this mesh), known after
+  // our first repetition.
+  std::optional<AdaptivePeer> peer;
+  if (o.vsOpenSubdiv) peer.emplace(mesh, o.levels);
+  bool peerWanted = false;
+  std::string comparison;
+  auto runPeer = [&] {
+    if (peer && peerWanted && peer->unavailable().empty()) peer->run();
+  };
+  for (int rep = 0; rep < o.reps; ++rep) {
+    if (rep % 2 == 1) runPeer();
+    runOurs(rep);
+    if (rep == 0 && peer) {
+      if (schemeTraits(o.scheme).polar() && polesRefined > 0)
+        comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
+                     (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+      else
+        peerWanted = true;
+    }
+    if (rep % 2 == 0) runPeer();
   }
   const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
+  const double patchesMs = median(patches);
+  bool compared = false, peerFailed = false;
+  AdaptivePeerTiming theirs;
+  if (peer && !peer->unavailable().empty() && (peerWanted || o.levels <= AdaptivePeer::kMaxLevels)) {
+    // No OpenSubdiv (or it refused the mesh) fails the command, as the uniform bench's peer; too
+    // many levels for it only says so.
+    comparison = "no peer: " + peer->unavailable();
+    peerFailed = o.levels <= AdaptivePeer::kMaxLevels;
+  } else if (peer && peerWanted) {
+    theirs = peer->result();
+    compared = true;
+    comparison = "same surface: Catmull-Clark, OpenSubdiv's RefineAdaptive + PatchTableFactory (B-spline end caps)";
+  }
+  const double ourTotal = topologyMs + positionsMs + patchesMs;
+  const double theirTotal = theirs.topologyMs + theirs.positionsMs + theirs.patchesMs;
+  const bool patchesAgree = compared && theirs.patches == patchCount;
+  const double topologySpeedup = theirs.topologyMs / std::max(topologyMs, 1e-9);
+  const double positionsSpeedup = theirs.positionsMs / std::max(positionsMs, 1e-9);
+  const double patchesSpeedup = theirs.patchesMs / std::max(patchesMs, 1e-9);
+  const double speedup = theirTotal / std::max(ourTotal, 1e-9);
+  const double facesRatio = double(totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1));
   JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels).field("adaptive", true);
   w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
@@ -698,6 +754,31 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   else if (o.levels >= 1)
     w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", viewerStepRefusal);
   w.field("peak_rss_mb", peakRssMb);
+  w.key("level_faces").beginArray();
+  for (size_t faces : levelFaces) w.value(faces);
+  w.endArray();
+  if (o.vsOpenSubdiv) {
+    if (compared) {
+      w.key("peer").beginObject().field("name", theirs.name);
+      w.field("what",
+              "Far::TopologyRefiner::RefineAdaptive (useInfSharpPatch) + Far::PatchTableFactory (ENDCAP_BSPLINE_BASIS) + "
+              "Far::PrimvarRefiner and the local point stencils");
+      w.field("topology_ms", theirs.topologyMs).field("positions_ms", theirs.positionsMs);
+      w.field("patches_ms", theirs.patchesMs).field("patches", theirs.patches).field("total_faces", theirs.totalFaces);
+      w.field("total_vertices", theirs.totalVertices).field("local_points", theirs.localPoints);
+      w.key("level_faces").beginArray();
+      for (size_t faces : theirs.levelFaces) w.value(faces);
+      w.endArray();
+      if (theirs.peakRssMb > 0) w.field("peak_rss_mb", theirs.peakRssMb);
+      w.endObject();
+    }
+    w.field("compared", compared).field("comparison", comparison);
+    if (compared) {
+      w.field("topology_speedup", topologySpeedup).field("patches_speedup", patchesSpeedup);
+      w.field("positions_speedup", positionsSpeedup).field("speedup", speedup).field("faces_ratio", facesRatio);
+      w.field("patches_agree", patchesAgree);
+    }
+  }
   w.endObject();
   if (o.json) {
     std::cout << w.str() << "\n";
@@ -715,6 +796,18 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
                   o.levels, median(madeAhead), median(levelUpMadeAhead));
     else if (o.levels >= 1)
       std::printf("the viewer's step: not timed (%s)\n", viewerStepRefusal.c_str());
+    if (compared)
+      std::printf("%s adaptive: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches (%s), %zu faces in all "
+                  "levels (ours %.2fx); speed-up %.2fx (topology), %.2fx (positions), %.2fx (patches), %.2fx (all)\n",
+                  theirs.name.c_str(), theirs.topologyMs, theirs.positionsMs, theirs.patchesMs, theirs.patches,
+                  patchesAgree ? "agree" : ("DIFFER: ours " + std::to_string(patchCount)).c_str(), theirs.totalFaces,
+                  facesRatio, topologySpeedup, positionsSpeedup, patchesSpeedup, speedup);
+    else if (o.vsOpenSubdiv)
+      std::printf("vs OpenSubdiv adaptive: not compared (%s)\n", comparison.c_str());
+  }
+  if (peerFailed) {
+    std::fprintf(stderr, "polarview: bench --adaptive --vs-opensubdiv: %s\n", comparison.c_str());
+    return 2;
   }
   return 0;
 }
@@ -725,7 +818,6 @@ int runBench(const Args& args) {
                                   "--adaptive", "--edit", "--vs-opensubdiv"});
   if (o.levels < 0) throw UsageError{"bench needs --levels L"};
   if (o.edit && !o.adaptive) throw UsageError{"bench: --edit needs --adaptive"};
-  if (o.vsOpenSubdiv && o.adaptive) throw UsageError{"bench: --vs-opensubdiv measures the uniform path, not --adaptive"};
   PolyMesh mesh = loadInput(o.input);
   if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);

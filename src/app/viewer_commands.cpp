@@ -408,7 +408,7 @@ ViewRequest parseViewArgs(const std::vector<std::string>& args) {
 
 // --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
 // after a pause long enough for the view to make its next level ahead), then toggles its scheme to
-// Catmull-Clark and back twice as `S` does (the second time both are parked); per step the CPU split of what the new frame waited for
+// Catmull-Clark (from Catmull-Clark: to C2PS) and back twice as `S` does (the second time both are parked); per step the CPU split of what the new frame waited for
 // (refinement, patch set, samples off the GL thread; packing + upload on it), how many patches
 // stayed on the GPU, and the first frame's time (upload and draw).
 // As JSON: [{"from":..,"to":..,"scheme":..,"refine_ms":..,...}, ...].
@@ -418,17 +418,15 @@ std::string runLevelSteps(ViewerApp& app, int level) {
   json << "[";
   int from = state.views[0].level;
   const SchemeChoice scheme = state.views[0].scheme;
+  // The scheme toggled to: Catmull-Clark, or C2PS from Catmull-Clark (its first visit is the
+  // first build of the C2PS level).
+  const SchemeChoice other = scheme == SchemeChoice::CatmullClark ? SchemeChoice::C2PS : SchemeChoice::CatmullClark;
   struct Step {
     int level;
     SchemeChoice scheme;
   };
-  const Step steps[] = {{level, scheme},
-                        {level - 1, scheme},
-                        {level, scheme},
-                        {level, SchemeChoice::CatmullClark},
-                        {level, scheme},
-                        {level, SchemeChoice::CatmullClark},
-                        {level, scheme}};
+  const Step steps[] = {{level, scheme}, {level - 1, scheme}, {level, scheme}, {level, other},
+                        {level, scheme}, {level, other},     {level, scheme}};
   for (size_t k = 0; k < std::size(steps); ++k) {
     requestLevel(state, steps[k].level);
     state.views[0].scheme = steps[k].scheme;

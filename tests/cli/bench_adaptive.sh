@@ -3,6 +3,8 @@
 # feature-adaptive level 10 of RTS, BPS and Catmull-Clark holds fewer faces (all levels together)
 # than the same scheme's uniform level 5 has at its finest
 # (C2PS doubles the polar valence each level, so its rings alone outgrow that: not claimed).
+# With --vs-opensubdiv, OpenSubdiv's own feature-adaptive path runs beside it and makes as many
+# patches (skipped, but --vs-opensubdiv must then fail, in a build without OpenSubdiv).
 # Args: <polarview executable> <repository root>.
 set -euo pipefail
 exe=$1
@@ -31,6 +33,44 @@ u=$("$exe" bench "$tmp/cap64.obj" --scheme c2ps --levels 3 --reps 1 --json | fie
 json=$("$exe" bench "$tmp/cap7.obj" --scheme rts --levels 25 --adaptive --reps 1 --json) || fail "rts level 25: bench failed"
 echo "$json" | python3 -c "import json,sys; d=json.load(sys.stdin); assert d['made_ahead_ms'] is None and 'refused' in d['viewer_step'] and d['patches'] > 0, d" \
   || fail "rts level 25: $json"
+# --vs-opensubdiv: the peer's fields and ratios, and equal patch counts: a cap (an extraordinary
+# vertex of valence 16 and a boundary) and a cube with a semi-sharp crease and a corner (sharpness
+# decaying level by level), Catmull-Clark; C2PS on the cap refines the pole: not compared.
+"$exe" shape cap --valence 16 --links 4 -o "$tmp/cap16.obj"
+cube='v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n'
+cube+='f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n'
+printf "${cube}t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 1.5\n" > "$tmp/tagged.obj"
+set +e
+"$exe" bench "$tmp/cap16.obj" --scheme cc --levels 6 --adaptive --vs-opensubdiv --reps 2 --json > "$tmp/v.json" 2> "$tmp/v.err"
+rc=$?
+set -e
+if [ $rc -eq 2 ] && grep -q "built without OpenSubdiv" "$tmp/v.err"; then
+  echo "bench --adaptive --vs-opensubdiv: no OpenSubdiv in this build, peer checks skipped"
+else
+  [ $rc -eq 0 ] || fail "--adaptive --vs-opensubdiv on the cap: exit $rc $(cat "$tmp/v.err")"
+  "$exe" bench "$tmp/tagged.obj" --scheme cc --levels 5 --adaptive --vs-opensubdiv --reps 2 --json > "$tmp/t.json" 2> /dev/null ||
+    fail "--adaptive --vs-opensubdiv on the tagged cube"
+  "$exe" bench "$tmp/cap16.obj" --scheme cc --levels 4 --adaptive --vs-opensubdiv --reps 1 > "$tmp/v.txt" || fail "text output"
+  "$exe" bench "$tmp/cap16.obj" --scheme c2ps --levels 3 --adaptive --vs-opensubdiv --reps 1 --json > "$tmp/p.json" ||
+    fail "--adaptive --vs-opensubdiv c2ps on the cap"
+  python3 -c "
+import json
+for name in ('v', 't'):
+    d = json.load(open('$tmp/' + name + '.json'))
+    p = d['peer']
+    for k in ('topology_ms', 'patches_ms', 'positions_ms', 'patches', 'total_faces', 'level_faces', 'peak_rss_mb'):
+        assert k in p, (name, k, p)
+    assert d['compared'] and d['patches_agree'] is True and p['patches'] == d['patches'] > 0, (name, d)
+    for k in ('topology_speedup', 'patches_speedup', 'positions_speedup', 'speedup', 'faces_ratio'):
+        assert d[k] > 0, (name, k, d)
+    assert len(p['level_faces']) == len(d['level_faces']) == d['levels'] + 1, (name, d)
+c = json.load(open('$tmp/p.json'))
+assert not c['compared'] and 'different surfaces' in c['comparison'] and 'peer' not in c, c
+assert not any(k.endswith('speedup') for k in c) and 'patches_agree' not in c, c
+text = open('$tmp/v.txt').read()
+assert 'opensubdiv-3.5 adaptive:' in text and '(agree)' in text and 'speed-up' in text, text
+" || fail "bench --adaptive --vs-opensubdiv: $(cat "$tmp/v.json" "$tmp/t.json")"
+fi
 # --edit without --adaptive is a usage error.
 set +e
 "$exe" bench "$tmp/cap64.obj" --scheme cc --levels 1 --edit > /dev/null 2>&1
