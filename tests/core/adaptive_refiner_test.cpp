@@ -187,9 +187,10 @@ void checkLevelTables(const AdaptiveRefinement& refinement, const std::string& w
   }
 }
 
-void checkAgainstUniform(const PolyMesh& mesh, const std::string& name, int maxLevel) {
+void checkAgainstUniform(const PolyMesh& mesh, const std::string& name, int maxLevel,
+                         std::initializer_list<Scheme> schemes = {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
   const double size = modelSize(mesh);
-  for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS})
+  for (Scheme scheme : schemes)
     for (bool uniformFirst : {false, true}) {
       if (uniformFirst && scheme != Scheme::C2PS) continue;
       for (int level = 0; level <= maxLevel; ++level) {
@@ -522,10 +523,15 @@ TEST_CASE("adaptive: the same patches as uniform refinement on OpenSubdiv's regr
   for (const std::filesystem::path& file : files) {
     std::ifstream in(file);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const PolyMesh untagged = parseObjText(text, file.filename().string());
     for (size_t at = text.find("\n#t "); at != std::string::npos; at = text.find("\n#t ", at + 1)) text.erase(at + 1, 1);
     const PolyMesh mesh = parseObjText(text, file.filename().string());
     // Levels as deep as keep the uniform side small (it grows as 4^L).
     const int levels = mesh.faceCount() > 2000 ? 3 : mesh.faceCount() > 200 ? 4 : 5;
     checkAgainstUniform(mesh, file.filename().string(), levels);
+    // Without their tags other faces are refined: catmark_car's first step then refines faces
+    // whose selected corners are not consecutive (two face points, sparse steps).
+    if (!mesh.tags.creases.empty() || !mesh.tags.corners.empty())
+      checkAgainstUniform(untagged, file.filename().string() + " untagged", levels, {Scheme::CatmullClark});
   }
 }

@@ -347,35 +347,13 @@ void refineRadialPart(CopiedPart& part, const std::string& source, RefinedLevel&
 
 // [SECTION] the sparse step (Catmull-Clark and C2PS connectivity)
 
-// Whether the selected corners of face f form more than one run around it. [O(face size)]
-bool selectedCornersSplit(const PolyMesh& mesh, Index f, const std::vector<uint8_t>& selected) {
-  const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
-  int runs = 0;
-  for (Index c = begin; c < end; ++c)
-    runs += selected[size_t(mesh.faceVerts[c])] && !selected[size_t(mesh.faceVerts[c == begin ? end - 1 : c - 1])];
-  return runs > 1;
-}
-
-// The vertices whose corners a sparse step refines: the corners of the faces to refine, closed so
-// that the selected corners of every face are consecutive (two runs would join two fans of child
-// faces at its face point: not manifold). [O(faces around the selection)]
+// The vertices whose corners a sparse step refines: the corners of the faces to refine. [O(corners)]
 std::vector<uint8_t> selectVertices(const RefinedLevel& level, const std::vector<uint8_t>& refine) {
   const PolyMesh& mesh = level.mesh;
-  const MeshTopology& topo = level.topology;
   std::vector<uint8_t> selected(size_t(mesh.vertexCount()), 0);
-  std::vector<Index> queue;
-  auto select = [&](Index f) {
-    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
-      if (!selected[size_t(mesh.faceVerts[c])]) selected[size_t(mesh.faceVerts[c])] = 1, queue.push_back(mesh.faceVerts[c]);
-  };
   for (Index f = 0; f < mesh.faceCount(); ++f)
-    if (refine[size_t(f)]) select(f);
-  while (!queue.empty()) {
-    const Index v = queue.back();
-    queue.pop_back();
-    for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k)
-      if (selectedCornersSplit(mesh, topo.vertexFaces[k], selected)) select(topo.vertexFaces[k]);
-  }
+    if (refine[size_t(f)])
+      for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) selected[size_t(mesh.faceVerts[c])] = 1;
   return selected;
 }
 
@@ -387,6 +365,24 @@ std::vector<uint8_t> facesTouching(const RefinedLevel& level, const std::vector<
     for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1] && !touched[size_t(f)]; ++c)
       touched[size_t(f)] = selected[size_t(mesh.faceVerts[c])];
   return touched;
+}
+
+// Numbers the face points of face f (appended to `faces`, one per run of selected corners) and
+// records each selected corner's in cornerFacePoint; returns the first. [O(face size)]
+Index assignFacePoints(const PolyMesh& mesh, Index f, const std::vector<uint8_t>& selected, std::vector<Index>& faces,
+                       std::vector<Index>& cornerFacePoint) {
+  const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1], size = end - begin;
+  auto isSelected = [&](Index i) { return selected[size_t(mesh.faceVerts[begin + (i % size)])] != 0; };
+  Index start = 0;  // a corner that starts a run (any corner when all are selected)
+  while (start < size && !(isSelected(start) && !isSelected(start + size - 1))) ++start;
+  if (start == size) start = 0;
+  const Index first = Index(faces.size());
+  for (Index i = start; i < start + size; ++i) {
+    if (!isSelected(i)) continue;
+    if (i == start || !isSelected(i - 1)) faces.push_back(f);
+    cornerFacePoint[size_t(begin + (i % size))] = Index(faces.size()) - 1;
+  }
+  return first;
 }
 
 // C2PS's split corners (each quad at a pole's corner becomes two triangles): per corner of `level`;
@@ -589,8 +585,12 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
   const std::vector<uint8_t> touched = facesTouching(level, selected);
   std::vector<Index> faceChild(size_t(topo.faceCount), -1), edgeChild(size_t(topo.edgeCount), -1), vertexChild(size_t(topo.vertexCount), -1);
   SparseChildVertices& children = part.children;
+  // A face whose selected corners form several runs gets a face point per run: its child faces
+  // there meet only at the face point, which one point would make non-manifold (OpenSubdiv keeps
+  // such a vertex non-manifold). The copies share the parent face, so their points are the same.
+  std::vector<Index> cornerFacePoint(mesh.faceVerts.size(), -1);
   for (Index f = 0; f < topo.faceCount; ++f)
-    if (touched[size_t(f)]) faceChild[size_t(f)] = Index(children.faces.size()), children.faces.push_back(f);
+    if (touched[size_t(f)]) faceChild[size_t(f)] = assignFacePoints(mesh, f, selected, children.faces, cornerFacePoint);
   const Index faceCount = Index(children.faces.size());
   for (Index e = 0; e < topo.edgeCount; ++e)
     if (selected[size_t(topo.edgeVerts[2 * e])] || selected[size_t(topo.edgeVerts[2 * e + 1])])
@@ -606,12 +606,14 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
   child.mesh.faceVerts.reserve(childFaces * 4);
   child.faceParent.reserve(childFaces);
   std::vector<Index> childCorner(mesh.faceVerts.size(), -1);  // per parent corner: its child face's first corner
-  for (Index f : children.faces) {
+  for (size_t i = 0; i < children.faces.size(); ++i) {
+    const Index f = children.faces[i];
+    if (i > 0 && children.faces[i - 1] == f) continue;  // a second face point of the same face
     const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
     for (Index c = begin; c < end; ++c) {
       if (!selected[size_t(mesh.faceVerts[c])]) continue;
       const Index prev = c == begin ? end - 1 : c - 1;
-      const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = faceChild[size_t(f)];
+      const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = cornerFacePoint[size_t(c)];
       const Index next = edgeChild[size_t(topo.cornerEdge[c])], before = edgeChild[size_t(topo.cornerEdge[prev])];
       childCorner[size_t(c)] = Index(child.mesh.faceVerts.size());
       if (!split.empty() && split[size_t(c)]) {
