@@ -88,9 +88,7 @@ size_t parseByteSize(const std::string& flag, const std::string& text) {
 // tables and the output (measured: Catmull-Clark on a cube, levels 8 and 9: 248 and 236 bytes of
 // peak RSS per finest face), with a margin.
 constexpr double kBytesPerFinestFace = 300.0;
-// The feature-adaptive path: bytes per face of all its levels together, patches included (peak RSS
-// 447 MB for 989,082 faces: C2PS level 12 on the default model, bench --adaptive).
-constexpr double kBytesPerAdaptiveFace = 450.0;
+// The feature-adaptive path's bytes per face: the viewer's kBytesPerAdaptiveFace (surface_pipeline.h).
 
 // The memory a refinement may take: --memory-budget, else 80% of what the machine has available
 // now (MemAvailable), else 4 GiB where that cannot be read.
@@ -754,6 +752,11 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   else if (o.levels >= 1)
     w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", viewerStepRefusal);
   w.field("peak_rss_mb", peakRssMb);
+  // Memory a refined face and a patch cost at the peak (the whole process's peak over either count),
+  // and the deepest level of this scheme a view's memory budget (640 MB) admits on the model.
+  w.field("peak_bytes_per_face", peakRssMb * 1048576.0 / double(std::max<size_t>(totalFaces, 1)));
+  w.field("peak_bytes_per_patch", peakRssMb * 1048576.0 / double(std::max<size_t>(patchCount, 1)));
+  w.field("view_deepest_level", deepestLevel(model, *parseSchemeChoice(scheme), kDefaultFaceBudget));
   w.key("level_faces").beginArray();
   for (size_t faces : levelFaces) w.value(faces);
   w.endArray();

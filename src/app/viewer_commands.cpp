@@ -150,6 +150,9 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByScheme;
   json << "],\"poles_by_cc\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByCatmullClark;
+  // Per view: the deepest level the view's memory budget admits for its scheme on this model.
+  json << "],\"deepest_levels\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].deepestLevel;
   json << "],\"titles\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
   const double range = state.colourRange(), rangeBelow = state.colourRangeBelow();

@@ -8,18 +8,27 @@
 //    level's faces around them and their 4x4 stencils the uniform level's points;
 //  * exactVertices(m): vertices whose position equals the uniform level's (round-off). Vertices at
 //    the rim of the refined part were computed from incomplete neighbourhoods and are not exact.
-// Step m -> m+1: R = needed faces that are not regular; S = R grown by `supportRings` rings of
-// faces (every face sharing a vertex); S is copied out as a mesh of its own and refined one step
-// by the uniform refiner's own steps (refine_steps.h): Catmull-Clark connectivity with C2PS's split
-// pole corners, or RTS/BPS's radial step on caps and globes. A child vertex is exact when the
-// points its rule reads are exact and complete: Catmull-Clark vertex point: all faces around the
-// vertex in S; edge point: both faces; face point: its corners; C2PS's rules (1)-(3): links 0..2
-// of the pole; radial rows: the parent rows of the cubic rules. Poles keep the uniform level's
-// index, orientation and first links (truncated where S ends).
+// Step m -> m+1 (sparse, as OpenSubdiv's Vtr sparse refinement): R = needed faces that are not
+// regular; the selected vertices are R's corners, and level m+1 holds the child faces of every
+// level m face at its selected corners and nothing else: all four children of R's faces, and of
+// each face around them the ones at R's corners, which hold exactly the points the next level's
+// 4x4 stencils and rules read. Connectivity as the uniform refiner's steps (refine_topology.h):
+// Catmull-Clark's quads, C2PS's split pole corners; the child's tables come from half-edge twins
+// derived from level m's (buildTopologyFromTwins), its points from a sparse kernel over level m's
+// tables (computeSparseCatmullClarkPoints). A face whose selected corners form several runs gets a
+// face point per run (the child stays manifold; OpenSubdiv keeps one non-manifold point). Faces
+// refined therefore equal OpenSubdiv's RefineAdaptive's (docs/performance.md). A child vertex is
+// exact when the points its rule reads are exact and complete (Catmull-Clark vertex point: the
+// vertex's faces are the uniform level's; edge point: both faces, or a real boundary; face point:
+// its corners; C2PS's rules (1)-(3): links 0..2 of the pole). Poles keep the uniform level's index,
+// orientation and first links: I wholly selected links give the child's links 1..2I+1.
+// RTS/BPS's radial steps (caps and globes, and the tail's pole regions) copy the selection grown
+// by three rings out as a mesh of their own and refine it radially (radial rows: exact when the
+// parent rows of the cubic rules are).
 //
 // Precision: a level-20 ring is 1e-6 of the model and its points 1e-8 apart, so absolute doubles
 // near 1 (rounding 1e-16) would leave the second differences curvature is made of (~1e-16) to
-// round-off. Each step therefore refines every connected component of S in a frame of its own,
+// round-off. Each step therefore refines every connected component of the faces it touches in a frame of its own,
 // anchored at one of its parent vertices (its pole where it has one): level m+1's points are
 // relative to RefinedLevel::frameOrigins[vertexFrame[v]], and the rules' differences keep double
 // precision relative to the component's size at any depth. Patches carry the origin
