@@ -115,8 +115,10 @@ std::string gigabytes(double bytes) {
 size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adaptive = false) {
   const size_t budget = memoryBudgetBytes(o);
   const bool radial = refinesRadially(mesh, o.scheme);
+  const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
   const std::vector<size_t> adaptiveFaces =
-      adaptive ? estimateAdaptiveFaceCounts(mesh, {o.scheme, o.levels, o.uniformFirstStep}) : std::vector<size_t>{};
+      adaptive ? estimateAdaptiveFaceCounts(mesh, {o.scheme, o.levels, o.uniformFirstStep}, budgetFaces) : std::vector<size_t>{};
+  const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] > budgetFaces;  // not made: "more than"
   auto bytesAt = [&](int level) {
     if (adaptive) return double(adaptiveFaces[size_t(level)]) * kBytesPerAdaptiveFace;
     return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerFinestFace;
@@ -125,7 +127,8 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adap
     int fits = o.levels;
     while (fits > 0 && bytesAt(fits) > double(budget)) --fits;
     throw InputError(o.input, 0,
-                     "level " + std::to_string(o.levels) + " would need about " + gigabytes(bytesAt(o.levels)) +
+                     "level " + std::to_string(o.levels) + " would need " +
+                         (beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels))) +
                          ", over the memory budget of " + gigabytes(double(budget)) +
                          (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
                          ": level " + std::to_string(fits) + " fits");

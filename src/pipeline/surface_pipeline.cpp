@@ -178,14 +178,15 @@ namespace {
 // The faces of the feature-adaptive refinement of `scheme` at each level 0..kMaxLevel on the model
 // (estimateAdaptiveFaceCounts), measured once per model and scheme: the level limit is asked for
 // every frame.
-size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level) {
+size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
   static std::mutex mutex;
-  static std::map<std::pair<uint64_t, int>, std::vector<size_t>> cache;
+  static std::map<std::tuple<uint64_t, int, size_t>, std::vector<size_t>> cache;
   const std::lock_guard<std::mutex> lock(mutex);
-  std::vector<size_t>& totals = cache[{model.generation, int(scheme)}];
+  std::vector<size_t>& totals = cache[{model.generation, int(scheme), faceBudget}];
   if (totals.empty()) {
     try {
-      totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel));
+      // Bounded by the budget: a level over it is not made (it reads budget + 1), however large the input.
+      totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel), faceBudget);
     } catch (const std::exception&) {
       totals.assign(size_t(kMaxLevel) + 1, 0);  // not refinable: building says why
     }
@@ -194,7 +195,9 @@ size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level) {
 }
 }  // namespace
 
-size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level) { return estimatedFaces(model, scheme, level); }
+size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
+  return estimatedFaces(model, scheme, level, faceBudget);
+}
 
 namespace {
 // Whether `scheme` refines some polar configuration of the model (once per model and scheme).
@@ -228,7 +231,7 @@ int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t fac
 
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget) {
   int level = 0;
-  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1) <= faceBudget) ++level;
+  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1, faceBudget) <= faceBudget) ++level;
   return level;
 }
 
@@ -238,8 +241,9 @@ std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, siz
   std::string text = "level " + std::to_string(level) + " refused: " + schemeChoiceLabel(scheme) +
                      " stops at level " + std::to_string(deepest) + " on this model";
   if (deepest < kMaxLevel) {
-    const size_t faces = estimatedFaces(model, scheme, deepest + 1);
-    text += " (level " + std::to_string(deepest + 1) + " would make about " + std::to_string(faces) +
+    const size_t faces = estimatedFaces(model, scheme, deepest + 1, faceBudget);
+    text += " (level " + std::to_string(deepest + 1) + " would make " +
+            (faces > faceBudget ? "more than " + std::to_string(faceBudget) : "about " + std::to_string(faces)) +
             " faces, over the budget of " + std::to_string(faceBudget) + ")";
   } else {
     text += " (the deepest level polarview offers)";

@@ -206,8 +206,9 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
 float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
 
 // The faces the feature-adaptive refinement of `scheme` holds at `level` on the model (all levels
-// together; the estimate deepestLevel uses). [O(1) after the first call per model and scheme]
-size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level);
+// together; the estimate deepestLevel uses); faceBudget + 1 for a level over `faceBudget`, which
+// the estimate does not make. [O(1) after the first call per model, scheme and budget]
+size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget = kDefaultFaceBudget);
 // The level whose patches a view of `scheme` at `level` shows: `level`, or kNonC2CapLevel for
 // schemes that are not C2 at the pole when the model has poles they refine (within the budget).
 int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);

@@ -535,3 +535,22 @@ TEST_CASE("adaptive: the same patches as uniform refinement on OpenSubdiv's regr
       checkAgainstUniform(untagged, file.filename().string() + " untagged", levels, {Scheme::CatmullClark});
   }
 }
+
+TEST_CASE("adaptive: the face estimate stops at its budget, however large the poles (valence 100,000)") {
+  // A level over the budget is refused before it is made: the estimate of a C2PS cap of valence
+  // 100,000 (level 1: 400,000 faces) under a budget of 300,000 faces holds level 0 only, and says
+  // "more than the budget" (budget + 1) from level 1 on; under 2,000,000 it measures levels 1-2.
+  const PolyMesh cap = shapes::polarCap(100000, 2);
+  const std::vector<size_t> small = estimateAdaptiveFaceCounts(cap, {Scheme::C2PS, 12, false}, 300000);
+  REQUIRE(small.size() == 13);
+  CHECK(small[0] == size_t(cap.faceCount()));
+  for (int m = 1; m <= 12; ++m) CHECK(small[size_t(m)] == 300001);
+  const std::vector<size_t> larger = estimateAdaptiveFaceCounts(cap, {Scheme::C2PS, 12, false}, 2000000);
+  CHECK(larger[1] > size_t(cap.faceCount()));
+  CHECK(larger[1] <= 2000000);
+  CHECK(larger[12] == 2000001);
+  // Within the budget the estimate is the refinement's own count.
+  const PolyMesh small64 = shapes::polarCap(64, 3);
+  const std::vector<size_t> counted = estimateAdaptiveFaceCounts(small64, {Scheme::C2PS, 4, false}, 1 << 24);
+  CHECK(counted[4] == AdaptiveRefinement(small64, {Scheme::C2PS, 4, false}).totalFaces());
+}

@@ -144,27 +144,31 @@ class TopologyBuilder {
   void buildEdgesFromTwins(const std::vector<Index>& twin) {
     const Index cornerCount = static_cast<Index>(mesh_.faceVerts.size());
     const std::vector<Index>& fv = mesh_.faceVerts;
-    t_.cornerEdge.resize(cornerCount);
-    edgeCorners_.clear();
-    edgeCorners_.reserve(size_t(cornerCount));
-    t_.edgeVerts.reserve(size_t(cornerCount));
-    t_.edgeFaces.reserve(size_t(cornerCount));
+    Index edges = 0;
+    for (Index c = 0; c < cornerCount; ++c) edges += twin[size_t(c)] < 0 || twin[size_t(c)] > c;
+    t_.edgeCount = edges;
+    t_.cornerEdge.resize(size_t(cornerCount));
+    t_.edgeVerts.resize(2 * size_t(edges));
+    t_.edgeFaces.resize(2 * size_t(edges));
+    edgeCorners_.resize(2 * size_t(edges));
+    Index e = 0;
     for (Index c = 0; c < cornerCount; ++c) {
       const Index other = twin[size_t(c)];
       if (other >= 0 && other < c) {
-        const Index e = t_.cornerEdge[other];
-        t_.cornerEdge[c] = e;
-        t_.edgeFaces[2 * e + 1] = t_.cornerFace[c];
-        edgeCorners_[2 * e + 1] = c;
+        const Index led = t_.cornerEdge[other];
+        t_.cornerEdge[c] = led;
+        t_.edgeFaces[2 * led + 1] = t_.cornerFace[c];
+        edgeCorners_[2 * led + 1] = c;
         continue;
       }
-      t_.cornerEdge[c] = t_.edgeCount++;
-      t_.edgeVerts.push_back(fv[c]);
-      t_.edgeVerts.push_back(fv[cornerNext(c)]);
-      t_.edgeFaces.push_back(t_.cornerFace[c]);
-      t_.edgeFaces.push_back(-1);
-      edgeCorners_.push_back(c);
-      edgeCorners_.push_back(-1);
+      t_.cornerEdge[c] = e;
+      t_.edgeVerts[2 * e] = fv[c];
+      t_.edgeVerts[2 * e + 1] = fv[cornerNext(c)];
+      t_.edgeFaces[2 * e] = t_.cornerFace[c];
+      t_.edgeFaces[2 * e + 1] = -1;
+      edgeCorners_[2 * e] = c;
+      edgeCorners_[2 * e + 1] = -1;
+      ++e;
     }
   }
 

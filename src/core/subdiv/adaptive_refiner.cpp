@@ -589,13 +589,18 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
   // there meet only at the face point, which one point would make non-manifold (OpenSubdiv keeps
   // such a vertex non-manifold). The copies share the parent face, so their points are the same.
   std::vector<Index> cornerFacePoint(mesh.faceVerts.size(), -1);
+  children.faces.reserve(size_t(std::count(touched.begin(), touched.end(), uint8_t(1))));
   for (Index f = 0; f < topo.faceCount; ++f)
     if (touched[size_t(f)]) faceChild[size_t(f)] = assignFacePoints(mesh, f, selected, children.faces, cornerFacePoint);
   const Index faceCount = Index(children.faces.size());
+  auto edgeRefined = [&](Index e) { return selected[size_t(topo.edgeVerts[2 * e])] || selected[size_t(topo.edgeVerts[2 * e + 1])]; };
+  Index edgeTotal = 0;
+  for (Index e = 0; e < topo.edgeCount; ++e) edgeTotal += edgeRefined(e);
+  children.edges.reserve(size_t(edgeTotal));
   for (Index e = 0; e < topo.edgeCount; ++e)
-    if (selected[size_t(topo.edgeVerts[2 * e])] || selected[size_t(topo.edgeVerts[2 * e + 1])])
-      edgeChild[size_t(e)] = faceCount + Index(children.edges.size()), children.edges.push_back(e);
+    if (edgeRefined(e)) edgeChild[size_t(e)] = faceCount + Index(children.edges.size()), children.edges.push_back(e);
   const Index edgeEnd = faceCount + Index(children.edges.size());
+  children.vertices.reserve(size_t(std::count(selected.begin(), selected.end(), uint8_t(1))));
   for (Index v = 0; v < topo.vertexCount; ++v)
     if (selected[size_t(v)]) vertexChild[size_t(v)] = edgeEnd + Index(children.vertices.size()), children.vertices.push_back(v);
 
@@ -962,12 +967,23 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
   }
 }
 
-std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, int measured) {
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, size_t maxFaces, int measured) {
   RefineOptions first = options;
-  first.levels = std::min(options.levels, std::max(measured, 1));
-  const AdaptiveRefinement refinement(base, first, "<estimate>", std::numeric_limits<size_t>::max());
-  // Each level comes with the copied-out part of its parent that made it: count them in the
-  // proportion measured.
+  first.levels = 0;
+  AdaptiveRefinement refinement(base, first, "<estimate>", maxFaces);
+  // Measured level by level; a level over maxFaces is refused before it is made (so the estimate
+  // never holds more than maxFaces faces), and it and every deeper level are reported as over.
+  bool over = false;
+  const int wanted = std::min(options.levels, std::max(measured, 1));
+  while (refinement.levelCount() - 1 < wanted && !over) {
+    try {
+      refinement.extend(1, maxFaces);
+    } catch (const InputError&) {
+      over = true;
+    }
+  }
+  // Each level comes with the copied-out part of its parent that made it (radial steps): count them
+  // in the proportion measured.
   double levelFaces = 0.0;
   for (int m = 0; m < refinement.levelCount(); ++m) levelFaces += double(refinement.level(m).mesh.faceCount());
   const double withParts = double(refinement.totalFaces()) / levelFaces;
@@ -976,6 +992,10 @@ std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const Refin
   for (int m = 0; m < refinement.levelCount(); ++m) {
     total += double(refinement.level(m).mesh.faceCount()) * (m == 0 ? 1.0 : withParts);
     totals.push_back(size_t(total));
+  }
+  if (over) {
+    totals.resize(size_t(options.levels) + 1, maxFaces + 1);
+    return totals;
   }
   // Beyond: faces(m) = a + b 2^m through the last two measured levels. A pole of C2PS (and RTS/BPS
   // outside caps and globes, on C2PS's connectivity) doubles its valence, so its rings double a
@@ -990,7 +1010,7 @@ std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const Refin
   for (int m = last + 1; m <= options.levels; ++m) {
     const double faces = constant + doubling * std::ldexp(1.0, std::min(m, 1000));
     sum = std::min(sum + withParts * faces, 1e18);
-    totals.push_back(size_t(sum));
+    totals.push_back(sum > double(maxFaces) ? maxFaces + 1 : size_t(sum));
   }
   return totals;
 }
