@@ -17,7 +17,6 @@
 #include <string>
 #include <cmath>
 #include <memory>
-#include <unordered_map>
 #include <utility>
 
 namespace polarview {
@@ -39,10 +38,16 @@ struct LevelStack {
   int count() const { return int(levels.size()); }
   const RefinedLevel& level(int m) const { return *levels[size_t(m)]; }
   bool adaptive() const { return !needed.empty(); }
-  bool isNeeded(int m, Index f) const { return !adaptive() || (*needed[size_t(m)])[f]; }
   // Whether face f of level m was refined radially (its children keep its columns).
   // The finest level of the stack refines nothing.
   bool refinedRadially(int m, Index f) const { return adaptive() && m + 1 < count() && (*radialRefined[size_t(m)])[f]; }
+  // Whether a patch of level m may read any vertex: uniform, or every vertex exact (then the
+  // per-vertex checks are skipped). [O(vertices of the level)]
+  bool everyVertexExact(int m) const {
+    if (!adaptive()) return true;
+    const std::vector<uint8_t>& flags = *exact[size_t(m)];
+    return std::find(flags.begin(), flags.end(), uint8_t(0)) == flags.end();
+  }
   // Throws std::logic_error when a patch of face f at level m reads a vertex that is not exact.
   void checkExact(int m, Index v, Index f) const {
     if (adaptive() && !(*exact[size_t(m)])[v])
@@ -51,33 +56,140 @@ struct LevelStack {
   }
 };
 
-struct LevelClasses {
-  std::vector<VertexClass> vertex;
-  std::vector<uint8_t> faceRegular;  // 1 when the face gets a B-spline patch at this level
+// Per patch of a set, apart from the (large) patches, and known before they are made: its level,
+// its face where the patch's 4 sides are the face's sides (patch.h EDGES), else -1 (pole caps, a
+// k-gon's split end caps: no part in level jumps), and the faces across those sides. The level
+// jumps are found from it alone, so that each patch is written once, whole.
+struct SetIndex {
+  std::vector<Index> face;
+  std::vector<uint8_t> level;
+  std::vector<std::array<Index, 4>> across;  // -1 on the boundary (and where face is -1)
+
+  size_t size() const { return face.size(); }
+  void reserve(size_t count) {
+    face.reserve(count);
+    level.reserve(count);
+    across.reserve(count);
+  }
+  void add(Index patchFace, int patchLevel, const std::array<Index, 4>& acrossSides) {
+    face.push_back(patchFace);
+    level.push_back(uint8_t(std::min(patchLevel, 255)));
+    across.push_back(acrossSides);
+  }
+  void append(const SetIndex& other) {
+    face.insert(face.end(), other.face.begin(), other.face.end());
+    level.insert(level.end(), other.level.begin(), other.level.end());
+    across.insert(across.end(), other.across.begin(), other.across.end());
+  }
 };
 
-// Children of a regular face are regular (the vertex, edge and face points of an all-quad regular
-// neighbourhood keep valence 4, or 3 on the boundary), so only the other faces' vertices are
-// classified, on demand.
-LevelClasses classifyLevel(const LevelStack& stack, int m, const LevelClasses& parent) {
-  const RefinedLevel& level = stack.level(m);
-  const PolyMesh& mesh = level.mesh;
+// What one level's classification finds, in face order: the faces its regular patches come from
+// (entries of a SetIndex) and the faces left for end caps (should it be the finest level).
+struct LevelFaces {
+  size_t firstPatch = 0, patchCount = 0;  // regular, and (uniform stacks) the parent was not
+  std::vector<Index> capFaces;            // not regular, not holes (adaptive: needed)
+  std::vector<uint8_t> faceRegular;       // uniform stacks only: per face, for the children's inheritance
+  std::vector<VertexClass> vertexClass;   // per vertex; Unknown where nothing asked (gatherStencil reads it)
+  bool quadsOnly = false;                 // every face of the level a quad (Catmull-Clark's levels >= 1)
+};
+
+// Whether every face of the mesh is a quad (then quad f's corners start at 4 f). [O(faces)]
+bool hasQuadsOnly(const PolyMesh& mesh) {
+  if (mesh.faceStart.front() != 0) return false;
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    if (mesh.faceSize(f) != 4) return false;
+  return true;
+}
+
+// classifyVertex (face_regularity.h) once per vertex; on a level of quads only, without looking at
+// the faces around it.
+VertexClass vertexClassOf(const RefinedLevel& level, LevelFaces& faces, Index v) {
+  VertexClass& known = faces.vertexClass[size_t(v)];
+  if (known != VertexClass::Unknown) return known;
+  if (!faces.quadsOnly) return known = classifyVertex(level.mesh, level.topology, v);
   const MeshTopology& topo = level.topology;
-  const bool inherit = !stack.adaptive() && !parent.faceRegular.empty() && level.faceParent.size() == size_t(mesh.faceCount());
-  LevelClasses classes;
-  classes.vertex.assign(mesh.vertexCount(), VertexClass::Unknown);
-  markSharpVertices(mesh, topo, level.sharpness, classes.vertex.data());
-  classes.faceRegular.assign(mesh.faceCount(), 0);
-  for (Index f = 0; f < mesh.faceCount(); ++f) {
+  if (!topo.vertexOnBoundary[v]) return known = topo.valence(v) == 4 && topo.faceValence(v) == 4 ? VertexClass::Interior : VertexClass::Irregular;
+  return known = topo.valence(v) == 3 && topo.faceValence(v) == 2 ? VertexClass::Boundary : VertexClass::Irregular;
+}
+
+// isRegularFace (face_regularity.h) with the level's classes.
+bool isRegularFace(const RefinedLevel& level, LevelFaces& faces, Index f) {
+  if (level.mesh.faceSize(f) != 4) return false;
+  const Index* loop = level.mesh.face(f);
+  for (int c = 0; c < 4; ++c)
+    if (vertexClassOf(level, faces, loop[c]) == VertexClass::Irregular) return false;
+  return true;
+}
+
+// The faces across the 4 sides of quad f (-1 on the boundary).
+std::array<Index, 4> facesAcross(const RefinedLevel& level, Index f) {
+  const Index* edges = level.topology.cornerEdge.data() + level.mesh.faceStart[f];
+  std::array<Index, 4> across;
+  for (int s = 0; s < 4; ++s) across[size_t(s)] = level.topology.faceAcross(edges[s], f);
+  return across;
+}
+
+// Adaptive levels: only the needed faces are classified (the others are support for the rules).
+void classifyNeededFaces(const LevelStack& stack, int m, LevelFaces& faces, SetIndex& index) {
+  const RefinedLevel& level = stack.level(m);
+  const std::vector<uint8_t>& needed = *stack.needed[size_t(m)];
+  for (Index f = 0; f < level.mesh.faceCount(); ++f) {
+    if (!needed[size_t(f)] || level.isHole(f)) continue;  // holes: no patch
+    if (isRegularFace(level, faces, f)) index.add(f, m, facesAcross(level, f));
+    else faces.capFaces.push_back(f);
+  }
+}
+
+// Uniform levels: children of a regular face are regular (the vertex, edge and face points of an
+// all-quad regular neighbourhood keep valence 4, or 3 on the boundary) and their surface is the
+// parent's patch, so only the other faces' vertices are classified.
+void classifyAllFaces(const LevelStack& stack, int m, const LevelFaces* parent, LevelFaces& faces, SetIndex& index) {
+  const RefinedLevel& level = stack.level(m);
+  const Index faceCount = level.mesh.faceCount();
+  const bool inherit = parent && !parent->faceRegular.empty() && level.faceParent.size() == size_t(faceCount);
+  faces.faceRegular.assign(size_t(faceCount), 0);
+  for (Index f = 0; f < faceCount; ++f) {
     if (level.isHole(f)) continue;  // no patch
-    if (inherit && parent.faceRegular[level.faceParent[f]]) {
-      classes.faceRegular[f] = 1;
+    if (inherit && parent->faceRegular[size_t(level.faceParent[size_t(f)])]) {
+      faces.faceRegular[size_t(f)] = 1;
       continue;
     }
-    if (!stack.isNeeded(m, f)) continue;
-    classes.faceRegular[f] = isRegularFace(mesh, topo, f, classes.vertex.data());
+    faces.faceRegular[size_t(f)] = isRegularFace(level, faces, f);
+    if (faces.faceRegular[size_t(f)]) index.add(f, m, facesAcross(level, f));
+    else faces.capFaces.push_back(f);
   }
-  return classes;
+}
+
+// Classifies level m, its regular patches' entries appended to `index`. `parent`: level m-1's
+// classification (uniform stacks inherit from it; null at level 0).
+LevelFaces classifyLevel(const LevelStack& stack, int m, const LevelFaces* parent, SetIndex& index) {
+  const RefinedLevel& level = stack.level(m);
+  LevelFaces faces;
+  faces.vertexClass.assign(size_t(level.mesh.vertexCount()), VertexClass::Unknown);
+  markSharpVertices(level.mesh, level.topology, level.sharpness, faces.vertexClass.data());
+  faces.quadsOnly = hasQuadsOnly(level.mesh);
+  faces.firstPatch = index.size();
+  if (stack.adaptive()) classifyNeededFaces(stack, m, faces, index);
+  else classifyAllFaces(stack, m, parent, faces, index);
+  faces.patchCount = index.size() - faces.firstPatch;
+  return faces;
+}
+
+// At most how many regular patches level m of an adaptive stack gives (its needed faces), to make
+// room for their index entries at once; 0 for uniform stacks. [O(faces of the level)]
+size_t regularBound(const LevelStack& stack, int m) {
+  if (!stack.adaptive()) return 0;
+  return size_t(std::count(stack.needed[size_t(m)]->begin(), stack.needed[size_t(m)]->end(), uint8_t(1)));
+}
+
+// At most how many patches the stack's levels give (regularBound, and each pole of the finest
+// level capped).
+size_t patchBound(const LevelStack& stack) {
+  if (!stack.adaptive()) return 0;
+  size_t bound = 0;
+  for (int m = 0; m < stack.count(); ++m) bound += regularBound(stack, m);
+  for (const PolarGrid& grid : stack.level(stack.count() - 1).poleGrids) bound += size_t(std::max(grid.n, 0));
+  return bound;
 }
 
 // Per vertex: up to two poles whose links 1..5 hold it (two for short globes), -1 otherwise.
@@ -86,8 +198,10 @@ struct RingMembership {
   bool holds(Index v, int pole) const { return first[v] == pole || second[v] == pole; }
 };
 
+// Empty when the level has no pole (no patch is a PolarRing there).
 RingMembership markRingLinks(const RefinedLevel& level) {
   RingMembership rings;
+  if (level.poles.empty()) return rings;
   rings.first.assign(level.mesh.vertexCount(), -1);
   rings.second.assign(level.mesh.vertexCount(), -1);
   for (size_t p = 0; p < level.poles.size(); ++p) {
@@ -109,17 +223,19 @@ Index nextCorner(const PolyMesh& mesh, Index face, Index corner) {
   return start + (corner - start + 1) % mesh.faceSize(face);
 }
 
-Index cornerAt(const PolyMesh& mesh, Index face, Index vertex) {
-  for (Index c = mesh.faceStart[face]; c < mesh.faceStart[face + 1]; ++c)
-    if (mesh.faceVerts[c] == vertex) return c;
-  return -1;
-}
+// The first corner of quad g: every face around a regular face's corners is a quad (a vertex
+// touching another face is Irregular, face_regularity.h); on a level of quads only it is 4 g.
+Index quadStart(const PolyMesh& mesh, const LevelFaces& faces, Index g) { return faces.quadsOnly ? 4 * g : mesh.faceStart[g]; }
 
 // The 16 stencil vertex ids of a regular face, ids[4*j + i] as in patch.h; -1 where the point is a
 // phantom beyond the boundary. `sideMissing[s]` tells whether side s (corner s -> s+1) is a
 // boundary edge or infinitely sharp (face_regularity.h: a crease cuts like a boundary).
-void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, const CreaseSharpness& sharpness, Index f,
-                   std::array<Index, 16>& ids, std::array<bool, 4>& sideMissing) {
+// `faces`: the level's classification (its vertex classes; a corner not classified yet is here);
+// `across[s]`: the face across side s (-1 on the boundary; facesAcross).
+void gatherStencil(const RefinedLevel& level, LevelFaces& faces, Index f, const std::array<Index, 4>& across, std::array<Index, 16>& ids,
+                   std::array<bool, 4>& sideMissing) {
+  const PolyMesh& mesh = level.mesh;
+  const MeshTopology& topo = level.topology;
   ids.fill(-1);
   const Index* loop = mesh.face(f);
   // Grid positions (i, j) of the face corners, of the outward points of each side (at its first
@@ -129,28 +245,31 @@ void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, const CreaseS
   static constexpr int kDiagonal[4][2] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
   auto at = [&](const int (&ij)[2]) -> Index& { return ids[4 * ij[1] + ij[0]]; };
   for (int c = 0; c < 4; ++c) at(kInner[c]) = loop[c];
+  const Index* edges = topo.cornerEdge.data() + quadStart(mesh, faces, f);
   for (int s = 0; s < 4; ++s) {
-    const Index edge = topo.cornerEdge[mesh.faceStart[f] + s];
-    const Index g = topo.faceAcross(edge, f);
-    sideMissing[s] = isPatchCut(topo, &sharpness, edge);
+    const Index g = across[size_t(s)];
+    // isPatchCut: a boundary edge (no face across) or an infinitely sharp one
+    sideMissing[s] = g < 0 || (!level.sharpness.empty() && level.sharpness.edge[size_t(edges[s])] >= float(kInfiniteSharpness));
     if (sideMissing[s]) continue;
     // g runs v_{s+1} -> v_s; after v_s come the point outward of v_s, then the one outward of v_{s+1}.
-    const Index c = nextCorner(mesh, g, cornerAt(mesh, g, loop[s]));
-    at(kOutward[s][0]) = mesh.faceVerts[c];
-    at(kOutward[s][1]) = mesh.faceVerts[nextCorner(mesh, g, c)];
+    const Index* quad = mesh.faceVerts.data() + quadStart(mesh, faces, g);
+    int c = 0;
+    while (quad[c] != loop[s]) ++c;
+    at(kOutward[s][0]) = quad[(c + 1) & 3];
+    at(kOutward[s][1]) = quad[(c + 2) & 3];
   }
   for (int c = 0; c < 4; ++c) {
     const Index v = loop[c];
-    bool cut = false;  // on the boundary or a crease: the diagonal is mirrored later
-    for (Index k = topo.vertexEdgeStart[v]; k < topo.vertexEdgeStart[v + 1] && !cut; ++k) cut = isPatchCut(topo, &sharpness, topo.vertexEdges[k]);
-    if (cut) continue;
+    // Only an Interior corner has no boundary or crease edge (a Boundary, Crease or Corner one has
+    // a cut edge: its diagonal is mirrored later).
+    if (vertexClassOf(level, faces, v) != VertexClass::Interior) continue;
     // Interior valence 4: the face two steps round v from f is diagonal; take its corner opposite v.
     const Index first = topo.vertexFaceStart[v];
     Index k = first;
     while (topo.vertexFaces[k] != f) ++k;
-    const Index diagonalCorner = topo.vertexCorners[first + (k - first + 2) % 4];
-    const Index diagonalFace = topo.cornerFace[diagonalCorner];
-    at(kDiagonal[c]) = mesh.faceVerts[nextCorner(mesh, diagonalFace, nextCorner(mesh, diagonalFace, diagonalCorner))];
+    const Index diagonal = first + ((k - first + 2) & 3);
+    const Index start = quadStart(mesh, faces, topo.vertexFaces[diagonal]);
+    at(kDiagonal[c]) = mesh.faceVerts[start + ((topo.vertexCorners[diagonal] - start + 2) & 3)];
   }
 }
 
@@ -158,6 +277,10 @@ void gatherStencil(const PolyMesh& mesh, const MeshTopology& topo, const CreaseS
 void fillControlPoints(const std::vector<Point>& points, const std::array<Index, 16>& ids,
                        const std::array<bool, 4>& sideMissing, std::array<Point, 16>& cp) {
   auto P = [&](int i, int j) -> Point& { return cp[4 * j + i]; };
+  if (std::all_of(ids.begin(), ids.end(), [](Index id) { return id >= 0; })) {  // nothing to mirror
+    for (int k = 0; k < 16; ++k) cp[k] = points[ids[k]];
+    return;
+  }
   for (int k = 0; k < 16; ++k)
     if (ids[k] >= 0) cp[k] = points[ids[k]];
   // Sides first (the rows/columns next to a boundary edge), then the corners beyond them.
@@ -200,6 +323,14 @@ struct CornerFrame {
   double weight = 4.0;  // Loop-Schaefer interior-point weight: valence (4 at boundary vertices)
 };
 
+// What the tangent mask of interior valence k reads, the same numbers for every vertex of that
+// valence (so computed once per valence, each as the mask's own expression).
+struct ValenceTrig {
+  double A = 0.0, scale = 0.0;
+  std::vector<double> stepCos, stepSin;  // cos, sin of step j, j = 0..k (step = 2 pi / k)
+  std::vector<double> edgeCos, edgeSin;  // cos, sin of the angle of edge i, 2 pi i / k, i = 0..k-1
+};
+
 // The limit point of a vertex and what its limit tangents along each of its edges need, computed
 // once per vertex: every face around an extraordinary vertex of valence k asks for it, and
 // recomputing the O(k) sums per face made end caps O(k^2) around it (10k-valent: 4.6 s).
@@ -207,16 +338,21 @@ struct VertexLimit {
   Point point{}, limit{};
   double weight = 4.0;
   bool boundary = false;
+  Index valence = 0;
   // Interior: the tangent along edge i is cos(step i) cosine + sin(step i) sine (the mask's sums
   // over j of cos(step (j - i)) split by the angle-difference identity). Boundary: the ring itself.
   Point cosine{}, sine{};
-  std::vector<Point> e, f;                    // boundary vertices only
-  std::vector<std::pair<Index, Index>> edges;  // (edge id, position in the ring), sorted by edge id
+  size_t ring = 0;         // boundary: e_0..e_{k-1}, then f_0..f_{k-2}, from here in LimitFrames' rings
+  size_t sortedEdges = 0;  // valence > kScannedRing: (edge id, position) sorted by edge id, from here
+  const ValenceTrig* trig = nullptr;  // interior: its valence's
 };
 
 class LimitFrames {
  public:
-  LimitFrames(const PolyMesh& mesh, const MeshTopology& topo) : mesh_(mesh), topo_(topo) {}
+  // `vertices`: about how many vertices will be asked for (room made for them at once).
+  LimitFrames(const PolyMesh& mesh, const MeshTopology& topo, size_t vertices = 0) : mesh_(mesh), topo_(topo) {
+    limits_.reserve(std::min(vertices, size_t(mesh.vertexCount())));
+  }
 
   // Limit point and tangents at corner `corner` (an index into faceVerts) of `face`. [O(valence)
   // the first time a vertex is asked for, O(log valence) after]
@@ -228,24 +364,53 @@ class LimitFrames {
     frame.limit = vl.limit;
     frame.weight = vl.weight;
     // The face's outgoing and incoming edges at this corner, found in v's edge ring.
-    const Index start = mesh_.faceStart[face], size = mesh_.faceSize(face);
-    const Index previous = start + (corner - start + size - 1) % size;
-    frame.towardNext = tangent(vl, ringPosition(vl, topo_.cornerEdge[corner]));
-    frame.towardPrev = tangent(vl, ringPosition(vl, topo_.cornerEdge[previous]));
+    const Index previous = corner == mesh_.faceStart[face] ? mesh_.faceStart[face + 1] - 1 : corner - 1;
+    frame.towardNext = tangent(vl, ringPosition(v, vl, topo_.cornerEdge[corner]));
+    frame.towardPrev = tangent(vl, ringPosition(v, vl, topo_.cornerEdge[previous]));
     return frame;
   }
 
  private:
+  static constexpr Index kScannedRing = 16;  // rings up to this valence are searched, not sorted
+
   const VertexLimit& vertex(Index v) {
-    auto [it, inserted] = cache_.try_emplace(v);
-    if (inserted) compute(v, it->second);
-    return it->second;
+    if (slot_.empty()) slot_.assign(size_t(mesh_.vertexCount()), -1);
+    int32_t& slot = slot_[size_t(v)];
+    if (slot < 0) {
+      slot = int32_t(limits_.size());
+      compute(v, limits_.emplace_back());
+    }
+    return limits_[size_t(slot)];
+  }
+
+  const ValenceTrig& trig(Index k) {
+    if (trig_.size() <= size_t(k)) trig_.resize(size_t(k) + 1);
+    std::unique_ptr<ValenceTrig>& table = trig_[size_t(k)];
+    if (table) return *table;
+    table = std::make_unique<ValenceTrig>();
+    // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
+    // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12):
+    // t_i = scale sum_j A cos(step (j - i)) e_j + (cos(step (j - i)) + cos(step (j + 1 - i))) f_j.
+    const double kd = double(k), step = 2.0 * kPi / kd;
+    table->A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
+    table->scale = 1.0 / (kd * (0.5 * table->A + 1.0 + std::cos(step)));
+    for (Index j = 0; j <= k; ++j) {
+      table->stepCos.push_back(std::cos(step * double(j)));
+      table->stepSin.push_back(std::sin(step * double(j)));
+    }
+    for (Index i = 0; i < k; ++i) {
+      const double angle = 2.0 * kPi * double(i) / kd;
+      table->edgeCos.push_back(std::cos(angle));
+      table->edgeSin.push_back(std::sin(angle));
+    }
+    return *table;
   }
 
   void compute(Index v, VertexLimit& out) {
     const Index edgeFirst = topo_.vertexEdgeStart[v], faceFirst = topo_.vertexFaceStart[v];
     const Index k = topo_.valence(v), faces = topo_.faceValence(v);
     out.boundary = topo_.vertexOnBoundary[v] != 0;
+    out.valence = k;
     out.point = mesh_.points[v];
     std::vector<Point>& e = ring_.e;
     std::vector<Point>& f = ring_.f;
@@ -255,13 +420,16 @@ class LimitFrames {
     for (Index j = 0; j < faces; ++j)
       f[j] = diagonalPoint(mesh_, topo_.vertexFaces[faceFirst + j], topo_.vertexCorners[faceFirst + j], out.point, e[j],
                            e[(j + 1) % k]);
-    out.edges.resize(k);
-    for (Index j = 0; j < k; ++j) out.edges[j] = {topo_.vertexEdges[edgeFirst + j], j};
-    std::sort(out.edges.begin(), out.edges.end());
+    if (k > kScannedRing) {
+      out.sortedEdges = sortedEdges_.size();
+      for (Index j = 0; j < k; ++j) sortedEdges_.emplace_back(topo_.vertexEdges[edgeFirst + j], j);
+      std::sort(sortedEdges_.begin() + std::ptrdiff_t(out.sortedEdges), sortedEdges_.end());
+    }
     if (out.boundary) {
       out.limit = (e.front() + 4.0 * out.point + e.back()) / 6.0;
-      out.e = e;
-      out.f = f;
+      out.ring = rings_.size();
+      rings_.insert(rings_.end(), e.begin(), e.end());
+      rings_.insert(rings_.end(), f.begin(), f.end());
       return;
     }
     Point edgeSum(0.0), faceSum(0.0);
@@ -270,38 +438,42 @@ class LimitFrames {
     const LimitMask mask = catmullClarkLimitMask(kd);
     out.limit = mask.vertex * out.point + mask.edge * edgeSum + mask.diagonal * faceSum;
     out.weight = kd;
-    // Catmull-Clark tangent mask (Halstead, Kass, DeRose 1993), normalised so that a planar
-    // symmetric k-ring with unit spokes has a unit tangent (k = 4: exactly 1/12):
-    // t_i = scale sum_j A cos(step (j - i)) e_j + (cos(step (j - i)) + cos(step (j + 1 - i))) f_j.
-    const double step = 2.0 * kPi / kd;
-    const double A = 1.0 + std::cos(step) + std::cos(step / 2.0) * std::sqrt(2.0 * (9.0 + std::cos(step)));
-    const double scale = 1.0 / (kd * (0.5 * A + 1.0 + std::cos(step)));
+    const ValenceTrig& t = trig(k);
+    out.trig = &t;
     Point cosine(0.0), sine(0.0);
     for (Index j = 0; j < k; ++j) {
-      const double a = step * double(j), b = step * double(j + 1);
-      cosine += (A * std::cos(a)) * e[j] + (std::cos(a) + std::cos(b)) * f[j];
-      sine += (A * std::sin(a)) * e[j] + (std::sin(a) + std::sin(b)) * f[j];
+      cosine += (t.A * t.stepCos[j]) * e[j] + (t.stepCos[j] + t.stepCos[j + 1]) * f[j];
+      sine += (t.A * t.stepSin[j]) * e[j] + (t.stepSin[j] + t.stepSin[j + 1]) * f[j];
     }
-    out.cosine = scale * cosine;
-    out.sine = scale * sine;
+    out.cosine = t.scale * cosine;
+    out.sine = t.scale * sine;
   }
 
-  static Index ringPosition(const VertexLimit& vl, Index edge) {
-    auto it = std::lower_bound(vl.edges.begin(), vl.edges.end(), std::pair<Index, Index>{edge, Index(-1)});
-    return it != vl.edges.end() && it->first == edge ? it->second : 0;
+  // The position of `edge` in the edge ring of v (0 if absent). [O(log valence)]
+  Index ringPosition(Index v, const VertexLimit& vl, Index edge) const {
+    if (vl.valence <= kScannedRing) {
+      const Index* ring = topo_.vertexEdges.data() + topo_.vertexEdgeStart[v];
+      for (Index j = 0; j < vl.valence; ++j)
+        if (ring[j] == edge) return j;
+      return 0;
+    }
+    const auto first = sortedEdges_.begin() + std::ptrdiff_t(vl.sortedEdges), last = first + vl.valence;
+    auto it = std::lower_bound(first, last, std::pair<Index, Index>{edge, Index(-1)});
+    return it != last && it->first == edge ? it->second : 0;
   }
 
   // Limit tangent along edge i of the vertex's ring (patch_extraction.h). Both faces on an edge
   // read the same cached data, so their boundary curves agree. [O(1)]
-  static Point tangent(const VertexLimit& vl, Index i) {
+  Point tangent(const VertexLimit& vl, Index i) const {
     if (vl.boundary) {
-      const Index k = Index(vl.e.size());
-      if (i == 0) return 0.5 * (vl.e.front() - vl.e.back());
-      if (i == k - 1) return 0.5 * (vl.e.back() - vl.e.front());
-      return (vl.f[i - 1] + 4.0 * vl.e[i] + vl.f[i]) / 6.0 - vl.limit;
+      const Index k = vl.valence;
+      const Point* e = rings_.data() + vl.ring;
+      const Point* f = e + k;
+      if (i == 0) return 0.5 * (e[0] - e[k - 1]);
+      if (i == k - 1) return 0.5 * (e[k - 1] - e[0]);
+      return (f[i - 1] + 4.0 * e[i] + f[i]) / 6.0 - vl.limit;
     }
-    const double angle = 2.0 * kPi * double(i) / double(vl.weight);
-    return std::cos(angle) * vl.cosine + std::sin(angle) * vl.sine;
+    return vl.trig->edgeCos[size_t(i)] * vl.cosine + vl.trig->edgeSin[size_t(i)] * vl.sine;
   }
 
   struct Scratch {
@@ -309,7 +481,11 @@ class LimitFrames {
   };
   const PolyMesh& mesh_;
   const MeshTopology& topo_;
-  std::unordered_map<Index, VertexLimit> cache_;
+  std::vector<int32_t> slot_;         // per vertex: its entry in limits_, -1 until asked for
+  std::vector<VertexLimit> limits_;
+  std::vector<Point> rings_;          // boundary vertices' rings (VertexLimit::ring)
+  std::vector<std::pair<Index, Index>> sortedEdges_;  // high-valence vertices' edges (VertexLimit::sortedEdges)
+  std::vector<std::unique_ptr<ValenceTrig>> trig_;  // by valence
   Scratch ring_;
 };
 
@@ -341,8 +517,8 @@ Point interiorPoint(const CornerFrame& at, const Point& a, const Point& b, const
   return (at.weight * at.point + 2.0 * (a + b) + d) / (at.weight + 5.0);
 }
 
-// End cap of a quad face (patch_extraction.h).
-Patch quadEndCap(const PolyMesh& mesh, Index f, LimitFrames& limits) {
+// End cap of a quad face (patch_extraction.h): its B-spline control points.
+std::array<Point, 16> quadEndCap(const PolyMesh& mesh, Index f, LimitFrames& limits) {
   const Index start = mesh.faceStart[f];
   CornerFrame frames[4];
   for (int c = 0; c < 4; ++c) frames[c] = limits.at(f, start + c);
@@ -362,9 +538,7 @@ Patch quadEndCap(const PolyMesh& mesh, Index f, LimitFrames& limits) {
   B(2, 1) = interiorPoint(frames[1], p[2], p[0], p[3]);
   B(2, 2) = interiorPoint(frames[2], p[3], p[1], p[0]);
   B(1, 2) = interiorPoint(frames[3], p[0], p[2], p[1]);
-  Patch patch;
-  patch.cp = bezierToBSpline(b);
-  return patch;
+  return bezierToBSpline(b);
 }
 
 // End caps of a k-gon (k != 4): k quads (corner, edge midpoint, centre, previous edge midpoint).
@@ -440,70 +614,88 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, const Poi
 
 // [SECTION] level jumps across patch edges (T-junctions)
 
-// The 4 sides of a face-based patch are the face's sides (patch.h EDGES); a k-gon's split end caps
-// (k != 4) have other sides and take no part.
-bool hasFaceSides(const Patch& patch, const LevelStack& refinement) {
-  return patch.face >= 0 && refinement.level(patch.level).mesh.faceSize(patch.face) == 4;
+constexpr int32_t kHoleCover = -2;  // a hole face (and its children): no surface across a side facing it
+
+// cover[m][f] = the patch covering face f of level m: its own, an ancestor's (the face was not
+// refined further for patches), or a pole cap's (`holeFaces`: finest-level faces with their pole's
+// first cap, counted from `capsStart` in the set); kHoleCover for holes; -1 where the surface
+// there comes from finer levels.
+std::vector<std::vector<int32_t>> coverFaces(const LevelStack& stack, const std::vector<std::pair<Index, int32_t>>& holeFaces,
+                                             size_t capsStart, const SetIndex& patches) {
+  const int levels = stack.count();
+  std::vector<std::vector<int32_t>> cover(static_cast<size_t>(levels));
+  for (int m = 0; m < levels; ++m) cover[size_t(m)].assign(size_t(stack.level(m).mesh.faceCount()), -1);
+  for (const auto& [face, firstCap] : holeFaces) cover[size_t(levels) - 1][size_t(face)] = int32_t(capsStart) + firstCap;
+  for (int m = 0; m < levels; ++m) {
+    const std::vector<uint8_t>& hole = stack.level(m).faceHole;
+    for (size_t f = 0; f < hole.size(); ++f)
+      if (hole[f]) cover[size_t(m)][f] = kHoleCover;
+  }
+  for (size_t k = 0; k < patches.size(); ++k) {
+    if (patches.face[k] < 0) continue;
+    int32_t& covered = cover[patches.level[k]][size_t(patches.face[k])];
+    if (covered == -1) covered = int32_t(k);
+  }
+  for (int m = 1; m < levels; ++m) {
+    const std::vector<Index>& parent = stack.level(m).faceParent;
+    std::vector<int32_t>& level = cover[size_t(m)];
+    const std::vector<int32_t>& coarser = cover[size_t(m) - 1];
+    for (size_t f = 0; f < level.size(); ++f)
+      if (level[f] == -1) level[f] = coarser[size_t(parent[f])];
+  }
+  return cover;
 }
 
-// Fills Patch::edgeLevelDelta. cover[m][f] = the patch covering face f of level m: its own, an
-// ancestor's (the face was not refined further for patches), or a cap's (hole faces), -1 where the
-// surface there comes from finer levels. A patch side facing an uncovered face is a coarse side;
-// one facing a face covered by a coarser patch Q is a fine side, and tells Q's side which faces
-// the ancestor of its own face at Q's level. [O(faces of all levels + patches * level jump)]
-void markLevelJumps(const LevelStack& refinement, std::vector<std::vector<int32_t>>& cover, std::vector<Patch>& patches) {
-  const int levels = refinement.count();
-  constexpr int32_t kHole = -2;  // a hole face (and its children): no surface across a side facing it
-  for (int m = 0; m < levels; ++m)
-    for (size_t f = 0; f < refinement.level(m).faceHole.size(); ++f)
-      if (refinement.level(m).faceHole[f]) cover[m][f] = kHole;
-  for (size_t k = 0; k < patches.size(); ++k)
-    if (hasFaceSides(patches[k], refinement) && cover[patches[k].level][patches[k].face] == -1)
-      cover[patches[k].level][patches[k].face] = int32_t(k);
-  for (int m = 1; m < levels; ++m) {
-    const std::vector<Index>& parent = refinement.level(m).faceParent;
-    for (size_t f = 0; f < cover[m].size(); ++f)
-      if (cover[m][f] == -1) cover[m][f] = cover[m - 1][parent[f]];
+using LevelDeltas = std::vector<std::array<int8_t, 4>>;  // per patch, as Patch::edgeLevelDelta
+
+// Patch k's side s faces a face covered by the coarser patch q, `jump` levels coarser: unless every
+// step between them was radial (the columns kept, no jump in parameter), k's side is a fine side,
+// and q's side facing the ancestor of k's face at q's level is a coarse side.
+void markFineSide(const LevelStack& stack, const SetIndex& index, size_t k, int s, int32_t q, int jump, LevelDeltas& deltas) {
+  const int m = index.level[k], coarseLevel = index.level[size_t(q)];
+  bool keptColumns = true;  // every step from the coarse patch's level to this one radial
+  for (Index face = index.face[k], l = m; l > coarseLevel && keptColumns; --l) {
+    face = stack.level(l).faceParent[size_t(face)];
+    keptColumns = stack.refinedRadially(l - 1, face);
   }
-  // Levels apart: a side's neighbour is looked up for every patch, its level decides.
-  std::vector<uint8_t> patchLevel(patches.size());
-  for (size_t k = 0; k < patches.size(); ++k) patchLevel[k] = patches[k].level;
-  for (Patch& patch : patches) {
-    if (!hasFaceSides(patch, refinement)) continue;
-    const int m = patch.level;
-    const RefinedLevel& level = refinement.level(m);
+  if (keptColumns) return;
+  deltas[k][size_t(s)] = int8_t(-std::min(jump, 127));
+  Index ancestor = index.face[k];
+  for (int l = m; l > coarseLevel; --l) ancestor = stack.level(l).faceParent[size_t(ancestor)];
+  std::array<int8_t, 4>& coarse = deltas[size_t(q)];
+  for (int t = 0; t < 4; ++t)
+    if (index.across[size_t(q)][size_t(t)] == ancestor) coarse[size_t(t)] = int8_t(std::max(int(coarse[size_t(t)]), std::min(jump, 127)));
+}
+
+// Patch::edgeLevelDelta of every patch of a set (`holeFaces`, `capsStart` as coverFaces'). A patch
+// side facing an uncovered face is a coarse side; one facing a face covered by a coarser patch Q is
+// a fine side, and tells Q's side (markFineSide). Empty for radial levels (RTS/BPS caps and globes),
+// which keep the columns: patches of different levels meet along whole edges there, so no side is
+// a T-junction. [O(faces of all levels + patches * level jump)]
+LevelDeltas levelJumps(const LevelStack& stack, const std::vector<std::pair<Index, int32_t>>& holeFaces, size_t capsStart,
+                       const SetIndex& index) {
+  if (stack.radial) return {};
+  const std::vector<std::vector<int32_t>> cover = coverFaces(stack, holeFaces, capsStart, index);
+  LevelDeltas deltas(index.size());
+  for (size_t k = 0; k < index.size(); ++k) {
+    if (index.face[k] < 0) continue;
+    const int m = index.level[k];
     for (int s = 0; s < 4; ++s) {
-      const Index across = level.topology.faceAcross(level.topology.cornerEdge[level.mesh.faceStart[patch.face] + s], patch.face);
+      const Index across = index.across[k][size_t(s)];
       if (across < 0) continue;
-      const int32_t q = cover[m][across];
-      if (q == kHole) continue;
+      const int32_t q = cover[size_t(m)][size_t(across)];
+      if (q == kHoleCover) continue;
       if (q < 0) {  // refined further: this is the coarse side (the fine sides set the exact jump)
         // unless refined radially: the finer rings keep the columns, so the side meets them whole
-        if (!refinement.refinedRadially(m, across)) patch.edgeLevelDelta[s] = std::max<int8_t>(patch.edgeLevelDelta[s], 1);
+        if (!stack.refinedRadially(m, across)) deltas[k][size_t(s)] = std::max<int8_t>(deltas[k][size_t(s)], 1);
         continue;
       }
-      const int jump = m - int(patchLevel[size_t(q)]);
-      if (jump <= 0) continue;  // the usual case, decided without touching the (large) patch
-      Patch& coarse = patches[q];
-      if (!hasFaceSides(coarse, refinement)) continue;
-      bool keptColumns = true;  // every step from the coarse patch's level to this one radial
-      for (Index face = patch.face, k = m; k > coarse.level && keptColumns; --k) {
-        face = refinement.level(k).faceParent[face];
-        keptColumns = refinement.refinedRadially(k - 1, face);
-      }
-      if (keptColumns) continue;
-      patch.edgeLevelDelta[s] = int8_t(-std::min(jump, 127));
-      // The ancestor of this face at the coarse level lies across one of the coarse patch's sides.
-      Index ancestor = patch.face;
-      for (int k = m; k > coarse.level; --k) ancestor = refinement.level(k).faceParent[ancestor];
-      const RefinedLevel& coarseLevel = refinement.level(coarse.level);
-      for (int t = 0; t < 4; ++t) {
-        const Index edge = coarseLevel.topology.cornerEdge[coarseLevel.mesh.faceStart[coarse.face] + t];
-        if (coarseLevel.topology.faceAcross(edge, coarse.face) == ancestor)
-          coarse.edgeLevelDelta[t] = int8_t(std::max(int(coarse.edgeLevelDelta[t]), std::min(jump, 127)));
-      }
+      const int jump = m - int(index.level[size_t(q)]);
+      if (jump <= 0 || index.face[size_t(q)] < 0) continue;  // the usual case: same level
+      markFineSide(stack, index, k, s, q, jump, deltas);
     }
   }
+  return deltas;
 }
 
 }  // namespace
@@ -518,166 +710,288 @@ int transitionEdgeSegments(int level, int delta, int densityExponent) {
 
 namespace {
 
-// What level m contributes: its regular (boundary, polar-ring) patches whose parent was not
-// regular, level jumps not yet set, with their sources.
+// Where extracted patches go: the set's own vectors (a one-off extraction: made in place, never
+// copied) or a level's in LevelPatchCache. `stencil` and `sidesMissing`: null when no sources are
+// wanted.
+struct PatchOutput {
+  std::vector<Patch>& patches;
+  std::array<size_t, 5>& kindCounts;
+  std::vector<std::array<Index, 16>>* stencil = nullptr;
+  std::vector<uint8_t>* sidesMissing = nullptr;
+};
+
+// Patches are made this many ahead of the memory they will take being asked for (tuned on
+// catmark_car level 6: 4-16 all about as good; without, a set in cold memory waits on each line).
+constexpr size_t kPrefetchPatches = 8;
+
+// Asks for the cache lines of the element `ahead` places past the end of `v` (reserved, not made
+// yet), to be written.
+template <class T>
+void prefetchForWrite(const std::vector<T>& v, size_t ahead) {
+#if defined(__GNUC__) || defined(__clang__)
+  if (v.size() + ahead >= v.capacity()) return;
+  const char* slot = reinterpret_cast<const char*>(v.data() + v.size() + ahead);
+  for (size_t line = 0; line < sizeof(T); line += 64) __builtin_prefetch(slot + line, 1);
+#else
+  (void)v, (void)ahead;
+#endif
+}
+
+// Kind, ring and pole of a regular patch from its stencil: a PolarRing when the whole stencil lies
+// in links 1..5 of one pole.
+void setRegularKind(const RingMembership& rings, int m, const std::array<Index, 16>& ids, const std::array<bool, 4>& sideMissing,
+                    Patch& patch) {
+  const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
+  patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
+  if (rings.first.empty()) return;  // no pole at this level
+  for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
+    if (candidate < 0) continue;
+    bool inRing = true;
+    for (Index id : ids) inRing = inRing && (id < 0 || rings.holds(id, candidate));
+    if (!inRing) continue;
+    patch.kind = PatchKind::PolarRing;
+    patch.ring = m;
+    patch.pole = candidate;
+    return;
+  }
+}
+
+// Appends level m's regular patches (`faces`' entries of `index`, in order) to `out`, with their
+// level jumps (`deltas`, per entry of `index`; empty: none yet) and, when asked, their sources.
+// Throws std::logic_error if a stencil reads a vertex that is not exact (checked only where some
+// vertex of the level is not).
+void extractRegular(const LevelStack& stack, int m, LevelFaces& faces, const SetIndex& index, const LevelDeltas& deltas,
+                    PatchOutput out) {
+  const RefinedLevel& level = stack.level(m);
+  const PolyMesh& mesh = level.mesh;
+  const bool checkIds = !stack.everyVertexExact(m);
+  const RingMembership rings = markRingLinks(level);
+  std::array<Index, 16> ids;
+  std::array<bool, 4> sideMissing;
+  for (size_t k = faces.firstPatch; k < faces.firstPatch + faces.patchCount; ++k) {
+    const Index f = index.face[k];
+    gatherStencil(level, faces, f, index.across[k], ids, sideMissing);
+    if (checkIds)
+      for (Index id : ids)
+        if (id >= 0) stack.checkExact(m, id, f);
+    prefetchForWrite(out.patches, kPrefetchPatches);
+    Patch& patch = out.patches.emplace_back();
+    fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
+    patch.origin = level.origin(ids[5]);  // a stencil lies in one frame (adaptive_refiner.h, Precision)
+    setRegularKind(rings, m, ids, sideMissing, patch);
+    patch.level = uint8_t(std::min(m, 255));
+    patch.face = f;
+    if (!deltas.empty()) patch.edgeLevelDelta = deltas[k];
+    ++out.kindCounts[size_t(patch.kind)];
+    if (!out.stencil) continue;
+    out.stencil->push_back(ids);
+    uint8_t missing = 0;
+    for (int side = 0; side < 4; ++side) missing |= uint8_t(sideMissing[side]) << side;
+    out.sidesMissing->push_back(missing);
+  }
+}
+
+// The poles of level m that get caps (Taylor data, at least 3 links).
+bool poleGetsCaps(const RefinedLevel& level, size_t p) {
+  return p < level.poleTaylor.size() && p < level.poleGrids.size() && level.poleGrids[p].links >= 3;
+}
+
+// The caps the finest level m will get, before any is made: pole caps (each pole's first in
+// `holeFaces`, counted from the first cap, with the faces around the pole and its 1-link that they
+// replace, no level jump against ring m), then end caps for the other cap faces (one per quad, k
+// per k-gon), and the index entries of them all.
+struct CapPlan {
+  std::vector<uint8_t> inHole;                       // per face; empty when no pole gets caps
+  std::vector<std::pair<Index, int32_t>> holeFaces;  // (face, its pole's first cap)
+  std::vector<Index> endCapFaces;
+  SetIndex index;
+};
+
+CapPlan planCaps(const LevelStack& stack, int m, const std::vector<Index>& capFaces) {
+  const RefinedLevel& level = stack.level(m);
+  const MeshTopology& topo = level.topology;
+  CapPlan plan;
+  int32_t caps = 0;
+  for (size_t p = 0; p < level.poles.size(); ++p) {
+    if (!poleGetsCaps(level, p)) continue;
+    if (plan.inHole.empty()) plan.inHole.assign(size_t(level.mesh.faceCount()), 0);
+    const PolarConfig& pole = level.poles[p];
+    auto markFaces = [&](Index v) {
+      for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
+        plan.inHole[size_t(topo.vertexFaces[k])] = 1;
+        plan.holeFaces.emplace_back(topo.vertexFaces[k], caps);
+      }
+    };
+    markFaces(pole.pole);
+    for (int j = 0; j < pole.valence; ++j) markFaces(pole.links[size_t(j)]);
+    for (int j = 0; j < level.poleGrids[p].n; ++j, ++caps) plan.index.add(-1, m, {-1, -1, -1, -1});
+  }
+  for (Index f : capFaces) {
+    if (!plan.inHole.empty() && plan.inHole[size_t(f)]) continue;
+    plan.endCapFaces.push_back(f);
+    if (level.mesh.faceSize(f) == 4) plan.index.add(f, m, facesAcross(level, f));
+    else
+      for (Index k = 0; k < level.mesh.faceSize(f); ++k) plan.index.add(-1, m, {-1, -1, -1, -1});
+  }
+  return plan;
+}
+
+// Throws std::logic_error unless every vertex of the faces around face f's corners (what its
+// limit frames read) is exact.
+void checkEndCapExact(const LevelStack& stack, int m, Index f) {
+  const PolyMesh& mesh = stack.level(m).mesh;
+  const MeshTopology& topo = stack.level(m).topology;
+  for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+    for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {
+      const Index g = topo.vertexFaces[k];
+      for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d) stack.checkExact(m, mesh.faceVerts[d], f);
+    }
+}
+
+// Appends the caps `plan` lists for the finest level m to `patches` (pole caps, then end caps).
+void extractCaps(const LevelStack& stack, int m, const CapPlan& plan, std::vector<Patch>& patches) {
+  const RefinedLevel& level = stack.level(m);
+  const PolyMesh& mesh = level.mesh;
+  for (size_t p = 0; p < level.poles.size(); ++p) {
+    if (!poleGetsCaps(level, p)) continue;
+    const PolarConfig& pole = level.poles[p];
+    stack.checkExact(m, pole.pole, -1);
+    for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) stack.checkExact(m, pole.links[size_t(k)], -1);
+    poleCaps(level.poleGrids[p], level.poleTaylor[p], level.origin(pole.pole), patches, m, int(p));
+  }
+  const bool checkIds = !stack.everyVertexExact(m);
+  LimitFrames limits(mesh, level.topology, 4 * plan.endCapFaces.size());
+  for (Index f : plan.endCapFaces) {
+    if (checkIds) checkEndCapExact(stack, m, f);
+    const size_t first = patches.size();
+    if (mesh.faceSize(f) == 4) patches.emplace_back().cp = quadEndCap(mesh, f, limits);
+    else polygonEndCaps(mesh, f, limits, patches);
+    for (size_t k = first; k < patches.size(); ++k) {
+      patches[k].origin = level.origin(mesh.faceVerts[mesh.faceStart[f]]);
+      patches[k].kind = PatchKind::EndCap;
+      patches[k].level = uint8_t(std::min(m, 255));
+      patches[k].face = f;
+    }
+  }
+}
+
+// The finest level's caps as a set holds them: made by extractCaps, counted, their level jumps
+// (`deltas` from patch `capsStart` of the set; empty: none) set.
+void appendCaps(const LevelStack& stack, int m, const CapPlan& plan, const LevelDeltas& deltas, size_t capsStart, PatchSet& set) {
+  extractCaps(stack, m, plan, set.patches);
+  for (size_t k = capsStart; k < set.patches.size(); ++k) {
+    if (!deltas.empty()) set.patches[k].edgeLevelDelta = deltas[k];
+    ++set.kindCounts[size_t(set.patches[k].kind)];
+  }
+}
+
+// Clears `sources` and makes room for a set of `count` patches; null when none are wanted.
+void startSources(PatchSources* sources, size_t count) {
+  if (!sources) return;
+  sources->stencil.clear();
+  sources->sidesMissing.clear();
+  sources->stencil.reserve(count);
+  sources->sidesMissing.reserve(count);
+}
+
+// Caps are remade from their face or pole: their sources are empty stencils.
+void finishSources(PatchSources* sources, size_t count) {
+  if (!sources) return;
+  sources->stencil.resize(count);
+  sources->sidesMissing.resize(count);
+}
+
+// Each level classified, the set indexed and its level jumps found first, so that the set (and
+// its sources) is allocated once, at its size, and each patch is made in place there, whole: no
+// per-level copies (which would hold the patches twice at the peak) and no second pass over the
+// (cold) patches. [O(patches + faces of all levels)]
+PatchSet extractFromStack(const LevelStack& stack, PatchSources* sources) {
+  const int finest = stack.count() - 1;
+  SetIndex index;
+  index.reserve(patchBound(stack));
+  std::vector<LevelFaces> faces;
+  faces.reserve(size_t(finest) + 1);
+  for (int m = 0; m <= finest; ++m) faces.push_back(classifyLevel(stack, m, m > 0 ? &faces.back() : nullptr, index));
+  const size_t regular = index.size();
+  const CapPlan caps = planCaps(stack, finest, faces.back().capFaces);
+  index.append(caps.index);
+  const LevelDeltas deltas = levelJumps(stack, caps.holeFaces, regular, index);
+
+  PatchSet set;
+  set.patches.reserve(index.size());
+  startSources(sources, index.size());
+  PatchOutput out{set.patches, set.kindCounts, sources ? &sources->stencil : nullptr, sources ? &sources->sidesMissing : nullptr};
+  for (int m = 0; m <= finest; ++m) {
+    extractRegular(stack, m, faces[size_t(m)], index, deltas, out);
+    if (m < finest) faces[size_t(m)] = LevelFaces();  // the children have inherited
+  }
+  appendCaps(stack, finest, caps, deltas, regular, set);
+  finishSources(sources, set.patches.size());
+  return set;
+}
+
+// What level m contributes to every set it is part of: its regular (boundary, polar-ring) patches
+// with no level jumps (those depend on the set), their sources and index entries, and its cap
+// faces (for the sets it is the finest of).
 struct LevelRegularPatches {
   std::vector<Patch> patches;
   std::vector<std::array<Index, 16>> stencil;
   std::vector<uint8_t> sidesMissing;
-  std::vector<uint8_t> faceRegular;  // per face of the level (classifyLevel)
+  SetIndex index;
+  std::array<size_t, 5> kindCounts{};
+  std::vector<Index> capFaces;
 };
 
-void extractRegular(const LevelStack& refinement, int m, const LevelClasses& classes, const LevelClasses& parentClasses,
-                    LevelRegularPatches& out) {
-  const RefinedLevel& level = refinement.level(m);
-  const PolyMesh& mesh = level.mesh;
-  const MeshTopology& topo = level.topology;
-  const RingMembership rings = markRingLinks(level);
-  const size_t regular = size_t(std::count(classes.faceRegular.begin(), classes.faceRegular.end(), uint8_t(1)));
-  out.patches.reserve(regular);
-  out.stencil.reserve(regular);
-  out.sidesMissing.reserve(regular);
-  std::array<Index, 16> ids;
-  std::array<bool, 4> sideMissing;
-  for (Index f = 0; f < mesh.faceCount(); ++f) {
-    if (!classes.faceRegular[f]) continue;
-    if (!refinement.adaptive() && m > 0 && parentClasses.faceRegular[level.faceParent[f]]) continue;
-    gatherStencil(mesh, topo, level.sharpness, f, ids, sideMissing);
-    for (Index id : ids)
-      if (id >= 0) refinement.checkExact(m, id, f);
-    Patch patch;
-    fillControlPoints(mesh.points, ids, sideMissing, patch.cp);
-    patch.origin = level.origin(ids[5]);  // a stencil lies in one frame (adaptive_refiner.h, Precision)
-    const bool boundary = sideMissing[0] || sideMissing[1] || sideMissing[2] || sideMissing[3];
-    patch.kind = boundary ? PatchKind::Boundary : PatchKind::Regular;
-    for (int32_t candidate : {rings.first[ids[5]], rings.second[ids[5]]}) {
-      if (candidate < 0) continue;
-      bool inRing = true;
-      for (Index id : ids) inRing = inRing && (id < 0 || rings.holds(id, candidate));
-      if (!inRing) continue;
-      patch.kind = PatchKind::PolarRing;
-      patch.ring = m;
-      patch.pole = candidate;
-      break;
-    }
-    patch.level = uint8_t(std::min(m, 255));
-    patch.face = f;
-    out.patches.push_back(patch);
-    out.stencil.push_back(ids);
-    uint8_t missing = 0;
-    for (int side = 0; side < 4; ++side) missing |= uint8_t(sideMissing[side]) << side;
-    out.sidesMissing.push_back(missing);
-  }
-}
-
-// What the finest level adds: pole caps (replacing the faces around each pole and its 1-link,
-// `holeFaces`, with the index in `patches` of the pole's first cap) and end caps for every other
-// needed face that is not regular.
+// What the finest level adds to a set: its caps (no level jumps), as planned.
 struct FinestLevelCaps {
+  CapPlan plan;
   std::vector<Patch> patches;
-  std::vector<std::pair<Index, int32_t>> holeFaces;
+  std::array<size_t, 5> kindCounts{};
 };
 
-void extractCaps(const LevelStack& refinement, int m, const std::vector<uint8_t>& faceRegular, FinestLevelCaps& out) {
-  const RefinedLevel& level = refinement.level(m);
-  const PolyMesh& mesh = level.mesh;
-  const MeshTopology& topo = level.topology;
-  std::vector<uint8_t> inHole(mesh.faceCount(), 0);
-  for (size_t p = 0; p < level.poles.size(); ++p) {
-    if (p >= level.poleTaylor.size() || p >= level.poleGrids.size() || level.poleGrids[p].links < 3) continue;
-    const PolarConfig& pole = level.poles[p];
-    refinement.checkExact(m, pole.pole, -1);
-    for (int k = 0; k < level.poleGrids[p].links * pole.valence; ++k) refinement.checkExact(m, pole.links[size_t(k)], -1);
-    const int32_t firstCap = int32_t(out.patches.size());
-    poleCaps(level.poleGrids[p], level.poleTaylor[p], level.origin(pole.pole), out.patches, m, int(p));
-    auto markFaces = [&](Index v) {
-      for (Index k = topo.vertexFaceStart[v]; k < topo.vertexFaceStart[v + 1]; ++k) {
-        inHole[topo.vertexFaces[k]] = 1;
-        out.holeFaces.emplace_back(topo.vertexFaces[k], firstCap);  // same level as ring L: no level jump
-      }
-    };
-    markFaces(pole.pole);
-    for (int j = 0; j < pole.valence; ++j) markFaces(pole.links[j]);
-  }
-  // End caps for everything else not covered.
-  LimitFrames limits(mesh, topo);
-  for (Index f = 0; f < mesh.faceCount(); ++f) {
-    if (faceRegular[f] || inHole[f] || level.isHole(f) || !refinement.isNeeded(m, f)) continue;
-    if (refinement.adaptive())  // the limit frames read the faces around each corner
-      for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
-        for (Index k = topo.vertexFaceStart[mesh.faceVerts[c]]; k < topo.vertexFaceStart[mesh.faceVerts[c] + 1]; ++k) {
-          const Index g = topo.vertexFaces[k];
-          for (Index d = mesh.faceStart[g]; d < mesh.faceStart[g + 1]; ++d) refinement.checkExact(m, mesh.faceVerts[d], f);
-        }
-    const size_t first = out.patches.size();
-    if (mesh.faceSize(f) == 4) out.patches.push_back(quadEndCap(mesh, f, limits));
-    else polygonEndCaps(mesh, f, limits, out.patches);
-    for (size_t k = first; k < out.patches.size(); ++k) {
-      out.patches[k].origin = level.origin(mesh.faceVerts[mesh.faceStart[f]]);
-      out.patches[k].kind = PatchKind::EndCap;
-      out.patches[k].level = uint8_t(std::min(m, 255));
-      out.patches[k].face = f;
-    }
+// Appends `from` to `to`, each patch with its level jumps (`deltas` from `to`'s end; empty: none),
+// a few at a time so that a patch is still in cache when its jumps are written.
+void appendWithJumps(const std::vector<Patch>& from, const LevelDeltas& deltas, std::vector<Patch>& to) {
+  constexpr size_t kChunk = 64;
+  for (size_t begin = 0; begin < from.size(); begin += kChunk) {
+    const size_t first = to.size(), end = std::min(begin + kChunk, from.size());
+    to.insert(to.end(), from.begin() + std::ptrdiff_t(begin), from.begin() + std::ptrdiff_t(end));
+    if (deltas.empty()) continue;
+    for (size_t k = first; k < to.size(); ++k) to[k].edgeLevelDelta = deltas[k];
   }
 }
 
-// The patch set of the stack's levels: each level's regular patches, then the finest level's caps
-// (in that order: PatchSet's), level jumps marked over the whole. [O(patches + faces of all levels)]
+// The set of a LevelPatchCache from the levels it keeps (so copied, not moved) and the finest
+// level's caps, level jumps set as they are copied. [O(patches)]
 template <class RegularOfLevel>
-PatchSet assembleSet(const LevelStack& refinement, RegularOfLevel regularOf, const FinestLevelCaps& caps,
-                     PatchSources* sources, std::vector<Patch> storage = {}) {
+PatchSet assembleSet(const LevelStack& stack, RegularOfLevel regularOf, const FinestLevelCaps& caps, PatchSources* sources,
+                     std::vector<Patch> storage) {
+  const int finest = stack.count() - 1;
+  SetIndex index;
+  size_t regular = 0;
+  for (int m = 0; m <= finest; ++m) regular += regularOf(m).patches.size();
+  index.reserve(regular + caps.patches.size());
+  for (int m = 0; m <= finest; ++m) index.append(regularOf(m).index);
+  index.append(caps.plan.index);
+  const LevelDeltas deltas = levelJumps(stack, caps.plan.holeFaces, regular, index);
+
   PatchSet set;
   set.patches = std::move(storage);  // its memory, already touched: no page faults for it
   set.patches.clear();
-  const int finest = refinement.count() - 1;
-  size_t total = caps.patches.size();
-  for (int m = 0; m <= finest; ++m) total += regularOf(m).patches.size();
-  set.patches.reserve(total);
-  if (sources) {
-    sources->stencil.clear();
-    sources->sidesMissing.clear();
-    sources->stencil.reserve(total);
-    sources->sidesMissing.reserve(total);
-  }
+  set.patches.reserve(index.size());
+  startSources(sources, index.size());
   for (int m = 0; m <= finest; ++m) {
     const LevelRegularPatches& level = regularOf(m);
-    set.patches.insert(set.patches.end(), level.patches.begin(), level.patches.end());
-    if (sources) {
-      sources->stencil.insert(sources->stencil.end(), level.stencil.begin(), level.stencil.end());
-      sources->sidesMissing.insert(sources->sidesMissing.end(), level.sidesMissing.begin(), level.sidesMissing.end());
-    }
+    appendWithJumps(level.patches, deltas, set.patches);
+    for (size_t kind = 0; kind < set.kindCounts.size(); ++kind) set.kindCounts[kind] += level.kindCounts[kind];
+    if (!sources) continue;
+    sources->stencil.insert(sources->stencil.end(), level.stencil.begin(), level.stencil.end());
+    sources->sidesMissing.insert(sources->sidesMissing.end(), level.sidesMissing.begin(), level.sidesMissing.end());
   }
-  const int32_t capsStart = int32_t(set.patches.size());
-  set.patches.insert(set.patches.end(), caps.patches.begin(), caps.patches.end());
-  // Radial levels (RTS/BPS caps and globes) keep the columns: patches of different levels meet
-  // along whole edges there, so no side is a T-junction.
-  if (!refinement.radial) {
-    // Per level and face: the covering patch (markLevelJumps); here only the pole caps' hole faces.
-    std::vector<std::vector<int32_t>> cover(size_t(finest) + 1);
-    for (int m = 0; m <= finest; ++m) cover[m].assign(refinement.level(m).mesh.faceCount(), -1);
-    for (const auto& [face, firstCap] : caps.holeFaces) cover[finest][face] = capsStart + firstCap;
-    markLevelJumps(refinement, cover, set.patches);
-  }
-  for (const Patch& patch : set.patches) ++set.kindCounts[size_t(patch.kind)];
-  if (sources) {  // caps are remade from their face or pole
-    sources->stencil.resize(set.patches.size());
-    sources->sidesMissing.resize(set.patches.size());
-  }
+  appendWithJumps(caps.patches, deltas, set.patches);
+  for (size_t kind = 0; kind < set.kindCounts.size(); ++kind) set.kindCounts[kind] += caps.kindCounts[kind];
+  finishSources(sources, set.patches.size());
   return set;
-}
-
-PatchSet extractFromStack(const LevelStack& refinement, PatchSources* sources) {
-  const int finest = refinement.count() - 1;
-  std::vector<LevelRegularPatches> regular(size_t(finest) + 1);
-  LevelClasses parentClasses;
-  for (int m = 0; m <= finest; ++m) {
-    LevelClasses classes = classifyLevel(refinement, m, parentClasses);
-    extractRegular(refinement, m, classes, parentClasses, regular[size_t(m)]);
-    parentClasses = std::move(classes);
-  }
-  FinestLevelCaps caps;
-  extractCaps(refinement, finest, parentClasses.faceRegular, caps);
-  return assembleSet(refinement, [&](int m) -> const LevelRegularPatches& { return regular[size_t(m)]; }, caps, sources);
 }
 
 // Control points only, from the levels' current points: every patch made as extractFromStack made
@@ -701,7 +1015,7 @@ void refreshFromStack(const LevelStack& refinement, const PatchSources& sources,
       } else {
         if (limitsLevel != patch.level) limits = std::make_unique<LimitFrames>(level.mesh, level.topology);
         limitsLevel = patch.level;
-        if (level.mesh.faceSize(patch.face) == 4) made.push_back(quadEndCap(level.mesh, patch.face, *limits));
+        if (level.mesh.faceSize(patch.face) == 4) made.emplace_back().cp = quadEndCap(level.mesh, patch.face, *limits);
         else polygonEndCaps(level.mesh, patch.face, *limits, made);
       }
       const Point origin = patch.kind == PatchKind::PoleCap ? (made.empty() ? Point(0.0) : made.front().origin)
@@ -769,18 +1083,24 @@ void LevelPatchCache::prepare(const AdaptiveRefinement& refinement, int finest) 
                                 std::to_string(refinement.levelCount() - 1) + " levels");
   const LevelStack stack = stackOf(refinement, finest);
   Impl& cache = *impl_;
-  LevelClasses parentClasses;  // unused by adaptive stacks (no inheritance)
   for (int m = int(cache.regular.size()); m <= finest; ++m) {
-    const LevelClasses classes = classifyLevel(stack, m, parentClasses);
     LevelRegularPatches level;
-    extractRegular(stack, m, classes, parentClasses, level);
-    level.faceRegular = classes.faceRegular;
+    level.index.reserve(regularBound(stack, m));
+    LevelFaces faces = classifyLevel(stack, m, nullptr, level.index);  // adaptive stacks inherit nothing
+    level.patches.reserve(faces.patchCount);
+    level.stencil.reserve(faces.patchCount);
+    level.sidesMissing.reserve(faces.patchCount);
+    extractRegular(stack, m, faces, level.index, {}, PatchOutput{level.patches, level.kindCounts, &level.stencil, &level.sidesMissing});
+    level.capFaces = std::move(faces.capFaces);
     cache.regular.push_back(std::move(level));
   }
   if (cache.caps.size() <= size_t(finest)) cache.caps.resize(size_t(finest) + 1);
   if (!cache.caps[size_t(finest)]) {
     auto caps = std::make_unique<FinestLevelCaps>();
-    extractCaps(stack, finest, cache.regular[size_t(finest)].faceRegular, *caps);
+    caps->plan = planCaps(stack, finest, cache.regular[size_t(finest)].capFaces);
+    caps->patches.reserve(caps->plan.index.size());
+    extractCaps(stack, finest, caps->plan, caps->patches);
+    for (const Patch& patch : caps->patches) ++caps->kindCounts[size_t(patch.kind)];
     cache.caps[size_t(finest)] = std::move(caps);
   }
 }
