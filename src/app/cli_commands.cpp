@@ -118,7 +118,7 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adap
   const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
   const std::vector<size_t> adaptiveFaces =
       adaptive ? estimateAdaptiveFaceCounts(mesh, {o.scheme, o.levels, o.uniformFirstStep}, budgetFaces) : std::vector<size_t>{};
-  const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] > budgetFaces;  // not made: "more than"
+  const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] == budgetFaces + 1;  // not made: "more than"
   auto bytesAt = [&](int level) {
     if (adaptive) return double(adaptiveFaces[size_t(level)]) * kBytesPerAdaptiveFace;
     return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerFinestFace;

@@ -243,7 +243,7 @@ std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, siz
   if (deepest < kMaxLevel) {
     const size_t faces = estimatedFaces(model, scheme, deepest + 1, faceBudget);
     text += " (level " + std::to_string(deepest + 1) + " would make " +
-            (faces > faceBudget ? "more than " + std::to_string(faceBudget) : "about " + std::to_string(faces)) +
+            (faces == faceBudget + 1 ? "more than " + std::to_string(faceBudget) : "about " + std::to_string(faces)) +
             " faces, over the budget of " + std::to_string(faceBudget) + ")";
   } else {
     text += " (the deepest level polarview offers)";

@@ -1010,7 +1010,7 @@ std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const Refin
   for (int m = last + 1; m <= options.levels; ++m) {
     const double faces = constant + doubling * std::ldexp(1.0, std::min(m, 1000));
     sum = std::min(sum + withParts * faces, 1e18);
-    totals.push_back(sum > double(maxFaces) ? maxFaces + 1 : size_t(sum));
+    totals.push_back(size_t(sum));
   }
   return totals;
 }

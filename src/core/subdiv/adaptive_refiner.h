@@ -107,10 +107,10 @@ class AdaptiveRefinement {
 // budget counts), one entry per level: levels up to `measured` are refined (7: two levels past the
 // start of the RTS/BPS tail), deeper ones extrapolated as faces(m) = a + b 2^m through the last two
 // measured levels (C2PS's poles double their valence each level; Catmull-Clark's extraordinary
-// vertices and radial rings add the same each level). A level whose total would exceed `maxFaces`
-// (the caller's budget) is not made: it and the deeper ones read maxFaces + 1 ("more than the
-// budget"; sums of estimates stay over it), so the estimate itself never holds more than maxFaces
-// faces. [O(faces of the measured levels, at most maxFaces)]
+// vertices and radial rings add the same each level; at most 1e18). A measured level whose total
+// would exceed `maxFaces` (the caller's budget) is not made: it and the deeper ones read
+// maxFaces + 1 ("more than the budget"; sums of estimates stay over it), so the estimate itself
+// never holds more than maxFaces faces. [O(faces of the measured levels, at most maxFaces)]
 std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, size_t maxFaces, int measured = 7);
 
 }  // namespace polarview
