@@ -287,8 +287,14 @@ std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceK
     const std::lock_guard<std::mutex> spareLock(hierarchy.spareMutex);
     storage = std::move(hierarchy.spare);
   }
-  PatchSet patchSet = hierarchy.cache.patchSet(refinement, level, sources.get(), std::move(storage));
-  surface->regularCount = hierarchy.cache.sharedPrefix(level, level);
+  // A new hierarchy's first surface is extracted once, straight into its set: through the cache
+  // every patch would be written twice into fresh memory (page faults are half of it). The set is
+  // the same patch for patch; the cache takes the levels when the next one is made ahead.
+  const bool firstBuild = hierarchy.cache.empty() && refinement.levelCount() - 1 == level;
+  PatchSet patchSet = firstBuild ? extractPatches(refinement, sources.get())
+                                 : hierarchy.cache.patchSet(refinement, level, sources.get(), std::move(storage));
+  // The regular patches of levels 0..level lead the set (the renderer keeps them across steps).
+  surface->regularCount = patchSet.patches.size() - patchSet.count(PatchKind::PoleCap) - patchSet.count(PatchKind::EndCap);
   surface->stamp = hierarchy.stamp;
   surface->sources = std::move(sources);
   surface->patches = std::move(patchSet.patches);

@@ -1114,6 +1114,8 @@ PatchSet LevelPatchCache::patchSet(const AdaptiveRefinement& refinement, int fin
                      *cache.caps[size_t(finest)], sources, std::move(storage));
 }
 
+bool LevelPatchCache::empty() const { return impl_->regular.empty(); }
+
 std::pair<size_t, size_t> LevelPatchCache::preparedCounts(int finest) const {
   const Impl& cache = *impl_;
   if (finest < 0 || size_t(finest) >= cache.caps.size() || !cache.caps[size_t(finest)]) return {0, 0};

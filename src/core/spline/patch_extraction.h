@@ -117,6 +117,8 @@ class LevelPatchCache {
   // The patch set of level `finest` once prepared: its regular patches (of all levels) and its
   // caps; {0, 0} when not prepared. [O(levels)]
   std::pair<size_t, size_t> preparedCounts(int finest) const;
+  // Whether no level has been extracted yet (a new refinement, or after forget()). [O(1)]
+  bool empty() const;
   // How many patches the sets of levels a and b begin with in common (the regular patches of
   // levels 0..min(a, b); level jumps may differ). [O(levels)]
   size_t sharedPrefix(int a, int b) const;
