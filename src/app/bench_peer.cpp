@@ -219,7 +219,9 @@ bool AdaptivePeer::run() {
   }
   t0 = std::chrono::steady_clock::now();
   interpolateLevels<float, Far::PrimvarRefiner>(*refiner, refiner->GetMaxLevel(), points);
-  if (local > 0) table->GetLocalPointStencilTable()->UpdateValues(points.data(), points.data() + refined);
+  // The templated accessor: the plain one downcasts to StencilTable inside OpenSubdiv's header, which
+  // UBSan reports (the object is a StencilTableReal<float>).
+  if (local > 0) table->GetLocalPointStencilTable<float>()->UpdateValues(points.data(), points.data() + refined);
   p.pos.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
 
   AdaptivePeerTiming& t = p.last;
