@@ -3,10 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -22,6 +19,7 @@
 #include "core/spline/pole_taylor.h"
 #include "core/spline/ring_curvature.h"
 #include "core/subdiv/adaptive_refiner.h"
+#include "support/osd_shapes.h"
 
 using namespace polarview;
 
@@ -507,25 +505,17 @@ TEST_CASE("adaptive: creases away from the poles in C2PS, RTS and BPS meshes: Ca
 }
 
 TEST_CASE("adaptive: the same patches as uniform refinement on OpenSubdiv's regression shapes (where kept), every scheme") {
-  // The workplace keeps them beside the project (shared/meshes/opensubdiv; POLARVIEW_OSD_SHAPES
-  // overrides), their `t` tags commented out as `#t`: read with the tags. The sparse steps meet
-  // creases, holes, non-manifold splits, boundaries and n-gons here.
-  const char* override = std::getenv("POLARVIEW_OSD_SHAPES");
-  const std::filesystem::path dir = override ? override : POLARVIEW_OSD_SHAPES;
-  if (!std::filesystem::is_directory(dir)) {
+  // Read with their tags (support/osd_shapes.h). The sparse steps meet creases, holes,
+  // non-manifold splits, boundaries and n-gons here.
+  const std::filesystem::path dir = testing::osdShapeDirectory(POLARVIEW_OSD_SHAPES);
+  const std::vector<std::filesystem::path> files = testing::osdShapeFiles(dir);
+  if (files.empty()) {
     MESSAGE("OpenSubdiv's regression shapes not found at ", dir.string(), ": skipped");
     return;
   }
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-    if (entry.path().extension() == ".obj") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
   for (const std::filesystem::path& file : files) {
-    std::ifstream in(file);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const PolyMesh untagged = parseObjText(text, file.filename().string());
-    for (size_t at = text.find("\n#t "); at != std::string::npos; at = text.find("\n#t ", at + 1)) text.erase(at + 1, 1);
-    const PolyMesh mesh = parseObjText(text, file.filename().string());
+    const PolyMesh untagged = parseObjText(testing::osdShapeText(file, false), file.filename().string());
+    const PolyMesh mesh = parseObjText(testing::osdShapeText(file, true), file.filename().string());
     // Levels as deep as keep the uniform side small (it grows as 4^L).
     const int levels = mesh.faceCount() > 2000 ? 3 : mesh.faceCount() > 200 ? 4 : 5;
     checkAgainstUniform(mesh, file.filename().string(), levels);

@@ -27,6 +27,7 @@
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/refiner.h"
 #include "support/reference_catmull_clark.h"
+#include "support/osd_shapes.h"
 
 using namespace polarview;
 namespace Far = OpenSubdiv::Far;
@@ -543,27 +544,19 @@ TEST_CASE("opensubdiv oracle: non-manifold meshes (fins, bow ties, repeated vert
 // [SECTION] OpenSubdiv's own regression shapes
 
 TEST_CASE("opensubdiv oracle: OpenSubdiv's regression shapes, with their tags, refine alike (where the shapes are kept)") {
-  // The workplace keeps them beside the project (shared/meshes/opensubdiv; POLARVIEW_OSD_SHAPES
-  // overrides), their `t` tags commented out as `#t`: read with the tags.
-  const char* override = std::getenv("POLARVIEW_OSD_SHAPES");
-  const std::filesystem::path dir = override ? override : POLARVIEW_OSD_SHAPES;
-  if (!std::filesystem::is_directory(dir)) {
+  // Read with their tags (support/osd_shapes.h).
+  const std::filesystem::path dir = testing::osdShapeDirectory(POLARVIEW_OSD_SHAPES);
+  const std::vector<std::filesystem::path> files = testing::osdShapeFiles(dir);
+  if (files.empty()) {
     MESSAGE("OpenSubdiv's regression shapes not found at ", dir.string(), ": skipped");
     return;
   }
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-    if (entry.path().extension() == ".obj") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
   constexpr int kShapeLevels = 3;
   size_t compared = 0, split = 0;
   double worst = 0.0;
   for (const std::filesystem::path& file : files) {
     CAPTURE(file.string());
-    std::ifstream in(file);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    for (size_t at = text.find("\n#t "); at != std::string::npos; at = text.find("\n#t ", at + 1)) text.erase(at + 1, 1);
-    const PolyMesh mesh = parseObjText(text, file.filename().string());
+    const PolyMesh mesh = parseObjText(testing::osdShapeText(file, true), file.filename().string());
     const std::unique_ptr<Far::TopologyRefiner> refiner = osdRefiner(mesh, kShapeLevels);
     const Far::PrimvarRefinerReal<double> primvar(*refiner);
     std::vector<OsdPoint> points(mesh.vertexCount());

@@ -399,13 +399,21 @@ CreaseSharpness baseSharpness(const PolyMesh& mesh, const MeshTopology& topo) {
   return finishSharpness(topo, std::move(s));
 }
 
-CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const MeshTopology& childTopo) {
-  if (parent.empty()) return {};
-  const SharpnessDecay decay(parentTopo, parent);
+namespace {
+// A child level's sharpness before the decayed values go in: every edge and vertex smooth.
+CreaseSharpness smoothChildSharpness(const CreaseSharpness& parent, const MeshTopology& childTopo) {
   CreaseSharpness child;
   child.edge.assign(size_t(childTopo.edgeCount), 0.0f);
   child.vertex.assign(size_t(childTopo.vertexCount), 0.0f);
   child.chaikin = parent.chaikin;
+  return child;
+}
+}  // namespace
+
+CreaseSharpness childSharpness(const MeshTopology& parentTopo, const CreaseSharpness& parent, const MeshTopology& childTopo) {
+  if (parent.empty()) return {};
+  const SharpnessDecay decay(parentTopo, parent);
+  CreaseSharpness child = smoothChildSharpness(parent, childTopo);
   for (Index e = 0; e < parentTopo.edgeCount; ++e) {
     if (parent.edge[e] <= 0.0f) continue;
     for (int end = 0; end < 2; ++end) {
@@ -422,10 +430,7 @@ CreaseSharpness sparseChildSharpness(const MeshTopology& parentTopo, const Creas
                                      const MeshTopology& childTopo) {
   if (parent.empty()) return {};
   const SharpnessDecay decay(parentTopo, parent);
-  CreaseSharpness child;
-  child.edge.assign(size_t(childTopo.edgeCount), 0.0f);
-  child.vertex.assign(size_t(childTopo.vertexCount), 0.0f);
-  child.chaikin = parent.chaikin;
+  CreaseSharpness child = smoothChildSharpness(parent, childTopo);
   const Index firstEdgePoint = Index(which.faces.size()), firstVertexPoint = firstEdgePoint + Index(which.edges.size());
   std::vector<Index> vertexPoint(size_t(parentTopo.vertexCount), -1);
   for (size_t i = 0; i < which.vertices.size(); ++i) {
