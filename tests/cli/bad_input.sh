@@ -64,7 +64,7 @@ tri='v 0 0 0\nv 1 0 0\nv 0 1 0\n'
 : > "$work/empty.obj"
 check_file empty "" "empty file"
 printf '\n  \n# nothing\n' > "$work/blank.obj"
-check_file blank "" "empty file"
+check_file blank "" "no vertices or faces"
 
 # Binary garbage: an ELF-like header with NUL bytes on line 2, then random bytes.
 { printf 'v 0 0 0\n\177ELF\002\001\001\000\000\000'; head -c 4096 /dev/urandom; } > "$work/binary.obj"

@@ -119,7 +119,7 @@ TEST_CASE("obj: each kind of bad input names its line") {
   };
   const Bad cases[] = {
       {"", 0, "empty file"},
-      {"# only a comment\n\n", 0, "empty file"},
+      {"# only a comment\n\n", 0, "no vertices or faces"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\n", 0, "no faces"},
       {"v 0 0 0\nv 1 0\0 0\nv 0 1 0\nf 1 2 3\n"s, 2, "NUL byte"},
       {"v 0 0 0\nv 1 0 0\n\x01\x02\x7f\x1b\nf 1 2 3\n", 3, "binary"},

@@ -153,7 +153,8 @@ class ObjParser {
       inStatement_ = false;
       parseStatement(joined_, statementLine_);
     }
-    if (!anyContent_) fail(0, "empty file");
+    // Nothing at all, or lines without a statement (comments and blank lines, however many).
+    if (!anyContent_) fail(0, completedLines_ == 0 ? "empty file" : "no vertices or faces (only comments and blank lines)");
     if (mesh_.faceCount() == 0) fail(0, "no faces");
     checkForwardIndices();
     resolveTags();
