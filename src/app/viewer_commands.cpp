@@ -277,6 +277,8 @@ bool openModelAndWindow(ViewerApp& app, const std::string& input) {
     std::cerr << "polarview: " << app.state().file.error << "\n";
     return false;
   }
+  // The reader's findings, as the other commands print them (cli_commands.cpp, loadInput).
+  for (const std::string& warning : app.state().file.warnings) std::cerr << "polarview: warning: " << input << ": " << warning << "\n";
   std::string error;
   if (!app.init(&error)) {
     std::cerr << "polarview: " << error << "\n";

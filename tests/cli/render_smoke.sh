@@ -120,6 +120,14 @@ grep -q '"range_min":-1,"range_max":3' "$work/out.txt" || fail "--range -1:3: $(
 "$exe" render "$work/globe.obj" -o "$work/r.png" --range 1:3 > /dev/null 2>&1
 [ $? -eq 2 ] || fail "--range 1:3 is not a usage error"
 
+# The reader's warnings reach stderr as with the other commands (an unreferenced vertex), and the
+# image is still written.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n' > "$work/unref.obj"
+"$exe" render "$work/unref.obj" -o "$work/unref.png" --scheme cc --level 1 --size 64x48 2> "$work/unref.err" >/dev/null ||
+  fail "render with an unreferenced vertex failed"
+grep -q "^polarview: warning: .*unref.obj: 1 unreferenced vertices ignored" "$work/unref.err" || fail "render did not print the load warning"
+[ -s "$work/unref.png" ] || fail "render with a warning wrote no image"
+
 if [ $failures -ne 0 ]; then
   echo "$failures failure(s)"
   exit 1
