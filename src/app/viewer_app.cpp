@@ -543,16 +543,20 @@ void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   view.shown = std::move(surface);
 }
 
+size_t ViewerApp::levelFaces(SchemeChoice scheme, int level) const {
+  return estimatedLevelFaces(model_, scheme, level, options_.faceBudget);
+}
+
 size_t ViewerApp::parkedFaces() const {
   size_t faces = 0;
   for (const ViewRuntime& view : views_) {
     // A parked surface keeps its whole hierarchy: every level made, ahead ones too.
     if (const BuiltSurface* parked = view.parked.get())
-      faces += estimatedLevelFaces(model_, parked->key.scheme,
-                                   std::max(parked->patchLevel, parked->hierarchy ? parked->hierarchy->deepestMade.load() : 0), options_.faceBudget);
+      faces += levelFaces(parked->key.scheme,
+                                   std::max(parked->patchLevel, parked->hierarchy ? parked->hierarchy->deepestMade.load() : 0));
     // The previous level shares the shown surface's hierarchy: its own patches (at most a level's).
     if (const BuiltSurface* previous = view.previousLevel.get())
-      faces += estimatedLevelFaces(model_, previous->key.scheme, previous->patchLevel, options_.faceBudget);
+      faces += levelFaces(previous->key.scheme, previous->patchLevel);
   }
   return faces;
 }
@@ -561,7 +565,7 @@ size_t ViewerApp::shownFaces() const {
   size_t faces = 0;
   for (int w = 0; w < state_.viewCount; ++w)
     if (const BuiltSurface* shown = views_[size_t(w)].shown.get())
-      faces += estimatedLevelFaces(model_, shown->key.scheme, shown->patchLevel, options_.faceBudget);
+      faces += levelFaces(shown->key.scheme, shown->patchLevel);
   return faces;
 }
 
@@ -578,7 +582,7 @@ void ViewerApp::keepPreviousLevel(int v, const BuiltSurface& next) {
   if (!step) return;
   view.previousLevel.reset();  // the older one goes first
   // Memory: every view's surface, the new one and the kept ones within the budget.
-  if (parkedFaces() + shownFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel, options_.faceBudget) <= options_.faceBudget)
+  if (parkedFaces() + shownFaces() + levelFaces(next.key.scheme, next.patchLevel) <= options_.faceBudget)
     view.previousLevel = view.shown;
 }
 
@@ -590,7 +594,7 @@ void ViewerApp::parkShown(int v, const BuiltSurface& next) {
   dropParked(view);  // the older parked surface goes first (also when this one cannot be parked)
   // A zoomed renderer holds other patches than the surface's; memory as in keepPreviousLevel.
   if (view.zoomShown >= 0 ||
-      parkedFaces() + shownFaces() + estimatedLevelFaces(model_, next.key.scheme, next.patchLevel, options_.faceBudget) > options_.faceBudget)
+      parkedFaces() + shownFaces() + levelFaces(next.key.scheme, next.patchLevel) > options_.faceBudget)
     return;
   // The shown surface keeps its renderer; the new one goes to the other (made on first use).
   auto renderer = std::make_unique<PatchRenderer>();
@@ -753,8 +757,8 @@ void ViewerApp::updateSurfaces() {
         if (view.parked && view.parked->hierarchy == reusable) dropParked(view);
         // Kept surfaces give their memory to a new refinement that would not fit beside them.
         const bool fits = parkedFaces() + shownFaces() +
-                              estimatedLevelFaces(model_, wanted.scheme,
-                                                  patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget), options_.faceBudget) <=
+                              levelFaces(wanted.scheme,
+                                                  patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget)) <=
                           options_.faceBudget;
         if (!fits)
           for (ViewRuntime& other : views_) {
@@ -945,11 +949,11 @@ void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
   if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
   if (view.previousLevel && view.previousLevel->key.level == wanted.level + 1) return;  // kept from before
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
-  size_t faces = estimatedLevelFaces(model_, wanted.scheme, next, options_.faceBudget) + parkedFaces();
+  size_t faces = levelFaces(wanted.scheme, next) + parkedFaces();
   for (int w = 0; w < state_.viewCount; ++w)
-    faces += estimatedLevelFaces(model_, state_.views[size_t(w)].scheme,
+    faces += levelFaces(state_.views[size_t(w)].scheme,
                                  patchLevelFor(model_, state_.views[size_t(w)].scheme, state_.views[size_t(w)].level,
-                                               options_.faceBudget), options_.faceBudget);
+                                               options_.faceBudget));
   if (faces > options_.faceBudget) return;
   SurfaceKey key = wanted;
   key.level = wanted.level + 1;

@@ -214,6 +214,8 @@ class ViewerApp {
   // Faces of the refinements the views keep parked (every level their hierarchies made) or as their
   // previous level (estimatedLevelFaces), against the budget.
   size_t parkedFaces() const;
+  // estimatedLevelFaces of `scheme` at `level` on the model, under this viewer's face budget.
+  size_t levelFaces(SchemeChoice scheme, int level) const;
   // Keeps view v's shown surface as its previous level when `next` is a level step of it (same
   // model, scheme and points), within the budget.
   void keepPreviousLevel(int v, const BuiltSurface& next);

@@ -575,8 +575,11 @@ std::vector<Index> sparseChildTwins(const RefinedLevel& level, const std::vector
 // creases and the configurations of `poles`. Exactness and completeness: markSparseChildren, and
 // C2PS's pole and links 1, 2 are exact when links 0..2 of the parent are (rules (1)-(3)), RTS/BPS's
 // configurations always (their own radial grids). [O(level m)]
+// `split` (splitPoleCorners of `poles` for C2PS's connectivity) and `childFaces` (sparseChildFaces)
+// as the caller's budget check found them.
 SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& selected, const std::vector<PolarConfig>& poles,
-                        Scheme scheme, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& complete, RefinedLevel& child, std::vector<uint8_t>& childExact,
+                        const std::vector<uint8_t>& split, size_t childFaces, Scheme scheme, const std::vector<uint8_t>& exact,
+                        const std::vector<uint8_t>& complete, RefinedLevel& child, std::vector<uint8_t>& childExact,
                         std::vector<uint8_t>& childComplete) {
   const PolyMesh& mesh = level.mesh;
   const MeshTopology& topo = level.topology;
@@ -605,8 +608,6 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
     if (selected[size_t(v)]) vertexChild[size_t(v)] = edgeEnd + Index(children.vertices.size()), children.vertices.push_back(v);
 
   // Child faces in parent face and corner order, shaped as refine_topology.h's.
-  const std::vector<uint8_t> split = traits.polar() ? splitPoleCorners(level, poles) : std::vector<uint8_t>{};
-  const size_t childFaces = sparseChildFaces(level, selected, split);
   child.mesh.faceStart.reserve(childFaces + 1);
   child.mesh.faceVerts.reserve(childFaces * 4);
   child.faceParent.reserve(childFaces);
@@ -787,7 +788,10 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       copiedFaces += (radial_ && sparseFaces[f]) || polar[f];
       childFaces += (radial_ && sparseFaces[f]) || polar[f] ? 2 : 0;
     }
-    if (!radial_) childFaces += sparseChildFaces(level, selected, schemeTraits(scheme).polar() && !tailStep ? splitPoleCorners(level, level.poles) : std::vector<uint8_t>{});
+    const std::vector<PolarConfig> noPoles, &sparsePoles = tailStep ? noPoles : level.poles;
+    const std::vector<uint8_t> split = !radial_ && schemeTraits(scheme).polar() ? splitPoleCorners(level, sparsePoles) : std::vector<uint8_t>{};
+    const size_t sparseChildren = radial_ ? 0 : sparseChildFaces(level, selected, split);
+    childFaces += sparseChildren;
     if (totalFaces_ + copiedFaces + childFaces > maxFaces)
       throw InputError(sourceName, 0,
                        "level " + std::to_string(target) + " would need more than " + std::to_string(maxFaces) +
@@ -803,8 +807,8 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
       step.frameAnchors = step.radial.anchors;
       radialRefined_[m] = sparseFaces;
     } else {
-      step.sparse = refineSparse(level, selected, tailStep ? std::vector<PolarConfig>{} : level.poles, scheme, exact_[m], state.complete,
-                                 child, childExact, childState.complete);
+      step.sparse = refineSparse(level, selected, sparsePoles, split, sparseChildren, scheme, exact_[m], state.complete, child,
+                                 childExact, childState.complete);
       step.frameAnchors = step.sparse.anchors;
       radialRefined_[m] = polar;
     }
