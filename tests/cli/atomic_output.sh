@@ -83,5 +83,33 @@ for named in 0 1; do
   done
 done
 
+# Outputs that are not regular files are written into, never replaced: a FIFO (with a reader),
+# /dev/stdout to a pipe and to the shell's file (a symlink into /proc: as root, replacing it broke
+# the machine's /dev/stdout), /dev/null. A read-only output is refused and kept, even for root.
+nodes="$tmp/nodes"
+mkdir -p "$nodes"
+mkfifo "$nodes/fifo"
+cat "$nodes/fifo" > "$nodes/from_fifo.obj" &
+reader=$!
+"$exe" refine "$tmp/torus.obj" -o "$nodes/fifo" --scheme cc --levels 1 || fail "refine into a FIFO"
+wait $reader
+[ -p "$nodes/fifo" ] || fail "the FIFO was replaced"
+[ "$(faces_of "$nodes/from_fifo.obj")" -eq $((faces1 / 16)) ] || fail "the FIFO's reader did not get the refined torus"
+piped=$("$exe" refine "$tmp/torus.obj" -o /dev/stdout --scheme cc --levels 1 | grep -c '^f ')
+[ "$piped" -eq $((faces1 / 16)) ] || fail "-o /dev/stdout into a pipe gave $piped faces"
+"$exe" refine "$tmp/torus.obj" -o /dev/stdout --scheme cc --levels 1 > "$nodes/redirected.obj" || fail "-o /dev/stdout into a file"
+[ "$(faces_of "$nodes/redirected.obj")" -eq $((faces1 / 16)) ] || fail "-o /dev/stdout did not reach the shell's file"
+if [ ! -L /dev/stdout ]; then
+  fail "/dev/stdout was replaced by a regular file (restored)"
+  [ "$(id -u)" = 0 ] && rm -f /dev/stdout && ln -s /proc/self/fd/1 /dev/stdout
+fi
+"$exe" refine "$tmp/torus.obj" -o /dev/null --scheme cc --levels 1 || fail "refine into /dev/null"
+[ -c /dev/null ] || fail "/dev/null is no longer a character device"
+printf 'mine\n' > "$nodes/ro.obj"
+chmod 444 "$nodes/ro.obj"
+"$exe" refine "$tmp/torus.obj" -o "$nodes/ro.obj" --scheme cc --levels 1 2> "$tmp/err.txt" && fail "a read-only output was replaced"
+grep -q "ro.obj: cannot write: the file is read-only" "$tmp/err.txt" || fail "read-only output: $(cat "$tmp/err.txt")"
+[ "$(cat "$nodes/ro.obj")" = "mine" ] || fail "the read-only output changed"
+
 echo "atomic_output: $failures failures"
 [ $failures -eq 0 ]

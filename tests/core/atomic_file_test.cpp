@@ -5,9 +5,13 @@
 
 #include <signal.h>
 #include <stdlib.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -117,6 +121,65 @@ TEST_CASE("atomic file: a symlink at the output is replaced, not written through
     CHECK(readFile(dir.path / "out.png") == "png");
     CHECK(readFile(victim) == "keep me");
   }
+}
+
+TEST_CASE("atomic file: a FIFO at the output is written into and stays a FIFO") {
+  for (bool named : {false, true}) {
+    CAPTURE(named);
+    TemporaryMode mode(named);
+    TempDir dir;
+    const fs::path fifo = dir.path / "out.png";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    std::string received;
+    std::thread reader([&] { received = readFile(fifo); });  // opening blocks until the writer opens
+    const std::string bytes(200000, 'p');                     // more than a pipe's buffer
+    writeFileAtomically(fifo.string(), bytes);
+    if (!fs::is_fifo(fs::symlink_status(fifo))) {
+      reader.detach();  // blocked for good on the replaced FIFO: fail rather than hang
+      FAIL("the FIFO was replaced");
+    }
+    reader.join();
+    CHECK(received == bytes);
+    CHECK(listing(dir.path) == std::set<std::string>{"out.png"});
+  }
+}
+
+TEST_CASE("atomic file: a read-only output is refused, a writable one keeps its permissions") {
+  for (bool named : {false, true}) {
+    CAPTURE(named);
+    TemporaryMode mode(named);
+    TempDir dir;
+    const fs::path readOnly = dir.path / "ro.obj", privateFile = dir.path / "private.obj";
+    writeFileAtomically(readOnly.string(), "old\n");
+    ::chmod(readOnly.c_str(), 0444);
+    CHECK_THROWS_WITH_AS(writeFileAtomically(readOnly.string(), "new\n"), doctest::Contains("read-only"), InputError);
+    CHECK(readFile(readOnly) == "old\n");  // even for root, who could write it
+    writeFileAtomically(privateFile.string(), "old\n");
+    ::chmod(privateFile.c_str(), 0600);
+    writeFileAtomically(privateFile.string(), "new\n");
+    CHECK(readFile(privateFile) == "new\n");
+    struct stat after {};
+    REQUIRE(::stat(privateFile.c_str(), &after) == 0);
+    CHECK((after.st_mode & 0777) == 0600);
+    CHECK(listing(dir.path) == std::set<std::string>{"private.obj", "ro.obj"});
+  }
+}
+
+TEST_CASE("atomic file: a directory or a socket at the output is refused and left as it is") {
+  TempDir dir;
+  const fs::path sub = dir.path / "sub", socketPath = dir.path / "sock";
+  fs::create_directory(sub);
+  CHECK_THROWS_WITH_AS(writeFileAtomically(sub.string(), "x"), doctest::Contains("is a directory"), InputError);
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  REQUIRE(fd >= 0);
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  std::snprintf(address.sun_path, sizeof address.sun_path, "%s", socketPath.c_str());
+  REQUIRE(::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0);
+  CHECK_THROWS_WITH_AS(writeFileAtomically(socketPath.string(), "x"), doctest::Contains("socket"), InputError);
+  ::close(fd);
+  CHECK(fs::is_socket(fs::symlink_status(socketPath)));
+  CHECK(fs::is_directory(sub));
 }
 
 TEST_CASE("atomic file: no commit, or an error, leaves the old file and no temporary") {

@@ -129,12 +129,24 @@ constexpr int kNameAttempts = 100;
 // rw for everyone the umask allows, as fopen creates files.
 constexpr mode_t kFileMode = 0666;
 
+// True where `directory` is in /dev or /proc (after symlinks): their entries are the system's
+// (/dev/stdout, /proc/self/fd/1 are links to whatever the shell opened), written into, never replaced.
+bool isSystemDirectory(const std::string& directory) {
+  char resolved[PATH_MAX];
+  if (!::realpath(directory.c_str(), resolved)) return false;
+  const std::string_view dir(resolved);
+  for (std::string_view root : {std::string_view("/dev"), std::string_view("/proc")})
+    if (dir.substr(0, root.size()) == root && (dir.size() == root.size() || dir[root.size()] == '/')) return true;
+  return false;
+}
+
 }  // namespace
 
 // [SECTION] AtomicFileWriter
 
 AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path), directory_(directoryOf(path)) {
   if (path.empty() || path.back() == '/') throw InputError(path, 0, "cannot write: not a file name");
+  if (openExistingNode()) return;
 #ifdef O_TMPFILE
   if (!namedTemporariesForced()) {
     fd_ = ::open(directory_.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, kFileMode);
@@ -148,6 +160,33 @@ AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path), direc
 #endif
   // No O_TMPFILE here (or a directory that refuses it): the named temporary reports real errors.
   if (fd_ < 0) openNamedTemporary();
+  if (keptMode_ >= 0 && ::fchmod(fd_, mode_t(keptMode_)) != 0) fail("cannot keep the file's permissions", errno);
+}
+
+// What is at `path` already (through symlinks): nothing or a regular file to replace (false), or a
+// node to write into directly, opened (true): a FIFO, a character device, or anything in /dev or /proc.
+bool AtomicFileWriter::openExistingNode() {
+  struct stat existing {};
+  if (::stat(path_.c_str(), &existing) != 0) return false;
+  const mode_t type = existing.st_mode & S_IFMT;
+  if (type == S_IFDIR) throw InputError(path_, 0, "cannot write: it is a directory");
+  if (type == S_IFSOCK || type == S_IFBLK)
+    throw InputError(path_, 0, std::string("cannot write: it is a ") + (type == S_IFSOCK ? "socket" : "block device") +
+                                   " (outputs are regular files, FIFOs or character devices)");
+  const bool direct = type != S_IFREG || isSystemDirectory(directory_);
+  if (!direct) {
+    // Root may write anything: the w bits say what the owner meant.
+    if ((existing.st_mode & 0222) == 0 || ::access(path_.c_str(), W_OK) != 0)
+      throw InputError(path_, 0, "cannot write: the file is read-only (it is not replaced)");
+    keptMode_ = int(existing.st_mode & 0777);
+    return false;
+  }
+  // A FIFO blocks here until it has a reader, as with cp; a regular file (the shell's redirection
+  // behind /dev/stdout) is truncated as the shell would.
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | (type == S_IFREG ? O_TRUNC : 0));
+  if (fd_ < 0) fail("cannot write", errno);
+  direct_ = true;
+  return true;
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -186,6 +225,13 @@ void AtomicFileWriter::write(std::string_view bytes) {
 
 void AtomicFileWriter::commit() {
   if (fd_ < 0) throw InputError(path_, 0, "commit twice");
+  if (direct_) {
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) fail("write failed", errno);
+    committed_ = true;
+    return;
+  }
   if (::fsync(fd_) != 0 && errno != EINVAL) fail("write failed", errno);
   if (tempName_.empty()) {
     // Unnamed (O_TMPFILE): link it in as `path` directly when nothing is there; otherwise under a

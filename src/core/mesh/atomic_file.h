@@ -17,6 +17,12 @@ namespace polarview {
 //    never through a symlink; removed on SIGINT, SIGTERM and SIGHUP (see below).
 //  - commit() fsyncs and renames over `path` (a symlink at `path` is replaced, not followed).
 //  - Concurrent writers to one path each write their own temporary: `path` ends as one whole file.
+//  - An existing `path` keeps its permission bits. One nobody may write (no w bit, or access()
+//    says no) is refused, even for root: a read-only output is never replaced.
+//  - An existing `path` that is a FIFO, a character device or anything in /dev or /proc (after
+//    symlinks: /dev/stdout to a pipe, a terminal or the shell's file) is written into directly, as
+//    cp does, never replaced: not atomic then, but the node stays. Sockets and block devices are
+//    refused.
 // On any error, and on destruction before commit(), the temporary is removed. Errors throw
 // InputError(path, 0, what). Not thread-safe per object; separate objects are.
 class AtomicFileWriter {
@@ -33,6 +39,7 @@ class AtomicFileWriter {
 
  private:
   void openNamedTemporary();
+  bool openExistingNode();
   void discard() noexcept;
   [[noreturn]] void fail(const std::string& what, int err);
 
@@ -40,6 +47,8 @@ class AtomicFileWriter {
   std::string tempName_;  // the temporary's name; empty while it has none (O_TMPFILE)
   int fd_ = -1;
   int registrySlot_ = -1;  // in the signal handler's list of names to remove, or -1
+  int keptMode_ = -1;      // an existing regular file's permission bits, given to the new one
+  bool direct_ = false;    // writing into an existing FIFO or character device, not a temporary
   bool committed_ = false;
 };
 
