@@ -504,6 +504,14 @@ int runPole(const Args& args) {
   // leaves links 0 and 1, hence p0..p5, unchanged).
   Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
   const RefinedLevel& level = refinement.level(0);
+  // C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
+  // depends on the input is bad input (exit 1), checked before anything is printed.
+  if (rings > 0 && !traits.keepsValence)
+    for (size_t k = 0; k < level.poles.size(); ++k)
+      if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
+        throw InputError(o.input, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
+                                         std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
+                                         "); at most --rings " + std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
   JsonWriter w(o.input);
   w.beginObject().key("poles").beginArray();
   for (size_t k = 0; k < level.poles.size(); ++k) {
@@ -521,10 +529,6 @@ int runPole(const Args& args) {
     std::vector<RingCurvature> ringStats;
     if (rings > 0) {
       const PolarGrid& grid = level.poleGrids[k];
-      // C2PS doubles the valence each level: keep the last ring's columns within 2^18.
-      if (!traits.keepsValence && (double(grid.n) * std::pow(2.0, rings) > double(1 << 18)))
-        throw UsageError{"pole: --rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
-                         std::to_string(level.poles[k].pole) + " (valence " + std::to_string(grid.n) + ")"};
       const double nan = std::numeric_limits<double>::quiet_NaN();
       ringStats = ringCurvatures(grid, o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
                                  d.curvatureDefined ? d.mean : nan, d.normal);
@@ -556,14 +560,20 @@ int runPole(const Args& args) {
                     traits.label, last.m, last.minK, last.maxK);
       note += range;
     }
-    std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %.9g H %.9g%s\n",
+    // Where the JSON has null, the text says "undefined" (the note above says why).
+    const auto defined = [&](double value, const char* format) {
+      char text[64];
+      std::snprintf(text, sizeof text, format, value);
+      return d.curvatureDefined ? std::string(text) : std::string("undefined");
+    };
+    std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %s H %s%s\n",
                 level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
-                d.normal.z, d.gaussian, d.mean, note.c_str());
+                d.normal.z, defined(d.gaussian, "%.9g").c_str(), defined(d.mean, "%.9g").c_str(), note.c_str());
     if (o.rings > 0) {
       std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
       for (const RingCurvature& r : ringStats)
-        std::printf("  %4d  %7d  %-12.4g  %-12.6g .. %-12.6g  %-12.4g\n", r.m, r.valence, r.maxAbsDeltaK, r.minK, r.maxK,
-                    r.maxAbsDeltaH);
+        std::printf("  %4d  %7d  %-12s  %-12.6g .. %-12.6g  %-12s\n", r.m, r.valence, defined(r.maxAbsDeltaK, "%.4g").c_str(),
+                    r.minK, r.maxK, defined(r.maxAbsDeltaH, "%.4g").c_str());
     }
   }
   w.endArray().endObject();

@@ -26,7 +26,7 @@ class JsonWriter {
   JsonWriter& value(double x) {
     if (!std::isfinite(x))
       throw InputError(source_, 0, "the result has a non-finite number (\"" + lastKey_ +
-                                       "\"): the input's coordinates are too large or degenerate");
+                                       "\"): the input's coordinates are too large, too small or degenerate");
     separate();
     out_ += number(x);
     return *this;

@@ -818,7 +818,7 @@ void ViewerApp::updateColourRange() {
     collectColourSamples();
   }
   // The histogram follows the range the bar shows (typed or automatic).
-  const std::pair<float, float> shownRange{state_.colourRangeBelow(), state_.colourRange()};
+  const std::pair<double, double> shownRange{state_.colourRangeBelow(), state_.colourRange()};
   if (shownRange != histogramRange_ || state_.colour.histogram.empty()) {
     histogramRange_ = shownRange;
     state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange.first, shownRange.second,
@@ -830,26 +830,26 @@ void ViewerApp::collectColourSamples() {
   const ShadingParams::Mode mode = state_.curvatureShade().value_or(state_.shading.mode);
   // One range over the samples of every visible view, so equal colours mean equal values.
   // Each view counts by area: weights are normalised per view so a finer level does not outvote.
-  std::vector<float>& values = colourValues_;
-  std::vector<float>& weights = colourWeights_;
+  std::vector<double>& values = colourValues_;
+  std::vector<double>& weights = colourWeights_;
   values.clear();
   weights.clear();
   for (int v = 0; v < state_.viewCount; ++v) {
     if (!views_[size_t(v)].shown || !views_[size_t(v)].shown->samples) continue;
     const CurvatureSamples& s = *views_[size_t(v)].shown->samples;
-    const std::vector<float>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussian : s.mean;
+    const std::vector<double>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussian : s.mean;
     double area = 0.0;
-    for (float a : s.areas) area += a;
+    for (double a : s.areas) area += a;
     if (!(area > 0.0)) continue;
     values.insert(values.end(), samples.begin(), samples.end());
-    for (float a : s.areas) weights.push_back(float(a / area));
+    for (double a : s.areas) weights.push_back(a / area);
   }
   if (values.empty()) return;
   state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
   // Each side apart, for the asymmetric range; a side without values keeps a sliver of the other.
-  const float low = weightedPercentile(values, weights, 1.0f - state_.colour.quantile);
-  const float high = weightedPercentile(values, weights, state_.colour.quantile);
-  const float floor = 1e-3f * state_.colour.autoRange;
+  const double low = weightedPercentile(values, weights, 1.0 - state_.colour.quantile);
+  const double high = weightedPercentile(values, weights, state_.colour.quantile);
+  const double floor = 1e-3 * state_.colour.autoRange;
   state_.colour.autoBelow = std::max(-low, floor);
   state_.colour.autoAbove = std::max(high, floor);
   state_.colour.histogram.clear();  // recomputed for the new samples

@@ -271,8 +271,8 @@ class ViewerApp {
   std::string previousPath_;  // its file (empty for generated models)
   glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
   uint64_t colourRangeSignature_ = 0;
-  std::vector<float> colourValues_, colourWeights_;  // samples of the shown views, by area
-  std::pair<float, float> histogramRange_{0.0f, 0.0f};
+  std::vector<double> colourValues_, colourWeights_;  // samples of the shown views, by area
+  std::pair<double, double> histogramRange_{0.0f, 0.0f};
   std::future<LoadedModel> loadJob_;
   std::optional<std::string> queuedLoad_;
   std::string windowCapturePath_;

@@ -162,7 +162,7 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   // JSON has no inf or NaN: refuse rather than print them (or null for a number that overflowed).
   for (double number : {range, rangeBelow, medianMs, minMs, maxMs})
     if (!std::isfinite(number))
-      throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large or degenerate");
+      throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large, too small or degenerate");
   json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"shades\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << shadeModeName(state.viewShade(v)) << '"';
   json << "],\"range\":" << range
@@ -185,8 +185,8 @@ struct RenderRequest {
   std::vector<ShadingParams::Mode> shades{ShadingParams::Mode::Gaussian};  // one, or one per view
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
-  std::optional<float> range;
-  std::optional<float> rangeBelow;  // --range MIN:MAX: -MIN
+  std::optional<double> range;  // double: K of a model of 1e-80 is 1e160
+  std::optional<double> rangeBelow;  // --range MIN:MAX: -MIN
   bool asymmetric = false;          // automatic range with each side apart
   std::optional<float> percentile;  // automatic range: +-max(-P(100 - p), P(p)) of K or H by area
   std::string cameraJson;
@@ -224,15 +224,15 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
       const std::string& text = cursor.value(arg);
       auto number = [&](const std::string& part) {
         char* end = nullptr;
-        const float value = std::strtof(part.c_str(), &end);
+        const double value = std::strtod(part.c_str(), &end);
         if (part.empty() || *end != '\0' || !std::isfinite(value))
           throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
         return value;
       };
       const size_t colon = text.find(':');
-      const float low = colon == std::string::npos ? 0.0f : number(text.substr(0, colon));
-      const float high = number(colon == std::string::npos ? text : text.substr(colon + 1));
-      if (!(high > 0.0f) || (colon != std::string::npos && !(low < 0.0f)))
+      const double low = colon == std::string::npos ? 0.0 : number(text.substr(0, colon));
+      const double high = number(colon == std::string::npos ? text : text.substr(colon + 1));
+      if (!(high > 0.0) || (colon != std::string::npos && !(low < 0.0)))
         throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
       r.range = high;
       if (colon != std::string::npos) r.rangeBelow = -low;
@@ -320,7 +320,7 @@ int renderWithApp(const RenderRequest& r) {
   }
   if (r.rangeBelow || r.asymmetric) {
     state.colour.symmetric = false;
-    state.colour.typedBelow = r.rangeBelow.value_or(0.0f);
+    state.colour.typedBelow = r.rangeBelow.value_or(0.0);
   }
   state.display.surface = r.surface;
   // Net only: --no-surface shows the control net unless wireframe or boundaries stand in for it.

@@ -20,10 +20,12 @@ namespace {
 constexpr double kMaxPitchDeg = 89.0;  // keeps +z up without a roll flip at the poles of the orbit
 constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerNotch = 0.85;
-// Closest zoom, relative to the target's distance from the origin (at least 1e-12 absolute): far
-// below the innermost ring of a level-24 radial refinement (~6e-8 of the model), and still 1e4
-// times the double rounding of the eye position.
+// Closest zoom, relative to the target's distance from the origin: far below the innermost ring of
+// a level-24 radial refinement (~6e-8 of the model), and still 1e4 times the double rounding of the
+// eye position. No absolute floor or ceiling beyond the double range: models from 1e-150 to 1e150
+// (README, OBJ) are framed and zoomed alike.
 constexpr double kMinDistanceRelative = 1e-12;
+constexpr double kMinDistance = 1e-290, kMaxDistance = 1e290;
 constexpr double kNearPerDistance = 1e-2;  // perspective near plane floor, times the distance
 
 double radians(double deg) { return deg * kPi / 180.0; }
@@ -109,28 +111,28 @@ glm::dvec3 OrbitCamera::right() const {
 }
 glm::dvec3 OrbitCamera::up() const { return glm::cross(right(), forward()); }
 
-glm::mat4 OrbitCamera::viewMatrix() const {
-  return glm::mat4(glm::lookAt(eye(), target, up()));
-}
+glm::dmat4 OrbitCamera::viewMatrix() const { return glm::lookAt(eye(), target, up()); }
 
-glm::mat4 OrbitCamera::projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const {
+glm::dmat4 OrbitCamera::projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const {
   // Near/far bracket the scene's bounding sphere (with margin), with a floor on near so the depth
-  // buffer keeps its precision when the eye is inside the sphere.
-  double radius = std::max(sceneRadius, 1e-6);
+  // buffer keeps its precision when the eye is inside the sphere. Floors relative to the scene and
+  // the distance: a model of 1e-10 is not a point of a 1e-6 sphere.
+  const double size = std::max(sceneRadius, distance);
+  double radius = std::max(sceneRadius, 1e-6 * size);
   double centreDepth = glm::dot(sceneCentre - eye(), forward());
-  double farPlane = std::max(centreDepth + 1.5 * radius, 1e-6);
+  double farPlane = std::max(centreDepth + 1.5 * radius, 1e-6 * size);
   if (orthographic) {
     // The same picture at the target's depth as the perspective view (half height D tan(fov/2));
     // no eye to protect, so near may lie behind it.
     const double halfHeight = distance * std::tan(radians(fovDeg) / 2.0);
     const double halfWidth = halfHeight * std::max(aspect, 1e-6);
-    return glm::mat4(glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, centreDepth - 1.5 * radius, farPlane));
+    return glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, centreDepth - 1.5 * radius, farPlane);
   }
   // The floor is also at most a hundredth of the distance to the target, so close-ups of a deep
   // pole (the eye 1e-6 of the model away or less) are not clipped; the surface is drawn relative to
   // the eye (patch_renderer.cpp), so its depth keeps float precision that near.
   double nearPlane = std::max(centreDepth - 1.5 * radius, std::min(farPlane * 1e-4, distance * kNearPerDistance));
-  return glm::mat4(glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane));
+  return glm::perspective(radians(fovDeg), std::max(aspect, 1e-6), nearPlane, farPlane);
 }
 
 void OrbitCamera::orbit(double dxPixels, double dyPixels) {
@@ -145,8 +147,8 @@ void OrbitCamera::pan(double dxPixels, double dyPixels, double viewportHeightPix
 }
 
 void OrbitCamera::zoom(double wheelNotches) {
-  const double closest = kMinDistanceRelative * std::max(glm::length(target), 1.0);
-  distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), closest, 1e9);
+  const double closest = std::max(kMinDistanceRelative * glm::length(target), kMinDistance);
+  distance = std::clamp(distance * std::pow(kZoomPerNotch, wheelNotches), closest, kMaxDistance);
 }
 
 void OrbitCamera::zoomTowards(const glm::dvec3& point, double wheelNotches) {
@@ -169,7 +171,7 @@ void OrbitCamera::setPivotKeepingEye(const glm::dvec3& point) {
   glm::dvec3 eyeNow = eye();
   glm::dvec3 offset = eyeNow - point;
   double length = glm::length(offset);
-  if (!(length > 1e-12)) return;
+  if (!(length > kMinDistanceRelative * glm::length(point)) || !(length > kMinDistance)) return;
   target = point;
   distance = length;
   yawDeg = degrees(std::atan2(offset.y, offset.x));
@@ -203,7 +205,8 @@ void OrbitCamera::framePoints(const glm::dvec3* points, size_t count, double asp
   // Orthographic: the view's half-size at any depth is D tan, so depth does not help.
   const double depthWeight = orthographic ? 0.0 : 1.0;
   const glm::dvec3 r = right(), u = up(), f = forward();
-  const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+  double radius = std::max(0.5 * glm::length(hi - lo), 1e-6 * glm::length(target));
+  if (!(radius > 0.0)) radius = 1e-6;  // one point at the origin: no size to go by
   double needed = 0.0;
   for (size_t i = 0; i < count; ++i) {
     // A point at depth z behind the target and offset x, y is inside when |x| <= tanX (D + z);

@@ -32,15 +32,15 @@ struct OrbitCamera {
 
   // View and projection matrices; the scene's bounding sphere sets near/far so it is never clipped
   // (near no further than distance / 100 from the eye, so close-ups keep what is in front).
-  glm::mat4 viewMatrix() const;
-  glm::mat4 projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const;
+  glm::dmat4 viewMatrix() const;
+  glm::dmat4 projectionMatrix(double aspect, const glm::dvec3& sceneCentre, double sceneRadius) const;
 
   // Left drag: turns by pixel deltas (0.4 degrees per pixel).
   void orbit(double dxPixels, double dyPixels);
   // Right/middle drag: moves the target in the screen plane so the point under the cursor follows it.
   void pan(double dxPixels, double dyPixels, double viewportHeightPixels);
   // Wheel: each notch moves 15% closer (positive) or further (negative), down to a distance of
-  // 1e-12 max(|target|, 1) (deep poles: the innermost ring of level L is ~2^-L of the model).
+  // 1e-12 |target| (deep poles: the innermost ring of level L is ~2^-L of the model).
   void zoom(double wheelNotches);
   // Wheel over a view: zooms as zoom() and moves the target so that the point of the target's
   // plane under the cursor (ndcX, ndcY in [-1, 1], y up) stays under it. `aspect` = width / height.

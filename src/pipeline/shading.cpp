@@ -39,9 +39,10 @@ glm::vec3 ringColor(int ring) {
   return palette[ring % 8];
 }
 
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow) {
-  const float side = value >= 0.0f || !(rangeBelow > 0.0f) ? range : rangeBelow;
-  const float t = std::clamp(value / std::max(side, 1e-30f), -1.0f, 1.0f);
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double range, double rangeBelow) {
+  const double side = value >= 0.0 || !(rangeBelow > 0.0) ? range : rangeBelow;
+  // The shaders' floor is 1e-30 in their units (~1); here values are the world's (1e-300 .. 1e300).
+  const float t = float(std::clamp(side > 0.0 ? value / side : 0.0, -1.0, 1.0));
   switch (map) {
     case ShadingParams::ColorMap::CoolWarm: {
       static const glm::vec3 stops[5] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f},

@@ -17,10 +17,10 @@ struct ShadingParams {
   enum class ColorMap { Paper, CoolWarm, Viridis, Magnitude };  // Magnitude: Figs 11-12, dark blue at 0
   Mode mode = Mode::Shaded;
   ColorMap colormap = ColorMap::Paper;
-  float range = 1.0f;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
+  double range = 1.0;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
   // > 0: the negative side's range instead, [-rangeBelow, range] with zero still the map's middle
   // (two slopes, as matplotlib's TwoSlopeNorm), so zero curvature keeps its colour.
-  float rangeBelow = 0.0f;
+  double rangeBelow = 0.0;
   float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
   // Highlight lines (Beier & Chen 1994, SCHEMES.md section 7): parallel light lines with direction
   // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
@@ -60,7 +60,7 @@ struct DisplayFlags {
 // rotation from `view` and the translation from `eye`, which must therefore be the eye of `view`,
 // given in double (a float eye would move the camera by its rounding, ~6e-8 of its coordinates).
 struct ViewParams {
-  glm::mat4 view{1.0f}, proj{1.0f};
+  glm::dmat4 view{1.0}, proj{1.0};  // double: a model of 1e40 is past float's range
   glm::ivec4 viewport{0, 0, 1, 1};
   glm::dvec3 eye{0.0, 0.0, 1.0};  // camera position in world coordinates
 };
@@ -71,6 +71,6 @@ glm::vec3 patchKindColor(PatchKind kind);
 glm::vec3 ringColor(int ring);
 // The curvature colour map on the CPU, identical to shaders/common/colormap.glsl: value in
 // [-range, range] -> RGB in [0,1]. For legends and tests.
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, float value, float range, float rangeBelow = 0.0f);
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double range, double rangeBelow = 0.0);
 
 }  // namespace polarview

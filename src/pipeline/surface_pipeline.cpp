@@ -67,6 +67,16 @@ void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme 
 
 constexpr size_t kMostSampledPatches = 60000;
 
+// |du x dv| without underflow or overflow: through derivatives scaled by a power of two (exact) to
+// size ~1 (a model of 1e-150 has an area element of 1e-300, whose squares glm::length would square).
+double areaElement(const Point& du, const Point& dv) {
+  const double largest = std::max({std::abs(du.x), std::abs(du.y), std::abs(du.z), std::abs(dv.x), std::abs(dv.y), std::abs(dv.z)});
+  if (!(largest > 0.0) || !std::isfinite(largest)) return 0.0;
+  const int exponent = std::ilogb(largest);
+  const double scale = std::ldexp(1.0, -exponent);
+  return std::ldexp(glm::length(glm::cross(scale * du, scale * dv)), 2 * exponent);
+}
+
 // K, H and area element at the centres of an s x s grid of cells per patch (exact derivatives).
 // End caps are skipped when other patches exist: at a Catmull-Clark extraordinary vertex K is
 // unbounded (valence 3) or forced to zero (valence > 4), so their values say nothing about the
@@ -90,11 +100,11 @@ std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch
     for (int j = 0; j < s; ++j) {
       for (int i = 0; i < s; ++i) {
         SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
-        double area = glm::length(glm::cross(p.du, p.dv)) * double(stride) / double(s * s);
+        double area = areaElement(p.du, p.dv) * double(stride) / double(s * s);
         if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
-        samples->gaussian.push_back(float(p.gaussian));
-        samples->mean.push_back(float(p.mean));
-        samples->areas.push_back(float(area));
+        samples->gaussian.push_back(p.gaussian);
+        samples->mean.push_back(p.mean);
+        samples->areas.push_back(area);
       }
     }
   }
@@ -107,15 +117,15 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, double fraction) {
-  std::vector<std::pair<float, float>> sorted;  // (value, weight) by value
+double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction) {
+  std::vector<std::pair<double, double>> sorted;  // (value, weight) by value
   double total = 0.0;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
+    if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
     sorted.emplace_back(values[i], weights[i]);
     total += weights[i];
   }
-  if (sorted.empty() || !(total > 0.0)) return 0.0f;
+  if (sorted.empty() || !(total > 0.0)) return 0.0;
   std::sort(sorted.begin(), sorted.end());
   const double needed = std::clamp(fraction, 0.0, 1.0) * total;
   double sum = 0.0;
@@ -126,16 +136,16 @@ float weightedPercentile(const std::vector<float>& values, const std::vector<flo
   return sorted.back().first;
 }
 
-std::vector<float> weightedHistogram(const std::vector<float>& values, const std::vector<float>& weights, float below,
-                                     float above, int bins) {
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights, double below,
+                                     double above, int bins) {
   std::vector<float> histogram(size_t(std::max(bins, 1)), 0.0f);
-  if (!(below > 0.0f) || !(above > 0.0f)) return histogram;
+  if (!(below > 0.0) || !(above > 0.0)) return histogram;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0f) || !std::isfinite(values[i])) continue;
+    if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
     // The colour bar's two slopes: t = value / above or value / below, in [-1, 1].
-    const float t = std::clamp(values[i] / (values[i] >= 0.0f ? above : below), -1.0f, 1.0f);
-    const int bin = std::min(int((t + 1.0f) * 0.5f * float(histogram.size())), int(histogram.size()) - 1);
-    histogram[size_t(bin)] += weights[i];
+    const double t = std::clamp(values[i] / (values[i] >= 0.0 ? above : below), -1.0, 1.0);
+    const int bin = std::min(int((t + 1.0) * 0.5 * double(histogram.size())), int(histogram.size()) - 1);
+    histogram[size_t(bin)] += float(weights[i]);
   }
   const float largest = *std::max_element(histogram.begin(), histogram.end());
   if (largest > 0.0f)
@@ -143,10 +153,10 @@ std::vector<float> weightedHistogram(const std::vector<float>& values, const std
   return histogram;
 }
 
-float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile) {
+double weightedSymmetricRange(const std::vector<double>& values, const std::vector<double>& weights, float quantile) {
   const double upper = std::clamp(double(quantile), 0.5, 1.0);
-  const float range = std::max(-weightedPercentile(values, weights, 1.0 - upper), weightedPercentile(values, weights, upper));
-  return range > 0.0f && std::isfinite(range) ? range : 1.0f;  // also when there is no weight
+  const double range = std::max(-weightedPercentile(values, weights, 1.0 - upper), weightedPercentile(values, weights, upper));
+  return range > 0.0 && std::isfinite(range) ? range : 1.0;  // also when there is no weight
 }
 
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
@@ -158,6 +168,17 @@ std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
     return e.what();
   }
   if (mesh.points.empty() || mesh.faceCount() == 0) return name + ": no faces";
+  // Curvature goes as 1 / size^2: below 1e-150 it leaves double's range (1.8e308) and nothing can be
+  // shaded; the reader's 1e150 bounds the other end.
+  double extent = 0.0;
+  for (const Point& p : mesh.points)
+    for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(p[c] - mesh.points[0][c]));
+  if (extent < kSmallestModelExtent) {
+    char text[160];
+    std::snprintf(text, sizeof text, ": the model spans %.3g, below %.0e: its curvature (1 / size^2) is past double's range; scale it up",
+                  extent, kSmallestModelExtent);
+    return name + text;
+  }
   return {};
 }
 

@@ -114,7 +114,7 @@ struct SurfaceKey {
 // End-cap patches (Catmull-Clark extraordinary vertices, where K is unbounded or forced to 0
 // except at valence 4) are left out unless there is nothing else.
 struct CurvatureSamples {
-  std::vector<float> gaussian, mean, areas;
+  std::vector<double> gaussian, mean, areas;  // double: K of a model of 1e-80 is 1e160
   uint64_t points = 0;  // the points revision they were taken at
 };
 
@@ -175,8 +175,10 @@ struct LoadedModel {
 // Reads an OBJ and checks it the way the viewer needs (manifold, supported, has faces); worker-
 // thread safe. Never throws: failures come back in LoadedModel::error. [O(file)]
 LoadedModel readModelFile(const std::string& path);
-// Checks a mesh for the viewer (the topology the refiners need, at least one face); returns the
-// error message, empty when usable. [O(mesh)]
+// The smallest extent (largest coordinate difference) of a model the viewer and `render` take.
+constexpr double kSmallestModelExtent = 1e-150;
+// Checks a mesh for the viewer (the topology the refiners need, at least one face, an extent of at
+// least kSmallestModelExtent); returns the error message, empty when usable. [O(mesh)]
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
 
 // Refines and extracts (worker-thread safe: touches no shared state but `reuse`, under its mutex).
@@ -204,7 +206,7 @@ std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, 
 // The symmetric colour range max(-P(1 - quantile), P(quantile)) of the weighted percentiles P of
 // the signed values (quantile 0.95: the 5th and 95th percentiles), so each tail may saturate on at
 // most 1 - quantile of the weight; 1 when there is no weight or the range would be 0. [O(n log n)]
-float weightedSymmetricRange(const std::vector<float>& values, const std::vector<float>& weights, float quantile);
+double weightedSymmetricRange(const std::vector<double>& values, const std::vector<double>& weights, float quantile);
 
 // The faces the feature-adaptive refinement of `scheme` holds at `level` on the model (all levels
 // together; the estimate deepestLevel uses); faceBudget + 1 for a level over `faceBudget`, which
@@ -221,11 +223,11 @@ int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
 std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
 // the total; 0 when there is no weight. [O(n log n)]
-float weightedPercentile(const std::vector<float>& values, const std::vector<float>& weights, double fraction);
+double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction);
 // Area-weighted histogram over the colour bar's [-below, above] (two slopes, as the map; values
 // beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
-std::vector<float> weightedHistogram(const std::vector<float>& values, const std::vector<float>& weights, float below,
-                                     float above, int bins);
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights, double below,
+                                     double above, int bins);
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
 

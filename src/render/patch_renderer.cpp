@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -67,6 +68,14 @@ glm::vec3 roundToFloat(const glm::dvec3& value) {
   return rounded;
 }
 
+// A double as the nearest finite float (a colour range beyond float's range saturates as it would).
+float floatInRange(double value) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return std::isnan(value) ? 0.0f : float(std::clamp(value, -kMax, kMax));
+}
+
+bool isPerspective(const ViewParams& view) { return view.proj[2][3] < -0.5; }
+
 // A double vector as float hi + lo: hi + lo = value to ~2^-48 of it.
 void splitHiLo(const glm::dvec3& value, float* hi, float* lo) {
   const glm::vec3 rounded = roundToFloat(value);
@@ -90,10 +99,17 @@ struct PatchFrameCpu {
 PatchFrameCpu frameAt(const glm::dvec3& origin, const glm::dvec3& tangent, const glm::dvec3& normal) {
   PatchFrameCpu frame;
   frame.origin = origin;
-  const double normalLength = glm::length(normal);
-  const glm::dvec3 z = normalLength > 0.0 && std::isfinite(normalLength) ? normal / normalLength : glm::dvec3(0, 0, 1);
-  glm::dvec3 x = tangent - glm::dot(tangent, z) * z;
-  if (!(glm::length(x) > 1e-6 * glm::length(tangent)) || !std::isfinite(glm::length(x))) {
+  // Directions only: first scaled to a largest component of 1, so that the squares in their lengths
+  // neither underflow (a model of 1e-80 has normals du x dv of 1e-160) nor overflow.
+  const auto direction = [](const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return largest > 0.0 && std::isfinite(largest) ? v / largest : glm::dvec3(0.0);
+  };
+  const glm::dvec3 scaledNormal = direction(normal), scaledTangent = direction(tangent);
+  const double normalLength = glm::length(scaledNormal);
+  const glm::dvec3 z = normalLength > 0.0 ? scaledNormal / normalLength : glm::dvec3(0, 0, 1);
+  glm::dvec3 x = scaledTangent - glm::dot(scaledTangent, z) * z;
+  if (!(glm::length(x) > 1e-6 * glm::length(scaledTangent)) || !std::isfinite(glm::length(x))) {
     x = std::abs(z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     x -= glm::dot(x, z) * z;
   }
@@ -129,6 +145,12 @@ glm::dvec3 capSharedSlot(const Patch& patch, int k) {
     return glm::dvec3(std::round(patch.cp[10].x * n), n, patch.cp[10].z);
   }
   return patch.cp[k];
+}
+
+// `value` of control slot k in GPU units: lengths times `perUnit` (a power of two, so exact); a
+// cap's slots 10 (tau, n, R: R in the cap's own radial unit) and 11 (the Taylor order) as they are.
+glm::dvec3 inUnits(PatchKind kind, int k, const glm::dvec3& value, double perUnit) {
+  return kind == PatchKind::PoleCap && (k == 10 || k == 11) ? value : value * perUnit;
 }
 
 // A patch as the GPU evaluates it (see the section's top), with its frame.
@@ -344,7 +366,7 @@ struct PatchRenderer::Impl {
   std::vector<Point> netPointsWorld, polesWorld;  // kept to re-centre when patches change
   std::vector<glm::vec3> netColors;              // per net point (crease edges stand out)
 
-  // Overlay vertices (overlay.vert): position hi, lo (relative to the centre), colour.
+  // Overlay vertices (overlay.vert): position hi, lo (relative to the centre, in GPU units), colour.
   // Points the patch VAO and the texture buffers at the current buffers (after they were made or
   // grown).
   void attachBuffers() {
@@ -365,11 +387,11 @@ struct PatchRenderer::Impl {
   }
   // `colors`: one per point, or one for all.
   void uploadOverlay(GLuint vao, GLuint buffer, const std::vector<Point>& points,
-                     const std::vector<glm::vec3>& colors, const glm::dvec3& center) {
+                     const std::vector<glm::vec3>& colors, const glm::dvec3& center, double unit) {
     std::vector<float> data(points.size() * 9);
     for (size_t k = 0; k < points.size(); ++k) {
       float* vertex = data.data() + 9 * k;
-      splitHiLo(points[k] - center, vertex, vertex + 3);
+      splitHiLo((points[k] - center) / unit, vertex, vertex + 3);
       const glm::vec3& color = colors[colors.size() == points.size() ? k : 0];
       for (int c = 0; c < 3; ++c) vertex[6 + c] = color[c];
     }
@@ -516,7 +538,10 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   boundsMin_ = lo;
   boundsMax_ = hi;
   if (!sameSequence) center_ = 0.5 * (lo + hi);
-  radius_ = std::max(0.5 * glm::length(hi - lo), 1e-12);
+  radius_ = 0.5 * glm::length(hi - lo);
+  if (!(radius_ > 0.0) || !std::isfinite(radius_)) radius_ = std::max(1e-12 * glm::length(center_), 1e-300);
+  if (!sameSequence) unit_ = std::ldexp(1.0, std::ilogb(radius_));
+  const double perUnit = 1.0 / unit_;
 
   // Per patch: its frame; per control point: the GPU form (see "Precision") and the world point
   // as hi + lo (for positions and tessellation levels), interleaved. Written in place (this runs
@@ -555,14 +580,16 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
       const GpuPatch gpu = gpuForm(patch);
       const PatchFrameCpu& frame = gpu.frame;
       float* texels = frameTexels.data() + (p - reused) * kFloatsPerFrame;
-      splitHiLo(frame.origin - center_, texels, texels + 3);
+      splitHiLo((frame.origin - center_) * perUnit, texels, texels + 3);
       for (int axis = 0; axis < 3; ++axis)
         for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
       float* point = positions.get() + (p - reused) * kFloatsPerPatch;
       for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
-        const glm::vec3 local(gpu.cp[k]);
+        const glm::vec3 local(inUnits(patch.kind, k, gpu.cp[k], perUnit));
         point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionPoint(patch.kind, k) ? (patch.origin - center_) + patch.cp[k] : capSharedSlot(patch, k), point + 3, point + 6);
+        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center_) + patch.cp[k]) * perUnit
+                                                 : inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit),
+                  point + 3, point + 6);
       }
     }
   });
@@ -584,8 +611,8 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
 
   // Overlays are stored relative to the centre too: re-upload them when it moved.
   if (!sameSequence) {
-    g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_);
-    g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_);
+    g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_, unit_);
+    g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_, unit_);
   }
 }
 
@@ -619,7 +646,7 @@ void PatchRenderer::setControlMesh(const PolyMesh& mesh, const std::vector<NetSe
     g.netColors.insert(g.netColors.end(), {color, color});
   }
   g.netVertexCount = static_cast<GLsizei>(g.netPointsWorld.size());
-  g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_);
+  g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_, unit_);
 }
 
 void PatchRenderer::setControlMesh(const PolyMesh& mesh) { setControlMesh(mesh, controlNetSegments(mesh)); }
@@ -628,7 +655,7 @@ void PatchRenderer::setPoleMarkers(const std::vector<Point>& poles) {
   Impl& g = *impl_;
   g.polesWorld = poles;
   g.poleCount = static_cast<GLsizei>(poles.size());
-  g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_);
+  g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_, unit_);
 }
 
 // [SECTION] Drawing
@@ -636,10 +663,14 @@ void PatchRenderer::setPoleMarkers(const std::vector<Point>& poles) {
 void PatchRenderer::setEyeUniforms(unsigned program, const ViewParams& view) const {
   // Projection times the view's rotation (its translation is the eye, applied in patch_frame.glsl
   // from the double eye as hi + lo).
-  const glm::dmat4 rotation(glm::dmat3(glm::dmat4(view.view)));
-  setUniform(program, "u_viewRotationProjection", glm::mat4(glm::dmat4(view.proj) * rotation));
+  // In GPU units p' = p / unit: clip = P R (unit p'), and a perspective clip scaled by 1 / unit
+  // (homogeneous: the same picture) keeps float-sized entries and w = depth / unit.
+  const glm::dmat4 rotation(glm::dmat3(view.view));
+  const glm::dmat4 toWorld = glm::scale(glm::dmat4(1.0), glm::dvec3(unit_));
+  const double clipScale = isPerspective(view) ? 1.0 / unit_ : 1.0;
+  setUniform(program, "u_viewRotationProjection", glm::mat4(clipScale * (view.proj * toWorld * rotation)));
   glm::vec3 eyeHi, eyeLo;
-  splitHiLo(view.eye - center_, glm::value_ptr(eyeHi), glm::value_ptr(eyeLo));
+  splitHiLo((view.eye - center_) / unit_, glm::value_ptr(eyeHi), glm::value_ptr(eyeLo));
   setUniform(program, "u_eyeHi", eyeHi);
   setUniform(program, "u_eyeLo", eyeLo);
   setUniform(program, "u_patchFrames", kFrameTextureUnit);
@@ -659,8 +690,8 @@ void PatchRenderer::setTessellationUniforms(unsigned program, const ViewParams& 
   setUniform(program, "u_maxTessLevel", static_cast<float>(std::clamp(shading.maxTessLevel, 1, 64)));
   setUniform(program, "u_fixedTessLevel", static_cast<float>(std::min(shading.fixedTessLevel, 64)));
   setUniform(program, "u_transitionDensity", transitionDensity(view, shading));
-  // Perspective: w = depth, near = P[3][2] / (P[2][2] - 1); orthographic: w = 1.
-  const double near = view.proj[2][3] < -0.5 ? double(view.proj[3][2]) / (double(view.proj[2][2]) - 1.0) : 1.0;
+  // Perspective: w = depth (in GPU units), near = P[3][2] / (P[2][2] - 1); orthographic: w = 1.
+  const double near = isPerspective(view) ? view.proj[3][2] / (view.proj[2][2] - 1.0) / unit_ : 1.0;
   setUniform(program, "u_nearDepth", float(std::isfinite(near) && near > 0.0 ? near : 1e-30));
 }
 
@@ -668,8 +699,8 @@ int PatchRenderer::transitionDensity(const ViewParams& view, const ShadingParams
   const double unitLength = impl_->transitionUnitLength;
   if (!(unitLength > 0.0)) return 0;
   // Pixels per world unit at the model centre: proj[1][1] maps view-space y to clip y; / w.
-  const glm::dvec4 clip = glm::dmat4(view.proj) * glm::dmat4(view.view) * glm::dvec4(center_, 1.0);
-  const double pixelsPerUnit = 0.5 * view.viewport.w * double(view.proj[1][1]) / std::max(clip.w, 1e-9);
+  const glm::dvec4 clip = view.proj * view.view * glm::dvec4(center_, 1.0);
+  const double pixelsPerUnit = 0.5 * view.viewport.w * view.proj[1][1] / std::max(clip.w, 1e-9 * radius_);
   const double segments = unitLength * pixelsPerUnit / std::max(double(shading.tessPixels), 0.5);
   return static_cast<int>(std::clamp(std::lround(std::log2(std::max(segments, 1e-30))), -64L, 64L));
 }
@@ -683,7 +714,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glDisable(GL_CULL_FACE);  // two-sided surfaces
   glDisable(GL_BLEND);
 
-  const glm::vec3 eye(view.eye - center_);  // for highlight lines, placed relative to the centre
+  const glm::vec3 eye((view.eye - center_) / unit_);  // for highlight lines, relative to the centre
 
   // GPU time of the previous use of this query slot (non-blocking when available).
   const int slot = g.timerIndex;
@@ -703,7 +734,7 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
     const glm::vec3 B = glm::normalize(shading.highlightDir);
     const glm::vec3 W = perpendicularTo(B, shading.highlightPlaneNormal);
     const glm::vec3 E = glm::cross(W, B);
-    const float radius = static_cast<float>(radius_);
+    const float radius = static_cast<float>(radius_ / unit_);  // GPU units
     // Key light fixed in view space (upper left, in front), expressed in world axes.
     const glm::vec3 keyView = glm::length(shading.keyLightView) > 1e-6f ? glm::normalize(shading.keyLightView)
                                                                          : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -711,8 +742,10 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
 
     setTessellationUniforms(program, view, shading);
     setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
-    setUniform(program, "u_range", shading.range);
-    setUniform(program, "u_rangeBelow", shading.rangeBelow > 0.0f ? shading.rangeBelow : shading.range);
+    // The GPU's K and H are in its units: K unit^2, H unit.
+    const double curvatureUnit = shading.mode == ShadingParams::Mode::Gaussian ? unit_ * unit_ : unit_;
+    setUniform(program, "u_range", floatInRange(shading.range * curvatureUnit));
+    setUniform(program, "u_rangeBelow", floatInRange((shading.rangeBelow > 0.0 ? shading.rangeBelow : shading.range) * curvatureUnit));
     setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
     setUniform(program, "u_eye", eye);
     setUniform(program, "u_keyLight", keyWorld);
@@ -862,11 +895,11 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
     SurfaceProbe& s = samples[k];
     s.u = d[0];
     s.v = d[1];
-    s.gaussian = d[2];
-    s.mean = d[3];
+    s.gaussian = double(d[2]) / (unit_ * unit_);  // from GPU units back to the world's
+    s.mean = double(d[3]) / unit_;
     s.patch = patchIndexOfSlot(size_t(d[7]));
     // Where draw() places the vertex, relative to the eye: back to world coordinates in double.
-    s.position = view.eye + glm::dvec3(d[4], d[5], d[6]);
+    s.position = view.eye + unit_ * glm::dvec3(d[4], d[5], d[6]);
   }
   return samples;
 }

@@ -35,7 +35,7 @@ struct DrawStats {
 struct SurfaceProbe {
   int patch = 0;           // index into the vector given to setPatches
   float u = 0, v = 0;      // patch parameter
-  float gaussian = 0, mean = 0;
+  double gaussian = 0, mean = 0;  // world units (the GPU's values over unit^2 and unit)
   glm::dvec3 position{0.0};  // world coordinates
 };
 
@@ -124,6 +124,10 @@ class PatchRenderer {
   std::unique_ptr<Impl> impl_;
   glm::dvec3 boundsMin_{0.0}, boundsMax_{0.0}, center_{0.0};
   double radius_ = 1.0;
+  // The GPU's length unit: a power of two near the model's radius. Everything uploaded is in these
+  // units (scaled exactly), so models of 1e-150 and 1e150 (the OBJ reader's range) reach the GPU at
+  // size ~1: float's range ends at 3e38 and its curvature (1 / length^2) underflowed at 1e-10.
+  double unit_ = 1.0;
   int patchCount_ = 0;
   std::vector<DrawRange> drawRanges_;
   uint64_t stableStamp_ = 0;  // setPatches' sequence on the GPU, and how many of its slots are valid

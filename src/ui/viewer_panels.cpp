@@ -78,12 +78,21 @@ void normaliseDirection(glm::vec3& d) {
 }
 
 constexpr float kHistogramHeight = 18.0f;  // pixels above the colour bar
+// The smallest typed range: curvatures of models of 1e150 (the OBJ reader's limit) are 1e-300.
+constexpr double kSmallestRange = 1e-305;
 
-// A tick label short enough for the bar: 3 significant digits.
-std::string formatTick(float value) {
+// A tick label short enough for the bar: 3 significant digits, the exponent without '+' and
+// leading zeros (1.23e20, 4.5e-7); 0 for what is below 1e-9 of the bar's `scale` (its rounding).
+std::string formatTick(double value, double scale) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", std::abs(value) < 1e-30f ? 0.0f : value);
-  return buffer;
+  std::snprintf(buffer, sizeof buffer, "%.3g", std::abs(value) <= 1e-9 * scale ? 0.0 : value);
+  std::string tick = buffer;
+  const size_t e = tick.find('e');
+  if (e == std::string::npos) return tick;
+  std::string exponent = tick.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return tick.substr(0, e + 1) + (negative ? "-" : "") + (exponent.empty() ? "0" : exponent);
 }
 
 // [SECTION] Panels
@@ -307,15 +316,15 @@ void drawColourPanel(ViewerState& state) {
       ImGui::TextDisabled("-P%.0f .. P%.0f; end caps at extraordinary vertices are not counted.", 100.0f - percent, percent);
     ImGui::PopTextWrapPos();
   } else if (state.colour.symmetric) {
-    if (ImGui::InputFloat("Range +-", &state.colour.typedRange, 0.0f, 0.0f, "%.6g")) {
-      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);
+    if (ImGui::InputDouble("Range +-", &state.colour.typedRange, 0.0, 0.0, "%.6g")) {
+      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), kSmallestRange);
     }
     if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.autoRange;
   } else {
-    float low = -state.colour.typedBelow;
-    if (ImGui::InputFloat("Min (< 0)", &low, 0.0f, 0.0f, "%.6g")) state.colour.typedBelow = std::max(std::abs(low), 1e-12f);
-    if (ImGui::InputFloat("Max (> 0)", &state.colour.typedRange, 0.0f, 0.0f, "%.6g"))
-      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), 1e-12f);
+    double low = -state.colour.typedBelow;
+    if (ImGui::InputDouble("Min (< 0)", &low, 0.0, 0.0, "%.6g")) state.colour.typedBelow = std::max(std::abs(low), kSmallestRange);
+    if (ImGui::InputDouble("Max (> 0)", &state.colour.typedRange, 0.0, 0.0, "%.6g"))
+      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), kSmallestRange);
     if (ImGui::Button("Use automatic values")) {
       state.colour.typedRange = state.colour.autoAbove;
       state.colour.typedBelow = state.colour.autoBelow;
@@ -774,7 +783,7 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
 
   if (!state.showsColourBar()) return;
   // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
-  const float range = state.colourRange(), below = state.colourRangeBelow();
+  const double range = state.colourRange(), below = state.colourRangeBelow();
   const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
   const float barHeight = 14.0f * scale;
   const float reserve = colourBarOnlyReserve(state, scale);
@@ -795,7 +804,7 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   list->AddRectFilled(ImVec2(left - 40 * scale, top - histogramHeight - 6 * scale),
                       ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), box, 4.0f * scale);
   // The bar's position t in [-1, 1] -> value, two slopes (below zero / above zero).
-  auto valueAt = [&](float t) { return t < 0.0f ? t * below : t * range; };
+  auto valueAt = [&](double t) { return t < 0.0 ? t * below : t * range; };
   // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
   const std::vector<float>& bins = state.colour.histogram;
   for (size_t b = 0; b < bins.size(); ++b) {
@@ -806,8 +815,7 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   }
   const int segments = 96;
   for (int i = 0; i < segments; ++i) {
-    float v0 = valueAt(-1.0f + 2.0f * float(i) / segments);
-    float v1 = valueAt(-1.0f + 2.0f * float(i + 1) / segments);
+    const double v0 = valueAt(-1.0 + 2.0 * i / segments), v1 = valueAt(-1.0 + 2.0 * (i + 1) / segments);
     ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range, below));
     ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range, below));
     float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
@@ -816,9 +824,9 @@ void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, c
   list->AddRect(ImVec2(left, top), ImVec2(left + barWidth, top + barHeight), IM_COL32(230, 230, 230, 255), 0.0f, 0, scale);
   for (int t = 0; t <= 4; ++t) {
     float x = left + barWidth * float(t) / 4.0f;
-    float value = valueAt(-1.0f + 2.0f * float(t) / 4.0f);
+    const double value = valueAt(-1.0 + 2.0 * t / 4.0);
     list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), text, scale);
-    std::string tick = formatTick(value);
+    std::string tick = formatTick(value, std::max(range, below));
     ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());
     list->AddText(font, fontSize, ImVec2(x - 0.5f * tickSize.x, top + barHeight + 5 * scale), text, tick.c_str());
   }

@@ -72,13 +72,13 @@ struct ColourRangeSettings {
   // the paper's Fig. 13 ("larger blue or red areas result from saturation in normalization").
   bool automatic = true;
   float quantile = 0.90f;    // upper percentile P (the lower one is 1 - P)
-  float typedRange = 1.0f;   // used when not automatic (the positive side when not symmetric)
-  float autoRange = 1.0f;    // last automatic value (written by the app)
+  double typedRange = 1.0;   // used when not automatic (the positive side when not symmetric)
+  double autoRange = 1.0;    // last automatic value (written by the app)
   // Not symmetric: the negative and positive sides have ranges of their own, [-below, above], zero
   // staying the map's middle (two slopes). Automatic: below = -P(1 - P), above = P(P).
   bool symmetric = true;
-  float typedBelow = 1.0f;   // negative side when typed
-  float autoBelow = 1.0f, autoAbove = 1.0f;  // written by the app
+  double typedBelow = 1.0;   // negative side when typed
+  double autoBelow = 1.0, autoAbove = 1.0;  // written by the app
   // Area-weighted distribution of K (or H) of the shown views over the colour bar: kHistogramBins
   // bins spanning [-below, above] as the bar does (values beyond in the end bins), the largest 1.
   std::vector<float> histogram;
@@ -224,11 +224,11 @@ struct ViewerState {
   OrbitCamera& camera(int v) { return linkCameras ? sharedCamera : views[v].camera; }
   const OrbitCamera& camera(int v) const { return linkCameras ? sharedCamera : views[v].camera; }
   // The colour range every view uses now: its positive side, and its negative side.
-  float colourRange() const {
+  double colourRange() const {
     if (colour.automatic) return colour.symmetric ? colour.autoRange : colour.autoAbove;
     return colour.typedRange;
   }
-  float colourRangeBelow() const {
+  double colourRangeBelow() const {
     if (colour.symmetric) return colourRange();
     return colour.automatic ? colour.autoBelow : colour.typedBelow;
   }

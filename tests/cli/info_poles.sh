@@ -85,4 +85,31 @@ if grep -q "rejected" "$tmp/g.txt"; then fail "globe: rejected candidates report
 import json,sys; d=json.load(sys.stdin)
 assert [(x['vertex'],x['valence']) for x in d['poles']]==[(0,12)], d['poles']
 assert d['rejected_candidates']==[] and d['rejected_reasons']=={}"
+# pole at every scale the reader accepts: the rings' K scale by 1 / s^2 (computed unscaled, E G - F^2
+# of a globe of 1e-80 underflowed to 0 and the rings read "0 .. 0"); the text says "undefined" where
+# the JSON has null (it printed nan); a --rings limit that depends on the input is bad input (exit 1,
+# FILE: reason), not a usage error.
+"$exe" pole "$tmp/g.obj" --rings 2 --json > "$tmp/pole1.json"
+for scale in 1e-150 1e-80 1e80 1e150; do
+  awk -v s="$scale" '/^v /{printf "v %.17g %.17g %.17g\n", $2 * s, $3 * s, $4 * s; next} {print}' "$tmp/g.obj" > "$tmp/g$scale.obj"
+  "$exe" pole "$tmp/g$scale.obj" --rings 2 --json | py "
+import json,sys; s=$scale; one=json.load(open('$tmp/pole1.json'))['poles']; d=json.load(sys.stdin)['poles']
+for a,b in zip(one,d):
+  assert abs(b['gaussian_curvature']*s*s/a['gaussian_curvature']-1)<1e-9, (a['gaussian_curvature'], b['gaussian_curvature'])
+  for ra,rb in zip(a['rings'],b['rings']):
+    for key in ('K_min','K_max','max_abs_dK'):
+      assert abs(rb[key]*s*s/ra[key]-1)<1e-9, (s, key, ra[key], rb[key])
+    assert abs(rb['H_max']*s/ra['H_max']-1)<1e-9, (s, ra['H_max'], rb['H_max'])" || fail "pole --rings at scale $scale"
+done
+"$exe" pole "$tmp/g.obj" --scheme bps --rings 2 > "$tmp/bps.txt" || fail "pole --scheme bps"
+! grep -q "nan" "$tmp/bps.txt" || fail "pole text prints nan: $(cat "$tmp/bps.txt")"
+[ "$(grep -c "K undefined H undefined" "$tmp/bps.txt")" -eq 2 ] || fail "pole text: K not 'undefined' for BPS: $(head -1 "$tmp/bps.txt")"
+[ "$(grep -c "^ *[12] *12  undefined" "$tmp/bps.txt")" -eq 4 ] || fail "pole text: ring rows not 'undefined' for BPS"
+"$exe" shape cap --valence 5000 --links 2 -o "$tmp/cap5000.obj"
+rc=0
+"$exe" pole "$tmp/cap5000.obj" --rings 8 > "$tmp/out.txt" 2> "$tmp/err.txt" || rc=$?
+[ $rc -eq 1 ] || fail "pole --rings over the valence limit: exit $rc (expected 1)"
+[ "$(wc -l < "$tmp/err.txt")" -eq 1 ] && grep -q "^polarview: $tmp/cap5000.obj: --rings 8 would give C2PS a valence over 2^18 .*at most --rings 5$" "$tmp/err.txt" ||
+  fail "pole --rings over the limit: $(head -3 "$tmp/err.txt")"
+[ ! -s "$tmp/out.txt" ] || fail "pole --rings over the limit printed: $(head -2 "$tmp/out.txt")"
 echo "info_poles: ok"

@@ -27,37 +27,12 @@ pole_target() {  # file scheme
 # prints "uncovered speckles spread near", the pixels of alpha 0, the speckles, the largest spread
 # of a channel, and the per mille of pixels within 24 of the median colour in every channel.
 inspect() {  # png
-  python3 - "$1" <<'EOF'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
-pos, idat, width, height = 8, b"", 0, 0
-while pos < len(data):
-    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
-    body = data[pos + 8:pos + 8 + length]
-    if kind == b"IHDR":
-        width, height, depth, colour = struct.unpack(">IIBB", body[:10])
-        assert depth == 8 and colour == 6, "expected 8-bit RGBA"
-    elif kind == b"IDAT":
-        idat += body
-    pos += 12 + length
-raw, stride, rows, prev = zlib.decompress(idat), 4 * width, [], bytearray(4 * width)
-for y in range(height):
-    line = raw[y * (stride + 1):(y + 1) * (stride + 1)]
-    f, cur = line[0], bytearray(line[1:])
-    for x in range(stride):
-        a = cur[x - 4] if x >= 4 else 0
-        b = prev[x]
-        c = prev[x - 4] if x >= 4 else 0
-        if f == 1: cur[x] = (cur[x] + a) & 255
-        elif f == 2: cur[x] = (cur[x] + b) & 255
-        elif f == 3: cur[x] = (cur[x] + (a + b) // 2) & 255
-        elif f == 4:
-            p = a + b - c
-            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            cur[x] = (cur[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    rows.append(cur)
-    prev = cur
+  python3 - "$1" "$repo/tests/support" <<'EOF'
+import sys
+sys.path.insert(0, sys.argv[2])
+from png_pixels import read_png
+rows, _ = read_png(sys.argv[1])
+height, width = len(rows), len(rows[0]) // 4
 px = lambda x, y: rows[y][4 * x:4 * x + 4]
 y0, y1, x0, x1 = int(0.15 * height), int(0.55 * height), int(0.1 * width), int(0.9 * width)
 uncovered = speckles = 0

@@ -160,6 +160,29 @@ TEST_CASE("bicubic patch: the paraboloid z = x^2 + y^2 has K = 4 and H = 2 at it
   CHECK(apex.normal.z == doctest::Approx(1.0));
 }
 
+TEST_CASE("bicubic patch: K and H of a patch scaled by s are K / s^2 and H / s over the OBJ reader's range") {
+  // The paraboloid above, scaled from 1e-150 to 1e150 (coordinates the reader accepts): E G - F^2
+  // is a fourth power of the size, 1e-600 .. 1e600 unscaled, past double's range both ways.
+  const double h = 0.25;
+  for (double s : {1e-150, 1e-80, 1e-10, 1e15, 1e40, 1e150}) {
+    CAPTURE(s);
+    Patch patch;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const double x = (i - 1.5) * h, y = (j - 1.5) * h;
+        patch.cp[4 * j + i] = s * Point(x, y, x * x + y * y - 2.0 * h * h / 3.0);
+      }
+    const SurfacePoint apex = evaluatePatch(patch, 0.5, 0.5), side = evaluatePatch(patch, 0.2, 0.7);
+    CHECK(apex.gaussian * s * s == doctest::Approx(4.0).epsilon(1e-12));
+    CHECK(apex.mean * s == doctest::Approx(2.0).epsilon(1e-12));
+    CHECK(apex.normal.z == doctest::Approx(1.0));
+    const double x = (0.2 - 0.5) * h, y = (0.7 - 0.5) * h;  // the patch is z = x^2 + y^2 - c over its square
+    const GraphCurvature expected = graphCurvature(2.0 * x, 2.0 * y, 2.0, 0.0, 2.0);
+    CHECK(side.gaussian * s * s == doctest::Approx(expected.K).epsilon(1e-12));
+    CHECK(side.mean * s == doctest::Approx(expected.H).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("bicubic patch: analytic derivatives match finite differences") {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 30; ++trial) {

@@ -33,7 +33,7 @@ struct TailWeights {
   double above = 0, below = 0, atOrAbove = 0, atOrBelow = 0, total = 0;
 };
 
-TailWeights tails(const std::vector<float>& values, const std::vector<float>& weights, float bound) {
+TailWeights tails(const std::vector<double>& values, const std::vector<double>& weights, double bound) {
   TailWeights t;
   for (size_t i = 0; i < values.size(); ++i) {
     t.total += weights[i];
@@ -53,13 +53,13 @@ TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the w
   for (int trial = 0; trial < 400; ++trial) {
     const size_t n = 1 + rng() % 300;
     const float shift = 4.0f * u(rng) - 2.0f, scale = std::exp(6.0f * u(rng) - 3.0f);
-    std::vector<float> values(n), weights(n);
+    std::vector<double> values(n), weights(n);
     for (size_t i = 0; i < n; ++i) {
       values[i] = scale * (shift + std::tan(3.0f * (u(rng) - 0.5f)));  // heavy tails on both sides
       weights[i] = float(1 + rng() % 8);  // small integers: exact sums
     }
     const float quantile = 0.5f + 0.5f * u(rng);
-    const float range = weightedSymmetricRange(values, weights, quantile);
+    const double range = weightedSymmetricRange(values, weights, quantile);
     CAPTURE(trial);
     REQUIRE(range > 0.0f);
     TailWeights t = tails(values, weights, range);
@@ -73,7 +73,7 @@ TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the w
 
 TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, values beyond in the end bins") {
   // below 2, above 1: -1 -> t = -0.5 (bin 1 of 4), 0.5 -> t = 0.5 (bin 3), 3 -> saturates into bin 3.
-  const std::vector<float> values{-1.0f, 0.5f, 3.0f, -8.0f}, weights{1.0f, 2.0f, 1.0f, 0.5f};
+  const std::vector<double> values{-1.0, 0.5, 3.0, -8.0}, weights{1.0, 2.0, 1.0, 0.5};
   const std::vector<float> bins = weightedHistogram(values, weights, 2.0f, 1.0f, 4);
   REQUIRE(bins.size() == 4);
   CHECK(bins[0] == doctest::Approx(0.5f / 3.0f));  // -8 saturates into the first bin
@@ -87,7 +87,7 @@ TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, value
 
 TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {
   // 94% of the area curved like a cap (K in 0.5..1), 6% at a valence-3 corner (K = 100).
-  std::vector<float> values, weights;
+  std::vector<double> values, weights;
   for (int i = 0; i < 94; ++i) {
     values.push_back(0.5f + 0.5f * float(i) / 93.0f);
     weights.push_back(1.0f);
@@ -99,7 +99,7 @@ TEST_CASE("automatic colour range: a tight corner on a few percent of the area d
   CHECK(weightedSymmetricRange(values, weights, 0.90f) <= 1.0f);
   CHECK(weightedSymmetricRange(values, weights, 0.95f) == 100.0f);
   // All zero (a plane) or no weight: 1, never 0.
-  CHECK(weightedSymmetricRange({0.0f, 0.0f}, {1.0f, 2.0f}, 0.9f) == 1.0f);
+  CHECK(weightedSymmetricRange({0.0, 0.0}, {1.0, 2.0}, 0.9f) == 1.0);
   CHECK(weightedSymmetricRange({}, {}, 0.9f) == 1.0f);
 }
 

@@ -214,10 +214,10 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
   app->waitUntilIdle();
   app->runFrame();
   // The mushroom's K is mostly positive (cap) with a negative neck: two different sides.
-  const float below = state.colourRangeBelow(), above = state.colourRange();
-  CHECK(below > 0.0f);
-  CHECK(above > 0.0f);
-  CHECK(std::abs(below - above) > 0.1f * above);
+  const double below = state.colourRangeBelow(), above = state.colourRange();
+  CHECK(below > 0.0);
+  CHECK(above > 0.0);
+  CHECK(std::abs(below - above) > 0.1 * above);
   CHECK(std::max(below, above) == doctest::Approx(state.colour.autoRange));  // the symmetric one is the larger
   CHECK(state.colour.histogram.size() == size_t(kHistogramBins));
   CHECK(*std::max_element(state.colour.histogram.begin(), state.colour.histogram.end()) == 1.0f);

@@ -340,7 +340,7 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
   state.shading.mode = ShadingParams::Mode::Gaussian;
   app->runFrame();
   REQUIRE(state.colour.automatic);
-  const float range = state.colourRange();
+  const double range = state.colourRange();
   CHECK(range != 1.0f);
   tap(GLFW_KEY_A);
   app->runFrame();

@@ -691,7 +691,7 @@ void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& s
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
     throw InputError(source, 0,
                      "the result has a non-finite coordinate (vertex " + std::to_string(v + 1) +
-                         "): the input's coordinates are too large or degenerate; " + path + " not written");
+                         "): the input's coordinates are too large, too small or degenerate; " + path + " not written");
   }
   const auto badSharpness = [](double s) { return !std::isfinite(s) || s < 0; };
   if (std::any_of(mesh.tags.creases.begin(), mesh.tags.creases.end(), [&](const CreaseEdge& c) { return badSharpness(c.sharpness); }) ||

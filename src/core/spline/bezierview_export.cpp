@@ -247,7 +247,7 @@ BezierViewStats writeBezierView(std::ostream& out, const PatchSet& set, const Be
       if (!isFinite(p) || !isFinite(set.patches[k].origin))
         throw InputError(sourceName, 0,
                          "patch " + std::to_string(k) + " (" + patchKindName(set.patches[k].kind) +
-                             ") has a non-finite control point: the input's coordinates are too large or degenerate");
+                             ") has a non-finite control point: the input's coordinates are too large, too small or degenerate");
 
   BezierViewStats stats;
   stats.boxDiagonal = patchBoxDiagonal(set);

@@ -1,6 +1,7 @@
 // Evaluation of the patches of patch.h: uniform bicubic B-spline patches and the pole's Taylor cap.
 // Written as plain arithmetic over fixed-size arrays so that shaders/common/patch_eval.glsl can be
 // its mirror image (same function names, same steps); a test compares the two.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -43,10 +44,23 @@ void bsplineBasis(double t, double b[4], double db[4], double ddb[4]) {
 }
 
 // Normal, K and H from first and second derivatives in any regular parametrisation (docs/shading.md,
-// Curvature).
+// Curvature). The derivatives are first scaled by a power of two (exact) to a first derivative of
+// size 1..2, so E G - F^2 (fourth powers) neither underflows nor overflows: models of 1e-150 and
+// 1e150 get their K (1e300, 1e-300) as a model of 1 does; K and H are scaled back.
 // A degenerate tangent frame leaves the normal zero and K = H = 0.
-void computeCurvature(const Point& xu, const Point& xv, const Point& xuu, const Point& xuv, const Point& xvv,
+void computeCurvature(const Point& xuIn, const Point& xvIn, const Point& xuuIn, const Point& xuvIn, const Point& xvvIn,
                       SurfacePoint& sp) {
+  const double largest = std::max({std::abs(xuIn.x), std::abs(xuIn.y), std::abs(xuIn.z), std::abs(xvIn.x),
+                                   std::abs(xvIn.y), std::abs(xvIn.z)});
+  if (!(largest > 0.0) || !std::isfinite(largest)) {
+    sp.normal = Point(0.0);
+    sp.gaussian = sp.mean = 0.0;
+    return;
+  }
+  const int exponent = std::ilogb(largest);
+  const Point xu = std::ldexp(1.0, -exponent) * xuIn, xv = std::ldexp(1.0, -exponent) * xvIn;
+  const Point xuu = std::ldexp(1.0, -exponent) * xuuIn, xuv = std::ldexp(1.0, -exponent) * xuvIn,
+              xvv = std::ldexp(1.0, -exponent) * xvvIn;
   const Point cross = glm::cross(xu, xv);
   const double crossLength = glm::length(cross);
   const double E = glm::dot(xu, xu), F = glm::dot(xu, xv), G = glm::dot(xv, xv);
@@ -58,8 +72,9 @@ void computeCurvature(const Point& xu, const Point& xv, const Point& xuu, const 
   }
   sp.normal = cross / crossLength;
   const double L = glm::dot(xuu, sp.normal), M = glm::dot(xuv, sp.normal), N2 = glm::dot(xvv, sp.normal);
-  sp.gaussian = (L * N2 - M * M) / det;
-  sp.mean = (E * N2 - 2.0 * F * M + G * L) / (2.0 * det);
+  // In the scaled derivatives K' = K s^2 and H' = H s for s = 2^exponent.
+  sp.gaussian = std::ldexp((L * N2 - M * M) / det, -2 * exponent);
+  sp.mean = std::ldexp((E * N2 - 2.0 * F * M + G * L) / (2.0 * det), -exponent);
 }
 
 // Tensor-product B-spline patch: position and derivatives over the middle knot span.
