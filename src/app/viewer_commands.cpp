@@ -178,10 +178,12 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
 
 // [SECTION] render
 
+constexpr int kDefaultRenderLevel = 3;
+
 struct RenderRequest {
   std::string input, output;
   std::vector<SchemeChoice> schemes{SchemeChoice::C2PS};
-  int level = 3;
+  std::optional<int> level;  // none: kDefaultRenderLevel, or each view's deepest where that is less
   std::vector<ShadingParams::Mode> shades{ShadingParams::Mode::Gaussian};  // one, or one per view
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
@@ -305,8 +307,19 @@ int renderWithApp(const RenderRequest& r) {
     return 2;
   }
 
-  // Views, shading, colour range and camera as asked.
-  setViews(state, r.schemes, r.level);
+  // Views, shading, colour range and camera as asked. Without --level each view takes the default
+  // level, or the deepest its scheme makes on this model within the budget (said on stderr): a
+  // level asked for and over the budget is refused below.
+  setViews(state, r.schemes, r.level.value_or(kDefaultRenderLevel));
+  if (!r.level)
+    for (int v = 0; v < state.viewCount; ++v) {
+      ViewSettings& view = state.views[size_t(v)];
+      const int deepest = deepestLevel(app.model(), view.scheme, options.faceBudget);
+      if (deepest >= view.level) continue;
+      std::cerr << "polarview: " << r.input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
+                << ", its deepest on this model within the memory budget (the default is " << kDefaultRenderLevel << ")\n";
+      view.level = deepest;
+    }
   state.linkCameras = true;
   state.showPanels = false;
   state.shading.mode = r.shades.front();

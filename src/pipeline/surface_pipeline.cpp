@@ -196,23 +196,45 @@ LoadedModel readModelFile(const std::string& path) {
 }
 
 namespace {
+// Levels the estimate refines (estimateAdaptiveFaceCounts' `measured`) for the level limit of the
+// viewer's slider; a check of one level L measures min(L, this) only.
+constexpr int kMeasuredLevels = 7;
+
 // The faces of the feature-adaptive refinement of `scheme` at each level 0..kMaxLevel on the model
-// (estimateAdaptiveFaceCounts), measured once per model and scheme: the level limit is asked for
-// every frame.
-size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
+// (estimateAdaptiveFaceCounts), measured once per model, scheme and budget to at least `measured`
+// levels (or to the first level over the budget), deepened when a later call needs more: the level
+// limit is asked for every frame, and a command asking for level 1 of a 10^5-valence cap does not
+// make levels 2..7 (under the command line's budget that took 17 s and 8 GB).
+size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget, int measured = kMeasuredLevels) {
+  struct Estimate {
+    std::vector<size_t> totals;
+    int measured = -1;
+    bool over = false;  // a measured level was over the budget: deeper measuring changes nothing
+  };
   static std::mutex mutex;
-  static std::map<std::tuple<uint64_t, int, size_t>, std::vector<size_t>> cache;
+  static std::map<std::tuple<uint64_t, int, size_t>, Estimate> cache;
   const std::lock_guard<std::mutex> lock(mutex);
-  std::vector<size_t>& totals = cache[{model.generation, int(scheme), faceBudget}];
-  if (totals.empty()) {
+  Estimate& estimate = cache[{model.generation, int(scheme), faceBudget}];
+  measured = std::clamp(measured, 1, kMeasuredLevels);
+  if (estimate.measured < measured && !estimate.over) {
     try {
       // Bounded by the budget: a level over it is not made (it reads budget + 1), however large the input.
-      totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel), faceBudget);
+      estimate.totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel), faceBudget, measured);
+      estimate.over = std::find(estimate.totals.begin(), estimate.totals.end(), faceBudget + 1) != estimate.totals.end();
     } catch (const std::exception&) {
-      totals.assign(size_t(kMaxLevel) + 1, 0);  // not refinable: building says why
+      estimate.totals.assign(size_t(kMaxLevel) + 1, 0);  // not refinable: building says why
+      estimate.over = true;
     }
+    estimate.measured = measured;
   }
-  return totals[size_t(std::clamp(level, 0, kMaxLevel))];
+  return estimate.totals[size_t(std::clamp(level, 0, kMaxLevel))];
+}
+
+// The deepest level whose estimate (measured to `measured` levels) fits the budget.
+int deepestMeasuredLevel(const Model& model, SchemeChoice scheme, size_t faceBudget, int measured) {
+  int level = 0;
+  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1, faceBudget, measured) <= faceBudget) ++level;
+  return level;
 }
 }  // namespace
 
@@ -251,18 +273,19 @@ int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t fac
 }
 
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget) {
-  int level = 0;
-  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1, faceBudget) <= faceBudget) ++level;
-  return level;
+  return deepestMeasuredLevel(model, scheme, faceBudget, kMeasuredLevels);
 }
 
 std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
-  const int deepest = deepestLevel(model, scheme, faceBudget);
+  // Whether `level` fits needs the levels up to it measured, no deeper: the deepest level below it is
+  // among them when it does not.
+  const int measured = std::min(std::max(level, 1), kMeasuredLevels);
+  const int deepest = deepestMeasuredLevel(model, scheme, faceBudget, measured);
   if (level <= deepest) return {};
   std::string text = "level " + std::to_string(level) + " refused: " + schemeChoiceLabel(scheme) +
                      " stops at level " + std::to_string(deepest) + " on this model";
   if (deepest < kMaxLevel) {
-    const size_t faces = estimatedFaces(model, scheme, deepest + 1, faceBudget);
+    const size_t faces = estimatedFaces(model, scheme, deepest + 1, faceBudget, measured);
     text += " (level " + std::to_string(deepest + 1) + " would make " +
             (faces == faceBudget + 1 ? "more than " + std::to_string(faceBudget) : "about " + std::to_string(faces)) +
             " faces, over the budget of " + std::to_string(faceBudget) + ")";
