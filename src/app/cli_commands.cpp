@@ -261,7 +261,7 @@ const char* usageText() {
          "                 [--range R | --range MIN:MAX | --percentile P [--asymmetric]]\n"
          "                 [--colormap paper|coolwarm|viridis|magnitude] [--camera JSON] [--preset front|top|side|iso]\n"
          "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
-         "                 [--wireframe] [--no-poles] [--time N]\n"
+         "                 [--wireframe] [--no-poles] [--full-draw] [--time N]\n"
          "  polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
          "                 the paper's figures as DIR/figNN.png (all: and the gallery DIR/README.md)\n"
          "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"

@@ -521,26 +521,58 @@ SurfaceKey ViewerApp::wantedKey(int v) const {
   return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level, model_.points};
 }
 
-void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
+void ViewerApp::upload(int v, const BuiltSurface& surface) {
   ViewRuntime& view = views_[size_t(v)];
   // A level step on the same hierarchy keeps the patches both levels share on the GPU.
   const auto start = std::chrono::steady_clock::now();
   const int zoom = state_.poleInspector.zoomRing;
-  if (zoom >= 0 && !surface->poles.empty()) {
+  if (zoom >= 0 && !surface.poles.empty()) {
     // Pole zoom: the rings of the inspected pole, scaled in double (a new upload: no stable prefix).
-    const int pole = std::clamp(state_.poleInspector.pole, 0, int(surface->poles.size()) - 1);
-    view.renderer->setPatches(zoomAboutPole(surface->patches, pole, zoom, 3, surface->poles[size_t(pole)]));
+    const int pole = std::clamp(state_.poleInspector.pole, 0, int(surface.poles.size()) - 1);
+    view.renderer->setPatches(zoomAboutPole(surface.patches, pole, zoom, 3, surface.poles[size_t(pole)]));
     view.zoomShown = zoom;
   } else {
-    view.renderer->setPatches(surface->patches, surface->stamp, surface->regularCount);
+    view.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
     view.zoomShown = -1;
   }
   view.keptPatches = view.renderer->lastReusedPatches();
-  view.unparked = view.reshown = false;
   view.uploadMs = millisecondsSince(start);
+}
+
+void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
+  ViewRuntime& view = views_[size_t(v)];
+  upload(v, *surface);
+  view.drawn.reset();  // the level of detail is picked again for the new surface
+  view.unparked = view.reshown = false;
   view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
   view.renderer->setPoleMarkers(surface->poles);
   view.shown = std::move(surface);
+}
+
+void ViewerApp::updateDrawnLevel(int v, double pixelsHigh) {
+  ViewRuntime& view = views_[size_t(v)];
+  const BuiltSurface* shown = view.shown.get();
+  if (!shown || view.zoomShown >= 0) return;
+  // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
+  int wanted = shown->patchLevel;
+  if (options_.levelOfDetail && !state_.edit.dragging && shown->key.points == model_.points)
+    wanted = levelToDraw(shown->detail, shown->patchLevel, state_.camera(v), pixelsHigh, options_.levelOfDetailPixels);
+  const int drawnNow = view.drawn ? view.drawn->patchLevel : shown->patchLevel;
+  if (wanted != drawnNow) {
+    std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model_, wanted) : nullptr;
+    if (wanted >= shown->patchLevel || drawn) {  // else not available now (an edit is applied): keep
+      // The Stats panel's upload numbers stay those of the surface's own build.
+      const double uploadMs = view.uploadMs;
+      const size_t kept = view.keptPatches;
+      upload(v, drawn ? *drawn : *shown);
+      view.uploadMs = uploadMs;
+      view.keptPatches = kept;
+      view.drawn = std::move(drawn);
+    }
+  }
+  ViewStatus& status = state_.status[size_t(v)];
+  status.drawnLevel = view.drawn ? view.drawn->patchLevel : shown->patchLevel;
+  status.drawnPatches = int(view.drawn ? view.drawn->patches.size() : shown->patches.size());
 }
 
 size_t ViewerApp::levelFaces(SchemeChoice scheme, int level) const {
@@ -571,6 +603,7 @@ size_t ViewerApp::shownFaces() const {
 
 void ViewerApp::dropParked(ViewRuntime& view) {
   view.parked.reset();
+  view.parkedDrawn.reset();
   view.parkedRenderer.reset();  // its GPU buffers too
 }
 
@@ -603,6 +636,7 @@ void ViewerApp::parkShown(int v, const BuiltSurface& next) {
   view.parkedRenderer = std::move(view.renderer);
   view.renderer = std::move(renderer);
   view.parked = std::move(view.shown);
+  view.parkedDrawn = std::move(view.drawn);
 }
 
 bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
@@ -611,6 +645,7 @@ bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
   const auto start = std::chrono::steady_clock::now();
   std::swap(view.renderer, view.parkedRenderer);
   std::swap(view.shown, view.parked);  // the one shown so far is parked in turn
+  std::swap(view.drawn, view.parkedDrawn);  // each renderer keeps what it draws
   if (view.parked && (view.zoomShown >= 0 || view.parked->key.model != wanted.model || view.parked->key.points != wanted.points))
     dropParked(view);
   view.zoomShown = -1;
@@ -793,6 +828,8 @@ void ViewerApp::updateSurfaces() {
       status.samplesMs = built ? view.shown->samplesMs : 0.0;
       status.uploadMs = view.uploadMs;
       status.patchLevel = view.shown->patchLevel;
+      status.drawnLevel = view.drawn ? view.drawn->patchLevel : view.shown->patchLevel;
+      status.drawnPatches = int(view.drawn ? view.drawn->patches.size() : view.shown->patches.size());
       status.zoomRing = view.zoomShown;
       status.keptPatches = int(view.keptPatches);
       status.polesByScheme = view.shown->polesByScheme;
@@ -1262,6 +1299,7 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
     display.poleMarkers = false;
     const ScreenRect& r = rects[v];
     const OrbitCamera& camera = state_.camera(int(v));
+    updateDrawnLevel(int(v), double(r.h) * pixelScale);
     ViewParams params;
     params.viewport = glm::ivec4(int(r.x * pixelScale), framebufferHeight - int((r.y + r.h) * pixelScale),
                                  int(r.w * pixelScale), int(r.h * pixelScale));

@@ -69,6 +69,11 @@ struct ViewerOptions {
   // views' levels and it together fit one view's face budget: the key press that asks for it then
   // only uploads.
   bool prepareNextLevel = true;
+  // Draw the shallowest level that looks the same but for levelOfDetailPixels across at each feature
+  // (pipeline/level_of_detail.h): the frame cost stops growing once rings are below a pixel. Off:
+  // every view draws the level it shows (render --full-draw, comparisons).
+  bool levelOfDetail = true;
+  double levelOfDetailPixels = 3.0;
 };
 
 class ViewerApp {
@@ -160,6 +165,9 @@ class ViewerApp {
     // its points change, or when memory is wanted (parkedFaces counts it against the budget).
     std::unique_ptr<PatchRenderer> parkedRenderer;
     std::shared_ptr<const BuiltSurface> parked;
+    // What the renderer draws in place of `shown` where its deeper levels are below a pixel (a
+    // shallower set of the same hierarchy; null: `shown` itself), and the parked renderer's.
+    std::shared_ptr<const BuiltSurface> drawn, parkedDrawn;
     // The surface of the level shown before the last level step (same model, scheme and points):
     // a step back shows it again (an upload of what the GPU does not hold, nothing built). Counted
     // and dropped as the parked one.
@@ -223,6 +231,11 @@ class ViewerApp {
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
   void refreshEditedViews();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
+  // Uploads `surface`'s patches to view v's renderer (a pole zoom: its zoomed rings). [O(patches not on the GPU)]
+  void upload(int v, const BuiltSurface& surface);
+  // Draws the level levelToDraw picks for the view's camera (viewport `pixelsHigh` high): switches
+  // `drawn` when it changes. [O(features) a frame; O(patches of the set) on a switch]
+  void updateDrawnLevel(int v, double pixelsHigh);
   // [Editing] A press at (x, y) in view v: picks the control vertex there and starts dragging it.
   bool beginVertexDrag(int v, const ScreenRect& rect, float x, float y);
   void applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects);

@@ -25,7 +25,7 @@ const char* kRenderUsage =
     "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
     "[--shade MODE[,MODE...] (gaussian|mean|highlight|reflection|shaded: one, or one per view)] [--size WxH] [--range R | --range MIN:MAX | --percentile P [--asymmetric]] [--camera JSON] "
     "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
-    "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--time N]\n";
+    "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--full-draw] [--time N]\n";
 const char* kViewUsage =
     "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
     "[--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help] "
@@ -143,17 +143,23 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   std::ostringstream json;
   json << "{\"frames\":" << frameMs.size() << ",\"views\":" << state.viewCount << ",\"schemes\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(state.views[size_t(v)].scheme) << '"';
-  json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "],\"patches\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].patchCount;
-  // Per view: poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
-  json << "],\"poles_by_scheme\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByScheme;
-  json << "],\"poles_by_cc\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].polesByCatmullClark;
-  // Per view: the deepest level the view's memory budget admits for its scheme on this model.
-  json << "],\"deepest_levels\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].deepestLevel;
-  json << "],\"titles\":[";
+  json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "]";
+  // Per view, one number of its status: "KEY":[view 0, view 1, ...].
+  const auto perView = [&](const char* key, int ViewStatus::*field) {
+    json << ",\"" << key << "\":[";
+    for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].*field;
+    json << "]";
+  };
+  perView("patches", &ViewStatus::patchCount);
+  // The level drawn (< the level where deeper rings are below a pixel) and its patches.
+  perView("drawn_levels", &ViewStatus::drawnLevel);
+  perView("drawn_patches", &ViewStatus::drawnPatches);
+  // Poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
+  perView("poles_by_scheme", &ViewStatus::polesByScheme);
+  perView("poles_by_cc", &ViewStatus::polesByCatmullClark);
+  // The deepest level the view's memory budget admits for its scheme on this model.
+  perView("deepest_levels", &ViewStatus::deepestLevel);
+  json << ",\"titles\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
   const double range = state.colourRange(), rangeBelow = state.colourRangeBelow();
   const double medianMs = median(frameMs);
@@ -184,6 +190,7 @@ struct RenderRequest {
   std::string input, output;
   std::vector<SchemeChoice> schemes{SchemeChoice::C2PS};
   std::optional<int> level;  // none: kDefaultRenderLevel, or each view's deepest where that is less
+  bool fullDraw = false;     // draw every patch of the level, also those below a pixel
   std::vector<ShadingParams::Mode> shades{ShadingParams::Mode::Gaussian};  // one, or one per view
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
@@ -221,6 +228,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     else if (arg == "--time") r.timeFrames = parseInt(cursor.value(arg), arg, 1, 10000);
     else if (arg == "--percentile") r.percentile = float(parseInt(cursor.value(arg), arg, 50, 100));
     else if (arg == "--asymmetric") r.asymmetric = true;
+    else if (arg == "--full-draw") r.fullDraw = true;
     else if (arg == "--range") {
       // R (the map spans -R..R) or MIN:MAX with MIN < 0 < MAX (two slopes, zero in the middle).
       const std::string& text = cursor.value(arg);
@@ -297,6 +305,7 @@ int renderWithApp(const RenderRequest& r) {
   options.persistRecent = false;
   options.vsync = false;
   options.prepareNextLevel = false;  // one picture: no level steps to come
+  options.levelOfDetail = !r.fullDraw;
   ViewerApp app(options);
   ViewerState& state = app.state();
   if (!openModelAndWindow(app, r.input)) return 1;

@@ -318,7 +318,8 @@ namespace {
 // The surface of `key` at patch level `level` from `hierarchy` (its mutex held, its points the
 // model's): patches, poles, statistics and curvature samples; the hierarchy pointers are the
 // caller's to set. Adds the time of each part to the surface's counters.
-std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceKey& key, SurfaceHierarchy& hierarchy, int level) {
+std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceKey& key, SurfaceHierarchy& hierarchy, int level,
+                                              bool sample = true) {
   auto surface = std::make_shared<BuiltSurface>();
   surface->key = key;
   surface->key.points = model.points;
@@ -347,7 +348,9 @@ std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceK
   surface->netSegments = hierarchy.netSegments;
   surface->poles = polePositions(surface->patches, refinement.level(level));
   countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
+  surface->detail = detailSizes(surface->patches);
   surface->patchesMs = millisecondsSince(patchesStart);
+  if (!sample) return surface;
 
   // Statistics and curvature samples (the shared automatic colour range is taken over all views).
   const auto samplesStart = std::chrono::steady_clock::now();
@@ -408,6 +411,18 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   surface->refinement = std::shared_ptr<AdaptiveRefinement>(reuse, hierarchy.refinement.get());
   surface->hierarchy = std::move(reuse);
   surface->refineMs = millisecondsSince(start);
+  return surface;
+}
+
+std::shared_ptr<const BuiltSurface> drawnSurface(const BuiltSurface& shown, const Model& model, int level) {
+  if (!shown.hierarchy || level < 0 || level >= shown.patchLevel) return nullptr;
+  SurfaceHierarchy& hierarchy = *shown.hierarchy;
+  const std::lock_guard<std::mutex> lock(hierarchy.mutex);
+  if (hierarchy.points != model.points || hierarchy.refinement->levelCount() - 1 < level) return nullptr;
+  std::shared_ptr<BuiltSurface> surface = assembleSurface(model, shown.key, hierarchy, level, false);
+  surface->samples = shown.samples;
+  surface->hierarchy = shown.hierarchy;
+  surface->refinement = shown.refinement;
   return surface;
 }
 

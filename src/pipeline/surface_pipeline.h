@@ -20,6 +20,7 @@
 #include "core/spline/patch.h"
 #include "core/spline/patch_extraction.h"
 #include "pipeline/control_net.h"
+#include "pipeline/level_of_detail.h"
 #include "pipeline/scheme_choice.h"
 
 namespace polarview {
@@ -130,6 +131,7 @@ struct BuiltSurface {
   std::vector<NetSegment> netSegments;  // its edges once, crease edges marked (control_net.h)
   std::vector<Point> poles;          // limit positions of the poles (markers)
   std::array<int, kPatchKindCount> patchesPerKind{};
+  DetailSizes detail;  // what levelToDraw needs of `patches`
   // Shared between a surface and its refreshed successors while a drag goes on (sampling every
   // frame would cost more than the edit); retaken when the drag ends.
   std::shared_ptr<const CurvatureSamples> samples;
@@ -200,6 +202,13 @@ struct RefreshTiming {
 // `surface`. The key takes the model's points revision. `surface.key` must have the model's
 // generation (std::invalid_argument otherwise). Mutates the shared refinement: call from the thread
 // that owns the surface. [O(faces of all levels)]
+// The patch set of `level` (< shown.patchLevel) of `shown`'s hierarchy, for drawing in its place
+// where the deeper levels are below a pixel (levelToDraw): its key is shown's, its samples shown's
+// (the colour range stays that of the level asked for). nullptr when the hierarchy's points are not
+// the model's (an edit is being applied) or the level is not made. Takes the hierarchy's mutex.
+// [O(patches of the set), levels already extracted]
+std::shared_ptr<const BuiltSurface> drawnSurface(const BuiltSurface& shown, const Model& model, int level);
+
 std::shared_ptr<const BuiltSurface> refreshSurface(const BuiltSurface& surface, const Model& model, bool resample,
                                                    RefreshTiming* timing = nullptr);
 

@@ -219,16 +219,28 @@ int32_t packKindLevelJumps(const Patch& patch) {
 }
 
 // The transition unit length: the world length of one level-0 parameter unit along the T-junction
-// edges, the mean over their coarse sides of chord * 2^level (chord between the face's corner
-// control points); 0 if none. One patch's part: the sum over its coarse sides and their count.
-void addTransitionSides(const Patch& patch, double& sum, size_t& sides) {
+// edges, the mean of chord * 2^level (chord between the face's corner control points) over the
+// coarse sides of the coarsest level that has any; 0 if none. The coarsest only: a set cut at a
+// shallower level (PatchRenderer's caller drawing fewer levels where deeper rings are below a
+// pixel) then gets the same tessellation as the full one. One chunk of patches' part.
+struct TransitionSides {
+  int level = std::numeric_limits<int>::max();
+  double sum = 0.0;
+  size_t sides = 0;
+  void add(int sideLevel, double length, size_t count) {
+    if (sideLevel > level || count == 0) return;
+    if (sideLevel < level) level = sideLevel, sum = 0.0, sides = 0;
+    sum += length;
+    sides += count;
+  }
+};
+
+void addTransitionSides(const Patch& patch, TransitionSides& found) {
   static constexpr int kEdgeCorners[4][2] = {{5, 6}, {6, 10}, {10, 9}, {9, 5}};  // patch.h order
   if (patch.kind == PatchKind::PoleCap) return;
   for (int s = 0; s < 4; ++s)
-    if (patch.edgeLevelDelta[s] > 0) {
-      sum += std::ldexp(glm::length(patch.cp[kEdgeCorners[s][0]] - patch.cp[kEdgeCorners[s][1]]), patch.level);
-      ++sides;
-    }
+    if (patch.edgeLevelDelta[s] > 0)
+      found.add(patch.level, std::ldexp(glm::length(patch.cp[kEdgeCorners[s][0]] - patch.cp[kEdgeCorners[s][1]]), patch.level), 1);
 }
 
 // Program specs: every shader file and variant the renderer uses.
@@ -555,8 +567,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   std::vector<int32_t> kindRings(totalSlots * 2, 0);
   constexpr size_t kChunk = 4096;
   const size_t chunks = (patches.size() + kChunk - 1) / kChunk;
-  std::vector<double> chunkSums(chunks, 0.0);
-  std::vector<size_t> chunkSides(chunks, 0);
+  std::vector<TransitionSides> chunkSides(chunks);
   const unsigned scanParts = threadsFor(patches.size() * 4);
   runParts(scanParts, [&](unsigned part) {
     for (size_t c = part; c < chunks; c += scanParts)
@@ -565,12 +576,11 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
         const size_t slot = p < stableCount ? p : stableSlots + (p - stableCount);
         kindRings[2 * slot] = packKindLevelJumps(patch);
         kindRings[2 * slot + 1] = patch.ring;
-        addTransitionSides(patch, chunkSums[c], chunkSides[c]);
+        addTransitionSides(patch, chunkSides[c]);
       }
   });
-  double transitionSum = 0.0;
-  size_t transitionSides = 0;
-  for (size_t c = 0; c < chunks; ++c) transitionSum += chunkSums[c], transitionSides += chunkSides[c];
+  TransitionSides transitions;
+  for (const TransitionSides& part : chunkSides) transitions.add(part.level, part.sum, part.sides);
   // Each patch's frame and forward differences are computed in double: split over the cores.
   const unsigned parts = threadsFor(added * 8);
   runParts(parts, [&](unsigned part) {
@@ -593,7 +603,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
       }
     }
   });
-  impl_->transitionUnitLength = transitionSides > 0 ? transitionSum / double(transitionSides) : 0.0;
+  impl_->transitionUnitLength = transitions.sides > 0 ? transitions.sum / double(transitions.sides) : 0.0;
 
   // The new stable patches go after the valid ones, the rest after every stable slot.
   const size_t newStable = stableCount - reused;

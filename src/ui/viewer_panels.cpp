@@ -389,8 +389,9 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::Text("View %d: %s level %d, built in %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
                 s.refineMs + s.uploadMs);
     ImGui::Indent();
-    ImGui::Text("refine %.1f, patches %.1f, samples %.1f, upload %.1f ms", s.refineOnlyMs, s.patchesMs, s.samplesMs,
-                s.uploadMs);
+    // Two lines: one was cut at the panel's edge.
+    ImGui::Text("refine %.1f, patches %.1f,", s.refineOnlyMs, s.patchesMs);
+    ImGui::Text("samples %.1f, upload %.1f ms", s.samplesMs, s.uploadMs);
     if (s.unparked)
       ImGui::TextWrapped("(a scheme toggle back: the surface stayed on the GPU, nothing was built)");
     else if (s.reshown)
@@ -402,6 +403,10 @@ void drawStatsPanel(const ViewerState& state) {
                          "of its own; the rings between are the limit surface.",
                          s.patchLevel, schemeChoiceLabel(s.shownScheme), s.shownLevel);
     ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
+    // The level of detail (pipeline/level_of_detail.h): refined to patchLevel, drawn at drawnLevel.
+    if (s.drawnLevel < s.patchLevel)
+      ImGui::TextWrapped("Drawn at level %d (%d patches): the deeper rings and caps are below a pixel here; "
+                         "zoom in and they are drawn.", s.drawnLevel, s.drawnPatches);
     if (s.polesByCatmullClark > 0) {
       wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f),
                          std::to_string(s.polesByCatmullClark) + " of " +

@@ -53,6 +53,8 @@ struct ViewStatus {
   int zoomRing = -1;               // >= 0: the view shows rings zoomRing.. of a pole, zoomed (Poles panel)
   int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
                                    //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
+  int drawnLevel = 0;              // the level drawn (< patchLevel where deeper rings are below a pixel)
+  int drawnPatches = 0;            // and its patches
   int polesByScheme = 0;           // polar configurations the shown scheme refines
   int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
   std::string fallbackReason;      // why (empty when none)
