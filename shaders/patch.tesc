@@ -23,6 +23,7 @@ out vec3 tc_fromEye[];
 // 0..3 (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) as signed 4-bit fields at bits 16 + 4s.
 // The evaluation stages get the plain kind.
 patch out ivec2 tc_kindRing;
+patch out ivec4 tc_jumps;  // Patch::edgeLevelDelta (patch.h edge order), for the watertight edges
 patch out int tc_patchIndex;
 patch out vec3 tc_originFromEye;  // the patch's frame (PatchFrame) for patch.tese
 patch out mat3 tc_axes;
@@ -103,6 +104,7 @@ void main() {
 
   // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
   float outer0, outer1, outer2, outer3;
+  tc_jumps = ivec4(0);
   if (kind == kPatchPoleCap) {
     // Pole edge u = 0 is a point; the radial edges v = 0, 1 run from p0 to the boundary curve's
     // ends; the edge u = 1 is the boundary curve b0..b3 shared with the innermost ring.
@@ -119,6 +121,7 @@ void main() {
     // bitfieldExtract of an int sign-extends: the 4 jumps in patch.h edge order.
     ivec4 jump = ivec4(bitfieldExtract(kindLevelJumps, 16, 4), bitfieldExtract(kindLevelJumps, 20, 4),
                        bitfieldExtract(kindLevelJumps, 24, 4), bitfieldExtract(kindLevelJumps, 28, 4));
+    tc_jumps = jump;
     // GL edge u = 0 is patch edge 3, v = 0 is 0, u = 1 is 1, v = 1 is 2.
     outer0 = edgeLevel(projectedCurveLength(edgePoint(0, 1, 2), edgePoint(4, 5, 6),
                                             edgePoint(8, 9, 10), edgePoint(12, 13, 14)), level, jump[3]);

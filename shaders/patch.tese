@@ -18,6 +18,7 @@ out SurfaceData { SURFACE_DATA_MEMBERS } te_out;
 in vec3 tc_controlPoint[];
 in vec3 tc_fromEye[];
 patch in ivec2 tc_kindRing;
+patch in ivec4 tc_jumps;
 patch in int tc_patchIndex;
 patch in vec3 tc_originFromEye;
 patch in mat3 tc_axes;
@@ -28,9 +29,16 @@ void main() {
   float u = gl_TessCoord.x, v = gl_TessCoord.y;
   // Derivatives, K and H are the same in any frame (rotation and translation): evaluate locally.
   int kind = tc_kindRing.x;
+  float outer[4] = float[4](gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2], gl_TessLevelOuter[3]);
+  // A vertex on an edge at exactly k / n along it (llvmpipe places them within ~2^-16 of that), the
+  // parameter watertightPositionFromEye evaluates the shared edge at.
+  if (kind != kPatchPoleCap) {
+    if (v == 0.0 || v == 1.0) u = snappedEdgeParameter(u, outer[v == 0.0 ? 1 : 3]);
+    if (u == 0.0 || u == 1.0) v = snappedEdgeParameter(v, outer[u == 0.0 ? 0 : 2]);
+  }
   SurfacePoint s = evaluatePatch(cp, kind, u, v);
   // The position: a cap's from its frame; a B-spline patch's from the points shared with its
-  // neighbours (watertight edges, see positionFromEye).
+  // neighbours, its shared edges and corners alike on both sides (patch_frame.glsl).
   vec3 fromEye;
   if (kind == kPatchPoleCap) {
     vec3 shared[16];
@@ -39,7 +47,7 @@ void main() {
   } else {
     vec3 points[16];
     for (int k = 0; k < 16; ++k) points[k] = tc_fromEye[k];
-    fromEye = positionFromEye(points, u, v);
+    fromEye = kind == kPatchEndCap ? positionFromEye(points, u, v) : watertightPositionFromEye(points, u, v, outer, tc_jumps);
   }
 #ifdef PROBE
   probe_uvKH = vec4(u, v, s.gaussian, s.mean);

@@ -87,3 +87,83 @@ vec3 positionFromEye(vec3 fromEye[16], float u, float v) {
   }
   return origin + offset;
 }
+
+// Watertight shared edges (docs/shading.md, "Watertight seams"). positionFromEye sums relative to a
+// point of its own patch, so two patches place a shared edge apart by a rounding, and sub-pixel
+// slivers (C2PS rings at level 12 seen from 1e-3: sectors a tenth of a pixel wide) let single
+// background pixels through. A vertex on an edge two patches of one level share is therefore
+// computed from what both hold alike: the edge's curve from the three rows of control points
+// across it, in the orientation both pick (from its end points' bits), at the parameter of the
+// vertex's integer index along the edge; a corner from the 3x3 points around it, in pairs of
+// opposite points that rotations and reflections of the patch keep.
+
+bool lexicographicallyBefore(vec3 a, vec3 b) {
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  return a.z < b.z;
+}
+
+// t in 0..1 at the nearest of the n + 1 vertices of an edge cut into `segments` n.
+float snappedEdgeParameter(float t, float segments) {
+  float n = floor(segments + 0.5);
+  return floor(t * n + 0.5) / n;
+}
+
+// The curve along an edge, from the three rows of control points across it (a and c the outer ones,
+// b on the edge's side; both patches hold them, a and c swapped), at parameter t (0..1 from point 0
+// to 3) of an edge cut into `segments`. Its B-spline points ((a + c) + 4 b) / 6 are taken relative to
+// a point of b (as positionFromEye does: differences of nearby points are exact), the one at index 1
+// in the orientation both patches pick from b's end points' bits.
+vec3 sharedEdgePosition(vec3 a[4], vec3 b[4], vec3 c[4], float t, float segments) {
+  int n = int(segments + 0.5);
+  int k = int(t * float(n) + 0.5);
+  bool reversed = lexicographicallyBefore(b[3], b[0]) || (b[3] == b[0] && lexicographicallyBefore(b[2], b[1]));
+  if (reversed) k = n - k;
+  vec3 origin = b[reversed ? 2 : 1];
+  vec3 e[4];
+  for (int i = 0; i < 4; ++i) {
+    int at = reversed ? 3 - i : i;
+    e[i] = (((a[at] - origin) + (c[at] - origin)) + 4.0 * (b[at] - origin)) / 6.0;
+  }
+  float s = float(k) / float(n), r = 1.0 - s;
+  vec4 w = vec4(r * r * r, (3.0 * s - 6.0) * s * s + 4.0, ((-3.0 * s + 3.0) * s + 3.0) * s + 1.0, s * s * s) / 6.0;
+  return origin + (((w[0] * e[0] + w[1] * e[1]) + w[2] * e[2]) + w[3] * e[3]);
+}
+
+// The surface at the knot of control point (i, j) (1 or 2 each): (1, 4, 1) x (1, 4, 1) / 36,
+// relative to that point, in pairs of opposite neighbours.
+vec3 sharedCornerPosition(vec3 p[16], int i, int j) {
+  vec3 centre = p[4 * j + i];
+  vec3 sides = ((p[4 * j + i - 1] - centre) + (p[4 * j + i + 1] - centre)) +
+               ((p[4 * (j - 1) + i] - centre) + (p[4 * (j + 1) + i] - centre));
+  vec3 diagonals = ((p[4 * (j - 1) + i - 1] - centre) + (p[4 * (j + 1) + i + 1] - centre)) +
+                   ((p[4 * (j - 1) + i + 1] - centre) + (p[4 * (j + 1) + i - 1] - centre));
+  return centre + (4.0 * sides + diagonals) / 36.0;
+}
+
+// Row j (0..3) of control points along u, and column i along v.
+void patchRow(vec3 p[16], int j, out vec3 row[4]) { for (int i = 0; i < 4; ++i) row[i] = p[4 * j + i]; }
+void patchColumn(vec3 p[16], int i, out vec3 column[4]) { for (int j = 0; j < 4; ++j) column[j] = p[4 * j + i]; }
+
+// Position of a B-spline patch at (u, v) with its edges' levels (GL order: outer 0 u = 0, 1 v = 0,
+// 2 u = 1, 3 v = 1) and level jumps (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0): shared
+// edges and corners as above, the inside (and T-junction edges, whose sides hold other curves) as
+// positionFromEye.
+vec3 watertightPositionFromEye(vec3 p[16], float u, float v, float outer[4], ivec4 jumps) {
+  bool u0 = u == 0.0, u1 = u == 1.0, v0 = v == 0.0, v1 = v == 1.0;
+  if ((u0 || u1) && (v0 || v1)) return sharedCornerPosition(p, u0 ? 1 : 2, v0 ? 1 : 2);
+  vec3 a[4], b[4], c[4];
+  if ((v0 && jumps[0] == 0) || (v1 && jumps[2] == 0)) {
+    patchRow(p, v0 ? 0 : 3, a);
+    patchRow(p, v0 ? 1 : 2, b);
+    patchRow(p, v0 ? 2 : 1, c);
+    return sharedEdgePosition(a, b, c, u, outer[v0 ? 1 : 3]);
+  }
+  if ((u0 && jumps[3] == 0) || (u1 && jumps[1] == 0)) {
+    patchColumn(p, u0 ? 0 : 3, a);
+    patchColumn(p, u0 ? 1 : 2, b);
+    patchColumn(p, u0 ? 2 : 1, c);
+    return sharedEdgePosition(a, b, c, v, outer[u0 ? 0 : 2]);
+  }
+  return positionFromEye(p, u, v);
+}
