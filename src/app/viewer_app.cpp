@@ -690,6 +690,7 @@ void ViewerApp::refreshEditedViews() {
     }
     const auto uploadStart = std::chrono::steady_clock::now();
     show(v, surface);
+    views_[size_t(v)].keptPatches = 0;  // moved points: no patch stayed (the Stats panel said "a level step")
     const double uploadMs = millisecondsSince(uploadStart);
     // The per-frame cost of moved points; retaking the curvature samples (once, at the end of a
     // drag, or with an undo) is not part of it.

@@ -32,6 +32,12 @@ struct ViewSettings {
   std::string caption;
 };
 
+inline ViewSettings viewOf(SchemeChoice scheme) {
+  ViewSettings view;
+  view.scheme = scheme;
+  return view;
+}
+
 // What the app reports about one view (read-only for panels).
 struct ViewStatus {
   bool refining = false;           // a refinement job is running for this view
@@ -197,7 +203,9 @@ struct PoleInspectorSettings {
 
 struct ViewerState {
   int viewCount = 1;
-  std::array<ViewSettings, kMaxViews> views{};
+  // New views start on different schemes: the point of several views is comparing them.
+  std::array<ViewSettings, kMaxViews> views{viewOf(SchemeChoice::C2PS), viewOf(SchemeChoice::RTS),
+                                            viewOf(SchemeChoice::BPS), viewOf(SchemeChoice::CatmullClark)};
   int activeView = 0;          // the view hotkeys (0-9, scheme) apply to; last one hovered/clicked
   bool linkCameras = true;     // all views use sharedCamera
   bool linkLevels = true;      // the level slider and keys 0-9 set every view's level

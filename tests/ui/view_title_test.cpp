@@ -23,3 +23,12 @@ TEST_CASE("view title: says in a word why every pole fell back to Catmull-Clark"
   status.polesByScheme = 2;
   CHECK(viewTitle(status).find("1 of 3 poles by CC") != std::string::npos);
 }
+
+TEST_CASE("new views start on different schemes: C2PS, RTS, BPS, Catmull-Clark (several views are for comparing)") {
+  const ViewerState state;
+  CHECK(state.views[0].scheme == SchemeChoice::C2PS);
+  CHECK(state.views[1].scheme == SchemeChoice::RTS);
+  CHECK(state.views[2].scheme == SchemeChoice::BPS);
+  CHECK(state.views[3].scheme == SchemeChoice::CatmullClark);
+  for (const ViewSettings& view : state.views) CHECK(view.level == 3);
+}
