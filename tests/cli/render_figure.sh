@@ -11,13 +11,7 @@
 set -u
 exe="$1"
 repo="$2"
-if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
 
 # Prints "width height type" and, per column band [x0, x1) given as arguments "x0:x1", the pixels
 # that are map blue, map red, map green, dark (stripes: under 100, unlike the background, the most
@@ -26,44 +20,15 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 # separates the first two views runs (at x = the first band's end), not the strips of colour bar and
 # legend under them.
 count_colours() {  # png band...
-  python3 - "$@" <<'EOF'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
-pos, idat, palette = 8, b"", None
-while pos < len(data):
-    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
-    body = data[pos + 8:pos + 8 + length]
-    if kind == b"IHDR":
-        width, height, depth, colour = struct.unpack(">IIBB", body[:10])
-        assert depth == 8 and colour in (2, 3, 6), "expected 8-bit RGB, RGBA or indexed"
-    elif kind == b"PLTE":
-        palette = [tuple(body[i:i + 3]) for i in range(0, len(body), 3)]
-    elif kind == b"IDAT":
-        idat += body
-    pos += 12 + length
-bpp = {2: 3, 3: 1, 6: 4}[colour]
-raw, stride, rows, prev = zlib.decompress(idat), bpp * width, [], bytearray(bpp * width)
-for y in range(height):
-    line = raw[y * (stride + 1):(y + 1) * (stride + 1)]
-    f, cur = line[0], bytearray(line[1:])
-    if f:
-        for x in range(stride):
-            a = cur[x - bpp] if x >= bpp else 0
-            b = prev[x]
-            c = prev[x - bpp] if x >= bpp else 0
-            if f == 1: cur[x] = (cur[x] + a) & 255
-            elif f == 2: cur[x] = (cur[x] + b) & 255
-            elif f == 3: cur[x] = (cur[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                cur[x] = (cur[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    rows.append(cur)
-    prev = cur
+  python3 - "$repo/tests/support" "$@" <<'EOF'
+import sys
+sys.path.insert(0, sys.argv[1])
+from png_pixels import read_png
+del sys.argv[1]
+rows, n, colour = read_png(sys.argv[1], with_type=True)
+height, width = len(rows), len(rows[0]) // n
 def pixel(x, y):
-    if colour == 3: return palette[rows[y][x]]
-    return tuple(rows[y][bpp * x:bpp * x + 3])
+    return tuple(rows[y][n * x:n * x + 3])
 separator = int(sys.argv[2].split(":")[1])
 views = [y for y in range(height) if all(abs(c - g) <= 20 for c, g in zip(pixel(separator, y), (98, 100, 102)))]
 counts = {}

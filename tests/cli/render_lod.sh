@@ -10,13 +10,7 @@
 set -u
 exe="$1"
 repo="$2"
-if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
 model="$repo/assets/default.obj"
 
 # Pixels of two pictures that differ by more than 24 in a channel.

@@ -5,13 +5,8 @@
 # Usage: bash render_smoke.sh <polarview-exe> <repo>. Needs an X display: re-runs itself under Xvfb.
 set -u
 exe="$1"
-if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+repo="$2"
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
 
 # A globe: poles of valence n at z = +-1 and `links` latitude rings, counter-clockwise from outside.
 write_globe() {  # n links file

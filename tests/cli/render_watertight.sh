@@ -9,13 +9,7 @@
 set -u
 exe="$1"
 repo="$2"
-if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
 
 "$exe" shape cap --valence 12 --links 3 -o "$work/cap.obj" > /dev/null || fail "shape cap"
 target=$("$exe" pole "$work/cap.obj" --json | python3 -c 'import json, sys; print("[%.17g,%.17g,%.17g]" % tuple(json.load(sys.stdin)["poles"][0]["limit"]))')

@@ -5,13 +5,8 @@
 # a usage error. Usage: bash viewer_edit.sh <polarview-exe> <repo>. Needs X: re-runs under Xvfb.
 set -u
 exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1600x900x24" bash "$0" "$@"
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+repo="$2"
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
 
 (cd "$work" && "$exe" view --level 2 --scheme c2ps,cc --frames 6 --stats --edit --hidden --size 800x500) > "$work/stats.json" 2> "$work/err.txt" ||
   fail "view --edit exited with $?: $(cat "$work/err.txt")"
