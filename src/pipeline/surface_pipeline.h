@@ -227,7 +227,7 @@ int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t fac
 // The deepest level of `scheme` on `mesh` whose estimated faces fit `faceBudget`, at most kMaxLevel:
 // the one limit of the level slider, the keys, `view` and `render`. [O(1) per level]
 int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget);
-// Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 9 refused: C2PS
+// Empty when `level` is within deepestLevel, else the one-line refusal, e.g. "level 24 refused: C2PS
 // stops at level 13 on this model (level 14 would make about 1967589 faces, over the budget of 1290555)".
 std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget);
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
