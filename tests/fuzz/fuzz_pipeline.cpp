@@ -9,22 +9,19 @@
 // arguments are all valid here), a crash, ASan/UBSan report, a hang, or a broken invariant:
 //  * every patch control point, evaluated position, pole limit and normal is finite (the reader
 //    bounds coordinates by kMaxObjCoordinate for exactly that); the pole's K and H whenever
-//    analyzePole says they are defined; the patches' and rings' K and H for coordinates <= 1e6;
+//    analyzePole says they are defined; the patches' and rings' K and H for coordinates <= 1e6
+//    and none tiny (0 < |x| < 1e-100: two points 1e-300 apart make K ~ 1e600, past a double);
 //  * the adaptive patch set equals the uniform one (count per kind, and the sum of all B-spline
 //    control points, which face numbering and quarter turns do not change) for levels <= 3;
 //  * refreshPatches after updatePositions equals a fresh extractPatches;
-//  * refinable polar configurations are well formed (links in range, valence >= 3).
-// Each input is bounded (bytes, faces, vertices, finest-level faces) so one run stays fast.
+//  * the parsed mesh keeps the reader's guarantees and the polar configurations theirs
+//    (checkParsedMesh, checkPolarConfigs in fuzz_common.h).
+// Each input is bounded (bytes, faces, vertices, finest-level faces) so one run stays fast; the
+// fast targets (fuzz_obj, fuzz_topology, fuzz_poles, fuzz_estimate) fuzz the first stages alone.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <exception>
 #include <limits>
-#include <random>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,21 +37,23 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
+#include "fuzz_common.h"
+#include "obj_mutator.h"
 
 using namespace polarview;
+using namespace polarview::fuzz;
 
 namespace {
 
-constexpr size_t kMaxInputBytes = 1 << 16;
-constexpr Index kMaxBaseFaces = 2000;
-constexpr Index kMaxBaseVertices = 4000;
+// Inputs over 16 KiB, 200 faces or 400 vertices are skipped (the whole seed corpus fits).
+constexpr InputLimits kLimits{16 << 10, 200, 400};
 constexpr size_t kMaxFinestFaces = 4096;    // Refinement's budget (finest level)
 constexpr size_t kMaxAdaptiveFaces = 8192;  // AdaptiveRefinement's budget (all levels)
 constexpr int kMaxLevel = 3;
 constexpr int kMaxRings = 3;           // ringCurvatures
 constexpr int kMaxRingValence = 4096;  // C2PS doubles the valence per ring
-constexpr double kModerate = 1e6;      // coordinates up to this: K and H must be finite too
-const char* const kSource = "fuzz.obj";
+constexpr double kModerate = 1e6;      // coordinates up to this (and none under kTiny): K and H finite too
+constexpr double kTiny = 1e-100;       // a coordinate under this, not 0, may make a feature 1e-300 wide
 
 struct Variant {
   Scheme scheme;
@@ -65,25 +64,6 @@ constexpr Variant kVariants[] = {
     {Scheme::CatmullClark, false, "cc"}, {Scheme::C2PS, false, "c2ps"}, {Scheme::C2PS, true, "c2ps-u"},
     {Scheme::RTS, false, "rts"},         {Scheme::RTS, true, "rts-u"},  {Scheme::BPS, false, "bps"},
 };
-
-// What the pipeline was doing, for the report of a finding.
-std::string gStage;
-
-[[noreturn]] void fail(const std::string& what) {
-  std::fprintf(stderr, "\nFUZZ FINDING at [%s]: %s\n", gStage.c_str(), what.c_str());
-  std::fflush(stderr);
-  std::abort();
-}
-
-bool allFinite(const Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-void requireFinite(const Point& p, const std::string& what) {
-  if (!allFinite(p))
-    fail(what + " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
-         ")");
-}
-void requireFinite(double x, const std::string& what) {
-  if (!std::isfinite(x)) fail(what + " is not finite (" + std::to_string(x) + ")");
-}
 
 // Control points finite; positions finite at the corners and the centre; K and H finite too when
 // the input is of moderate size (a degenerate frame gives normal 0, K = H = 0, not NaN). Messages
@@ -158,22 +138,6 @@ void compareRefreshed(const PatchSet& refreshed, const PatchSet& fresh) {
     if (diff > 1e-9 * scale + 1e-300)
       fail("refreshed patch " + std::to_string(i) + " (" + patchKindName(b.kind) +
            ") differs from a fresh extraction by " + std::to_string(diff) + " (scale " + std::to_string(scale) + ")");
-  }
-}
-
-void checkPolarConfigs(const PolyMesh& mesh, const std::vector<PolarConfig>& configs) {
-  for (const PolarConfig& c : configs) {
-    if (c.pole < 0 || c.pole >= mesh.vertexCount()) fail("polar config with pole " + std::to_string(c.pole));
-    if (!c.refinable) continue;
-    if (c.valence < 3) fail("refinable pole " + std::to_string(c.pole) + " of valence " + std::to_string(c.valence));
-    if (c.linkCount < 2)
-      fail("refinable pole " + std::to_string(c.pole) + " with " + std::to_string(c.linkCount) + " links");
-    if (c.links.size() != size_t(c.linkCount) * size_t(c.valence))
-      fail("pole " + std::to_string(c.pole) + ": " + std::to_string(c.links.size()) + " link ids for " +
-           std::to_string(c.linkCount) + " links of valence " + std::to_string(c.valence));
-    for (Index v : c.links)
-      if (v < 0 || v >= mesh.vertexCount())
-        fail("pole " + std::to_string(c.pole) + ": link vertex " + std::to_string(v));
   }
 }
 
@@ -278,29 +242,21 @@ void runPoleAnalysis(const PolyMesh& mesh, const Variant& variant, bool moderate
 
 // One level L in 1..3 per input, from a hash of its bytes (so a reproducer reproduces): level 3
 // costs about 16 times level 1, and running all three would cut executions per second by 3.
-int levelFor(const std::string& text) {
-  uint32_t hash = 2166136261u;  // FNV-1a
-  for (unsigned char c : text) hash = (hash ^ c) * 16777619u;
-  return 1 + int(hash % kMaxLevel);
-}
-
-void runPipeline(const std::string& text) {
-  gStage = "parseObjText";
-  std::vector<std::string> warnings;
+void runPipeline(const uint8_t* data, size_t size) {
   PolyMesh mesh;
-  try {
-    mesh = parseObjText(text, kSource, &warnings);
-  } catch (const InputError&) {
-    return;
-  }
-  if (mesh.faceCount() > kMaxBaseFaces || mesh.vertexCount() > kMaxBaseVertices) return;
+  std::vector<std::string> warnings;
+  if (!parseInput(data, size, kLimits, mesh, &warnings)) return;
+  checkParsedMesh(mesh);
+  // The model's size: of the vertices its faces use (an unused one far away does not make a model
+  // 1e-300 wide moderate); whether a coordinate is tiny but not 0 (then two points may be 1e-300
+  // apart: a feature whose K, ~1e600, no double holds, however large the model).
   double maxCoordinate = 0.0;
+  bool tiny = false;
   Point lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const Point& p : mesh.points) {
-    requireFinite(p, "parsed point");
+  for (const Index v : mesh.faceVerts) {
+    const Point& p = mesh.points[size_t(v)];
+    for (int k = 0; k < 3; ++k) tiny = tiny || (p[k] != 0.0 && std::abs(p[k]) < kTiny);
     maxCoordinate = std::max({maxCoordinate, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    if (maxCoordinate > kMaxObjCoordinate)
-      fail("parsed coordinate over kMaxObjCoordinate: " + std::to_string(maxCoordinate));
     lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
 
@@ -314,214 +270,26 @@ void runPipeline(const std::string& text) {
   } catch (const InputError&) {
     return;
   }
-  if (mesh.faceCount() == 0) return;
 
   gStage = "findPolarConfigs";
-  checkPolarConfigs(*refinable, findPolarConfigs(*refinable, topology));
+  checkPolarConfigs(*refinable, topology, findPolarConfigs(*refinable, topology));
 
-  // Moderate inputs (coordinates <= 1e6, the model not tinier than 1e-6) must give finite curvature
-  // everywhere; the edit moves a vertex by 1% of the model's size.
-  const double box = mesh.points.empty() ? 0.0 : glm::length(hi - lo);
-  const bool moderate = maxCoordinate <= kModerate && (box == 0.0 || box >= 1.0 / kModerate);
-  const int levels = levelFor(text);
-  const double size = std::max(box, 1e-3);
+  // Moderate inputs (coordinates <= 1e6, none tiny, the model not tinier than 1e-6) must give finite
+  // curvature everywhere; the edit moves a vertex by 1% of the model's size.
+  // The largest extent: a box's diagonal (glm::length) underflows to 0 for a model 1e-300 wide.
+  const Point extent = hi - lo;
+  const double box = std::max({extent.x, extent.y, extent.z});
+  const bool moderate = maxCoordinate <= kModerate && !tiny && (box == 0.0 || box >= 1.0 / kModerate);
+  const int levels = 1 + int(inputHash(data, size) % kMaxLevel);
+  const double modelSize = std::max(box, 1e-3);
   for (const Variant& variant : kVariants) {
-    runRefinements(mesh, variant, levels, moderate, size);
+    runRefinements(mesh, variant, levels, moderate, modelSize);
     if (variant.scheme != Scheme::CatmullClark) runPoleAnalysis(mesh, variant, moderate);
-  }
-}
-
-// [SECTION] Structure-aware mutation
-// Half of the mutations edit the OBJ as a mesh (libFuzzer's byte-level ones rarely keep it valid):
-// move a coordinate (scaled, zeroed, copied, made nearly equal), retarget a face index, flip a
-// face, delete or duplicate a line, split a polygon into a triangle fan, poke a face (a new
-// triangle fan around its centre: a new polar candidate of the face's valence), merge two
-// vertices, or start a face at another corner. Indices written are 1-based and positive.
-
-struct ObjLines {
-  std::vector<std::string> lines;
-  std::vector<size_t> vertexLines, faceLines;
-};
-
-ObjLines splitObj(const uint8_t* data, size_t size) {
-  ObjLines obj;
-  std::string line;
-  for (size_t i = 0; i <= size; ++i) {
-    if (i == size || data[i] == '\n') {
-      if (line.rfind("v ", 0) == 0) obj.vertexLines.push_back(obj.lines.size());
-      if (line.rfind("f ", 0) == 0) obj.faceLines.push_back(obj.lines.size());
-      obj.lines.push_back(line);
-      line.clear();
-    } else {
-      line += char(data[i]);
-    }
-  }
-  return obj;
-}
-
-std::vector<std::string> tokens(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> out;
-  for (std::string t; in >> t;) out.push_back(t);
-  return out;
-}
-
-// The vertex part of a face corner ("12/3/4" -> 12), made positive against `vertexCount`.
-long cornerIndex(const std::string& corner, long vertexCount) {
-  const long i = std::strtol(corner.c_str(), nullptr, 10);
-  return i < 0 ? vertexCount + 1 + i : i;
-}
-
-std::string joinFace(const std::vector<long>& loop) {
-  std::string line = "f";
-  for (long i : loop) line += " " + std::to_string(i);
-  return line;
-}
-
-std::vector<long> faceLoop(const std::string& line, long vertexCount) {
-  std::vector<std::string> t = tokens(line);
-  std::vector<long> loop;
-  for (size_t k = 1; k < t.size(); ++k) loop.push_back(cornerIndex(t[k], vertexCount));
-  return loop;
-}
-
-bool mutateObj(ObjLines& obj, std::minstd_rand& rng) {
-  auto pick = [&](size_t n) { return size_t(rng() % n); };
-  const long vertexCount = long(obj.vertexLines.size());
-  std::vector<std::string>& lines = obj.lines;
-  switch (rng() % 9) {
-    case 0: {  // move one coordinate
-      if (obj.vertexLines.empty()) return false;
-      const size_t v = obj.vertexLines[pick(obj.vertexLines.size())];
-      std::vector<std::string> t = tokens(lines[v]);
-      if (t.size() < 4) return false;
-      const size_t c = 1 + pick(3);
-      const double x = std::strtod(t[c].c_str(), nullptr);
-      const double other =
-          std::strtod(tokens(lines[obj.vertexLines[pick(obj.vertexLines.size())]]).back().c_str(), nullptr);
-      const double choices[] = {0.0,     -x,       2.0 * x, x * (1.0 + 1e-12),         x + 1e-9,
-                                x * 1e6, x * 1e-6, other,   double(int(rng() % 7) - 3)};
-      char buffer[40];
-      std::snprintf(buffer, sizeof buffer, "%.17g", choices[pick(9)]);
-      t[c] = buffer;
-      std::string line = t[0];
-      for (size_t k = 1; k < t.size(); ++k) line += " " + t[k];
-      lines[v] = line;
-      return true;
-    }
-    case 1: {  // retarget one index of a face
-      if (obj.faceLines.empty() || vertexCount == 0) return false;
-      const size_t f = obj.faceLines[pick(obj.faceLines.size())];
-      std::vector<long> loop = faceLoop(lines[f], vertexCount);
-      if (loop.empty()) return false;
-      loop[pick(loop.size())] = 1 + long(pick(size_t(vertexCount)));
-      lines[f] = joinFace(loop);
-      return true;
-    }
-    case 2: {  // flip a face
-      if (obj.faceLines.empty()) return false;
-      const size_t f = obj.faceLines[pick(obj.faceLines.size())];
-      std::vector<long> loop = faceLoop(lines[f], vertexCount);
-      std::reverse(loop.begin(), loop.end());
-      lines[f] = joinFace(loop);
-      return true;
-    }
-    case 3: {  // delete a face or a vertex line
-      const std::vector<size_t>& from = rng() % 4 ? obj.faceLines : obj.vertexLines;
-      if (from.empty()) return false;
-      lines.erase(lines.begin() + long(from[pick(from.size())]));
-      return true;
-    }
-    case 4: {  // duplicate a face
-      if (obj.faceLines.empty()) return false;
-      const std::string line = lines[obj.faceLines[pick(obj.faceLines.size())]];
-      lines.push_back(line);
-      return true;
-    }
-    case 5: {  // split a polygon into a fan of triangles from one corner
-      if (obj.faceLines.empty()) return false;
-      const size_t f = obj.faceLines[pick(obj.faceLines.size())];
-      std::vector<long> loop = faceLoop(lines[f], vertexCount);
-      if (loop.size() < 4) return false;
-      std::rotate(loop.begin(), loop.begin() + long(pick(loop.size())), loop.end());
-      lines[f] = joinFace({loop[0], loop[1], loop[2]});
-      for (size_t k = 2; k + 1 < loop.size(); ++k) lines.push_back(joinFace({loop[0], loop[k], loop[k + 1]}));
-      return true;
-    }
-    case 6: {  // poke a face: a vertex at its centre (lifted a little) and a triangle fan around it
-      if (obj.faceLines.empty()) return false;
-      const size_t f = obj.faceLines[pick(obj.faceLines.size())];
-      std::vector<long> loop = faceLoop(lines[f], vertexCount);
-      if (loop.size() < 3) return false;
-      double centre[3] = {0, 0, 0};
-      for (long i : loop) {
-        if (i < 1 || i > vertexCount) return false;
-        std::vector<std::string> t = tokens(lines[obj.vertexLines[size_t(i - 1)]]);
-        for (size_t c = 0; c < 3 && c + 1 < t.size(); ++c)
-          centre[c] += std::strtod(t[c + 1].c_str(), nullptr) / double(loop.size());
-      }
-      char buffer[120];
-      std::snprintf(buffer, sizeof buffer, "v %.17g %.17g %.17g", centre[0], centre[1],
-                    centre[2] + 0.01 * double(rng() % 3));
-      lines.insert(lines.begin() + long(obj.vertexLines.back()) + 1, buffer);  // keeps earlier faces' indices
-      const long pole = vertexCount + 1;
-      lines[f + (f > obj.vertexLines.back() ? 1 : 0)] = joinFace({pole, loop[0], loop[1]});
-      for (size_t k = 1; k < loop.size(); ++k) lines.push_back(joinFace({pole, loop[k], loop[(k + 1) % loop.size()]}));
-      return true;
-    }
-    case 7: {  // merge vertex a into b in every face
-      if (vertexCount < 2 || obj.faceLines.empty()) return false;
-      const long a = 1 + long(pick(size_t(vertexCount))), b = 1 + long(pick(size_t(vertexCount)));
-      for (size_t f : obj.faceLines) {
-        std::vector<long> loop = faceLoop(lines[f], vertexCount);
-        std::vector<long> merged;
-        for (long i : loop)
-          if ((i == a ? b : i) != (merged.empty() ? 0 : merged.back())) merged.push_back(i == a ? b : i);
-        if (merged.size() > 1 && merged.front() == merged.back()) merged.pop_back();
-        lines[f] = merged.size() >= 3 ? joinFace(merged) : "";
-      }
-      return true;
-    }
-    default: {  // start a face at its next corner (the same face: nothing may change but numbering)
-      if (obj.faceLines.empty()) return false;
-      const size_t f = obj.faceLines[pick(obj.faceLines.size())];
-      std::vector<long> loop = faceLoop(lines[f], vertexCount);
-      if (loop.empty()) return false;
-      std::rotate(loop.begin(), loop.begin() + 1, loop.end());
-      lines[f] = joinFace(loop);
-      return true;
-    }
   }
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  if (size > kMaxInputBytes) return 0;
-  const std::string text(reinterpret_cast<const char*>(data), size);
-  try {
-    runPipeline(text);
-  } catch (const InputError&) {
-    // Bad input, found past the reader and topology (e.g. by a refiner): expected.
-  } catch (const std::exception& e) {
-    fail(std::string("unexpected exception: ") + e.what());
-  } catch (...) {
-    fail("unexpected non-std exception");
-  }
-  return 0;
-}
-
-extern "C" size_t LLVMFuzzerMutate(uint8_t* data, size_t size, size_t maxSize);
-
-// Half libFuzzer's own byte-level mutations, half mesh edits (mutateObj above).
-extern "C" size_t LLVMFuzzerCustomMutator(uint8_t* data, size_t size, size_t maxSize, unsigned int seed) {
-  std::minstd_rand rng(seed);
-  if (rng() % 2 == 0) return LLVMFuzzerMutate(data, size, maxSize);
-  ObjLines obj = splitObj(data, size);
-  if (!mutateObj(obj, rng)) return LLVMFuzzerMutate(data, size, maxSize);
-  std::string text;
-  for (size_t k = 0; k < obj.lines.size(); ++k) text += obj.lines[k] + (k + 1 < obj.lines.size() ? "\n" : "");
-  if (text.size() > maxSize) return LLVMFuzzerMutate(data, size, maxSize);
-  std::copy(text.begin(), text.end(), data);
-  return text.size();
+  return runInput([&] { runPipeline(data, size); });
 }

@@ -1,0 +1,98 @@
+// libFuzzer target over the OBJ reader alone (tests/fuzz/README.md): bytes -> parseObjText, `t`
+// tags (crease, corner, hole, options) included, then saveObj -> loadObj of what it read.
+//
+// Expected: polarview::InputError naming the input and a line of it (0: none). A finding: any
+// other exception, a crash, ASan/UBSan report, a hang, or a broken guarantee of obj_io.h:
+//  * the mesh has faces of >= 3 distinct vertices with ids in range and their OBJ lines, every
+//    coordinate finite and at most kMaxObjCoordinate (checkParsedMesh in fuzz_common.h);
+//  * its tags are sorted and merged, ids in range, crease edges edges of a face, sharpness finite
+//    and > 0 (checkTags);
+//  * saveObj writes what loadObj reads back to the bit (points, faces, tags).
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
+
+#include "core/mesh/input_error.h"
+#include "core/mesh/obj_io.h"
+#include "fuzz_common.h"
+#include "obj_mutator.h"
+
+using namespace polarview;
+using namespace polarview::fuzz;
+
+namespace {
+
+constexpr size_t kMaxInputBytes = 1 << 16;
+
+// Lines of the text as the reader counts them: ended by LF, CRLF or a lone CR.
+int64_t lineCount(const std::string& text) {
+  int64_t lines = 1;
+  for (size_t i = 0; i < text.size(); ++i)
+    lines += text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
+  return lines;
+}
+
+// Where the round trip writes: tmpfs when there is one (saveObj fsyncs), else the temporary
+// directory; one file per process (-jobs), removed after each input.
+const std::string& roundTripPath() {
+  static const std::string path = [] {
+    std::error_code error;
+    const std::filesystem::path dir =
+        std::filesystem::is_directory("/dev/shm", error) && ::access("/dev/shm", W_OK) == 0
+            ? std::filesystem::path("/dev/shm")
+            : std::filesystem::temp_directory_path();
+    return (dir / ("polarview-fuzz-obj-" + std::to_string(::getpid()) + ".obj")).string();
+  }();
+  return path;
+}
+
+void checkRoundTrip(const PolyMesh& mesh) {
+  gStage = "saveObj";
+  const std::string& path = roundTripPath();
+  std::remove(path.c_str());
+  saveObj(path, mesh, kSource);
+  gStage = "loadObj of saveObj's file";
+  PolyMesh back;
+  try {
+    back = loadObj(path);
+  } catch (const InputError& e) {
+    fail(std::string("saveObj's file does not read back: ") + e.what());
+  }
+  std::remove(path.c_str());
+  if (back.points != mesh.points) fail("points differ after saveObj -> loadObj");
+  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after saveObj -> loadObj");
+  const SubdivTags &a = mesh.tags, &b = back.tags;
+  if (a.creases != b.creases || a.corners != b.corners || a.holes != b.holes || a.boundary != b.boundary ||
+      a.creaseMethod != b.creaseMethod || a.triangles != b.triangles)
+    fail("tags differ after saveObj -> loadObj");
+}
+
+void run(const uint8_t* data, size_t size) {
+  if (size > kMaxInputBytes) return;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  gStage = "parseObjText";
+  std::vector<std::string> warnings;
+  PolyMesh mesh;
+  try {
+    mesh = parseObjText(text, kSource, &warnings);
+  } catch (const InputError& e) {
+    if (e.file() != kSource) fail("InputError names '" + e.file() + "', not the input: " + e.what());
+    const int64_t lines = lineCount(text);
+    if (e.line() < 0 || e.line() > lines)
+      fail("InputError on line " + std::to_string(e.line()) + " of " + std::to_string(lines) + ": " + e.what());
+    return;
+  }
+  checkParsedMesh(mesh);
+  checkRoundTrip(mesh);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput([&] { run(data, size); });
+}
