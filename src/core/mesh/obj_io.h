@@ -24,8 +24,9 @@ constexpr double kMaxObjCoordinate = 1e150;
 // The file is read in 64 KiB chunks and checked as it comes: binary data or an unknown statement
 // is refused at its chunk, before the rest is read. Throws InputError(path, line, msg) for
 // unreadable, empty, binary or malformed input, non-finite coordinates or ones over
-// kMaxObjCoordinate, bad indices, faces with < 3 vertices or a repeated vertex, malformed tags,
-// tag ids out of range, negative or non-finite sharpness, crease edges that are no edge. Non-fatal
+// kMaxObjCoordinate, bad indices, faces with < 3 vertices, malformed tags, tag ids out of range,
+// negative or non-finite sharpness, crease edges that are no edge. A face repeating a vertex is
+// read (OpenSubdiv's degenerate edge; manifold_split.h decides what refines). Non-fatal
 // findings (unreferenced vertices, ignored `l`/`p` statements and tags) go to `warnings`.
 // [O(file size), memory O(mesh + longest line)]
 PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings = nullptr);

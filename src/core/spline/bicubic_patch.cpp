@@ -75,6 +75,9 @@ void computeCurvature(const Point& xuIn, const Point& xvIn, const Point& xuuIn, 
   // In the scaled derivatives K' = K s^2 and H' = H s for s = 2^exponent.
   sp.gaussian = std::ldexp((L * N2 - M * M) / det, -2 * exponent);
   sp.mean = std::ldexp((E * N2 - 2.0 * F * M + G * L) / (2.0 * det), -exponent);
+  // A feature of 1e-300 in a model of size 1 has K ~ 1e600: past double's range, taken as the
+  // degenerate frame it nearly is (what the unscaled 1e-300 floor gave before).
+  if (!std::isfinite(sp.gaussian) || !std::isfinite(sp.mean)) sp.gaussian = sp.mean = 0.0;
 }
 
 // Tensor-product B-spline patch: position and derivatives over the middle knot span.
