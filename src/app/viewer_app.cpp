@@ -521,7 +521,7 @@ SurfaceKey ViewerApp::wantedKey(int v) const {
   return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level, model_.points};
 }
 
-void ViewerApp::upload(int v, const BuiltSurface& surface) {
+ViewerApp::UploadCost ViewerApp::upload(int v, const BuiltSurface& surface) {
   ViewRuntime& view = views_[size_t(v)];
   // A level step on the same hierarchy keeps the patches both levels share on the GPU.
   const auto start = std::chrono::steady_clock::now();
@@ -535,13 +535,14 @@ void ViewerApp::upload(int v, const BuiltSurface& surface) {
     view.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
     view.zoomShown = -1;
   }
-  view.keptPatches = view.renderer->lastReusedPatches();
-  view.uploadMs = millisecondsSince(start);
+  return {millisecondsSince(start), view.renderer->lastReusedPatches()};
 }
 
 void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   ViewRuntime& view = views_[size_t(v)];
-  upload(v, *surface);
+  const UploadCost cost = upload(v, *surface);
+  view.uploadMs = cost.milliseconds;  // the Stats panel's: a level-of-detail switch does not count
+  view.keptPatches = cost.keptPatches;
   view.drawn.reset();  // the level of detail is picked again for the new surface
   view.unparked = view.reshown = false;
   view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
@@ -561,12 +562,7 @@ void ViewerApp::updateDrawnLevel(int v, double pixelsHigh) {
   if (wanted != drawnNow) {
     std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model_, wanted) : nullptr;
     if (wanted >= shown->patchLevel || drawn) {  // else not available now (an edit is applied): keep
-      // The Stats panel's upload numbers stay those of the surface's own build.
-      const double uploadMs = view.uploadMs;
-      const size_t kept = view.keptPatches;
       upload(v, drawn ? *drawn : *shown);
-      view.uploadMs = uploadMs;
-      view.keptPatches = kept;
       view.drawn = std::move(drawn);
     }
   }

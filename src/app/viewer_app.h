@@ -231,8 +231,13 @@ class ViewerApp {
   // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
   void refreshEditedViews();
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
-  // Uploads `surface`'s patches to view v's renderer (a pole zoom: its zoomed rings). [O(patches not on the GPU)]
-  void upload(int v, const BuiltSurface& surface);
+  // Uploads `surface`'s patches to view v's renderer (a pole zoom: its zoomed rings): the time it
+  // took and the patches that stayed on the GPU. [O(patches not on the GPU)]
+  struct UploadCost {
+    double milliseconds = 0.0;
+    size_t keptPatches = 0;
+  };
+  UploadCost upload(int v, const BuiltSurface& surface);
   // Draws the level levelToDraw picks for the view's camera (viewport `pixelsHigh` high): switches
   // `drawn` when it changes. [O(features) a frame; O(patches of the set) on a switch]
   void updateDrawnLevel(int v, double pixelsHigh);
