@@ -112,23 +112,17 @@ constexpr size_t kMaxEditCosts = 10000;
 
 // [SECTION] Set-up and tear-down
 
-ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {}
+ViewerApp::ViewerApp(const ViewerOptions& options)
+    : options_(options), surfaces_(options.faceBudget, options.prepareNextLevel) {}
 
 ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
-  if (loadJob_.valid()) loadJob_.wait();
-  if (exportJob_.valid()) exportJob_.wait();
-  if (inspectJob_.valid()) inspectJob_.wait();
-  for (ViewRuntime& view : views_) {
-    view.job.wait();
-    if (view.prepare.valid()) view.prepare.wait();
-  }
+  loadJob_.join();
+  exportJob_.join();
+  inspectJob_.join();
   if (window_) {
     glfwMakeContextCurrent(window_);
-    for (ViewRuntime& view : views_) {
-      view.renderer.reset();
-      dropParked(view);
-    }
+    for (GpuView& view : gpu_) view = GpuView{};  // GPU buffers go while the context exists
     shaders_.reset();
     if (imguiReady_) {
       ImGui_ImplOpenGL3_Shutdown();
@@ -211,13 +205,11 @@ bool ViewerApp::init(std::string* error) {
 
   // One renderer per view over one shader library.
   shaders_ = std::make_shared<ShaderLibrary>();
-  for (ViewRuntime& view : views_) {
-    view.renderer = std::make_unique<PatchRenderer>();
-    std::string log;
-    if (!view.renderer->init(&log, shaders_)) {
-      if (error) *error = "shaders: " + log;
-      return false;
-    }
+  try {
+    for (GpuView& view : gpu_) view.shown.renderer = makeRenderer();
+  } catch (const std::exception& e) {
+    if (error) *error = e.what();
+    return false;
   }
   state_.glInfo = currentGlVersion();
   if (options_.persistRecent) loadRecent();
@@ -240,18 +232,19 @@ bool ViewerApp::loadFile(const std::string& path) {
 
 void ViewerApp::requestLoad(const std::string& path) {
   state_.file.pathField = path;
-  if (loadJob_.valid()) {
+  if (loadJob_.running()) {
     queuedLoad_ = path;  // started when the running one is done; its result is then dropped
     return;
   }
   state_.file.loading = true;
   state_.file.loadingPath = path;
-  loadJob_ = std::async(std::launch::async, [path] { return readModelFile(path); });
+  loadJob_.start([path] { return readModelFile(path); });
 }
 
 void ViewerApp::pollLoad() {
-  if (!loadJob_.valid() || loadJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-  LoadedModel loaded = loadJob_.get();
+  std::optional<LoadedModel> done = loadJob_.poll();  // readModelFile never throws
+  if (!done) return;
+  LoadedModel loaded = std::move(*done);
   state_.file.loading = false;
   state_.file.loadingPath.clear();
   if (queuedLoad_) {
@@ -341,8 +334,7 @@ void ViewerApp::adoptMesh(PolyMesh mesh, const std::string& name, const std::str
   if (!path.empty()) state_.file.pathField = path;  // the field names what is shown (after Ctrl+Z too)
   state_.file.error.clear();
   state_.file.warnings.clear();
-  for (ViewRuntime& view : views_) view.failed.reset();
-  for (ViewStatus& status : state_.status) status.message.clear();
+  surfaces_.modelChanged(state_);
   if (!path.empty()) rememberRecent(path);
   frameModel();
 }
@@ -438,402 +430,162 @@ void ViewerApp::frameModel(const ScreenRect* viewRect) {
   framedAreaSize_ = {area.w, area.h};
 }
 
-// [SECTION] Requests from panels and hotkeys
+// [SECTION] Commands (session/command_table.h): what they ask of the application
 
-void ViewerApp::processRequests() {
-  ViewerRequests& r = state_.requests;
-  if (r.load) requestLoad(state_.file.pathField);
-  if (r.reload) {
-    if (state_.file.loadedPath.empty()) loadDefaultModel();
-    else requestLoad(state_.file.loadedPath);
-  }
-  if (r.loadDefault) loadDefaultModel();
-  if (r.undoModel) undoModelReplacement();
+void ViewerApp::undo() {
   // Ctrl+Z undoes vertex drags first; with none left it goes back to the previous model.
-  if (r.undo) {
-    if (editor_.undoCount() > 0) undoEdit();
-    else undoModelReplacement();
+  if (editor_.undoCount() > 0) undoEdit();
+  else undoModelReplacement();
+}
+
+void ViewerApp::reloadModel() {
+  if (state_.file.loadedPath.empty()) loadDefaultModel();
+  else requestLoad(state_.file.loadedPath);
+}
+
+void ViewerApp::showEigenvector() {
+  const SpectrumSettings& spectrum = state_.spectrum;
+  try {
+    const std::string name = "RTS eigenvector v" + std::to_string(spectrum.k) + ", valence " + std::to_string(spectrum.valence) +
+                             (spectrum.c2psSteps > 0 ? ", " + std::to_string(spectrum.c2psSteps) + " C2PS steps" : "");
+    if (loadMesh(eigenNet(spectrum.valence, spectrum.k, spectrum.c2psSteps), name, "")) state_.notice = name + " (Ctrl+Z returns)";
+  } catch (const std::exception& e) {
+    state_.notice = std::string("eigenvector: ") + e.what();
   }
-  if (r.redo) redoEdit();
-  if (r.resetEdits) resetEdits();
-  if (r.showEigenvector) {
-    const SpectrumSettings& spectrum = state_.spectrum;
-    try {
-      const std::string name = "RTS eigenvector v" + std::to_string(spectrum.k) + ", valence " + std::to_string(spectrum.valence) +
-                               (spectrum.c2psSteps > 0 ? ", " + std::to_string(spectrum.c2psSteps) + " C2PS steps" : "");
-      if (loadMesh(eigenNet(spectrum.valence, spectrum.k, spectrum.c2psSteps), name, ""))
-        state_.notice = name + " (Ctrl+Z returns)";
-    } catch (const std::exception& e) {
-      state_.notice = std::string("eigenvector: ") + e.what();
+}
+
+void ViewerApp::convertToPolar(bool pentagons) {
+  if (!model_.mesh) return;
+  try {
+    PolarConversion conversion = convertExtraordinaryToPolar(*model_.mesh, pentagons, model_.name);
+    if (conversion.converted.empty()) {
+      state_.notice = "no extraordinary vertex to convert (interior, all quads around it, valence != 4)";
+      return;
     }
+    const size_t count = conversion.converted.size();
+    const std::string name = "converted (Fig. 14" + std::string(pentagons ? "c" : "a") + "): " + model_.name;
+    if (loadMesh(std::move(conversion.mesh), name, ""))
+      state_.notice = std::to_string(count) + " extraordinary vertices made poles (Ctrl+Z returns)";
+  } catch (const std::exception& e) {
+    state_.notice = std::string("conversion failed: ") + e.what();
   }
-  if (r.convertToPolar && model_.mesh) {
-    try {
-      PolarConversion conversion = convertExtraordinaryToPolar(*model_.mesh, r.convertWithPentagons, model_.name);
-      if (conversion.converted.empty()) {
-        state_.notice = "no extraordinary vertex to convert (interior, all quads around it, valence != 4)";
-      } else {
-        const size_t count = conversion.converted.size();
-        const std::string name = "converted (Fig. 14" + std::string(r.convertWithPentagons ? "c" : "a") + "): " + model_.name;
-        if (loadMesh(std::move(conversion.mesh), name, ""))
-          state_.notice = std::to_string(count) + " extraordinary vertices made poles (Ctrl+Z returns)";
-      }
-    } catch (const std::exception& e) {
-      state_.notice = std::string("conversion failed: ") + e.what();
-    }
-  }
-  if (r.saveEdited) saveEditedMesh();
-  if (r.exportBezierView) startExport(true);
-  if (r.exportRefinedMesh) startExport(false);
-  if (r.playlistStep != 0) openPlaylistEntry(state_.file.playlistIndex + r.playlistStep);
-  if (r.playlistPick >= 0) openPlaylistEntry(r.playlistPick);
-  if (r.frame) frameModel();
-  if (r.preset) {
-    // A preset turns the cameras and shows the whole model again (from a close-up too).
-    for (int v = 0; v < kMaxViews; ++v) state_.camera(v).applyPreset(*r.preset);
-    frameModel();
-  }
-  OrbitCamera& active = state_.camera(state_.activeView);
-  if (r.copyCamera) {
-    std::string json = cameraToJson(active);
-    glfwSetClipboardString(window_, json.c_str());
-    state_.notice = "camera copied: " + json;
-  }
-  if (r.pasteCamera) {
-    const char* text = glfwGetClipboardString(window_);
-    std::string error;
-    std::optional<OrbitCamera> camera = cameraFromJson(text ? text : "", active, &error);
-    if (camera) {
-      active = *camera;
-      state_.notice = "camera pasted";
-    } else {
-      state_.notice = error;
-    }
-  }
-  bool screenshot = r.screenshot;
-  r = ViewerRequests{};
-  if (screenshot) saveScreenshot();
+}
+
+void ViewerApp::setClipboard(const std::string& text) { glfwSetClipboardString(window_, text.c_str()); }
+
+std::string ViewerApp::clipboard() {
+  const char* text = glfwGetClipboardString(window_);
+  return text ? text : "";
 }
 
 // [SECTION] Rebuilding what is dirty
 
-SurfaceKey ViewerApp::wantedKey(int v) const {
-  return SurfaceKey{model_.generation, state_.views[size_t(v)].scheme, state_.views[size_t(v)].level, model_.points};
-}
-
 ViewerApp::UploadCost ViewerApp::upload(int v, const BuiltSurface& surface) {
-  ViewRuntime& view = views_[size_t(v)];
+  GpuSlot& slot = gpu_[size_t(v)].shown;
   // A level step on the same hierarchy keeps the patches both levels share on the GPU.
   const auto start = std::chrono::steady_clock::now();
-  const int zoom = state_.poleInspector.zoomRing;
-  if (zoom >= 0 && !surface.poles.empty()) {
+  const int zoom = surface.poles.empty() ? -1 : state_.poleInspector.zoomRing;
+  if (zoom >= 0) {
     // Pole zoom: the rings of the inspected pole, scaled in double (a new upload: no stable prefix).
     const int pole = std::clamp(state_.poleInspector.pole, 0, int(surface.poles.size()) - 1);
-    view.renderer->setPatches(zoomAboutPole(surface.patches, pole, zoom, 3, surface.poles[size_t(pole)]));
-    view.zoomShown = zoom;
+    slot.renderer->setPatches(zoomAboutPole(surface.patches, pole, zoom, 3, surface.poles[size_t(pole)]));
   } else {
-    view.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
-    view.zoomShown = -1;
+    slot.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
   }
-  return {millisecondsSince(start), view.renderer->lastReusedPatches()};
+  slot.zoom = zoom;
+  return {millisecondsSince(start), slot.renderer->lastReusedPatches()};
 }
 
-void ViewerApp::show(int v, std::shared_ptr<const BuiltSurface> surface) {
-  ViewRuntime& view = views_[size_t(v)];
-  const UploadCost cost = upload(v, *surface);
-  view.uploadMs = cost.milliseconds;  // the Stats panel's: a level-of-detail switch does not count
-  view.keptPatches = cost.keptPatches;
-  view.drawn.reset();  // the level of detail is picked again for the new surface
-  view.unparked = view.reshown = false;
-  view.renderer->setControlMesh(surface->controlMesh, surface->netSegments);
-  view.renderer->setPoleMarkers(surface->poles);
-  view.shown = std::move(surface);
+std::unique_ptr<PatchRenderer> ViewerApp::makeRenderer() const {
+  auto renderer = std::make_unique<PatchRenderer>();
+  std::string log;
+  if (!renderer->init(&log, shaders_)) throw std::runtime_error("shaders: " + log);  // compiled once already
+  return renderer;
+}
+
+double ViewerApp::syncGpu(int v) {
+  GpuView& gpu = gpu_[size_t(v)];
+  const std::shared_ptr<const BuiltSurface>& shown = surfaces_.shown(v);
+  const std::shared_ptr<const BuiltSurface>& parked = surfaces_.parked(v);
+  // Each renderer keeps what it draws: a scheme toggle back swaps them (nothing uploaded).
+  const auto swapStart = std::chrono::steady_clock::now();
+  const bool swapped = shown && gpu.parked.surface == shown;
+  if (swapped) std::swap(gpu.shown, gpu.parked);
+  if (gpu.parked.surface != parked) {
+    if (parked && gpu.shown.surface == parked) {
+      // The shown surface was parked: it keeps its renderer, the new one gets another.
+      gpu.parked = std::move(gpu.shown);
+      gpu.shown = GpuSlot{};
+    } else {
+      gpu.parked = GpuSlot{};  // its GPU buffers go
+    }
+  }
+  if (!gpu.shown.renderer) gpu.shown.renderer = makeRenderer();
+  if (swapped) {
+    gpu.uploadMs = millisecondsSince(swapStart);
+    gpu.keptPatches = shown->patches.size();
+  }
+  const int zoom = !shown || shown->poles.empty() ? -1 : state_.poleInspector.zoomRing;
+  if (!shown || (gpu.shown.surface == shown && gpu.shown.zoom == zoom)) return 0.0;
+  const UploadCost cost = upload(v, *shown);
+  gpu.uploadMs = cost.milliseconds;  // the Stats panel's: a level-of-detail switch does not count
+  gpu.keptPatches = surfaces_.refreshed(v) ? 0 : cost.keptPatches;  // moved points: no patch stayed
+  gpu.shown.surface = shown;
+  gpu.shown.drawn.reset();  // the level of detail is picked again for the new surface
+  gpu.shown.renderer->setControlMesh(shown->controlMesh, shown->netSegments);
+  gpu.shown.renderer->setPoleMarkers(shown->poles);
+  return cost.milliseconds;
 }
 
 void ViewerApp::updateDrawnLevel(int v, double pixelsHigh) {
-  ViewRuntime& view = views_[size_t(v)];
-  const BuiltSurface* shown = view.shown.get();
-  if (!shown || view.zoomShown >= 0) return;
+  GpuSlot& slot = gpu_[size_t(v)].shown;
+  const BuiltSurface* shown = slot.surface.get();
+  if (!shown || slot.zoom >= 0) return;
   // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
   int wanted = shown->patchLevel;
   if (options_.levelOfDetail && !state_.edit.dragging && shown->key.points == model_.points)
     wanted = levelToDraw(shown->detail, shown->patchLevel, state_.camera(v), pixelsHigh, options_.levelOfDetailPixels);
-  const int drawnNow = view.drawn ? view.drawn->patchLevel : shown->patchLevel;
+  const int drawnNow = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
   if (wanted != drawnNow) {
     std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model_, wanted) : nullptr;
     if (wanted >= shown->patchLevel || drawn) {  // else not available now (an edit is applied): keep
       upload(v, drawn ? *drawn : *shown);
-      view.drawn = std::move(drawn);
+      slot.drawn = std::move(drawn);
     }
   }
   ViewStatus& status = state_.status[size_t(v)];
-  status.drawnLevel = view.drawn ? view.drawn->patchLevel : shown->patchLevel;
-  status.drawnPatches = int(view.drawn ? view.drawn->patches.size() : shown->patches.size());
-}
-
-size_t ViewerApp::levelFaces(SchemeChoice scheme, int level) const {
-  return estimatedLevelFaces(model_, scheme, level, options_.faceBudget);
-}
-
-size_t ViewerApp::parkedFaces() const {
-  size_t faces = 0;
-  for (const ViewRuntime& view : views_) {
-    // A parked surface keeps its whole hierarchy: every level made, ahead ones too.
-    if (const BuiltSurface* parked = view.parked.get())
-      faces += levelFaces(parked->key.scheme,
-                                   std::max(parked->patchLevel, parked->hierarchy ? parked->hierarchy->deepestMade.load() : 0));
-    // The previous level shares the shown surface's hierarchy: its own patches (at most a level's).
-    if (const BuiltSurface* previous = view.previousLevel.get())
-      faces += levelFaces(previous->key.scheme, previous->patchLevel);
-  }
-  return faces;
-}
-
-size_t ViewerApp::shownFaces() const {
-  size_t faces = 0;
-  for (int w = 0; w < state_.viewCount; ++w)
-    if (const BuiltSurface* shown = views_[size_t(w)].shown.get())
-      faces += levelFaces(shown->key.scheme, shown->patchLevel);
-  return faces;
-}
-
-void ViewerApp::dropParked(ViewRuntime& view) {
-  view.parked.reset();
-  view.parkedDrawn.reset();
-  view.parkedRenderer.reset();  // its GPU buffers too
-}
-
-void ViewerApp::keepPreviousLevel(int v, const BuiltSurface& next) {
-  ViewRuntime& view = views_[size_t(v)];
-  const BuiltSurface* shown = view.shown.get();
-  const bool step = shown && shown->key.model == next.key.model && shown->key.scheme == next.key.scheme &&
-                    shown->key.points == next.key.points && shown->key.level != next.key.level;
-  if (!step) return;
-  view.previousLevel.reset();  // the older one goes first
-  // Memory: every view's surface, the new one and the kept ones within the budget.
-  if (parkedFaces() + shownFaces() + levelFaces(next.key.scheme, next.patchLevel) <= options_.faceBudget)
-    view.previousLevel = view.shown;
-}
-
-void ViewerApp::parkShown(int v, const BuiltSurface& next) {
-  ViewRuntime& view = views_[size_t(v)];
-  if (!view.shown || view.shown->key.model != next.key.model || view.shown->key.points != next.key.points ||
-      view.shown->key.scheme == next.key.scheme)
-    return;
-  dropParked(view);  // the older parked surface goes first (also when this one cannot be parked)
-  // A zoomed renderer holds other patches than the surface's; memory as in keepPreviousLevel.
-  if (view.zoomShown >= 0 ||
-      parkedFaces() + shownFaces() + levelFaces(next.key.scheme, next.patchLevel) > options_.faceBudget)
-    return;
-  // The shown surface keeps its renderer; the new one goes to the other (made on first use).
-  auto renderer = std::make_unique<PatchRenderer>();
-  std::string log;
-  if (!renderer->init(&log, shaders_)) return;  // not expected: the shaders compiled for the first one
-  view.parkedRenderer = std::move(view.renderer);
-  view.renderer = std::move(renderer);
-  view.parked = std::move(view.shown);
-  view.parkedDrawn = std::move(view.drawn);
-}
-
-bool ViewerApp::unpark(int v, const SurfaceKey& wanted) {
-  ViewRuntime& view = views_[size_t(v)];
-  if (!view.parked || view.parked->key != wanted || state_.poleInspector.zoomRing >= 0) return false;
-  const auto start = std::chrono::steady_clock::now();
-  std::swap(view.renderer, view.parkedRenderer);
-  std::swap(view.shown, view.parked);  // the one shown so far is parked in turn
-  std::swap(view.drawn, view.parkedDrawn);  // each renderer keeps what it draws
-  if (view.parked && (view.zoomShown >= 0 || view.parked->key.model != wanted.model || view.parked->key.points != wanted.points))
-    dropParked(view);
-  view.zoomShown = -1;
-  view.keptPatches = view.shown->patches.size();
-  view.unparked = true;
-  view.reshown = false;
-  view.previousLevel.reset();  // of the other scheme
-  view.uploadMs = millisecondsSince(start);
-  return true;
-}
-
-void ViewerApp::refreshEditedViews() {
-  EditCost cost;
-  bool positionsMoved = false;
-  // Each stale surface is refreshed once; views that shared it share the refreshed one.
-  std::vector<std::pair<const BuiltSurface*, std::shared_ptr<const BuiltSurface>>> refreshed;
-  for (int v = 0; v < state_.viewCount; ++v) {
-    ViewRuntime& view = views_[size_t(v)];
-    const SurfaceKey wanted = wantedKey(v);
-    if (!view.shown || !view.shown->refinement || !view.shown->key.sameTopology(wanted)) continue;
-    if (view.refreshFailed && *view.refreshFailed == wanted) continue;
-    const bool pointsStale = view.shown->key.points != wanted.points;
-    const bool samplesStale = !editor_.dragging() && view.shown->samples && view.shown->samples->points != wanted.points;
-    if (!pointsStale && !samplesStale) continue;
-
-    // Positions, patches and (once the drag is over) curvature samples on the kept hierarchy.
-    const auto start = std::chrono::steady_clock::now();
-    RefreshTiming timing;  // stays zero for a view sharing a surface refreshed for another
-    std::shared_ptr<const BuiltSurface> surface;
-    for (const auto& [old, fresh] : refreshed)
-      if (old == view.shown.get()) surface = fresh;
-    if (!surface) {
-      try {
-        surface = refreshSurface(*view.shown, model_, !editor_.dragging(), &timing);
-      } catch (const std::exception& e) {
-        // Not expected (the topology is the one it was built with); the view is rebuilt instead.
-        view.refreshFailed = wanted;
-        state_.status[size_t(v)].message = std::string("positions-only update failed (rebuilding): ") + e.what();
-        continue;
-      }
-      refreshed.emplace_back(view.shown.get(), surface);
-    }
-    const auto uploadStart = std::chrono::steady_clock::now();
-    show(v, surface);
-    views_[size_t(v)].keptPatches = 0;  // moved points: no patch stayed (the Stats panel said "a level step")
-    const double uploadMs = millisecondsSince(uploadStart);
-    // The per-frame cost of moved points; retaking the curvature samples (once, at the end of a
-    // drag, or with an undo) is not part of it.
-    if (pointsStale) {
-      positionsMoved = true;
-      cost.positionsMs += timing.positionsMs;
-      cost.patchesMs += timing.patchesMs;
-      cost.uploadMs += uploadMs;
-      cost.totalMs += millisecondsSince(start) - timing.samplesMs;
-      ++cost.views;
-    }
-  }
-  if (!positionsMoved) return;
-  if (editCosts_.size() >= kMaxEditCosts) editCosts_.erase(editCosts_.begin());
-  editCosts_.push_back(cost);
-  state_.edit.positionsMs = cost.positionsMs;
-  state_.edit.patchesMs = cost.patchesMs;
-  state_.edit.uploadMs = cost.uploadMs;
-  state_.edit.totalMs = cost.totalMs;
-  state_.edit.updatedViews = cost.views;
+  status.drawnLevel = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
+  status.drawnPatches = int(slot.drawn ? slot.drawn->patches.size() : shown->patches.size());
 }
 
 void ViewerApp::updateSurfaces() {
-  if (!model_.mesh) return;
-  refreshEditedViews();
+  std::optional<EditCost> cost = surfaces_.update(state_, model_, editor_.dragging());
   for (int v = 0; v < kMaxViews; ++v) {
-    ViewRuntime& view = views_[size_t(v)];
+    if (std::optional<GpuReservation> room = surfaces_.takeReservation(v))
+      gpu_[size_t(v)].shown.renderer->reserveFor(room->regularPatches, room->capPatches);
+    const double uploadMs = syncGpu(v);
+    if (cost && surfaces_.refreshed(v)) {
+      cost->uploadMs += uploadMs;
+      cost->totalMs += uploadMs;
+    }
     ViewStatus& status = state_.status[size_t(v)];
-    const bool visible = v < state_.viewCount;
-
-    // A finished job: show it if it is still wanted, else drop it (a newer request follows). One
-    // built from points edited since is shown too, then brought up to date by a positions-only
-    // update (the next refreshEditedViews), so a long build is not thrown away by a drag.
-    if (std::optional<SurfaceJob::Outcome> outcome = view.job.poll()) {
-      if (!outcome->error.empty()) {
-        view.failed = outcome->key;
-        status.message = outcome->error;
-      } else if (outcome->surface->key.sameTopology(wantedKey(v))) {
-        parkShown(v, *outcome->surface);
-        keepPreviousLevel(v, *outcome->surface);
-        show(v, outcome->surface);
-        status.message.clear();
-      }
-    }
-
-    // The pole zoom changed: the same surface, other patches on the GPU.
-    if (view.shown && view.zoomShown != (view.shown->poles.empty() ? -1 : state_.poleInspector.zoomRing)) show(v, view.shown);
-
-    // A refused or failed key reverts the view to what it shows, so the controls tell the truth.
-    SurfaceKey wanted = wantedKey(v);
-    if (view.failed && *view.failed == wanted && view.shown && view.shown->key.model == wanted.model) {
-      state_.views[size_t(v)].scheme = view.shown->key.scheme;
-      state_.views[size_t(v)].level = view.shown->key.level;
-      wanted = wantedKey(v);
-    }
-
-    // Start what the settings ask for: reuse another view's surface, else refine in the background.
-    // A surface of this topology at older points waits for its positions-only update instead.
-    // A parked surface of another model or older points, or of the scheme shown, is of no use.
-    if (view.parked && (!visible || view.parked->key.model != model_.generation || view.parked->key.points != model_.points ||
-                        (view.shown && view.shown->key.scheme == view.parked->key.scheme)))
-      dropParked(view);
-    if (view.previousLevel && (!visible || view.previousLevel->key.model != model_.generation ||
-                               view.previousLevel->key.points != model_.points || !view.shown ||
-                               view.shown->key.scheme != view.previousLevel->key.scheme))
-      view.previousLevel.reset();
-    const bool refreshable = view.shown && view.shown->refinement && view.shown->key.sameTopology(wanted) &&
-                             !(view.refreshFailed && *view.refreshFailed == wanted);
-    bool dirty = visible && (!view.shown || view.shown->key != wanted) && !refreshable &&
-                 !(view.failed && *view.failed == wanted);
-    if (dirty && !view.job.running()) {
-      std::shared_ptr<const BuiltSurface> twin;
-      for (const ViewRuntime& other : views_) {
-        if (other.shown && other.shown->key == wanted) twin = other.shown;
-      }
-      if (unpark(v, wanted)) {
-        status.message.clear();
-      } else if (view.previousLevel && view.previousLevel->key == wanted && state_.poleInspector.zoomRing < 0) {
-        // A step back to the level shown before: its surface again (the GPU keeps the shared patches).
-        std::shared_ptr<const BuiltSurface> previous = std::move(view.previousLevel);
-        view.previousLevel = view.shown;
-        show(v, std::move(previous));
-        view.reshown = true;
-        status.message.clear();
-      } else if (twin) {
-        parkShown(v, *twin);
-        show(v, twin);
-      } else if (std::string refusal = checkFaceBudget(model_, wanted, options_.faceBudget); !refusal.empty()) {
-        view.failed = wanted;
-        status.message = refusal;
-      } else {
-        // The view's own hierarchy (same model and scheme) is stepped to the new level; so is its
-        // parked one's (the parked surface goes: its hierarchy will be at another level).
-        std::shared_ptr<SurfaceHierarchy> reusable;
-        if (view.shown && view.shown->hierarchy && view.shown->key.model == wanted.model && view.shown->key.scheme == wanted.scheme)
-          reusable = view.shown->hierarchy;
-        else if (view.parked && view.parked->hierarchy && view.parked->key.model == wanted.model &&
-                 view.parked->key.scheme == wanted.scheme)
-          reusable = view.parked->hierarchy;
-        if (view.parked && view.parked->hierarchy == reusable) dropParked(view);
-        // Kept surfaces give their memory to a new refinement that would not fit beside them.
-        const bool fits = parkedFaces() + shownFaces() +
-                              levelFaces(wanted.scheme,
-                                                  patchLevelFor(model_, wanted.scheme, wanted.level, options_.faceBudget)) <=
-                          options_.faceBudget;
-        if (!fits)
-          for (ViewRuntime& other : views_) {
-            dropParked(other);
-            other.previousLevel.reset();
-          }
-        view.job.start(model_, wanted, options_.faceBudget, reusable);
-      }
-    }
-
-    // Report.
-    status.deepestLevel = deepestLevel(model_, state_.views[size_t(v)].scheme, options_.faceBudget);
-    prepareNextLevel(v, wanted);
-    status.levelLimit = levelRefusal(model_, state_.views[size_t(v)].scheme, status.deepestLevel + 1,
-                                     options_.faceBudget);
-    status.refining = view.job.running();
-    status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;
-    status.hasSurface = view.shown != nullptr;
-    if (view.shown) {
-      status.shownScheme = view.shown->key.scheme;
-      status.shownLevel = view.shown->key.level;
-      status.patchCount = int(view.shown->patches.size());
-      status.patchesPerKind = view.shown->patchesPerKind;
-      status.controlFaces = view.shown->controlMesh.faceCount();
-      // A surface shown again from the park cost nothing to build this time.
-      status.unparked = view.unparked;
-      status.reshown = view.reshown;
-      const bool built = !view.unparked && !view.reshown;
-      status.refineMs = built ? view.shown->refineMs : 0.0;
-      status.refineOnlyMs = built ? view.shown->refineOnlyMs : 0.0;
-      status.patchesMs = built ? view.shown->patchesMs : 0.0;
-      status.samplesMs = built ? view.shown->samplesMs : 0.0;
-      status.uploadMs = view.uploadMs;
-      status.patchLevel = view.shown->patchLevel;
-      status.drawnLevel = view.drawn ? view.drawn->patchLevel : view.shown->patchLevel;
-      status.drawnPatches = int(view.drawn ? view.drawn->patches.size() : view.shown->patches.size());
-      status.zoomRing = view.zoomShown;
-      status.keptPatches = int(view.keptPatches);
-      status.polesByScheme = view.shown->polesByScheme;
-      status.polesByCatmullClark = view.shown->polesByCatmullClark;
-      status.fallbackReason = view.shown->fallbackReason;
+    const GpuView& gpu = gpu_[size_t(v)];
+    status.uploadMs = gpu.uploadMs;
+    status.keptPatches = int(gpu.keptPatches);
+    status.zoomRing = gpu.shown.zoom;
+    if (const BuiltSurface* shown = gpu.shown.surface.get()) {
+      status.drawnLevel = gpu.shown.drawn ? gpu.shown.drawn->patchLevel : shown->patchLevel;
+      status.drawnPatches = int(gpu.shown.drawn ? gpu.shown.drawn->patches.size() : shown->patches.size());
     }
   }
+  if (!cost) return;
+  if (editCosts_.size() >= kMaxEditCosts) editCosts_.erase(editCosts_.begin());
+  editCosts_.push_back(*cost);
+  state_.edit.positionsMs = cost->positionsMs;
+  state_.edit.patchesMs = cost->patchesMs;
+  state_.edit.uploadMs = cost->uploadMs;
+  state_.edit.totalMs = cost->totalMs;
+  state_.edit.updatedViews = cost->views;
 }
 
 void ViewerApp::updateColourRange() {
@@ -846,7 +598,7 @@ void ViewerApp::updateColourRange() {
   hashMix(signature, uint64_t(state_.colour.quantile * 1e6f));
   // The samples, not the surfaces: a drag makes new surfaces every frame with the same samples.
   for (int v = 0; v < state_.viewCount; ++v)
-    if (views_[size_t(v)].shown) hashMix(signature, uint64_t(uintptr_t(views_[size_t(v)].shown->samples.get())));
+    if (surfaces_.shown(v)) hashMix(signature, uint64_t(uintptr_t(surfaces_.shown(v)->samples.get())));
   if (signature != colourRangeSignature_) {
     colourRangeSignature_ = signature;
     collectColourSamples();
@@ -869,8 +621,8 @@ void ViewerApp::collectColourSamples() {
   values.clear();
   weights.clear();
   for (int v = 0; v < state_.viewCount; ++v) {
-    if (!views_[size_t(v)].shown || !views_[size_t(v)].shown->samples) continue;
-    const CurvatureSamples& s = *views_[size_t(v)].shown->samples;
+    if (!surfaces_.shown(v) || !surfaces_.shown(v)->samples) continue;
+    const CurvatureSamples& s = *surfaces_.shown(v)->samples;
     const std::vector<double>& samples = mode == ShadingParams::Mode::Gaussian ? s.gaussian : s.mean;
     double area = 0.0;
     for (double a : s.areas) area += a;
@@ -927,10 +679,9 @@ void ViewerApp::updatePoleInspector() {
     inspectShown_.clear();
   }
   // A finished job: shown if it is still what the panel asks for.
-  if (inspectJob_.valid() && inspectJob_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+  if (inspectJob_.finished()) {
     try {
-      std::vector<PoleInspection> done = inspectJob_.get();
-      inspector.inspections = std::move(done);
+      inspector.inspections = std::move(*inspectJob_.poll());
       inspector.error.clear();
     } catch (const std::exception& e) {
       inspector.inspections.clear();
@@ -938,8 +689,8 @@ void ViewerApp::updatePoleInspector() {
     }
     inspectShown_ = inspectRunning_;
   }
-  inspector.computing = inspectJob_.valid();
-  if (!open || inspector.poles.empty() || inspectJob_.valid()) return;
+  inspector.computing = inspectJob_.running();
+  if (!open || inspector.poles.empty() || inspectJob_.running()) return;
   // The selected pole under each scheme the visible views show (once each, in view order).
   inspector.pole = std::clamp(inspector.pole, 0, int(inspector.poles.size()) - 1);
   std::vector<SchemeChoice> schemes;
@@ -952,7 +703,7 @@ void ViewerApp::updatePoleInspector() {
   if (key == inspectShown_) return;
   inspectRunning_ = key;
   inspector.computing = true;
-  inspectJob_ = std::async(std::launch::async, [mesh = model_.mesh, pole, schemes] {
+  inspectJob_.start([mesh = model_.mesh, pole, schemes] {
     std::vector<PoleInspection> out;
     // Rings deep enough to see the trend: C2PS to ring 10 (valence x 1024), RTS and BPS to 14
     // (they keep n columns), Catmull-Clark to level 8.
@@ -965,73 +716,16 @@ void ViewerApp::updatePoleInspector() {
   });
 }
 
-void ViewerApp::prepareNextLevel(int v, const SurfaceKey& wanted) {
-  ViewRuntime& view = views_[size_t(v)];
-  if (view.prepare.valid()) {
-    if (view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-    if (!view.prepare.get()) view.prepareFailed = view.preparing;
-    // Room on the GPU for the level made ahead, now while idle rather than during the step.
-    if (view.shown && view.shown->hierarchy && view.shown->hierarchy->preparedLevel.load() > view.shown->patchLevel)
-      view.renderer->reserveFor(view.shown->hierarchy->preparedRegular.load(), view.shown->hierarchy->preparedCaps.load());
-  }
-  // Only the active view (the one the level keys step) is made ahead: memory for one surface more.
-  if (!options_.prepareNextLevel || v >= state_.viewCount || v != std::clamp(state_.activeView, 0, state_.viewCount - 1) ||
-      view.job.running() || editor_.dragging() || !view.shown || !view.shown->hierarchy || view.shown->key != wanted)
-    return;
-  if (wanted.level + 1 > state_.status[size_t(v)].deepestLevel) return;
-  const int next = patchLevelFor(model_, wanted.scheme, wanted.level + 1, options_.faceBudget);
-  if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
-  if (view.previousLevel && view.previousLevel->key.level == wanted.level + 1) return;  // kept from before
-  // All views' levels and the one made ahead within one view's budget (memory stays bounded).
-  size_t faces = levelFaces(wanted.scheme, next) + parkedFaces();
-  for (int w = 0; w < state_.viewCount; ++w)
-    faces += levelFaces(state_.views[size_t(w)].scheme,
-                                 patchLevelFor(model_, state_.views[size_t(w)].scheme, state_.views[size_t(w)].level,
-                                               options_.faceBudget));
-  if (faces > options_.faceBudget) return;
-  SurfaceKey key = wanted;
-  key.level = wanted.level + 1;
-  if (view.prepareFailed && *view.prepareFailed == key) return;
-  // One view's surface ahead at a time: the other views' and the parked ones' go (the active view
-  // follows the mouse).
-  std::vector<std::shared_ptr<SurfaceHierarchy>> others;
-  for (int w = 0; w < int(views_.size()); ++w)
-    for (const auto* surface : {views_[size_t(w)].shown.get(), views_[size_t(w)].parked.get()})
-      if (surface && surface->hierarchy && surface->hierarchy != view.shown->hierarchy &&
-          surface->hierarchy->aheadLevel.load() >= 0)
-        others.push_back(surface->hierarchy);
-  view.preparing = key;
-  view.prepare = std::async(std::launch::async, [hierarchy = view.shown->hierarchy, others = std::move(others), model = model_, key,
-                                                 budget = options_.faceBudget] {
-    for (const auto& other : others) dropAhead(*other);
-    return prepareLevel(*hierarchy, model, key, budget);
-  });
-}
-
 bool ViewerApp::busy() const {
-  if (loadJob_.valid() || exportJob_.valid()) return true;
-  for (int v = 0; v < state_.viewCount; ++v) {
-    const ViewRuntime& view = views_[size_t(v)];
-    if (view.job.running()) return true;
-    if (view.prepare.valid() && view.prepare.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return true;
-    SurfaceKey wanted = wantedKey(v);
-    if (model_.mesh && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted)) return true;
-    // Curvature samples still to be retaken after a drag.
-    if (view.shown && view.shown->samples && view.shown->samples->points != model_.points && !editor_.dragging() &&
-        !(view.refreshFailed && *view.refreshFailed == wanted))
-      return true;
-  }
-  return false;
+  return loadJob_.running() || exportJob_.running() || surfaces_.busy(state_, model_, editor_.dragging());
 }
 
 void ViewerApp::waitUntilIdle() {
   while (busy()) {
-    if (loadJob_.valid() || exportJob_.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (loadJob_.running() || exportJob_.running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     pollLoad();
     pollExport();
-    for (ViewRuntime& view : views_) {
-      if (view.job.running() || view.prepare.valid()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    surfaces_.pause();
     updateSurfaces();
   }
   updateColourRange();
@@ -1135,13 +829,13 @@ void ViewerApp::saveEditedMesh() {
 
 void ViewerApp::startExport(bool bezierView) {
   if (!model_.mesh) return;
-  if (exportJob_.valid()) {
+  if (exportJob_.running()) {
     state_.notice = "still writing " + exportTarget_;
     return;
   }
   // What the active view shows: its scheme and level, on the model's current points.
   const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
-  const BuiltSurface* shown = views_[size_t(v)].shown.get();
+  const BuiltSurface* shown = surfaces_.shown(v).get();
   if (!shown || shown->key.model != model_.generation) {
     state_.edit.error = "view " + std::to_string(v + 1) + " shows no surface of this model yet";
     state_.notice = state_.edit.error;
@@ -1156,7 +850,7 @@ void ViewerApp::startExport(bool bezierView) {
     path = state_.edit.bvPath.empty() ? state_.edit.defaultBvPath : state_.edit.bvPath;
     // The view's own refinement path and limit (the shown level is within it).
     const size_t maxFaces = 2 * options_.faceBudget;
-    exportJob_ = std::async(std::launch::async, [model, options, path, maxFaces, scheme, level] {
+    exportJob_.start([model, options, path, maxFaces, scheme, level] {
       const PatchSet set = cli::exportPatchSet(*model.mesh, options, model.name, false, maxFaces);
       const BezierViewStats stats = cli::writeBezierViewFile(path, set, model.name);
       return "wrote " + absolutePath(path) + ": " + std::to_string(stats.total()) + " Bezier patches (" +
@@ -1183,7 +877,7 @@ void ViewerApp::startExport(bool bezierView) {
       state_.notice = state_.edit.error;
       return;
     }
-    exportJob_ = std::async(std::launch::async, [model, options, path, budget, scheme, level] {
+    exportJob_.start([model, options, path, budget, scheme, level] {
       std::string done;
       {
         RefineOptions written = options;
@@ -1206,9 +900,9 @@ void ViewerApp::startExport(bool bezierView) {
 }
 
 void ViewerApp::pollExport() {
-  if (!exportJob_.valid() || exportJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  if (!exportJob_.finished()) return;
   try {
-    state_.notice = exportJob_.get();
+    state_.notice = *exportJob_.poll();
     state_.edit.error.clear();
   } catch (const std::exception& e) {
     // Bad levels, a full disk, an unwritable folder: the atomic writers left nothing behind.
@@ -1228,7 +922,7 @@ void ViewerApp::updateEditState() {
   edit.undoLabel = editor_.undoLabel();
   edit.redoLabel = editor_.redoLabel();
   edit.movedVertices = movedVertices_;
-  edit.exporting = exportJob_.valid() ? exportTarget_ : std::string();
+  edit.exporting = exportJob_.running() ? exportTarget_ : std::string();
 
   // Default outputs: beside the model file, or in the current directory for the built-in model.
   namespace fs = std::filesystem;
@@ -1240,7 +934,7 @@ void ViewerApp::updateEditState() {
   edit.defaultSavePath = (folder / (stem + "_edited.obj")).string();
   // The exports write what the active view shows (its settings until it shows something).
   const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
-  const BuiltSurface* shown = views_[size_t(v)].shown.get();
+  const BuiltSurface* shown = surfaces_.shown(v).get();
   const SchemeChoice scheme = shown ? shown->key.scheme : state_.views[size_t(v)].scheme;
   const int level = shown ? shown->key.level : state_.views[size_t(v)].level;
   const std::string tag = std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
@@ -1253,7 +947,7 @@ std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>
   if (!state_.display.controlNet || !model_.mesh) return markers;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (size_t v = 0; v < rects.size(); ++v) {
-    if (!views_[v].shown) continue;
+    if (!surfaces_.shown(int(v))) continue;
     const ViewTransform transform = viewTransform(int(v), rects[v]);
     auto mark = [&](int vertex, bool selected) {
       if (vertex < 0 || size_t(vertex) >= editor_.points().size()) return;
@@ -1277,14 +971,15 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
   shading.rangeBelow = state_.colourRangeBelow();
   std::vector<PoleMarker> markers;
   for (size_t v = 0; v < rects.size(); ++v) {
-    if (!views_[v].shown) continue;
+    const GpuSlot& gpu = gpu_[v].shown;
+    if (!gpu.surface) continue;
     // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
     shading.mode = state_.viewShade(int(v));
     // A pole zoom by s = 2^m scales K by 1 / s^2 and H by 1 / s: the range alike, so colours keep values.
     shading.range = state_.colourRange();
     shading.rangeBelow = state_.colourRangeBelow();
-    if (views_[v].zoomShown >= 0) {
-      const float s = std::ldexp(1.0f, views_[v].zoomShown);
+    if (gpu.zoom >= 0) {
+      const float s = std::ldexp(1.0f, gpu.zoom);
       const float scale = shading.mode == ShadingParams::Mode::Gaussian ? 1.0f / (s * s) : 1.0f / s;
       shading.range *= scale;
       shading.rangeBelow *= scale;
@@ -1303,9 +998,9 @@ std::vector<PoleMarker> ViewerApp::drawViews(const std::vector<ScreenRect>& rect
     params.view = camera.viewMatrix();
     params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
     params.eye = camera.eye();  // double: the renderer draws relative to the eye
-    views_[v].renderer->draw(params, shading, display);
+    gpu.renderer->draw(params, shading, display);
     if (markPoles) {
-      visiblePoles(views_[v].shown->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
+      visiblePoles(gpu.surface->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
     }
   }
   return markers;
@@ -1334,10 +1029,10 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
     camera.zoomTowards(glm::dvec3(world), pick.zoomNotches);
     return;
   }
-  if (pick.readout && views_[size_t(pick.view)].shown) {
+  if (pick.readout && surfaces_.shown(pick.view)) {
     // The depth buffer holds the surface up to its resolution: search within 1% of the distance.
     const double tolerance = 1e-2 * glm::length(world - camera.eye());
-    if (const auto readout = readSurfacePoint(views_[size_t(pick.view)].shown->patches, world, tolerance)) {
+    if (const auto readout = readSurfacePoint(surfaces_.shown(pick.view)->patches, world, tolerance)) {
       state_.readout = ReadoutSettings{true, pick.view, *readout, readout->text()};
       state_.notice = "K " + std::to_string(readout->point.gaussian) + ", H " + std::to_string(readout->point.mean) +
                       " (panel Point; Copy)";
@@ -1397,7 +1092,7 @@ void ViewerApp::runFrame() {
   if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_ ||
                       std::pair{area.w, area.h} != framedAreaSize_))
     frameModel();
-  processRequests();
+  viewerCommands().runQueued(state_, *this);
   expireNotice();
   pollLoad();
   pollExport();

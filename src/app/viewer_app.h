@@ -21,9 +21,12 @@
 #include "pipeline/vertex_edit.h"
 #include "pipeline/surface_pipeline.h"
 #include "render/framebuffer_capture.h"
+#include "session/background_job.h"
+#include "session/command_table.h"
+#include "session/surface_cache.h"
 #include "ui/input_events.h"
 #include "ui/viewer_panels.h"
-#include "ui/viewer_state.h"
+#include "session/viewer_state.h"
 
 struct GLFWwindow;
 
@@ -34,14 +37,6 @@ constexpr float kBackground[3] = {0.17f, 0.18f, 0.20f};
 
 class PatchRenderer;
 class ShaderLibrary;
-
-// What one positions-only update of the shown views cost after control points moved (ms): the
-// refinements' positions, patch extraction (with pole markers) and the upload, every view
-// together (a surface two views share is updated once, uploaded twice).
-struct EditCost {
-  double positionsMs = 0.0, patchesMs = 0.0, uploadMs = 0.0, totalMs = 0.0;
-  int views = 0;
-};
 
 // The mouse as ImGui sees it (window coordinates, buttons left / right / middle), replacing the
 // system pointer: for tests and `view --edit`, which drive the real input path without a person.
@@ -76,12 +71,30 @@ struct ViewerOptions {
   double levelOfDetailPixels = 3.0;
 };
 
-class ViewerApp {
+class ViewerApp : public CommandHost {
  public:
   explicit ViewerApp(const ViewerOptions& options);
   ~ViewerApp();
   ViewerApp(const ViewerApp&) = delete;
   ViewerApp& operator=(const ViewerApp&) = delete;
+
+  // [CommandHost] What the command table's commands ask of the viewer.
+  void openFile(const std::string& path) override { requestLoad(path); }
+  void reloadModel() override;
+  void loadDefaultModel() override;
+  void undoModelReplacement() override;
+  void undo() override;
+  void redo() override { redoEdit(); }
+  void resetEdits() override;
+  void saveEditedMesh() override;
+  void exportSurface(bool bezierView) override { startExport(bezierView); }
+  void openPlaylistEntry(int index) override;
+  void convertToPolar(bool pentagons) override;
+  void showEigenvector() override;
+  void frameModel() override { frameModel(nullptr); }
+  void setClipboard(const std::string& text) override;
+  std::string clipboard() override;
+  void takeScreenshot() override { saveScreenshot(); }
 
   // Creates the window and GL context, loads glad, starts ImGui and the renderers.
   bool init(std::string* error);
@@ -96,11 +109,10 @@ class ViewerApp {
   // What a drop of files on the window does (the GLFW drop callback calls it): loads the first.
   void dropFiles(int count, const char* const* paths);
   // True while a requested file is being read.
-  bool loading() const { return loadJob_.valid(); }
+  bool loading() const { return loadJob_.running(); }
   // Shows `mesh` (validated here; false with the error in the state when it is not usable).
   bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "");
-  // assets/default.obj, or the generated mushroom when the asset is missing.
-  void loadDefaultModel();
+  // (loadDefaultModel: assets/default.obj, or the generated mushroom when the asset is missing.)
 
   // One iteration of the main loop.
   void runFrame();
@@ -133,14 +145,14 @@ class ViewerApp {
   // Every positions-only update since the model was loaded (the last 10000).
   const std::vector<EditCost>& editCosts() const { return editCosts_; }
   // True while a save or export runs in the background.
-  bool exporting() const { return exportJob_.valid(); }
+  bool exporting() const { return exportJob_.running(); }
 
   // The part of the window the views tile (window coordinates): right of the panel column.
   ScreenRect viewArea() const;
   // Points every view's camera (or the shared one) at the model so that all its control points
   // (and with them the limit surface) fit a view of the size of `viewRect` (nullptr: the window's
   // first view now) below its title, keeping the viewing direction.
-  void frameModel(const ScreenRect* viewRect = nullptr);
+  void frameModel(const ScreenRect* viewRect);
 
   ViewerState& state() { return state_; }
   const ViewerState& state() const { return state_; }
@@ -149,44 +161,31 @@ class ViewerApp {
   glm::dvec3 modelMin() const { return modelMin_; }
   glm::dvec3 modelMax() const { return modelMax_; }
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
-  const BuiltSurface* shownSurface(int v) const { return views_[size_t(v)].shown.get(); }
-  const BuiltSurface* parkedSurface(int v) const { return views_[size_t(v)].parked.get(); }
+  const BuiltSurface* shownSurface(int v) const { return surfaces_.shown(v).get(); }
+  const BuiltSurface* parkedSurface(int v) const { return surfaces_.parked(v).get(); }
   // View v's renderer (what is on the GPU), for tests.
-  const PatchRenderer& renderer(int v) const { return *views_[size_t(v)].renderer; }
+  const PatchRenderer& renderer(int v) const { return *gpu_[size_t(v)].shown.renderer; }
   uint64_t modelGeneration() const { return model_.generation; }
   const Model& model() const { return model_; }
 
  private:
-  struct ViewRuntime {
+  // The GPU mirror of the surface cache: a renderer holding what a surface draws (its patches, or
+  // the shallower set `drawn` where deeper rings are below a pixel, or a pole zoom's rings).
+  struct GpuSlot {
     std::unique_ptr<PatchRenderer> renderer;
-    std::shared_ptr<const BuiltSurface> shown;
-    // The surface this view showed before its scheme changed, still on the GPU in its own
-    // renderer: toggling back swaps the two (no refinement, no upload). Dropped when the model or
-    // its points change, or when memory is wanted (parkedFaces counts it against the budget).
-    std::unique_ptr<PatchRenderer> parkedRenderer;
-    std::shared_ptr<const BuiltSurface> parked;
-    // What the renderer draws in place of `shown` where its deeper levels are below a pixel (a
-    // shallower set of the same hierarchy; null: `shown` itself), and the parked renderer's.
-    std::shared_ptr<const BuiltSurface> drawn, parkedDrawn;
-    // The surface of the level shown before the last level step (same model, scheme and points):
-    // a step back shows it again (an upload of what the GPU does not hold, nothing built). Counted
-    // and dropped as the parked one.
-    std::shared_ptr<const BuiltSurface> previousLevel;
-    SurfaceJob job;
-    std::optional<SurfaceKey> failed;  // last key that failed or was refused (not retried)
-    std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
-    std::future<bool> prepare;  // the next level made ahead (prepareLevel), if running
-    std::optional<SurfaceKey> prepareFailed;  // a key prepareLevel could not make (not retried)
-    SurfaceKey preparing;                     // the key of the running (or last) prepare
-    int zoomShown = -1;         // the pole zoom ring the renderer holds (-1: the whole surface)
-    double uploadMs = 0.0;  // the last show(): packing + upload
-    size_t keptPatches = 0;  // patches of it that stayed on the GPU
-    bool unparked = false;   // shown by unpark: nothing was built for it this time
-    bool reshown = false;    // the previous level's surface shown again: nothing built, uploaded
+    std::shared_ptr<const BuiltSurface> surface, drawn;
+    int zoom = -1;  // the pole zoom ring it holds (-1: the whole surface)
   };
-
-  // Frees a view's parked surface and its renderer's GPU buffers (needs the GL context).
-  static void dropParked(ViewRuntime& view);
+  // Per view: the shown surface's renderer and the parked one's (a scheme toggle back swaps them).
+  struct GpuView {
+    GpuSlot shown, parked;
+    double uploadMs = 0.0;   // the last upload of the shown surface: packing + upload
+    size_t keptPatches = 0;  // patches of it that stayed on the GPU
+  };
+  // Brings view v's GPU mirror to the cache's shown and parked surfaces: swaps, drops or uploads.
+  // Returns the milliseconds an upload took (0 when none). [O(patches not on the GPU)]
+  double syncGpu(int v);
+  std::unique_ptr<PatchRenderer> makeRenderer() const;
   static void onDrop(GLFWwindow* window, int count, const char** paths);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   // Hands this frame's share of the queued input events to ImGui's GLFW backend.
@@ -194,13 +193,8 @@ class ViewerApp {
   // Shows an already checked mesh (bumps the model generation, frames it).
   void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);
-  // Ctrl+Z: shows the model replaced last (Open, Default model, a drop); again to redo.
-  void undoModelReplacement();
-  // Opens entry `index` (wrapping) of the dropped-files list.
-  void openPlaylistEntry(int index);
   // Takes a finished background load (if any) and starts the queued one.
   void pollLoad();
-  void processRequests();
   // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
   void expireNotice();
   void updateSurfaces();
@@ -209,28 +203,6 @@ class ViewerApp {
   void updatePoleInspector();
   // The Spectrum panel's eigenvalue lines, when it is open and the valence changed.
   void updateSpectrum();
-  // Starts making view v's next level ahead when it is the active view and idle
-  // (ViewerOptions::prepareNextLevel).
-  void prepareNextLevel(int v, const SurfaceKey& wanted);
-  // Keeps view v's shown surface (and its renderer) when `next` replaces it with another scheme's
-  // surface of the same model and points, within the budget, so a toggle back is a swap.
-  void parkShown(int v, const BuiltSurface& next);
-  // The faces of the surfaces the visible views show (estimatedLevelFaces of their patch levels).
-  size_t shownFaces() const;
-  // Shows view v's parked surface again (swapping renderers); false when it is not `wanted`.
-  bool unpark(int v, const SurfaceKey& wanted);
-  // Faces of the refinements the views keep parked (every level their hierarchies made) or as their
-  // previous level (estimatedLevelFaces), against the budget.
-  size_t parkedFaces() const;
-  // estimatedLevelFaces of `scheme` at `level` on the model, under this viewer's face budget.
-  size_t levelFaces(SchemeChoice scheme, int level) const;
-  // Keeps view v's shown surface as its previous level when `next` is a level step of it (same
-  // model, scheme and points), within the budget.
-  void keepPreviousLevel(int v, const BuiltSurface& next);
-  // Positions-only updates of the visible views whose surface has the model's topology but older
-  // points (and, once no drag runs, fresh curvature samples); records the cost. [O(faces of all levels)]
-  void refreshEditedViews();
-  void show(int v, std::shared_ptr<const BuiltSurface> surface);
   // Uploads `surface`'s patches to view v's renderer (a pole zoom: its zoomed rings): the time it
   // took and the patches that stayed on the GPU. [O(patches not on the GPU)]
   struct UploadCost {
@@ -249,9 +221,6 @@ class ViewerApp {
   void commitEditedPoints();
   void undoEdit();
   void redoEdit();
-  void resetEdits();
-  // Ctrl+S: the edited mesh as OBJ (atomic; a failure leaves no file and shows one line).
-  void saveEditedMesh();
   // Export .bv / refined control mesh of the active view, written on a worker thread.
   void startExport(bool bezierView);
   void pollExport();
@@ -269,7 +238,6 @@ class ViewerApp {
   void resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
   void rememberRecent(const std::string& path);
   void loadRecent();
-  SurfaceKey wantedKey(int v) const;
 
   ViewerOptions options_;
   ViewerState state_;
@@ -283,7 +251,8 @@ class ViewerApp {
   std::pair<float, float> framedAreaSize_{0.0f, 0.0f};
   int framesDrawn_ = 0;
   std::shared_ptr<ShaderLibrary> shaders_;
-  std::array<ViewRuntime, kMaxViews> views_;
+  SurfaceCache surfaces_;
+  std::array<GpuView, kMaxViews> gpu_;
   Model model_;
   Model previousModel_;       // the model before the last replacement (Ctrl+Z)
   std::string previousPath_;  // its file (empty for generated models)
@@ -291,12 +260,12 @@ class ViewerApp {
   uint64_t colourRangeSignature_ = 0;
   std::vector<double> colourValues_, colourWeights_;  // samples of the shown views, by area
   std::pair<double, double> histogramRange_{0.0f, 0.0f};
-  std::future<LoadedModel> loadJob_;
+  BackgroundJob<LoadedModel> loadJob_;
   std::optional<std::string> queuedLoad_;
   std::string windowCapturePath_;
   std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
-  std::future<std::vector<PoleInspection>> inspectJob_;
+  BackgroundJob<std::vector<PoleInspection>> inspectJob_;
   std::string inspectRunning_, inspectShown_;  // what the job computes / what the panel shows
   uint64_t inspectPolesOf_ = 0;                // model generation the pole list is of
   std::optional<PointerState> pointerOverride_;
@@ -305,7 +274,7 @@ class ViewerApp {
   ControlMeshEditor editor_;
   int movedVertices_ = 0;  // editor_.movedVertexCount(), counted when points change
   std::vector<EditCost> editCosts_;
-  std::future<std::string> exportJob_;  // the notice to show when done; throws on failure
+  BackgroundJob<std::string> exportJob_;  // the notice to show when done; throws on failure
   std::string exportTarget_;
   static constexpr std::chrono::seconds kNoticeLifetime{8};
   std::string shownNotice_;

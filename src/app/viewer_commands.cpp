@@ -544,7 +544,7 @@ int viewWithApp(const ViewRequest& r) {
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
-  state.requests.openPoleInspector = r.inspectPoles;
+  if (r.inspectPoles) queueCommand(state, "poles.inspect");
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();

@@ -1,7 +1,11 @@
 #include "ui/input_events.h"
 
+#include <GLFW/glfw3.h>
+
 #include <algorithm>
 #include <utility>
+
+#include "session/keys.h"
 
 namespace polarview {
 
@@ -23,3 +27,13 @@ std::vector<InputEvent> InputEventQueue::takeFrame() {
 }
 
 }  // namespace polarview
+
+// The command table names keys without GLFW (session/keys.h): its codes must be GLFW's, which the
+// window hands over unchanged.
+static_assert(polarview::keys::kTab == GLFW_KEY_TAB && polarview::keys::kPageUp == GLFW_KEY_PAGE_UP &&
+              polarview::keys::kPageDown == GLFW_KEY_PAGE_DOWN && polarview::keys::kF1 == GLFW_KEY_F1 &&
+              polarview::keys::kF4 == GLFW_KEY_F4 && polarview::keys::kKeypad0 == GLFW_KEY_KP_0 &&
+              polarview::keys::kKeypadSubtract == GLFW_KEY_KP_SUBTRACT && polarview::keys::kKeypadAdd == GLFW_KEY_KP_ADD);
+static_assert(polarview::keys::kShift == GLFW_MOD_SHIFT && polarview::keys::kControl == GLFW_MOD_CONTROL &&
+              polarview::keys::kAlt == GLFW_MOD_ALT);
+static_assert('A' == GLFW_KEY_A && '0' == GLFW_KEY_0 && '[' == GLFW_KEY_LEFT_BRACKET && ']' == GLFW_KEY_RIGHT_BRACKET);

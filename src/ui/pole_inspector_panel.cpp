@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 
+#include "session/command_table.h"
 #include "ui/viewer_panels.h"
 
 namespace polarview {
@@ -171,7 +172,7 @@ void drawSpectrumPanel(ViewerState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Fig. 1 d-f: the net after that many C2PS steps (valence x 2 each), magnified back by 2 a step\n"
                       "and its heights by 1 / lambda a step: Lemma 5's scaling shows as equal heights");
-  if (ImGui::Button("Show v_k as the model")) state.requests.showEigenvector = true;
+  if (ImGui::Button("Show v_k as the model")) queueCommand(state, "model.eigenvector");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the net (v1, v2, v_k) over the characteristic map; the views draw its eigenspline (Ctrl+Z returns)");
 }

@@ -8,7 +8,6 @@
 #ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
 #endif
-#include <GLFW/glfw3.h>  // key codes and modifier bits only
 #include <glm/gtc/quaternion.hpp>
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -42,8 +41,6 @@ const char* colourMapName(ShadingParams::ColorMap map) {
 constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Shaded, ShadingParams::Mode::Gaussian,
                                                ShadingParams::Mode::Mean, ShadingParams::Mode::Highlight,
                                                ShadingParams::Mode::Reflection};
-constexpr const char* kShadeLabels[] = {"Lit (L)", "Gaussian K (G)", "Mean H (M)", "Highlight lines (H)",
-                                        "Reflection lines / zebra (Z)"};
 
 // Ctrl+left drag: turns the light by the pixel deltas (0.4 degrees a pixel, as orbiting). Lit and
 // curvature modes turn the key light in view space; highlight and zebra modes turn the light lines
@@ -60,16 +57,7 @@ void moveLight(ShadingParams& shading, const OrbitCamera& camera, float dxPixels
   }
 }
 
-// Every view's projection (linked or not), so side-by-side views stay comparable.
-void setOrthographic(ViewerState& state, bool orthographic) {
-  state.sharedCamera.orthographic = orthographic;
-  for (ViewSettings& view : state.views) view.camera.orthographic = orthographic;
-}
 
-void cycleScheme(ViewerState& state, int view, int step) {
-  int next = (int(state.views[view].scheme) + step + kSchemeChoiceCount) % kSchemeChoiceCount;
-  state.views[view].scheme = static_cast<SchemeChoice>(next);
-}
 
 // Keeps a typed light direction usable (unit length, never zero).
 void normaliseDirection(glm::vec3& d) {
@@ -97,22 +85,28 @@ std::string formatTick(double value, double scale) {
 
 // [SECTION] Panels
 
+// A button that queues command `id`, labelled from the command table ("Frame model (F)").
+void commandButton(ViewerState& state, const char* id) {
+  const Command* command = viewerCommands().find(id);
+  if (command && ImGui::Button(CommandTable::buttonLabel(*command).c_str())) queueCommand(state, id);
+}
+
 void drawFilePanel(ViewerState& state) {
   FileSettings& file = state.file;
   // The controls come first and keep their places: text whose height changes (the model's name,
   // errors, the loading line) goes below them, so a click never lands on a button that moved.
   const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("Open (Enter)").x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
-  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) state.requests.load = true;
+  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) queueCommand(state, "file.open");
   ImGui::SameLine();
-  if (ImGui::Button("Open (Enter)")) state.requests.load = true;
-  if (ImGui::Button("Reload (Ctrl+R)")) state.requests.reload = true;
+  commandButton(state, "file.open");
+  commandButton(state, "file.reload");
   ImGui::SameLine();
-  if (ImGui::Button("Default model")) state.requests.loadDefault = true;
+  commandButton(state, "file.default");
   ImGui::SameLine();
   const bool canUndo = !file.previousModelName.empty();
   if (!canUndo) ImGui::BeginDisabled();
-  if (ImGui::Button("Previous model")) state.requests.undoModel = true;
+  commandButton(state, "file.previous-model");
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("back to %s (also Ctrl+Z when no vertex drag is left to undo)", file.previousModelName.c_str());
@@ -130,7 +124,11 @@ void drawFilePanel(ViewerState& state) {
   if (file.playlist.size() > 1 && ImGui::TreeNodeEx("Dropped files (PageDown / PageUp)", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (size_t i = 0; i < file.playlist.size(); ++i) {
       ImGui::PushID(int(i));
-      if (ImGui::Selectable(file.playlist[i].c_str(), int(i) == file.playlistIndex)) state.requests.playlistPick = int(i);
+      if (ImGui::Selectable(file.playlist[i].c_str(), int(i) == file.playlistIndex)) {
+        file.playlistIndex = int(i);
+        file.pathField = file.playlist[i];
+        queueCommand(state, "file.open");
+      }
       ImGui::PopID();
     }
     ImGui::TreePop();
@@ -139,15 +137,18 @@ void drawFilePanel(ViewerState& state) {
     for (const std::string& path : file.recent) {
       if (ImGui::Selectable(path.c_str())) {
         file.pathField = path;
-        state.requests.load = true;
+        queueCommand(state, "file.open");
       }
     }
     ImGui::TreePop();
   }
 }
 
-// A path field whose empty value stands for `fallback` (shown greyed as the hint), and a button.
-bool pathFieldAndButton(const char* id, std::string& path, const std::string& fallback, const char* button) {
+// A path field whose empty value stands for `fallback` (shown greyed as the hint), and the button of
+// command `command`; true when either asks for it.
+bool pathFieldAndButton(const char* id, std::string& path, const std::string& fallback, const char* command) {
+  const std::string label = CommandTable::buttonLabel(*viewerCommands().find(command));
+  const char* button = label.c_str();
   const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::SetNextItemWidth(-(ImGui::CalcTextSize(button).x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
   bool pressed = ImGui::InputTextWithHint(id, fallback.c_str(), &path, ImGuiInputTextFlags_EnterReturnsTrue);
@@ -161,34 +162,33 @@ void drawEditPanel(ViewerState& state) {
   // Buttons first, at fixed places; text that changes length below them.
   const bool canUndo = edit.undoSteps > 0, canRedo = edit.redoSteps > 0;
   if (!canUndo) ImGui::BeginDisabled();
-  if (ImGui::Button("Undo (Ctrl+Z)")) state.requests.undo = true;
+  commandButton(state, "edit.undo");
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered()) ImGui::SetTooltip("undo: %s", edit.undoLabel.c_str());
   ImGui::SameLine();
   if (!canRedo) ImGui::BeginDisabled();
-  if (ImGui::Button("Redo (Ctrl+Y)")) state.requests.redo = true;
+  commandButton(state, "edit.redo");
   if (!canRedo) ImGui::EndDisabled();
   if (canRedo && ImGui::IsItemHovered()) ImGui::SetTooltip("redo: %s", edit.redoLabel.c_str());
   ImGui::SameLine();
   const bool edited = edit.movedVertices > 0;
   if (!edited) ImGui::BeginDisabled();
-  if (ImGui::Button("Reset")) state.requests.resetEdits = true;
+  commandButton(state, "edit.reset");
   if (!edited) ImGui::EndDisabled();
   if (edited && ImGui::IsItemHovered()) ImGui::SetTooltip("every control vertex back where the file had it (Ctrl+Z undoes it)");
-  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, "Save OBJ (Ctrl+S)"))
-    state.requests.saveEdited = true;
-  if (pathFieldAndButton("##bvPath", edit.bvPath, edit.defaultBvPath, "Export .bv")) state.requests.exportBezierView = true;
+  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, "edit.save")) queueCommand(state, "edit.save");
+  if (pathFieldAndButton("##bvPath", edit.bvPath, edit.defaultBvPath, "export.bv")) queueCommand(state, "export.bv");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive) for BezierView");
-  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "Export refined mesh"))
-    state.requests.exportRefinedMesh = true;
+  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "export.refined-obj"))
+    queueCommand(state, "export.refined-obj");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");
   // Fig. 14: extraordinary vertices to polar configurations (the model is replaced; Ctrl+Z returns).
-  if (ImGui::Button("EVs to poles (Fig. 14a)")) state.requests.convertToPolar = true;
+  commandButton(state, "model.ev-to-polar");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each n-valent extraordinary vertex becomes a 2n-valent polar configuration with n 5-valent vertices");
   ImGui::SameLine();
-  if (ImGui::Button("with pentagons (14c)")) state.requests.convertToPolar = state.requests.convertWithPentagons = true;
+  commandButton(state, "model.ev-to-polar-pentagons");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
 
   if (!state.display.controlNet) {
@@ -268,12 +268,10 @@ void drawDisplayPanel(ViewerState& state) {
 
 void drawShadingPanel(ViewerState& state) {
   ShadingParams& s = state.shading;
-  int mode = 0;
-  for (int i = 0; i < 5; ++i) {
-    if (kShadeModes[i] == s.mode) mode = i;
+  for (const ShadingParams::Mode mode : kShadeModes) {
+    const Command& command = *viewerCommands().find(shadingCommandId(mode));
+    if (ImGui::RadioButton(CommandTable::buttonLabel(command).c_str(), s.mode == mode)) s.mode = mode;
   }
-  for (int i = 0; i < 5; ++i) ImGui::RadioButton(kShadeLabels[i], &mode, i);
-  s.mode = kShadeModes[mode];
   if (s.mode == ShadingParams::Mode::Highlight || s.mode == ShadingParams::Mode::Reflection) {
     if (ImGui::SliderFloat3("Light dir.", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
     if (ImGui::SliderFloat3("Plane normal", &s.highlightPlaneNormal.x, -1.0f, 1.0f, "%.2f"))
@@ -338,18 +336,15 @@ void drawColourPanel(ViewerState& state) {
 }
 
 void drawCameraPanel(ViewerState& state) {
-  if (ImGui::Button("Front (F1)")) state.requests.preset = ViewPreset::Front;
+  for (const char* id : {"camera.front", "camera.top", "camera.side", "camera.iso"}) {
+    commandButton(state, id);
+    if (std::string_view(id) != "camera.iso") ImGui::SameLine();
+  }
+  commandButton(state, "camera.frame");
   ImGui::SameLine();
-  if (ImGui::Button("Top (F2)")) state.requests.preset = ViewPreset::Top;
+  commandButton(state, "camera.copy");
   ImGui::SameLine();
-  if (ImGui::Button("Side (F3)")) state.requests.preset = ViewPreset::Side;
-  ImGui::SameLine();
-  if (ImGui::Button("Iso (F4)")) state.requests.preset = ViewPreset::Iso;
-  if (ImGui::Button("Frame model (F)")) state.requests.frame = true;
-  ImGui::SameLine();
-  if (ImGui::Button("Copy (Ctrl+C)")) state.requests.copyCamera = true;
-  ImGui::SameLine();
-  if (ImGui::Button("Paste (Ctrl+V)")) state.requests.pasteCamera = true;
+  commandButton(state, "camera.paste");
   bool ortho = state.camera(state.activeView).orthographic;
   if (ImGui::Checkbox("Orthographic (O)", &ortho)) setOrthographic(state, ortho);
   float fov = float(state.camera(state.activeView).fovDeg);
@@ -361,7 +356,7 @@ void drawCameraPanel(ViewerState& state) {
 }
 
 void drawScreenshotPanel(ViewerState& state) {
-  if (ImGui::Button("Screenshot (X)")) state.requests.screenshot = true;
+  commandButton(state, "screenshot");
   ImGui::SameLine();
   ImGui::RadioButton("1x", &state.screenshot.supersample, 1);
   ImGui::SameLine();
@@ -450,111 +445,28 @@ void drawHelpWindow(ViewerState& state) {
   if (!state.showHelp) return;
   ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Controls (?)", &state.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
+    // The mouse gestures, then every command with a help line: the command table's rows.
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-      for (const HotkeyHelp& h : hotkeyList()) {
+      auto row = [](const std::string& keys, const std::string& action) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);
-        ImGui::TextUnformatted(h.keys);
+        ImGui::TextUnformatted(keys.c_str());
         ImGui::TableSetColumnIndex(1);
-        ImGui::TextUnformatted(h.action);
-      }
+        ImGui::TextUnformatted(action.c_str());
+      };
+      for (const GestureHelp& gesture : gestureHelp()) row(gesture.gesture, gesture.action);
+      for (const Command& command : viewerCommands().commands())
+        if (!command.help.empty()) row(CommandTable::keysText(command), command.help);
       ImGui::EndTable();
     }
   }
   ImGui::End();
 }
 
-// [SECTION] Input
-
-// One key press (GLFW key code and modifier bits) as a shortcut.
-void applyHotkey(ViewerState& state, int key, int mods) {
-  if (mods & GLFW_MOD_CONTROL) {
-    if (key == GLFW_KEY_C) state.requests.copyCamera = true;
-    if (key == GLFW_KEY_V) state.requests.pasteCamera = true;
-    if (key == GLFW_KEY_R) state.requests.reload = true;
-    if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT)) state.requests.redo = true;
-    else if (key == GLFW_KEY_Z) state.requests.undo = true;
-    if (key == GLFW_KEY_Y) state.requests.redo = true;
-    if (key == GLFW_KEY_S) state.requests.saveEdited = true;
-    return;
-  }
-  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) requestLevel(state, key - GLFW_KEY_0);
-  if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) requestLevel(state, key - GLFW_KEY_KP_0);
-  // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
-  if (key == GLFW_KEY_RIGHT_BRACKET || key == GLFW_KEY_PAGE_UP || key == GLFW_KEY_KP_ADD)
-    requestLevel(state, state.views[size_t(state.activeView)].level + 1);
-  if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_PAGE_DOWN || key == GLFW_KEY_KP_SUBTRACT)
-    requestLevel(state, state.views[size_t(state.activeView)].level - 1);
-  switch (key) {
-    case GLFW_KEY_S: cycleScheme(state, state.activeView, (mods & GLFW_MOD_SHIFT) ? -1 : 1); break;
-    case GLFW_KEY_V: state.viewCount = state.viewCount % kMaxViews + 1; break;
-    case GLFW_KEY_K: state.linkCameras = !state.linkCameras; break;
-    case GLFW_KEY_L: state.shading.mode = ShadingParams::Mode::Shaded; break;
-    case GLFW_KEY_G: state.shading.mode = ShadingParams::Mode::Gaussian; break;
-    case GLFW_KEY_M: state.shading.mode = ShadingParams::Mode::Mean; break;
-    case GLFW_KEY_H: state.shading.mode = ShadingParams::Mode::Highlight; break;
-    case GLFW_KEY_Z: state.shading.mode = ShadingParams::Mode::Reflection; break;
-    case GLFW_KEY_C:
-      state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
-      break;
-    case GLFW_KEY_A: setAutomaticRange(state, !state.colour.automatic); break;
-    case GLFW_KEY_U: state.display.surface = !state.display.surface; break;
-    case GLFW_KEY_N: state.display.controlNet = !state.display.controlNet; break;
-    case GLFW_KEY_B: state.display.patchBoundaries = !state.display.patchBoundaries; break;
-    case GLFW_KEY_P: state.display.poleMarkers = !state.display.poleMarkers; break;
-    case GLFW_KEY_W: state.display.wireframe = !state.display.wireframe; break;
-    case GLFW_KEY_F: state.requests.frame = true; break;
-    case GLFW_KEY_X: state.requests.screenshot = true; break;
-    case GLFW_KEY_TAB: state.showPanels = !state.showPanels; break;
-    case GLFW_KEY_F1: state.requests.preset = ViewPreset::Front; break;
-    case GLFW_KEY_F2: state.requests.preset = ViewPreset::Top; break;
-    case GLFW_KEY_F3: state.requests.preset = ViewPreset::Side; break;
-    case GLFW_KEY_F4: state.requests.preset = ViewPreset::Iso; break;
-    case GLFW_KEY_O: setOrthographic(state, !state.camera(state.activeView).orthographic); break;
-    case GLFW_KEY_PAGE_DOWN: state.requests.playlistStep = 1; break;
-    case GLFW_KEY_PAGE_UP: state.requests.playlistStep = -1; break;
-    default: break;
-  }
-}
-
 }  // namespace
 
 // [SECTION] Public functions
 
-const std::vector<HotkeyHelp>& hotkeyList() {
-  static const std::vector<HotkeyHelp> list = {
-      {"Left drag", "orbit around the pivot"},
-      {"Right / middle drag, Shift+left drag", "pan"},
-      {"Wheel", "zoom towards the point under the cursor"},
-      {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
-      {"Left drag on a control vertex", "with the control net shown (N): move the vertex in the view plane; every view follows"},
-      {"O", "orthographic / perspective projection"},
-      {"Double-click", "set the pivot to the surface point under the cursor (and read it, as Alt+click)"},
-      {"Alt+click", "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
-      {"F", "frame the model"},
-      {"F1 / F2 / F3 / F4", "view preset front / top / side / iso"},
-      {"Ctrl+C / Ctrl+V", "copy / paste the camera as JSON"},
-      {"0 - 9", "subdivision level (all views when levels are linked, else the active one)"},
-      {"] [  PgUp PgDn", "one level deeper / shallower (levels past 9, to the model's limit)"},
-      {"S / Shift+S", "next / previous scheme of the active view (CC, C2PS, C2PS-U, RTS, RTS-U, BPS)"},
-      {"V", "number of views 1..4"},
-      {"K", "link / unlink the cameras of the views"},
-      {"L / G / M / H / Z", "lit / Gaussian / mean / highlight lines / reflection lines (zebra)"},
-      {"C", "next colour map (paper, coolwarm, viridis, magnitude)"},
-      {"A", "automatic colour range on / off"},
-      {"U / N / B / P / W", "limit surface / control net / patch boundaries / pole markers / wireframe"},
-      {"X", "screenshot polarview_NNNN.png (colour bar and labels included)"},
-      {"Ctrl+R", "reload the model file"},
-      {"Ctrl+Z", "undo the last vertex drag; with none left, back to the previous model (after Open, Default model, a drop)"},
-      {"Ctrl+Shift+Z / Ctrl+Y", "redo the vertex drag undone last"},
-      {"Ctrl+S", "save the edited control mesh as OBJ (path in the Edit panel)"},
-      {"PageDown / PageUp", "next / previous of several dropped files"},
-      {"Tab", "hide / show the panels"},
-      {"?", "this help"},
-      {"Drop files", "open the first dropped .obj, list the others"},
-  };
-  return list;
-}
 
 std::string viewTitle(const ViewStatus& status) {
   if (!status.hasSurface) return "(no surface)";
@@ -636,36 +548,7 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
   return rects;
 }
 
-void setAutomaticRange(ViewerState& state, bool automatic) {
-  // Turning it off keeps the colours on screen: the typed range starts at the automatic value.
-  if (state.colour.automatic && !automatic) {
-    state.colour.typedRange = state.colourRange();
-    state.colour.typedBelow = state.colourRangeBelow();
-  }
-  state.colour.automatic = automatic;
-}
 
-void requestLevel(ViewerState& state, int level) {
-  // Every view the request applies to must reach the level (ViewStatus::deepestLevel, the app's
-  // face-budget estimate); otherwise nothing changes and the notice says how deep it can go.
-  for (int v = 0; v < state.viewCount; ++v) {
-    if (!state.linkLevels && v != state.activeView) continue;
-    const ViewStatus& status = state.status[size_t(v)];
-    if (level > status.deepestLevel || level < 0) {
-      state.notice = level < 0 ? "level " + std::to_string(level) + " refused"
-                               : "level " + std::to_string(level) + " refused: " +
-                                     schemeChoiceLabel(state.views[size_t(v)].scheme) + " stops at level " +
-                                     std::to_string(status.deepestLevel) + " on this model";
-      return;
-    }
-  }
-  if (state.notice.rfind("level ", 0) == 0) state.notice.clear();  // an earlier refusal is stale now
-  if (state.linkLevels) {
-    for (ViewSettings& view : state.views) view.level = level;
-  } else {
-    state.views[size_t(state.activeView)].level = level;
-  }
-}
 
 void drawViewerPanels(ViewerState& state) {
   drawHelpWindow(state);
@@ -686,11 +569,11 @@ void drawViewerPanels(ViewerState& state) {
     if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(state);
     if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(state);
     if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(state);
-    if (state.requests.openPoleInspector) {
+    if (state.poleInspector.openRequested) {
       ImGui::SetNextItemOpen(true);
       state.poleInspector.scrollFrames = 120;
     }
-    state.requests.openPoleInspector = false;
+    state.poleInspector.openRequested = false;
     if (ImGui::CollapsingHeader("Poles")) {
       if (state.poleInspector.scrollFrames > 0) {
         --state.poleInspector.scrollFrames;
@@ -853,9 +736,11 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   // Every press since the last frame, in order (a press shorter than a frame still counts); while
   // a text field has the keyboard they were typing, not shortcuts.
   if (!io.WantCaptureKeyboard) {
+    const CommandTable& commands = viewerCommands();
     for (ImWchar c : io.InputQueueCharacters)
-      if (c == '?') state.showHelp = !state.showHelp;
-    for (const auto& [key, mods] : pendingKeys_) applyHotkey(state, key, mods);
+      if (const Command* command = commands.forCharacter(c, state)) queueCommand(state, command->id);
+    for (const auto& [key, mods] : pendingKeys_)
+      if (const Command* command = commands.forKey(key, mods, state)) queueCommand(state, command->id);
   }
   pendingKeys_.clear();
   state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);

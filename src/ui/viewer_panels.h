@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "pipeline/screen_rect.h"
-#include "ui/viewer_state.h"
+#include "session/command_table.h"
+#include "session/viewer_state.h"
 
 struct ImDrawList;
 struct ImFont;
@@ -17,12 +18,6 @@ namespace polarview {
 
 // A rectangle in window coordinates (top-left origin, y down), as ImGui uses.
 
-// One hotkey or mouse gesture and what it does; the help window lists them all.
-struct HotkeyHelp {
-  const char* keys;
-  const char* action;
-};
-const std::vector<HotkeyHelp>& hotkeyList();
 
 // A view's title: "C2PS · 3", or "RTS · 3 · poles by CC (valence < 5)" when the scheme left its
 // poles to Catmull-Clark (RTS and BPS need valence >= 5).
@@ -105,7 +100,7 @@ struct InputResult {
 // it picked a control vertex there (the drag then edits it instead of orbiting).
 using VertexPicker = std::function<bool(int view, float x, float y)>;
 
-// Hotkeys and mouse camera control. Keys are ignored while ImGui wants the keyboard and the mouse
+// Hotkeys (queued as the command table's commands) and mouse camera control. Keys are ignored while ImGui wants the keyboard and the mouse
 // while it wants the mouse (io.WantCaptureKeyboard / WantCaptureMouse). Keeps which view a drag
 // started in, so a drag that crosses into another view keeps turning the first one.
 class ViewerInput {
@@ -128,11 +123,5 @@ class ViewerInput {
 // target's plane under it (OrbitCamera::zoomAt).
 void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches);
 
-// Automatic colour range on or off; switching it off keeps the current range (typed = automatic).
-void setAutomaticRange(ViewerState& state, bool automatic);
-
-// Sets the level of the active view (or every view when levels are linked); levels above
-// kMaxLevel leave the state unchanged and set a notice.
-void requestLevel(ViewerState& state, int level);
 
 }  // namespace polarview

@@ -3,8 +3,10 @@
 # first rule too: only polarview_render sees glad's headers):
 #   core      includes core only (C++17 + GLM; never GL, ImGui, GLFW);
 #   pipeline  includes core and pipeline (no GL, ImGui or GLFW): its tests need no display;
+#   session   the viewer without a window (state, surface cache, commands): core, pipeline, session;
+#             no GL, ImGui or GLFW, so its tests need no display either;
 #   render    the only layer with GL headers (glad, GL/); includes core, pipeline, render;
-#   ui        ImGui and GLFW key codes, no GL; includes core, pipeline, ui;
+#   ui        ImGui and GLFW key codes, no GL; includes core, pipeline, session, ui;
 #   app       everything (window, frame loop, commands), but GL only through render.
 # A violation prints FILE:LINE and the rule. Usage: bash layers.sh <polarview-exe> <repo>
 set -u
@@ -23,7 +25,7 @@ check() {  # layer, allowed project dirs (regex), whether GL / ImGui / GLFW head
         [ "$imgui" = yes ] || { echo "FAIL: src/$file:$line: $layer includes ImGui ($header)"; failures=$((failures + 1)); } ;;
       GLFW/*)
         [ "$glfw" = yes ] || { echo "FAIL: src/$file:$line: $layer includes GLFW ($header)"; failures=$((failures + 1)); } ;;
-      core/*|pipeline/*|render/*|ui/*|app/*)
+      core/*|pipeline/*|session/*|render/*|ui/*|app/*)
         grep -Eq "^($allowed)/" <<<"$header" ||
           { echo "FAIL: src/$file:$line: $layer includes $header (allowed: $allowed)"; failures=$((failures + 1)); } ;;
     esac
@@ -31,9 +33,10 @@ check() {  # layer, allowed project dirs (regex), whether GL / ImGui / GLFW head
 }
 check core "core" no no no
 check pipeline "core|pipeline" no no no
+check session "core|pipeline|session" no no no
 check render "core|pipeline|render" yes no yes
-check ui "core|pipeline|ui" no yes yes
-check app "core|pipeline|render|ui|app" no yes yes
+check ui "core|pipeline|session|ui" no yes yes
+check app "core|pipeline|session|render|ui|app" no yes yes
 # GLFW's header pulls in the system GL header unless GLFW_INCLUDE_NONE: defined for the whole build.
 grep -q 'add_compile_definitions(GLFW_INCLUDE_NONE)' "$repo/CMakeLists.txt" ||
   { echo "FAIL: CMakeLists.txt does not define GLFW_INCLUDE_NONE"; failures=$((failures + 1)); }

@@ -309,7 +309,7 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   CHECK(state.edit.movedVertices == 1);
 
   // Reset (the panel's button): back to the file's points, itself undoable.
-  state.requests.resetEdits = true;
+  queueCommand(state, "edit.reset");
   app->runFrame();
   CHECK(app->model().mesh->points == loaded);
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
@@ -348,7 +348,7 @@ TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back t
 
   // A folder that does not exist: one line of error, no file, no temporary.
   state.edit.savePath = (dir / "missing" / "edited.obj").string();
-  state.requests.saveEdited = true;
+  queueCommand(state, "edit.save");
   app->runFrame();
   CHECK_FALSE(state.edit.error.empty());
   CHECK(state.edit.error.find('\n') == std::string::npos);
@@ -377,7 +377,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   // .bv: the same bytes as exportPatchSet + writeBezierViewFile of the edited mesh.
   CHECK(state.edit.defaultBvPath == "default_c2ps_2.bv");
   state.edit.bvPath = (dir / "view.bv").string();
-  state.requests.exportBezierView = true;
+  queueCommand(state, "export.bv");
   app->runFrame();
   app->waitUntilIdle();
   CAPTURE(state.notice);
@@ -397,7 +397,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
 
   // Refined control mesh: the uniform refinement's finest mesh of the edited points.
   state.edit.refinedObjPath = (dir / "refined.obj").string();
-  state.requests.exportRefinedMesh = true;
+  queueCommand(state, "export.refined-obj");
   app->runFrame();
   app->waitUntilIdle();
   CHECK(state.edit.error.empty());
@@ -408,7 +408,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
 
   // An unwritable path: one line of error and no file.
   state.edit.bvPath = (dir / "missing" / "view.bv").string();
-  state.requests.exportBezierView = true;
+  queueCommand(state, "export.bv");
   app->runFrame();
   app->waitUntilIdle();
   CHECK_FALSE(state.edit.error.empty());
@@ -434,7 +434,7 @@ TEST_CASE("export from the viewer: a refined control mesh over the budget is ref
   const fs::path out = fs::temp_directory_path() / "polarview_refused_refined.obj";
   fs::remove(out);
   state.edit.refinedObjPath = out.string();
-  state.requests.exportRefinedMesh = true;
+  queueCommand(state, "export.refined-obj");
   app->runFrame();
   app->waitUntilIdle();
   CAPTURE(state.edit.error);

@@ -92,7 +92,7 @@ TEST_CASE("viewer app: a file that fails to load leaves the model shown and the 
 
   // The same through the file panel's request, with a file that does not exist.
   app->state().file.pathField = (fs::temp_directory_path() / "polarview_no_such_file.obj").string();
-  app->state().requests.load = true;
+  queueCommand(app->state(), "file.open");
   runFrames(*app, 1);    // takes the request: the file is read in the background
   app->waitUntilIdle();
   runFrames(*app, 1);
@@ -262,7 +262,7 @@ TEST_CASE("viewer app: the X screenshot shows the views exactly as the window do
   state.views[2].scheme = SchemeChoice::BPS;
   state.views[3].scheme = SchemeChoice::CatmullClark;
   state.shading.mode = ShadingParams::Mode::Gaussian;
-  state.requests.frame = true;
+  queueCommand(state, "camera.frame");
   app->waitUntilIdle();
   runFrames(*app, 2);
 
@@ -402,7 +402,7 @@ TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a 
   runFrames(*app, 1);
   const double framed = state.sharedCamera.distance;
   state.sharedCamera.zoom(12.0);
-  state.requests.preset = ViewPreset::Top;
+  queueCommand(state, "camera.top");
   runFrames(*app, 1);
   CHECK(state.sharedCamera.pitchDeg > 80.0);
   CHECK(state.sharedCamera.distance > 0.5 * framed);
@@ -416,14 +416,14 @@ TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON 
   state.sharedCamera.yawDeg = 33.25;
   state.sharedCamera.pitchDeg = -12.5;
   const OrbitCamera copied = state.sharedCamera;
-  state.requests.copyCamera = true;
+  queueCommand(state, "camera.copy");
   runFrames(*app, 1);
   const char* clipboard = glfwGetClipboardString(app->window());
   REQUIRE(clipboard != nullptr);
   CHECK(std::string(clipboard) == cameraToJson(copied));
   state.sharedCamera.orbit(200, 100);
   state.sharedCamera.zoom(3);
-  state.requests.pasteCamera = true;
+  queueCommand(state, "camera.paste");
   runFrames(*app, 1);
   CHECK(cameraToJson(state.sharedCamera) == cameraToJson(copied));
 }
@@ -608,7 +608,7 @@ TEST_CASE("pole inspector: open, it lists the model's pole and computes it for e
   state.views[0].scheme = SchemeChoice::C2PS;
   state.views[1].scheme = SchemeChoice::RTS;
   state.views[2].scheme = SchemeChoice::C2PS;  // a scheme twice is inspected once
-  state.requests.openPoleInspector = true;     // as `view --inspect-poles`: the panel opens the section
+  queueCommand(state, "poles.inspect");     // as `view --inspect-poles`: the panel opens the section
   app->waitUntilIdle();
   for (int frame = 0; frame < 400 && (state.poleInspector.inspections.size() < 2 || state.poleInspector.computing); ++frame) {
     app->runFrame();
@@ -675,15 +675,14 @@ TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refi
   const int cubeFaces = app->model().mesh->faceCount();
   for (bool pentagons : {false, true}) {
     CAPTURE(pentagons);
-    state.requests.convertToPolar = true;
-    state.requests.convertWithPentagons = pentagons;
+    queueCommand(state, pentagons ? "model.ev-to-polar-pentagons" : "model.ev-to-polar");
     app->runFrame();
     app->waitUntilIdle();
     app->runFrame();
     CHECK(app->model().mesh->faceCount() > cubeFaces);
     CHECK_FALSE(modelPoles(*app->model().mesh).empty());
     CHECK(state.status[0].polesByScheme == int(modelPoles(*app->model().mesh).size()));  // C2PS refines them
-    state.requests.undoModel = true;  // Ctrl+Z with no edit to undo
+    queueCommand(state, "file.previous-model");  // Ctrl+Z with no edit to undo
     app->runFrame();
     app->waitUntilIdle();
     CHECK(app->model().mesh->faceCount() == cubeFaces);
@@ -707,7 +706,7 @@ TEST_CASE("Spectrum panel: RTS's Table 1 at the chosen valence, and v_k shown as
     CHECK(value == doctest::Approx(table1[k]).epsilon(1e-9));
   }
   state.spectrum.k = 3;  // the paraboloid mode: its net's heights are the eigenvector
-  state.requests.showEigenvector = true;
+  queueCommand(state, "model.eigenvector");
   app->runFrame();
   app->waitUntilIdle();
   const PolyMesh& net = *app->model().mesh;

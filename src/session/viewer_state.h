@@ -1,6 +1,7 @@
 // ViewerState: everything the viewer's panels show and edit, as plain data. The panels (ui/) only
-// read and write this struct; the app (app/viewer_app.cpp) turns changes into refinement jobs and
-// GPU uploads, and writes back status (refining, patch counts, timings, errors).
+// read and write this struct and queue commands (session/command_table.h); the app turns changes
+// into refinement jobs and GPU uploads, and writes back status (refining, patch counts, timings,
+// errors).
 #pragma once
 
 #include <array>
@@ -138,32 +139,6 @@ struct EditSettings {
   int updatedViews = 0;
 };
 
-// One-shot actions panels and hotkeys ask the app for; the app clears them when done.
-struct ViewerRequests {
-  bool load = false;          // load file.pathField
-  bool reload = false;        // reload file.loadedPath
-  bool loadDefault = false;   // the built-in default model
-  bool undoModel = false;     // back to the model shown before the last replacement
-  bool undo = false;          // Ctrl+Z: undo the last edit, or (none left) undoModel
-  bool redo = false;          // Ctrl+Shift+Z, Ctrl+Y
-  bool resetEdits = false;    // every control vertex back where the file had it
-  bool saveEdited = false;    // Ctrl+S: the edited mesh as OBJ
-  bool exportBezierView = false;   // the active view's surface as .bv
-  bool exportRefinedMesh = false;  // the active view's uniform refined control mesh as OBJ
-  int playlistStep = 0;       // +1 / -1: next / previous file of the playlist (PageDown / PageUp)
-  int playlistPick = -1;      // open this playlist entry
-  bool screenshot = false;
-  bool frame = false;         // F
-  bool copyCamera = false;    // Ctrl+C
-  bool pasteCamera = false;   // Ctrl+V
-  std::optional<ViewPreset> preset;
-  bool openPoleInspector = false;  // open the "Poles" section (view --inspect-poles)
-  // Paper Fig. 14: turn the model's Catmull-Clark extraordinary vertices into polar configurations
-  // (a) 2n-valent with n 5-valent vertices, or (c) n-valent with n pentagons; Ctrl+Z returns.
-  bool convertToPolar = false, convertWithPentagons = false;
-  bool showEigenvector = false;  // the model becomes SpectrumSettings' eigenvector net (Ctrl+Z returns)
-};
-
 // The surface point last read (Alt+click, double-click): panel "Point".
 struct ReadoutSettings {
   bool valid = false;
@@ -190,6 +165,7 @@ struct PoleInspectorSettings {
   bool open = false;  // the section is open: the app keeps `inspections` up to date
   int pole = 0;       // index into `poles`
   int ring = 4;       // ring m whose K around the pole is plotted
+  bool openRequested = false;  // the section opens (and scrolls into view) next frame (command poles.inspect)
   int scrollFrames = 0;  // > 0: the panel scrolls the section into view (so many frames: results grow it)
   // Pole zoom (Figs. 8, 9): >= 0: every view draws rings zoomRing .. zoomRing + 2 of the pole,
   // scaled by 2^zoomRing about it (pipeline zoomAboutPole); -1: off.
@@ -220,7 +196,9 @@ struct ViewerState {
   PoleInspectorSettings poleInspector;
   ReadoutSettings readout;
   SpectrumSettings spectrum;
-  ViewerRequests requests;
+  // Commands asked for by panels, keys and `view --do` (ids of session/command_table.h), run in
+  // order by the app once a frame.
+  std::vector<std::string> queuedCommands;
 
   bool showPanels = true;      // Tab
   bool showHelp = false;       // ?
@@ -271,5 +249,15 @@ struct ViewerState {
     return std::nullopt;
   }
 };
+
+// Automatic colour range on or off; switching it off keeps the current range (typed = automatic).
+void setAutomaticRange(ViewerState& state, bool automatic);
+// Sets the level of the active view (or every view when levels are linked); levels above the
+// view's deepest level leave the state unchanged and set a notice.
+void requestLevel(ViewerState& state, int level);
+// Every view's projection (linked or not), so side-by-side views stay comparable.
+void setOrthographic(ViewerState& state, bool orthographic);
+// The next (step 1) or previous (-1) scheme for `view`.
+void cycleScheme(ViewerState& state, int view, int step);
 
 }  // namespace polarview

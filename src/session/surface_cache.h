@@ -1,0 +1,110 @@
+// The viewer's surface cache: the one owner of every surface the views hold, and of the policy that
+// decides what is built, kept and dropped, under one face budget (facesHeld). Per view:
+//   shown          what the view shows;
+//   parked         the surface it showed before its scheme changed: toggling back swaps the two
+//                  (no refinement; the window keeps its GPU copy too);
+//   previousLevel  the surface of the level shown before the last level step: a step back shows it
+//                  again (nothing built);
+//   made ahead     the next level of the active view, made while idle (SurfaceHierarchy::ahead).
+// No GL: the window mirrors `shown` and `parked` on the GPU (ViewerApp's GPU mirror) after each
+// update, so the whole policy is tested without a display (tests/session/surface_cache_test.cpp).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "pipeline/surface_pipeline.h"
+#include "session/background_job.h"
+#include "session/viewer_state.h"
+
+namespace polarview {
+
+// What one positions-only update of the shown views cost after control points moved (ms): the
+// refinements' positions, patch extraction (with pole markers) and the upload (the window adds
+// it), every view together (a surface two views share is updated once, uploaded twice).
+struct EditCost {
+  double positionsMs = 0.0, patchesMs = 0.0, uploadMs = 0.0, totalMs = 0.0;
+  int views = 0;
+};
+
+// GPU room to reserve for a level made ahead (PatchRenderer::reserveFor), so the step does not grow
+// buffers.
+struct GpuReservation {
+  size_t regularPatches = 0, capPatches = 0;
+};
+
+class SurfaceCache {
+ public:
+  SurfaceCache(size_t faceBudget, bool prepareNextLevel) : faceBudget_(faceBudget), prepareNextLevel_(prepareNextLevel) {}
+  ~SurfaceCache();  // waits for running jobs
+  SurfaceCache(const SurfaceCache&) = delete;
+  SurfaceCache& operator=(const SurfaceCache&) = delete;
+
+  // One frame: positions-only updates of edited views, finished jobs shown, wanted surfaces taken
+  // from what is kept or started in the background, kept surfaces dropped when stale or over the
+  // budget, the next level made ahead; writes each view's status (all but the GPU's fields).
+  // Returns the cost of this frame's positions-only updates when points moved. [O(views) a frame;
+  // O(faces of all levels) per edited view]
+  std::optional<EditCost> update(ViewerState& state, const Model& model, bool dragging);
+  // A new model: failures of the old one are forgotten (surfaces go as they become stale).
+  void modelChanged(ViewerState& state);
+  // True while a job runs or a visible view does not show what its settings ask for.
+  bool busy(const ViewerState& state, const Model& model, bool dragging) const;
+  // Blocks briefly while jobs run (waitUntilIdle's loop).
+  void pause() const;
+
+  const std::shared_ptr<const BuiltSurface>& shown(int v) const { return views_[size_t(v)].shown; }
+  const std::shared_ptr<const BuiltSurface>& parked(int v) const { return views_[size_t(v)].parked; }
+  const std::shared_ptr<const BuiltSurface>& previousLevel(int v) const { return views_[size_t(v)].previousLevel; }
+  // How view v's shown surface last changed: from its park, its previous level, or a positions-only
+  // update (no patch stayed on the GPU: other points).
+  bool unparked(int v) const { return views_[size_t(v)].unparked; }
+  bool reshown(int v) const { return views_[size_t(v)].reshown; }
+  bool refreshed(int v) const { return views_[size_t(v)].refreshed; }
+  // GPU room for the level made ahead of view v, once, when its job has finished.
+  std::optional<GpuReservation> takeReservation(int v);
+
+  // The faces everything kept holds: each parked surface's hierarchy (every level it made), each
+  // previous level, and each visible view's shown surface, or (`wantedLevels`) the level its
+  // settings ask for; all against faceBudget(). The one sum the policy uses.
+  size_t facesHeld(const ViewerState& state, const Model& model, bool wantedLevels = false) const;
+  size_t faceBudget() const { return faceBudget_; }
+
+ private:
+  struct ViewSurfaces {
+    std::shared_ptr<const BuiltSurface> shown, parked, previousLevel;
+    SurfaceJob job;
+    std::optional<SurfaceKey> failed;         // last key that failed or was refused (not retried)
+    std::optional<SurfaceKey> refreshFailed;  // a positions-only update failed here: rebuild instead
+    BackgroundJob<bool> prepare;              // the next level made ahead (prepareLevel), if running
+    std::optional<SurfaceKey> prepareFailed;  // a key prepareLevel could not make (not retried)
+    SurfaceKey preparing;                     // the key of the running (or last) prepare
+    std::optional<GpuReservation> reservation;
+    bool unparked = false, reshown = false, refreshed = false;
+  };
+
+  size_t levelFaces(const Model& model, SchemeChoice scheme, int level) const;
+  void show(int v, std::shared_ptr<const BuiltSurface> surface);
+  std::optional<EditCost> refreshEditedViews(ViewerState& state, const Model& model, bool dragging);
+  void takeFinishedJob(int v, ViewerState& state, const Model& model);
+  void dropStale(int v, const ViewerState& state, const Model& model);
+  // Shows what view v's settings ask for from what is kept, or starts building it.
+  void satisfy(int v, ViewerState& state, const Model& model, const SurfaceKey& wanted);
+  void startBuild(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted);
+  void parkShown(int v, const ViewerState& state, const Model& model, const BuiltSurface& next);
+  bool unpark(int v, const ViewerState& state, const SurfaceKey& wanted);
+  void keepPreviousLevel(int v, const ViewerState& state, const Model& model, const BuiltSurface& next);
+  void prepareNextLevel(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted, bool dragging);
+  void report(int v, ViewerState& state, const Model& model) const;
+
+  size_t faceBudget_;
+  bool prepareNextLevel_;
+  std::array<ViewSurfaces, kMaxViews> views_;
+};
+
+// What view v's settings ask for on `model`.
+SurfaceKey wantedKey(const ViewerState& state, const Model& model, int v);
+
+}  // namespace polarview
