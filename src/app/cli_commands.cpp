@@ -17,7 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "app/bench_peer.h"
-#include "app/export_command.h"
+#include "pipeline/patch_export.h"
 #include "app/json_writer.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/input_error.h"

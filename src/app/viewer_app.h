@@ -1,16 +1,15 @@
-// The polarview viewer application: one ViewerApp object owns the window, the ImGui context, one
-// PatchRenderer per view and the background refinement jobs. No globals: GLFW callbacks reach the
-// app through glfwSetWindowUserPointer.
+// The polarview viewer application: the window around a Session (session/session.h: state,
+// document, surface cache, commands). ViewerApp owns the GLFW window, the ImGui context and the
+// GPU objects: one PatchRenderer per surface a view shows or keeps parked, mirroring the cache.
+// No globals: GLFW callbacks reach the app through glfwSetWindowUserPointer.
 //
-// Frame order (Dear ImGui's example): poll events, new frame, panels + input, requests, rebuild
-// what is dirty (finished jobs are uploaded, new jobs started), draw the views, overlay + UI, swap.
-// Editing: a drag on a control vertex (pipeline/vertex_edit.h) changes the model's points; the same frame
-// each view recomputes its kept refinement's points and patches (refreshSurface) and uploads them.
+// Frame order (Dear ImGui's example): poll events, new frame, panels + input, queued commands,
+// the session's update (loads, surfaces; finished ones uploaded), draw the views, overlay + UI, swap.
+// Editing: a drag on a control vertex (pipeline/vertex_edit.h) changes the model's points; the same
+// frame each view recomputes its kept refinement's points and patches and uploads them.
 #pragma once
 
 #include <array>
-#include <chrono>
-#include <future>
 #include <optional>
 #include <memory>
 #include <string>
@@ -18,15 +17,11 @@
 
 #include <glm/vec3.hpp>
 
-#include "pipeline/vertex_edit.h"
-#include "pipeline/surface_pipeline.h"
+#include "app/gpu_mirror.h"
 #include "render/framebuffer_capture.h"
-#include "session/background_job.h"
-#include "session/command_table.h"
-#include "session/surface_cache.h"
+#include "session/session.h"
 #include "ui/input_events.h"
 #include "ui/viewer_panels.h"
-#include "session/viewer_state.h"
 
 struct GLFWwindow;
 
@@ -71,55 +66,50 @@ struct ViewerOptions {
   double levelOfDetailPixels = 3.0;
 };
 
-class ViewerApp : public CommandHost {
+class ViewerApp : public WindowServices {
  public:
   explicit ViewerApp(const ViewerOptions& options);
   ~ViewerApp();
   ViewerApp(const ViewerApp&) = delete;
   ViewerApp& operator=(const ViewerApp&) = delete;
 
-  // [CommandHost] What the command table's commands ask of the viewer.
-  void openFile(const std::string& path) override { requestLoad(path); }
-  void reloadModel() override;
-  void loadDefaultModel() override;
-  void undoModelReplacement() override;
-  void undo() override;
-  void redo() override { redoEdit(); }
-  void resetEdits() override;
-  void saveEditedMesh() override;
-  void exportSurface(bool bezierView) override { startExport(bezierView); }
-  void openPlaylistEntry(int index) override;
-  void convertToPolar(bool pentagons) override;
-  void showEigenvector() override;
-  void frameModel() override { frameModel(nullptr); }
-  void setClipboard(const std::string& text) override;
-  std::string clipboard() override;
-  void takeScreenshot() override { saveScreenshot(); }
-
   // Creates the window and GL context, loads glad, starts ImGui and the renderers.
   bool init(std::string* error);
 
-  // Loads an OBJ now (blocks; the command line uses it); on failure the message goes to
-  // state().file.error, the model stays, false.
-  bool loadFile(const std::string& path);
-  // Starts reading and checking an OBJ on a worker thread; the window keeps running and the current
-  // model stays until the new one is ready (a failure leaves it and shows the error). A request
-  // while one runs replaces any queued one: the last request wins.
-  void requestLoad(const std::string& path);
-  // What a drop of files on the window does (the GLFW drop callback calls it): loads the first.
-  void dropFiles(int count, const char* const* paths);
-  // True while a requested file is being read.
-  bool loading() const { return loadJob_.running(); }
-  // Shows `mesh` (validated here; false with the error in the state when it is not usable).
-  bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "");
-  // (loadDefaultModel: assets/default.obj, or the generated mushroom when the asset is missing.)
+  // The session and its parts (what the window shows; tests and commands drive it).
+  Session& session() { return session_; }
+  ViewerState& state() { return session_.state(); }
+  const ViewerState& state() const { return session_.state(); }
+  Document& document() { return session_.document(); }
+  const Document& document() const { return session_.document(); }
+  // The document's operations, as the command line and tests use them (document.h).
+  bool loadFile(const std::string& path) { return document().loadFile(path); }
+  void requestLoad(const std::string& path) { document().requestLoad(path); }
+  void dropFiles(int count, const char* const* paths) { document().dropFiles(count, paths); }
+  bool loading() const { return document().loading(); }
+  bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "") {
+    return document().loadMesh(std::move(mesh), name, path);
+  }
+  void loadDefaultModel() { document().loadDefaultModel(); }
+  const ControlMeshEditor& editor() const { return document().editor(); }
+  const std::vector<EditCost>& editCosts() const { return document().editCosts(); }
+  bool exporting() const { return document().exporting(); }
+  const Model& model() const { return session_.model(); }
+  uint64_t modelGeneration() const { return model().generation; }
+  glm::dvec3 modelMin() const { return document().modelMin(); }
+  glm::dvec3 modelMax() const { return document().modelMax(); }
+  // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
+  const BuiltSurface* shownSurface(int v) const { return session_.surfaces().shown(v).get(); }
+  const BuiltSurface* parkedSurface(int v) const { return session_.surfaces().parked(v).get(); }
+  // View v's renderer (what is on the GPU), for tests.
+  const PatchRenderer& renderer(int v) const { return gpu_->renderer(v); }
 
   // One iteration of the main loop.
   void runFrame();
   bool shouldClose() const;
   // True while a file loads, a refinement runs or a view waits for one.
-  bool busy() const;
-  // Runs frames until every view shows what its settings ask for (or failed). [blocks]
+  bool busy() const { return session_.busy(); }
+  // Runs frames' updates until every view shows what its settings ask for (or failed). [blocks]
   void waitUntilIdle();
 
   // Views, labels and colour bar rendered offscreen at width x height (rendered at supersample x
@@ -133,114 +123,44 @@ class ViewerApp : public CommandHost {
   void requestPivot(const PivotPick& pick) { pendingPivot_ = pick; }
   // The next frame also writes the whole window (panels included) to `path` as a PNG.
   void captureWindowNextFrame(const std::string& path) { windowCapturePath_ = path; }
-
   // From the next frame on, ImGui reads `pointer` instead of the system mouse (nullopt: the system
   // mouse again). Every gesture then runs as with a real mouse (picking, drags, orbiting).
   void overridePointer(std::optional<PointerState> pointer) { pointerOverride_ = pointer; }
 
-  // [Editing] The base control mesh's points as edited, the selection and the history.
-  const ControlMeshEditor& editor() const { return editor_; }
   // View v as drawn now (its camera, its rectangle of the current layout), for picking and tests.
   ViewTransform viewTransform(int v) const;
-  // Every positions-only update since the model was loaded (the last 10000).
-  const std::vector<EditCost>& editCosts() const { return editCosts_; }
-  // True while a save or export runs in the background.
-  bool exporting() const { return exportJob_.running(); }
-
   // The part of the window the views tile (window coordinates): right of the panel column.
   ScreenRect viewArea() const;
   // Points every view's camera (or the shared one) at the model so that all its control points
   // (and with them the limit surface) fit a view of the size of `viewRect` (nullptr: the window's
   // first view now) below its title, keeping the viewing direction.
   void frameModel(const ScreenRect* viewRect);
-
-  ViewerState& state() { return state_; }
-  const ViewerState& state() const { return state_; }
   GLFWwindow* window() const { return window_; }
-  // Bounding box of the current model's control points.
-  glm::dvec3 modelMin() const { return modelMin_; }
-  glm::dvec3 modelMax() const { return modelMax_; }
-  // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
-  const BuiltSurface* shownSurface(int v) const { return surfaces_.shown(v).get(); }
-  const BuiltSurface* parkedSurface(int v) const { return surfaces_.parked(v).get(); }
-  // View v's renderer (what is on the GPU), for tests.
-  const PatchRenderer& renderer(int v) const { return *gpu_[size_t(v)].shown.renderer; }
-  uint64_t modelGeneration() const { return model_.generation; }
-  const Model& model() const { return model_; }
+
+  // [WindowServices]
+  void frameModel() override { frameModel(nullptr); }
+  void setClipboard(const std::string& text) override;
+  std::string clipboard() override;
+  void takeScreenshot() override { saveScreenshot(); }
 
  private:
-  // The GPU mirror of the surface cache: a renderer holding what a surface draws (its patches, or
-  // the shallower set `drawn` where deeper rings are below a pixel, or a pole zoom's rings).
-  struct GpuSlot {
-    std::unique_ptr<PatchRenderer> renderer;
-    std::shared_ptr<const BuiltSurface> surface, drawn;
-    int zoom = -1;  // the pole zoom ring it holds (-1: the whole surface)
-  };
-  // Per view: the shown surface's renderer and the parked one's (a scheme toggle back swaps them).
-  struct GpuView {
-    GpuSlot shown, parked;
-    double uploadMs = 0.0;   // the last upload of the shown surface: packing + upload
-    size_t keptPatches = 0;  // patches of it that stayed on the GPU
-  };
-  // Brings view v's GPU mirror to the cache's shown and parked surfaces: swaps, drops or uploads.
-  // Returns the milliseconds an upload took (0 when none). [O(patches not on the GPU)]
-  double syncGpu(int v);
-  std::unique_ptr<PatchRenderer> makeRenderer() const;
   static void onDrop(GLFWwindow* window, int count, const char** paths);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   // Hands this frame's share of the queued input events to ImGui's GLFW backend.
   void replayInputEvents();
-  // Shows an already checked mesh (bumps the model generation, frames it).
-  void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
-  void loadFailed(const std::string& path, const std::string& error);
-  // Takes a finished background load (if any) and starts the queued one.
-  void pollLoad();
-  // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
-  void expireNotice();
+  // The session's surfaces, then the GPU mirror and the edit cost with its upload.
   void updateSurfaces();
-  // The pole inspector: its pole list on a model change; while its section is open, the
-  // inspections of the selected pole for the visible views' schemes, computed in the background.
-  void updatePoleInspector();
-  // The Spectrum panel's eigenvalue lines, when it is open and the valence changed.
-  void updateSpectrum();
-  // Uploads `surface`'s patches to view v's renderer (a pole zoom: its zoomed rings): the time it
-  // took and the patches that stayed on the GPU. [O(patches not on the GPU)]
-  struct UploadCost {
-    double milliseconds = 0.0;
-    size_t keptPatches = 0;
-  };
-  UploadCost upload(int v, const BuiltSurface& surface);
-  // Draws the level levelToDraw picks for the view's camera (viewport `pixelsHigh` high): switches
-  // `drawn` when it changes. [O(features) a frame; O(patches of the set) on a switch]
-  void updateDrawnLevel(int v, double pixelsHigh);
   // [Editing] A press at (x, y) in view v: picks the control vertex there and starts dragging it.
   bool beginVertexDrag(int v, const ScreenRect& rect, float x, float y);
   void applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects);
-  // The editor's points become the model's (same faces, new points revision); the views follow in
-  // refreshEditedViews.
-  void commitEditedPoints();
-  void undoEdit();
-  void redoEdit();
-  // Export .bv / refined control mesh of the active view, written on a worker thread.
-  void startExport(bool bezierView);
-  void pollExport();
   // The control vertices to mark in the overlay (selected, under the cursor), per view.
   std::vector<VertexMarker> vertexMarkers(const std::vector<ScreenRect>& rects) const;
-  // Fills state_.edit: selection, history, default output paths.
-  void updateEditState();
   ViewTransform viewTransform(int v, const ScreenRect& rect) const;
-  void updateColourRange();
-  // The curvature samples of the shown views (mode K or H) and the automatic ranges from them.
-  void collectColourSamples();
-  // Draws the views into the bound framebuffer; returns the pole markers the surfaces leave visible
-  // (overlay coordinates: framebuffer pixels / pixelScale, y down).
-  std::vector<PoleMarker> drawViews(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
   void resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
-  void rememberRecent(const std::string& path);
-  void loadRecent();
 
   ViewerOptions options_;
-  ViewerState state_;
+  Session session_;
+  ViewerState& state_;  // session_'s
   ViewerInput input_;
   InputEventQueue inputEvents_;
   GLFWwindow* window_ = nullptr;
@@ -251,34 +171,13 @@ class ViewerApp : public CommandHost {
   std::pair<float, float> framedAreaSize_{0.0f, 0.0f};
   int framesDrawn_ = 0;
   std::shared_ptr<ShaderLibrary> shaders_;
-  SurfaceCache surfaces_;
-  std::array<GpuView, kMaxViews> gpu_;
-  Model model_;
-  Model previousModel_;       // the model before the last replacement (Ctrl+Z)
-  std::string previousPath_;  // its file (empty for generated models)
-  glm::dvec3 modelMin_{-1.0}, modelMax_{1.0};
-  uint64_t colourRangeSignature_ = 0;
-  std::vector<double> colourValues_, colourWeights_;  // samples of the shown views, by area
-  std::pair<double, double> histogramRange_{0.0f, 0.0f};
-  BackgroundJob<LoadedModel> loadJob_;
-  std::optional<std::string> queuedLoad_;
+  std::unique_ptr<GpuMirror> gpu_;  // made by init (needs the GL context)
   std::string windowCapturePath_;
   std::string imguiIniPath_;  // ImGui keeps a pointer to it (ImGuiIO::IniFilename)
   std::optional<PivotPick> pendingPivot_;
-  BackgroundJob<std::vector<PoleInspection>> inspectJob_;
-  std::string inspectRunning_, inspectShown_;  // what the job computes / what the panel shows
-  uint64_t inspectPolesOf_ = 0;                // model generation the pole list is of
   std::optional<PointerState> pointerOverride_;
   std::pair<double, double> eventCursor_{0.0, 0.0};  // the cursor as of the last event GLFW delivered
   std::optional<std::pair<float, float>> buttonPosition_;  // where this frame's mouse button changed (window coordinates)
-  ControlMeshEditor editor_;
-  int movedVertices_ = 0;  // editor_.movedVertexCount(), counted when points change
-  std::vector<EditCost> editCosts_;
-  BackgroundJob<std::string> exportJob_;  // the notice to show when done; throws on failure
-  std::string exportTarget_;
-  static constexpr std::chrono::seconds kNoticeLifetime{8};
-  std::string shownNotice_;
-  std::chrono::steady_clock::time_point noticeSince_;
 };
 
 }  // namespace polarview

@@ -6,7 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app_test_support.h"
-#include "app/export_command.h"
+#include "pipeline/patch_export.h"
 #include "app/viewer_app.h"
 #include "pipeline/vertex_edit.h"
 #include "render/patch_renderer.h"
@@ -383,8 +383,8 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   CAPTURE(state.notice);
   CHECK(state.edit.error.empty());
   const RefineOptions options = refineOptionsFor(SchemeChoice::C2PS, 2);
-  const PatchSet set = cli::exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
-  cli::writeBezierViewFile((dir / "cli.bv").string(), set, app->model().name);
+  const PatchSet set = exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
+  writeBezierViewFile((dir / "cli.bv").string(), set, app->model().name);
   auto bytes = [](const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::ostringstream s;

@@ -1,4 +1,5 @@
-// `polarview export`: the limit surface as Bezier patches in BezierView's .bv format
+// The limit surface as Bezier patches in BezierView's .bv format, as `polarview export` and the
+// viewer's Export .bv write it
 // (core/spline/bezierview_export.h says what is written and how exact it is).
 #pragma once
 
@@ -7,7 +8,7 @@
 #include "core/spline/bezierview_export.h"
 #include "core/spline/patch_extraction.h"
 
-namespace polarview::cli {
+namespace polarview {
 
 // The patches `export` writes: feature-adaptive refinement (AdaptiveRefinement, the path of view
 // and render), or with `uniform` every face refined to options.levels (Refinement); both give the
@@ -19,4 +20,4 @@ PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, cons
 // Writes `set` to `path` atomically (nothing is left on any error) and says what was written.
 BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source);
 
-}  // namespace polarview::cli
+}  // namespace polarview

@@ -1,7 +1,7 @@
 // `polarview export`'s two halves: the patches (feature-adaptive or uniform) and the atomic .bv
 // file (core/spline/bezierview_export.h says what is written and how exact it is). The command
 // itself (options, budget, summary) is runExport in cli_commands.cpp.
-#include "app/export_command.h"
+#include "pipeline/patch_export.h"
 
 #include <ostream>
 #include <streambuf>
@@ -11,7 +11,7 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
 
-namespace polarview::cli {
+namespace polarview {
 
 namespace {
 
@@ -69,4 +69,4 @@ BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set
   return stats;
 }
 
-}  // namespace polarview::cli
+}  // namespace polarview

@@ -1,0 +1,207 @@
+// The window's GPU copy of the session's surfaces (gpu_mirror.h).
+#include "app/gpu_mirror.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "render/gl_context.h"
+#include "render/shader_library.h"
+
+namespace polarview {
+
+glm::dvec3 windowOf(const glm::dvec3& world, const glm::dvec3& eye, const glm::dmat4& rotation, const glm::dmat4& proj,
+                    const glm::dvec4& viewport) {
+  const glm::dvec4 clip = proj * rotation * glm::dvec4(world - eye, 1.0);
+  const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+  return {viewport.x + (ndc.x + 1.0) * 0.5 * viewport.z, viewport.y + (ndc.y + 1.0) * 0.5 * viewport.w, (ndc.z + 1.0) * 0.5};
+}
+
+glm::dvec3 worldOf(const glm::dvec3& window, const glm::dvec3& eye, const glm::dmat4& rotation, const glm::dmat4& proj,
+                   const glm::dvec4& viewport) {
+  const glm::dvec4 ndc(2.0 * (window.x - viewport.x) / viewport.z - 1.0, 2.0 * (window.y - viewport.y) / viewport.w - 1.0,
+                       2.0 * window.z - 1.0, 1.0);
+  const glm::dvec4 fromEye = glm::inverse(proj * rotation) * ndc;
+  return eye + glm::dvec3(fromEye) / fromEye.w;
+}
+
+glm::dmat4 rotationOf(const glm::mat4& view) { return glm::dmat4(glm::dmat3(glm::dmat4(view))); }
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Appends the poles the surface does not hide to `out`: each is projected into `view`, and kept when
+// the depth buffer there (the surface just drawn) is not nearer the eye than the pole by more than
+// `tolerance` (world units). A few poles per view, so one 1-pixel read each.
+void visiblePoles(const std::vector<Point>& poles, const ViewParams& view, const glm::dvec3& eye, double tolerance,
+                  float pixelScale, int framebufferHeight, std::vector<PoleMarker>* out) {
+  constexpr size_t kMaxMarkers = 64;
+  const glm::dvec4 viewport(view.viewport);
+  const glm::dmat4 rotation = rotationOf(view.view), proj(view.proj);
+  for (size_t i = 0; i < poles.size() && i < kMaxMarkers; ++i) {
+    const glm::dvec3 window = windowOf(poles[i], eye, rotation, proj, viewport);
+    int px = int(std::floor(window.x)), py = int(std::floor(window.y));
+    if (!(window.z > 0.0 && window.z < 1.0) || px < view.viewport.x || py < view.viewport.y ||
+        px >= view.viewport.x + view.viewport.z || py >= view.viewport.y + view.viewport.w) {
+      continue;
+    }
+    const float depth = readDepthAt(px, py);
+    if (depth < 1.0f) {
+      const glm::dvec3 surface = worldOf({px + 0.5, py + 0.5, depth}, eye, rotation, proj, viewport);
+      if (glm::length(surface - eye) < glm::length(poles[i] - eye) - tolerance) continue;  // hidden
+    }
+    out->push_back({float(window.x) / pixelScale, (float(framebufferHeight) - float(window.y)) / pixelScale});
+  }
+}
+
+}  // namespace
+
+GpuMirror::GpuMirror(std::shared_ptr<ShaderLibrary> shaders, LevelOfDetail levelOfDetail)
+    : shaders_(std::move(shaders)), levelOfDetail_(levelOfDetail) {
+  for (GpuView& view : views_) view.shown.renderer = makeRenderer();
+}
+
+GpuMirror::~GpuMirror() = default;
+
+std::unique_ptr<PatchRenderer> GpuMirror::makeRenderer() const {
+  auto renderer = std::make_unique<PatchRenderer>();
+  std::string log;
+  if (!renderer->init(&log, shaders_)) throw std::runtime_error("shaders: " + log);  // compiled once already
+  return renderer;
+}
+
+GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, const ViewerState& state) {
+  GpuSlot& slot = views_[size_t(v)].shown;
+  // A level step on the same hierarchy keeps the patches both levels share on the GPU.
+  const auto start = std::chrono::steady_clock::now();
+  const int zoom = surface.poles.empty() ? -1 : state.poleInspector.zoomRing;
+  if (zoom >= 0) {
+    // Pole zoom: the rings of the inspected pole, scaled in double (a new upload: no stable prefix).
+    const int pole = std::clamp(state.poleInspector.pole, 0, int(surface.poles.size()) - 1);
+    slot.renderer->setPatches(zoomAboutPole(surface.patches, pole, zoom, 3, surface.poles[size_t(pole)]));
+  } else {
+    slot.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
+  }
+  slot.zoom = zoom;
+  return {millisecondsSince(start), slot.renderer->lastReusedPatches()};
+}
+
+double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state) {
+  GpuView& gpu = views_[size_t(v)];
+  const std::shared_ptr<const BuiltSurface>& shown = surfaces.shown(v);
+  const std::shared_ptr<const BuiltSurface>& parked = surfaces.parked(v);
+  // Each renderer keeps what it draws: a scheme toggle back swaps them (nothing uploaded).
+  const auto swapStart = std::chrono::steady_clock::now();
+  const bool swapped = shown && gpu.parked.surface == shown;
+  if (swapped) std::swap(gpu.shown, gpu.parked);
+  if (std::optional<GpuReservation> room = surfaces.takeReservation(v)) {
+    if (!gpu.shown.renderer) gpu.shown.renderer = makeRenderer();
+    gpu.shown.renderer->reserveFor(room->regularPatches, room->capPatches);
+  }
+  if (gpu.parked.surface != parked) {
+    if (parked && gpu.shown.surface == parked) {
+      // The shown surface was parked: it keeps its renderer, the new one gets another.
+      gpu.parked = std::move(gpu.shown);
+      gpu.shown = GpuSlot{};
+    } else {
+      gpu.parked = GpuSlot{};  // its GPU buffers go
+    }
+  }
+  if (!gpu.shown.renderer) gpu.shown.renderer = makeRenderer();
+  if (swapped) {
+    gpu.uploadMs = millisecondsSince(swapStart);
+    gpu.keptPatches = shown->patches.size();
+  }
+  const int zoom = !shown || shown->poles.empty() ? -1 : state.poleInspector.zoomRing;
+  if (!shown || (gpu.shown.surface == shown && gpu.shown.zoom == zoom)) return 0.0;
+  const UploadCost cost = upload(v, *shown, state);
+  gpu.uploadMs = cost.milliseconds;  // the Stats panel's: a level-of-detail switch does not count
+  gpu.keptPatches = surfaces.refreshed(v) ? 0 : cost.keptPatches;  // moved points: no patch stayed
+  gpu.shown.surface = shown;
+  gpu.shown.drawn.reset();  // the level of detail is picked again for the new surface
+  gpu.shown.renderer->setControlMesh(shown->controlMesh, shown->netSegments);
+  gpu.shown.renderer->setPoleMarkers(shown->poles);
+  return cost.milliseconds;
+}
+
+void GpuMirror::report(int v, ViewStatus& status) const {
+  const GpuView& gpu = views_[size_t(v)];
+  status.uploadMs = gpu.uploadMs;
+  status.keptPatches = int(gpu.keptPatches);
+  status.zoomRing = gpu.shown.zoom;
+  if (const BuiltSurface* shown = gpu.shown.surface.get()) {
+    status.drawnLevel = gpu.shown.drawn ? gpu.shown.drawn->patchLevel : shown->patchLevel;
+    status.drawnPatches = int(gpu.shown.drawn ? gpu.shown.drawn->patches.size() : shown->patches.size());
+  }
+}
+
+void GpuMirror::updateDrawnLevel(int v, double pixelsHigh, ViewerState& state, const Model& model) {
+  GpuSlot& slot = views_[size_t(v)].shown;
+  const BuiltSurface* shown = slot.surface.get();
+  if (!shown || slot.zoom >= 0) return;
+  // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
+  int wanted = shown->patchLevel;
+  if (levelOfDetail_.enabled && !state.edit.dragging && shown->key.points == model.points)
+    wanted = levelToDraw(shown->detail, shown->patchLevel, state.camera(v), pixelsHigh, levelOfDetail_.pixels);
+  const int drawnNow = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
+  if (wanted != drawnNow) {
+    std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model, wanted) : nullptr;
+    if (wanted >= shown->patchLevel || drawn) {  // else not available now (an edit is applied): keep
+      upload(v, drawn ? *drawn : *shown, state);
+      slot.drawn = std::move(drawn);
+    }
+  }
+  ViewStatus& status = state.status[size_t(v)];
+  status.drawnLevel = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
+  status.drawnPatches = int(slot.drawn ? slot.drawn->patches.size() : shown->patches.size());
+}
+
+std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight,
+                                        ViewerState& state, const Document& document) {
+  const glm::dvec3 centre = 0.5 * (document.modelMin() + document.modelMax());
+  const double radius = 0.5 * glm::length(document.modelMax() - document.modelMin());
+  ShadingParams shading = state.shading;
+  shading.range = state.colourRange();
+  shading.rangeBelow = state.colourRangeBelow();
+  std::vector<PoleMarker> markers;
+  for (size_t v = 0; v < rects.size(); ++v) {
+    const GpuSlot& gpu = views_[v].shown;
+    if (!gpu.surface) continue;
+    // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
+    shading.mode = state.viewShade(int(v));
+    // A pole zoom by s = 2^m scales K by 1 / s^2 and H by 1 / s: the range alike, so colours keep values.
+    shading.range = state.colourRange();
+    shading.rangeBelow = state.colourRangeBelow();
+    if (gpu.zoom >= 0) {
+      const float s = std::ldexp(1.0f, gpu.zoom);
+      const float scale = shading.mode == ShadingParams::Mode::Gaussian ? 1.0f / (s * s) : 1.0f / s;
+      shading.range *= scale;
+      shading.rangeBelow *= scale;
+    }
+    // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read
+    // like a curvature feature right at the pole).
+    DisplayFlags display = state.viewDisplay(int(v));
+    const bool markPoles = display.poleMarkers;
+    display.poleMarkers = false;
+    const ScreenRect& r = rects[v];
+    const OrbitCamera& camera = state.camera(int(v));
+    updateDrawnLevel(int(v), double(r.h) * pixelScale, state, document.model());
+    ViewParams params;
+    params.viewport = glm::ivec4(int(r.x * pixelScale), framebufferHeight - int((r.y + r.h) * pixelScale),
+                                 int(r.w * pixelScale), int(r.h * pixelScale));
+    params.view = camera.viewMatrix();
+    params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
+    params.eye = camera.eye();  // double: the renderer draws relative to the eye
+    gpu.renderer->draw(params, shading, display);
+    if (markPoles) {
+      visiblePoles(gpu.surface->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
+    }
+  }
+  return markers;
+}
+
+}  // namespace polarview

@@ -1,0 +1,107 @@
+// The viewer without its window: the state the panels edit, the document, the surface cache and
+// the analysis panels' data (pole inspector, spectrum, colour statistics), and what each frame
+// does with them apart from drawing. The window application (app/viewer_app.h) owns one Session,
+// runs ImGui and mirrors the surfaces on the GPU. No GL, ImGui or GLFW: tests drive a Session
+// without a display (tests/session/).
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "session/background_job.h"
+#include "session/command_table.h"
+#include "session/document.h"
+#include "session/surface_cache.h"
+#include "session/viewer_state.h"
+
+namespace polarview {
+
+// What only the window can do for a command.
+class WindowServices {
+ public:
+  virtual ~WindowServices() = default;
+  virtual void frameModel() = 0;  // fits the model into the views as laid out now
+  virtual void setClipboard(const std::string& text) = 0;
+  virtual std::string clipboard() = 0;
+  virtual void takeScreenshot() = 0;
+};
+
+struct SessionOptions {
+  size_t faceBudget = kDefaultFaceBudget;
+  bool prepareNextLevel = true;  // make the active view's next level ahead while idle
+  bool persistRecent = true;     // keep recent files in ~/.config/polarview/recent.txt
+};
+
+class Session : public CommandHost {
+ public:
+  Session(const SessionOptions& options, WindowServices& window);
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  ViewerState& state() { return state_; }
+  const ViewerState& state() const { return state_; }
+  Document& document() { return document_; }
+  const Document& document() const { return document_; }
+  SurfaceCache& surfaces() { return surfaces_; }
+  const SurfaceCache& surfaces() const { return surfaces_; }
+  const Model& model() const { return document_.model(); }
+
+  // Runs the commands queued this frame (panels, keys, `view --do`) through the command table.
+  void runCommands() { viewerCommands().runQueued(state_, *this); }
+  // Finished loads and exports, then the surfaces (SurfaceCache::update): this frame's cost of
+  // positions-only updates when points moved (the window adds its upload and records it).
+  std::optional<EditCost> updateModelAndSurfaces();
+  // The panels' derived data: pole inspector, spectrum, colour range and histogram, edit state.
+  void updatePanels();
+  // True while a file loads, an export runs, a refinement runs or a view waits for one.
+  bool busy() const;
+  // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
+  void expireNotice();
+  // The automatic colour range and histogram of what the views show now.
+  void updateColourRange();
+
+  // [CommandHost]
+  void openFile(const std::string& path) override { document_.requestLoad(path); }
+  void reloadModel() override { document_.reloadModel(); }
+  void loadDefaultModel() override { document_.loadDefaultModel(); }
+  void undoModelReplacement() override { document_.undoModelReplacement(); }
+  void undo() override { document_.undo(); }
+  void redo() override { document_.redo(); }
+  void resetEdits() override { document_.resetEdits(); }
+  void saveEditedMesh() override { document_.saveEditedMesh(); }
+  void exportSurface(bool bezierView) override { document_.startExport(bezierView, activeSurface()); }
+  void openPlaylistEntry(int index) override { document_.openPlaylistEntry(index); }
+  void convertToPolar(bool pentagons) override { document_.convertToPolar(pentagons); }
+  void showEigenvector() override { document_.showEigenvector(); }
+  void frameModel() override { window_.frameModel(); }
+  void setClipboard(const std::string& text) override { window_.setClipboard(text); }
+  std::string clipboard() override { return window_.clipboard(); }
+  void takeScreenshot() override { window_.takeScreenshot(); }
+
+ private:
+  const BuiltSurface* activeSurface() const;
+  void collectColourSamples();
+  void updateSpectrum();
+  void updatePoleInspector();
+
+  WindowServices& window_;
+  ViewerState state_;
+  Document document_;
+  SurfaceCache surfaces_;
+  // Colour statistics: the samples of the shown views by area, and what they were taken of.
+  uint64_t colourRangeSignature_ = 0;
+  std::vector<double> colourValues_, colourWeights_;
+  std::pair<double, double> histogramRange_{0.0, 0.0};
+  // The pole inspector's job: what it computes, what the panel shows, the model its pole list is of.
+  BackgroundJob<std::vector<PoleInspection>> inspectJob_;
+  std::string inspectRunning_, inspectShown_;
+  uint64_t inspectPolesOf_ = 0;
+  static constexpr std::chrono::seconds kNoticeLifetime{8};
+  std::string shownNotice_;
+  std::chrono::steady_clock::time_point noticeSince_;
+};
+
+}  // namespace polarview
