@@ -635,7 +635,7 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain, madeAhead, levelUpMadeAhead;
   std::string viewerStepRefusal;  // why the viewer's step is not timed (the viewer would refuse it)
   const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
-  const Model model{std::make_shared<const PolyMesh>(mesh), o.input, 1, 0, refinesRadially(mesh, Scheme::RTS)};
+  const Model model = makeModel(std::make_shared<const PolyMesh>(mesh), o.input, 1);
   const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
   size_t patchCount = 0, totalFaces = 0, finestFaces = 0, polesRefined = 0;
   std::vector<size_t> levelFaces;

@@ -17,6 +17,7 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
+#include "pipeline/model_analysis.h"
 
 namespace polarview {
 namespace {
@@ -46,9 +47,9 @@ std::vector<Point> polePositions(const std::vector<Patch>& patches, const Refine
 
 // Polar configurations the scheme refines, and those Catmull-Clark refines instead (RTS and BPS
 // below valence 5), with the reason, so the view's title can say so.
-void countPoleFallbacks(BuiltSurface& surface, const RefinedLevel& base, Scheme scheme) {
+void countPoleFallbacks(BuiltSurface& surface, const std::vector<PolarConfig>& configs, Scheme scheme) {
   if (scheme == Scheme::CatmullClark) return;
-  for (const PolarConfig& config : findPolarConfigs(base.mesh, base.topology)) {
+  for (const PolarConfig& config : configs) {
     if (config.rejection == PolarRejection::SharpFeature || config.rejection == PolarRejection::Hole) {  // a pole, but tags keep the scheme off it
       ++surface.polesByCatmullClark;
       surface.fallbackReason = config.reason;
@@ -195,39 +196,28 @@ LoadedModel readModelFile(const std::string& path) {
   return loaded;
 }
 
-namespace {
-// Levels the estimate refines (estimateAdaptiveFaceCounts' `measured`) for the level limit of the
-// viewer's slider; a check of one level L measures min(L, this) only.
-constexpr int kMeasuredLevels = 7;
-
-// The faces of the feature-adaptive refinement of `scheme` at each level 0..kMaxLevel on the model
-// (estimateAdaptiveFaceCounts), measured once per model, scheme and budget to at least `measured`
-// levels (or to the first level over the budget), deepened when a later call needs more: the level
-// limit is asked for every frame, and a command asking for level 1 of a 10^5-valence cap does not
-// make levels 2..7 (under the command line's budget that took 17 s and 8 GB).
-size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget, int measured = kMeasuredLevels) {
-  struct Estimate {
-    std::vector<size_t> totals;
-    int measured = -1;
-    bool over = false;  // a measured level was over the budget: deeper measuring changes nothing
-  };
-  static std::mutex mutex;
-  static std::map<std::tuple<uint64_t, int, size_t>, Estimate> cache;
-  const std::lock_guard<std::mutex> lock(mutex);
-  Estimate& estimate = cache[{model.generation, int(scheme), faceBudget}];
-  measured = std::clamp(measured, 1, kMeasuredLevels);
-  if (estimate.measured < measured && !estimate.over) {
-    try {
-      // Bounded by the budget: a level over it is not made (it reads budget + 1), however large the input.
-      estimate.totals = estimateAdaptiveFaceCounts(*model.mesh, refineOptionsFor(scheme, kMaxLevel), faceBudget, measured);
-      estimate.over = std::find(estimate.totals.begin(), estimate.totals.end(), faceBudget + 1) != estimate.totals.end();
-    } catch (const std::exception&) {
-      estimate.totals.assign(size_t(kMaxLevel) + 1, 0);  // not refinable: building says why
-      estimate.over = true;
-    }
-    estimate.measured = measured;
+Model makeModel(std::shared_ptr<const PolyMesh> mesh, std::string name, uint64_t generation) {
+  Model model;
+  if (mesh) {
+    model.analysis = std::make_shared<const ModelAnalysis>(*mesh, name);
+    model.radialForRtsBps = model.analysis->radialForRtsBps();
   }
-  return estimate.totals[size_t(std::clamp(level, 0, kMaxLevel))];
+  model.mesh = std::move(mesh);
+  model.name = std::move(name);
+  model.generation = generation;
+  return model;
+}
+
+namespace {
+// The model's analysis: a Model made without makeModel has none (an error in the caller).
+const ModelAnalysis& analysisOf(const Model& model) {
+  if (!model.analysis) throw std::invalid_argument(model.name + ": a Model without its analysis (make it with makeModel)");
+  return *model.analysis;
+}
+
+// The model's face estimate (ModelAnalysis::estimatedFaces, measured to `measured` levels).
+size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget, int measured = kMeasuredLevels) {
+  return analysisOf(model).estimatedFaces(*model.mesh, scheme, level, faceBudget, measured);
 }
 
 // The deepest level whose estimate (measured to `measured` levels) fits the budget.
@@ -242,32 +232,10 @@ size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level, s
   return estimatedFaces(model, scheme, level, faceBudget);
 }
 
-namespace {
-// Whether `scheme` refines some polar configuration of the model (once per model and scheme).
-bool refinesPoles(const Model& model, Scheme scheme) {
-  static std::mutex mutex;
-  static std::map<std::pair<uint64_t, int>, bool> cache;
-  const std::lock_guard<std::mutex> lock(mutex);
-  const auto [at, added] = cache.try_emplace({model.generation, int(scheme)}, false);
-  if (added) {
-    try {
-      ManifoldSplit split;
-      MeshTopology topology;
-      const PolyMesh& mesh = refinableMesh(*model.mesh, split, topology, model.name);
-      for (const PolarConfig& config : findPolarConfigs(mesh, topology))
-        at->second = at->second || schemeRefinesPole(scheme, config);
-    } catch (const std::exception&) {
-      // not refinable: building says why
-    }
-  }
-  return at->second;
-}
-}  // namespace
-
 int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
   const Scheme refined = refineOptionsFor(scheme, level).scheme;
   const SchemeTraits& traits = schemeTraits(refined);
-  if (!traits.polar() || traits.curvatureContinuous || level >= kNonC2CapLevel || !model.mesh || !refinesPoles(model, refined))
+  if (!traits.polar() || traits.curvatureContinuous || level >= kNonC2CapLevel || !model.mesh || !analysisOf(model).refinesPoles(refined))
     return level;
   return std::max(level, std::min(kNonC2CapLevel, deepestLevel(model, scheme, faceBudget)));
 }
@@ -347,7 +315,7 @@ std::shared_ptr<BuiltSurface> assembleSurface(const Model& model, const SurfaceK
   if (hierarchy.netSegments.empty()) hierarchy.netSegments = controlNetSegments(surface->controlMesh);
   surface->netSegments = hierarchy.netSegments;
   surface->poles = polePositions(surface->patches, refinement.level(level));
-  countPoleFallbacks(*surface, refinement.level(0), refinement.options().scheme);
+  countPoleFallbacks(*surface, analysisOf(model).polarConfigs(), refinement.options().scheme);
   surface->detail = detailSizes(surface->patches);
   surface->patchesMs = millisecondsSince(patchesStart);
   if (!sample) return surface;
@@ -373,8 +341,14 @@ std::shared_ptr<const BuiltSurface> buildSurface(const Model& model, const Surfa
   const std::string refusal = levelRefusal(model, key.scheme, key.level, faceBudget);
   if (!refusal.empty()) throw InputError(model.name, 0, refusal);
   if (!reuse || reuse->model != model.generation || reuse->scheme != key.scheme) {
-    reuse = std::make_shared<SurfaceHierarchy>(std::make_unique<AdaptiveRefinement>(
-        *model.mesh, refineOptionsFor(key.scheme, key.level), model.name, 2 * faceBudget));
+    // From the model's tables and poles; a mesh the analysis could not refine goes to the refiner
+    // for its InputError (what the view shows).
+    const ModelAnalysis& analysis = analysisOf(model);
+    const RefineOptions options = refineOptionsFor(key.scheme, key.level);
+    reuse = std::make_shared<SurfaceHierarchy>(
+        analysis.error().empty()
+            ? std::make_unique<AdaptiveRefinement>(*model.mesh, analysis.preparedBase(*model.mesh), options, model.name, 2 * faceBudget)
+            : std::make_unique<AdaptiveRefinement>(*model.mesh, options, model.name, 2 * faceBudget));
     reuse->model = model.generation;
     reuse->scheme = key.scheme;
     reuse->points = model.points;

@@ -26,6 +26,7 @@
 namespace polarview {
 
 class AdaptiveRefinement;
+class ModelAnalysis;
 
 // One model's feature-adaptive refinement with one scheme, kept while a view steps its level:
 // deeper levels are added to it (AdaptiveRefinement::extend), shallower ones assembled from its
@@ -156,15 +157,23 @@ struct BuiltSurface {
   std::string fallbackReason;
 };
 
-// The model every view refines: the mesh and where it came from. An edit replaces `mesh` by a copy
-// with new points (the faces stay) and bumps `points`; a load bumps `generation`.
+// The model every view refines: the mesh, where it came from and what its faces determine. An edit
+// replaces `mesh` by a copy with new points (the faces stay) and bumps `points`, keeping the
+// analysis; a load makes a new Model (makeModel) and bumps `generation`.
 struct Model {
   std::shared_ptr<const PolyMesh> mesh;
   std::string name;        // file path or "default: ..."
   uint64_t generation = 0;
   uint64_t points = 0;     // revision of mesh->points within this generation
   bool radialForRtsBps = false;  // RTS/BPS refine the whole mesh radially (faces x2 a level, not x4)
+  // Tables, poles and face estimates, made once for the faces and shared by copies and edits of
+  // this model (a view of a Model without one throws std::invalid_argument).
+  std::shared_ptr<const ModelAnalysis> analysis;
 };
+
+// The Model of a mesh (read and checked: checkModelMesh) with its analysis: the one way to make a
+// Model views can refine. [O(corners log corners)]
+Model makeModel(std::shared_ptr<const PolyMesh> mesh, std::string name, uint64_t generation);
 
 // A model file read and checked off the UI thread: the mesh, or the error of the first problem.
 struct LoadedModel {

@@ -167,8 +167,7 @@ void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::stri
     previousPath_ = state_.file.loadedPath;
     state_.file.previousModelName = model_.name;
   }
-  model_ = Model{std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1};
-  model_.radialForRtsBps = refinesRadially(*model_.mesh, Scheme::RTS);
+  model_ = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1);
   // Editing starts over: the loaded points are what Reset returns to.
   editor_.start(model_.mesh->points);
   movedVertices_ = 0;

@@ -25,7 +25,7 @@ namespace {
 // The viewer's default model (assets/default.obj) as a Model of generation 1.
 Model defaultModel() {
   const std::string path = std::string(POLARVIEW_ASSET_DIR) + "/default.obj";
-  return Model{std::make_shared<const PolyMesh>(loadObj(path)), path, 1};
+  return makeModel(std::make_shared<const PolyMesh>(loadObj(path)), path, 1);
 }
 
 // Weighted share of values above `bound`, below `-bound`, at or above it, at or below `-bound`.
@@ -104,7 +104,7 @@ TEST_CASE("automatic colour range: a tight corner on a few percent of the area d
 }
 
 TEST_CASE("curvature samples for the range come from every patch except the end caps at extraordinary vertices") {
-  Model model{std::make_shared<const PolyMesh>(shapes::mushroom(12)), "mushroom", 1};
+  Model model = makeModel(std::make_shared<const PolyMesh>(shapes::mushroom(12)), "mushroom", 1);
   for (SchemeChoice scheme : {SchemeChoice::C2PS, SchemeChoice::CatmullClark}) {
     for (int level = 1; level <= 3; ++level) {
       auto surface = buildSurface(model, SurfaceKey{1, scheme, level}, kDefaultFaceBudget);
@@ -193,7 +193,7 @@ TEST_CASE("viewer surface: a pole touched by a crease or corner tag is left to C
   CHECK_FALSE(configs[0].refinable);
   CHECK(configs[0].rejection == PolarRejection::SharpFeature);
   CHECK(configs[0].reason.find("at vertex 1") != std::string::npos);
-  const Model model{std::make_shared<const PolyMesh>(cap), "creased cap", 1};
+  const Model model = makeModel(std::make_shared<const PolyMesh>(cap), "creased cap", 1);
   const auto surface = buildSurface(model, SurfaceKey{1, SchemeChoice::C2PS, 2}, kDefaultFaceBudget);
   CHECK(surface->polesByScheme == 0);
   CHECK(surface->polesByCatmullClark == 1);
@@ -202,7 +202,7 @@ TEST_CASE("viewer surface: a pole touched by a crease or corner tag is left to C
   // Untagged, C2PS refines it.
   PolyMesh plain = cap;
   plain.tags = SubdivTags{};
-  const Model plainModel{std::make_shared<const PolyMesh>(plain), "cap", 2};
+  const Model plainModel = makeModel(std::make_shared<const PolyMesh>(plain), "cap", 2);
   CHECK(buildSurface(plainModel, SurfaceKey{2, SchemeChoice::C2PS, 2}, kDefaultFaceBudget)->polesByScheme == 1);
 }
 

@@ -12,7 +12,7 @@ using namespace polarview;
 namespace {
 
 Model testModel(uint64_t generation = 1) {
-  return Model{std::make_shared<const PolyMesh>(shapes::mushroom(6)), "mushroom", generation};
+  return makeModel(std::make_shared<const PolyMesh>(shapes::mushroom(6)), "mushroom", generation);
 }
 
 // Frames until every visible view shows what its settings ask for (or failed).
@@ -161,7 +161,7 @@ TEST_CASE("surface cache: a new model drops what was kept of the old one") {
   state.views[0].scheme = SchemeChoice::RTS;
   settle(cache, state, first);
   REQUIRE(cache.parked(0).get() != nullptr);
-  const Model second{std::make_shared<const PolyMesh>(shapes::mushroom(8)), "mushroom 8", 2};
+  const Model second = makeModel(std::make_shared<const PolyMesh>(shapes::mushroom(8)), "mushroom 8", 2);
   cache.modelChanged(state);
   settle(cache, state, second);
   CHECK(cache.parked(0).get() == nullptr);

@@ -684,18 +684,31 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const RefineOption
                                        size_t maxFaces)
     : options_(options), sourceName_(sourceName) {
   if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
-  const Scheme scheme = options.scheme;
   // Non-manifold input: refined as its manifold split with OpenSubdiv's sharpening (manifold_split.h).
   ManifoldSplit split;
   MeshTopology baseTopology;
   const PolyMesh& base = refinableMesh(input, split, baseTopology, sourceName);
+  const std::vector<PolarConfig> configs = findPolarConfigs(base, baseTopology);
+  start(input, base, std::move(baseTopology), std::move(split.sourceVertex), configs, maxFaces);
+}
+
+AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const PreparedBase& prepared, const RefineOptions& options,
+                                       const std::string& sourceName, size_t maxFaces)
+    : options_(options), sourceName_(sourceName) {
+  if (options.levels < 0) throw InputError(sourceName, 0, "negative subdivision level " + std::to_string(options.levels));
+  start(input, prepared.mesh, prepared.topology, prepared.sourceVertex, prepared.configs, maxFaces);
+}
+
+void AdaptiveRefinement::start(const PolyMesh& input, const PolyMesh& base, MeshTopology topology,
+                               std::vector<Index> sourceVertex, const std::vector<PolarConfig>& configs, size_t maxFaces) {
+  const Scheme scheme = options_.scheme;
   inputVertices_ = size_t(input.vertexCount());
-  sourceVertex_ = std::move(split.sourceVertex);
+  sourceVertex_ = std::move(sourceVertex);
   RefinedLevel level0;
   level0.mesh = base;
-  level0.topology = std::move(baseTopology);
-  for (PolarConfig& config : findPolarConfigs(base, level0.topology))
-    if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
+  level0.topology = std::move(topology);
+  for (const PolarConfig& config : configs)
+    if (schemeRefinesPole(scheme, config)) level0.poles.push_back(config);
   // Creases and corners: Catmull-Clark's rules wherever Catmull-Clark's connectivity refines (every
   // scheme but RTS/BPS's radial refinement of caps and globes; poles they touch are left to
   // Catmull-Clark by findPolarConfigs), as the uniform refiner.
@@ -712,8 +725,9 @@ AdaptiveRefinement::AdaptiveRefinement(const PolyMesh& input, const RefineOption
   totalFacesAt_.push_back(totalFaces_);
   levels_.push_back(std::move(level0));
   radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
+  const int levels = options_.levels;
   options_.levels = 0;
-  addLevels(options.levels, maxFaces);
+  addLevels(levels, maxFaces);
   updatePositions(input.points);
 }
 
@@ -971,10 +985,9 @@ void AdaptiveRefinement::computePoints(size_t firstStep) {
   }
 }
 
-std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, size_t maxFaces, int measured) {
-  RefineOptions first = options;
-  first.levels = 0;
-  AdaptiveRefinement refinement(base, first, "<estimate>", maxFaces);
+namespace {
+// estimateAdaptiveFaceCounts from its refinement of level 0.
+std::vector<size_t> measureFaceCounts(AdaptiveRefinement& refinement, const RefineOptions& options, size_t maxFaces, int measured) {
   // Measured level by level; a level over maxFaces is refused before it is made (so the estimate
   // never holds more than maxFaces faces), and it and every deeper level are reported as over.
   bool over = false;
@@ -1017,6 +1030,22 @@ std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const Refin
     totals.push_back(size_t(sum));
   }
   return totals;
+}
+}  // namespace
+
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, size_t maxFaces, int measured) {
+  RefineOptions first = options;
+  first.levels = 0;
+  AdaptiveRefinement refinement(base, first, "<estimate>", maxFaces);
+  return measureFaceCounts(refinement, options, maxFaces, measured);
+}
+
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& input, const PreparedBase& prepared, const RefineOptions& options,
+                                               size_t maxFaces, int measured) {
+  RefineOptions first = options;
+  first.levels = 0;
+  AdaptiveRefinement refinement(input, prepared, first, "<estimate>", maxFaces);
+  return measureFaceCounts(refinement, options, maxFaces, measured);
 }
 
 }  // namespace polarview

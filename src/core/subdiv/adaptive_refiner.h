@@ -51,6 +51,10 @@ class AdaptiveRefinement {
   // mesh; updatePositions still takes the input's points.
   AdaptiveRefinement(const PolyMesh& base, const RefineOptions& options, const std::string& sourceName = "<mesh>",
                      size_t maxFaces = size_t(1) << 26);
+  // The same from `input`'s prepared base (its tables and polar configurations made before, by
+  // a model's analysis): copied, not built again.
+  AdaptiveRefinement(const PolyMesh& input, const PreparedBase& prepared, const RefineOptions& options,
+                     const std::string& sourceName = "<mesh>", size_t maxFaces = size_t(1) << 26);
   ~AdaptiveRefinement();
   AdaptiveRefinement(AdaptiveRefinement&&) noexcept;
   AdaptiveRefinement& operator=(AdaptiveRefinement&&) noexcept;
@@ -85,6 +89,10 @@ class AdaptiveRefinement {
   // Per level: what a further step starts from (whether the poles' regions refine radially apart,
   // which vertices see all their uniform faces, RTS/BPS's own radial grids of mixed meshes).
   struct LevelState;
+  // Level 0 from the refinable mesh, its tables and polar configurations; then `options_.levels`
+  // levels and the input's points.
+  void start(const PolyMesh& input, const PolyMesh& base, MeshTopology topology, std::vector<Index> sourceVertex,
+             const std::vector<PolarConfig>& configs, size_t maxFaces);
   void addLevels(int count, size_t maxFaces);
   void appendTail(const RefinedLevel& level, const std::vector<uint8_t>& polar, int m, Step& step, RefinedLevel& child,
                   std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) const;
@@ -112,5 +120,8 @@ class AdaptiveRefinement {
 // maxFaces + 1 ("more than the budget"; sums of estimates stay over it), so the estimate itself
 // never holds more than maxFaces faces. [O(faces of the measured levels, at most maxFaces)]
 std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& base, const RefineOptions& options, size_t maxFaces, int measured = 7);
+// The same from `input`'s prepared base (AdaptiveRefinement's second constructor).
+std::vector<size_t> estimateAdaptiveFaceCounts(const PolyMesh& input, const PreparedBase& prepared, const RefineOptions& options,
+                                               size_t maxFaces, int measured = 7);
 
 }  // namespace polarview

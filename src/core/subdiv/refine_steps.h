@@ -60,9 +60,14 @@ struct RadialRegion {
   }
 };
 
-// Regions covering the whole level (each pole of level.poles that ends at a boundary or at
-// another pole), or empty when some face lies outside every polar region. [O(mesh)]
-std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level);
+// Regions covering the whole mesh (each of `poles` that ends at a boundary or at another pole),
+// or empty when some face lies outside every polar region. [O(mesh)]
+std::vector<RadialRegion> findRadialRegions(const PolyMesh& mesh, const MeshTopology& topology,
+                                            const std::vector<PolarConfig>& poles);
+// The same for a level and the poles its scheme treats. [O(mesh)]
+inline std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level) {
+  return findRadialRegions(level.mesh, level.topology, level.poles);
+}
 // The connectivity of the next radial level: every region keeps n and gets 2 links + 1 (closed) or
 // 2 links (boundary) rings; faces laid out row by row, parents at row / 2. [O(output)]
 RefinedLevel refineRadialTopology(const std::vector<RadialRegion>& parentRegions, std::vector<RadialRegion>& childRegions,

@@ -179,10 +179,10 @@ void completeGenericRings(const RefinedLevel& parent, bool splitPoleQuads, const
 // [SECTION] radial levels: RTS/BPS on meshes made only of polar regions
 
 // Regions covering the whole mesh, or empty when some face lies outside every polar region.
-std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level) {
+std::vector<RadialRegion> findRadialRegions(const PolyMesh& mesh, const MeshTopology& topology, const std::vector<PolarConfig>& poles) {
   std::vector<RadialRegion> regions;
   size_t faces = 0;
-  for (const PolarConfig& config : level.poles) {
+  for (const PolarConfig& config : poles) {
     if (config.outer == PolarConfig::Outer::Mesh || config.regularLinks < config.linkCount - 1) return {};
     if (config.outer == PolarConfig::Outer::Pole && config.oppositePole < config.pole) continue;  // counted from the other end
     RadialRegion region;
@@ -194,16 +194,16 @@ std::vector<RadialRegion> findRadialRegions(const RefinedLevel& level) {
     if (region.closed) region.vertexIds.push_back(config.oppositePole);
     const int n = region.n;
     auto q = [&](int r, int j) { return r == region.links + 1 ? region.vertexIds.back() : region.vertexIds[1 + size_t(r - 1) * n + ((j % n) + n) % n]; };
-    for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(1, j), q(1, j + 1), config.pole));
+    for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(mesh, topology, q(1, j), q(1, j + 1), config.pole));
     for (int r = 1; r < region.links; ++r)
-      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(r, j), q(r, j + 1), q(r + 1, j)));
+      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(mesh, topology, q(r, j), q(r, j + 1), q(r + 1, j)));
     if (region.closed)
-      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(level.mesh, level.topology, q(region.links, j), q(region.links, j + 1), config.oppositePole));
+      for (int j = 0; j < n; ++j) region.faceIds.push_back(faceWith(mesh, topology, q(region.links, j), q(region.links, j + 1), config.oppositePole));
     if (std::find(region.faceIds.begin(), region.faceIds.end(), Index(-1)) != region.faceIds.end()) return {};
     faces += region.faceIds.size();
     regions.push_back(std::move(region));
   }
-  if (regions.empty() || faces != size_t(level.mesh.faceCount())) return {};
+  if (regions.empty() || faces != size_t(mesh.faceCount())) return {};
   return regions;
 }
 
@@ -359,16 +359,21 @@ struct Refinement::Plan {
 
 bool refinesRadially(const PolyMesh& base, Scheme scheme) {
   if (!schemeTraits(scheme).keepsValence) return false;
-  RefinedLevel level0;
-  level0.mesh = base;
+  MeshTopology topology;
   try {
-    level0.topology = buildTopology(base, "<mesh>");
+    topology = buildTopology(base, "<mesh>");
   } catch (const std::exception&) {
     return false;  // not refinable at all; the refiner says why
   }
-  for (PolarConfig& config : findPolarConfigs(base, level0.topology))
-    if (schemeRefinesPole(scheme, config)) level0.poles.push_back(std::move(config));
-  return !findRadialRegions(level0).empty();
+  return refinesRadially(PreparedBase{base, {}, topology, findPolarConfigs(base, topology)}, scheme);
+}
+
+bool refinesRadially(const PreparedBase& base, Scheme scheme) {
+  if (!schemeTraits(scheme).keepsValence) return false;
+  std::vector<PolarConfig> poles;
+  for (const PolarConfig& config : base.configs)
+    if (schemeRefinesPole(scheme, config)) poles.push_back(config);
+  return !findRadialRegions(base.mesh, base.topology, poles).empty();
 }
 
 size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options, bool radial) {

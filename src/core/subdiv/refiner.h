@@ -30,6 +30,17 @@
 
 namespace polarview {
 
+// A base mesh prepared for refinement once, so that refinements and estimates of one model build
+// no tables again (a viewer's model keeps it: pipeline/model_analysis.h): the mesh they start from
+// (refinableMesh: the input or its manifold split; its points are not read), the split's vertex
+// map (empty when nothing was split), its tables, and every configuration findPolarConfigs finds.
+struct PreparedBase {
+  const PolyMesh& mesh;
+  const std::vector<Index>& sourceVertex;
+  const MeshTopology& topology;
+  const std::vector<PolarConfig>& configs;
+};
+
 struct RefinedLevel {
   PolyMesh mesh;                   // control mesh of this level
   MeshTopology topology;
@@ -112,5 +123,7 @@ size_t estimateFaceCount(const PolyMesh& base, const RefineOptions& options, boo
 // True when `scheme` (RTS or BPS) refines all of `base` radially: a cap or globe made of polar
 // configurations only (Refinement::radialOnly before refining). [O(mesh)]
 bool refinesRadially(const PolyMesh& base, Scheme scheme);
+// The same for a prepared base (a split one too: what the refiners refine radially). [O(mesh)]
+bool refinesRadially(const PreparedBase& base, Scheme scheme);
 
 }  // namespace polarview
