@@ -150,6 +150,13 @@ bool ViewerApp::init(std::string* error) {
     return false;
   }
   state_.glInfo = currentGlVersion();
+  for (const std::string& id : options_.scriptedCommands) {
+    if (!viewerCommands().find(id)) {
+      if (error) *error = "unknown viewer command '" + id + "' (polarview help keys lists them)";
+      return false;
+    }
+    queueCommand(state_, id);
+  }
   if (options_.persistRecent) document().loadRecent();
   return true;
 }

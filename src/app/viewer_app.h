@@ -64,6 +64,8 @@ struct ViewerOptions {
   // every view draws the level it shows (render --full-draw, comparisons).
   bool levelOfDetail = true;
   double levelOfDetailPixels = 3.0;
+  // Viewer commands (ids of session/command_table.h) run in the first frame, in order: `view --do`.
+  std::vector<std::string> scriptedCommands;
 };
 
 class ViewerApp : public WindowServices {
