@@ -48,7 +48,7 @@ float stripeMask(float s, float w) {
   return mix(mask, w, smoothstep(0.2, 0.45, aa));
 }
 
-// Beier & Chen highlight lines (SCHEMES.md section 7): intersect the normal line P + mu N with the
+// Beier & Chen highlight lines (docs/shading.md): intersect the normal line P + mu N with the
 // light plane, H = P + mu* N, s = ((H - A0) . E) / spacing.
 float highlightStripe(vec3 P, vec3 N) {
   float facing = dot(N, u_planeNormal);

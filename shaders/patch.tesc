@@ -48,7 +48,8 @@ vec2 toPixels(vec3 fromEye) {
 }
 
 // Edge curve with B-spline control points e0..e3 over its middle span -> projected length of its
-// Bezier polygon (SCHEMES.md section 6), summed symmetrically in e0..e3 <-> e3..e0.
+// Bezier polygon (docs/patches.md, B-spline basis and Bezier form), summed symmetrically in
+// e0..e3 <-> e3..e0.
 float projectedCurveLength(vec3 e0, vec3 e1, vec3 e2, vec3 e3) {
   vec2 b0 = toPixels(((e0 + e2) + 4.0 * e1) / 6.0);
   vec2 b1 = toPixels((2.0 * e1 + e2) / 3.0);

@@ -26,17 +26,18 @@ struct SurfacePoint {
   float mean;      // H, positive where the surface bends towards the normal
 };
 
-// Uniform cubic B-spline basis (SCHEMES.md section 7) for control points given as forward
-// differences (c0, D c0, D^2 c0, D^3 c0), with first and second derivatives: the B-spline basis
-// summed as c_i = sum_a binomial(i, a) D^a c0, i.e. sum over i >= a of binomial(i, a) B_i(t)
-// (1, t + 1, (3t^2 + 3t + 1) / 6, t^3 / 6). A k-th derivative uses differences of order >= k only.
+// Uniform cubic B-spline basis (docs/patches.md) for control points given as forward differences
+// (c0, D c0, D^2 c0, D^3 c0; docs/shading.md, Precision at depth), with first and second
+// derivatives: the B-spline basis summed as c_i = sum_a binomial(i, a) D^a c0, i.e. sum over
+// i >= a of binomial(i, a) B_i(t): (1, t + 1, (3t^2 + 3t + 1) / 6, t^3 / 6). A k-th derivative
+// uses differences of order >= k only.
 void bsplineBasis(float t, out vec4 b, out vec4 d, out vec4 dd) {
   b = vec4(1.0, t + 1.0, ((3.0 * t + 3.0) * t + 1.0) / 6.0, t * t * t / 6.0);
   d = vec4(0.0, 1.0, t + 0.5, 0.5 * t * t);
   dd = vec4(0.0, 0.0, 1.0, t);
 }
 
-// Normal, K and H from the first and second derivatives (SCHEMES.md section 7). EG - F^2 is
+// Normal, K and H from the first and second derivatives (docs/shading.md, Curvature). EG - F^2 is
 // computed as |du x dv|^2 (Lagrange's identity), which loses less precision in float.
 void computeCurvature(inout SurfacePoint s) {
   vec3 cross_ = cross(s.du, s.dv);

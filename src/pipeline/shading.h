@@ -22,7 +22,7 @@ struct ShadingParams {
   // (two slopes, as matplotlib's TwoSlopeNorm), so zero curvature keeps its colour.
   double rangeBelow = 0.0;
   float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
-  // Highlight lines (Beier & Chen 1994, SCHEMES.md section 7): parallel light lines with direction
+  // Highlight lines (Beier & Chen 1994, docs/shading.md): parallel light lines with direction
   // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
   // direction) placed 2 bounding radii from the model centre. Spacing is in units of the model's
   // bounding radius; width is the fraction of one spacing that is dark (0..1).

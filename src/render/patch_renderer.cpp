@@ -515,32 +515,99 @@ void writeBuffer(GLenum target, GLuint buffer, size_t first, size_t count, size_
   glBindBuffer(target, 0);
 }
 
+// Where a set of patches goes in the GPU's slots: the stable sequence from slot 0 (slots uploaded
+// under the same stamp stay valid, also past this set's part of it), then the rest of the set after
+// every valid slot.
+struct SlotLayout {
+  size_t stableCount = 0;   // the set's patches of the stable sequence
+  bool sameSequence = false;  // the sequence on the GPU is this one
+  size_t validBefore = 0;   // its slots on the GPU that stay valid
+  size_t reused = 0;        // the set's patches already on the GPU (not packed again)
+  size_t stableSlots = 0;   // slots of the stable sequence after this upload
+  size_t tailCount = 0;     // the set's other patches, after stableSlots
+  size_t totalSlots = 0;
+
+  size_t slotOf(size_t p) const { return p < stableCount ? p : stableSlots + (p - stableCount); }
+};
+
+SlotLayout layoutSlots(size_t patchCount, uint64_t stableStamp, size_t stableCount, uint64_t stampOnGpu,
+                       size_t stableOnGpu) {
+  SlotLayout layout;
+  layout.stableCount = stableStamp != 0 ? std::min(stableCount, patchCount) : 0;
+  layout.sameSequence = stableStamp != 0 && stableStamp == stampOnGpu;
+  layout.validBefore = layout.sameSequence ? stableOnGpu : 0;
+  layout.reused = std::min(layout.validBefore, layout.stableCount);
+  layout.stableSlots = std::max(layout.validBefore, layout.stableCount);
+  layout.tailCount = patchCount - layout.stableCount;
+  layout.totalSlots = layout.stableSlots + layout.tailCount;
+  return layout;
+}
+
+// Kinds and level jumps by slot (the jumps change with the level: all of them) into `kindRings`
+// (two ints a slot), and the transition unit length (addTransitionSides), in one pass over all
+// patches split over the cores: fixed chunks summed in order, so the sum does not depend on the
+// number of threads.
+double packKindsAndTransitions(const std::vector<Patch>& patches, const SlotLayout& layout,
+                               std::vector<int32_t>& kindRings) {
+  kindRings.assign(layout.totalSlots * 2, 0);
+  constexpr size_t kChunk = 4096;
+  const size_t chunks = (patches.size() + kChunk - 1) / kChunk;
+  std::vector<TransitionSides> chunkSides(chunks);
+  const unsigned scanParts = threadsFor(patches.size() * 4);
+  runParts(scanParts, [&](unsigned part) {
+    for (size_t c = part; c < chunks; c += scanParts)
+      for (size_t p = c * kChunk; p < std::min(patches.size(), (c + 1) * kChunk); ++p) {
+        const Patch& patch = patches[p];
+        const size_t slot = layout.slotOf(p);
+        kindRings[2 * slot] = packKindLevelJumps(patch);
+        kindRings[2 * slot + 1] = patch.ring;
+        addTransitionSides(patch, chunkSides[c]);
+      }
+  });
+  TransitionSides transitions;
+  for (const TransitionSides& part : chunkSides) transitions.add(part.level, part.sum, part.sides);
+  return transitions.sides > 0 ? transitions.sum / double(transitions.sides) : 0.0;
+}
+
+// Per patch from `first` on: its frame texels; per control point: the GPU form (see "Precision")
+// and the world point as hi + lo (for positions and tessellation levels), interleaved, relative to
+// `center` in GPU units. Each patch's frame and forward differences are computed in double, split
+// over the cores.
+void packGpuPatches(const std::vector<Patch>& patches, size_t first, const glm::dvec3& center, double perUnit,
+                    float* positions, float* frameTexels) {
+  const size_t added = patches.size() - first;
+  const unsigned parts = threadsFor(added * 8);
+  runParts(parts, [&](unsigned part) {
+    const size_t end = first + size_t(partBound(Index(added), parts, part + 1));
+    for (size_t p = first + size_t(partBound(Index(added), parts, part)); p < end; ++p) {
+      const Patch& patch = patches[p];
+      const GpuPatch gpu = gpuForm(patch);
+      const PatchFrameCpu& frame = gpu.frame;
+      float* texels = frameTexels + (p - first) * kFloatsPerFrame;
+      splitHiLo((frame.origin - center) * perUnit, texels, texels + 3);
+      for (int axis = 0; axis < 3; ++axis)
+        for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
+      float* point = positions + (p - first) * kFloatsPerPatch;
+      for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
+        const glm::vec3 local(inUnits(patch.kind, k, gpu.cp[k], perUnit));
+        point[0] = local.x, point[1] = local.y, point[2] = local.z;
+        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center) + patch.cp[k]) * perUnit
+                                                 : inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit),
+                  point + 3, point + 6);
+      }
+    }
+  });
+}
+
 }  // namespace
 
-void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stableStamp, size_t stableCount) {
-  Impl& g = *impl_;
-  // Slots: the stable sequence from slot 0 (slots uploaded under the same stamp stay valid, also
-  // past this set's part of it), then the rest of the set after every valid slot.
-  stableCount = stableStamp != 0 ? std::min(stableCount, patches.size()) : 0;
-  const bool sameSequence = stableStamp != 0 && stableStamp == stableStamp_;
-  const size_t validBefore = sameSequence ? stableOnGpu_ : 0;
-  const size_t reused = std::min(validBefore, stableCount);
-  const size_t stableSlots = std::max(validBefore, stableCount);
-  const size_t tailCount = patches.size() - stableCount, totalSlots = stableSlots + tailCount;
-  stableStamp_ = stableStamp;
-  stableOnGpu_ = stableSlots;
-  reusedPatches_ = reused;
-  patchCount_ = static_cast<int>(patches.size());
-  drawRanges_.clear();
-  if (stableCount > 0) drawRanges_.push_back({0, stableCount, 0});
-  if (tailCount > 0) drawRanges_.push_back({stableSlots, tailCount, stableCount});
-
+void PatchRenderer::placeBounds(const std::vector<Patch>& patches, size_t first, bool sameSequence) {
   // Bounding box of the position-valued control points; the centre keeps float precision. Over a
   // sequence kept on the GPU the centre stays (its slots were stored relative to it) and the box
-  // takes in the new patches only.
+  // takes in the new patches only (from `first`).
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   if (sameSequence) lo = boundsMin_, hi = boundsMax_;
-  for (size_t p = reused; p < patches.size(); ++p)
+  for (size_t p = first; p < patches.size(); ++p)
     for (int k = 0; k < kControlPointsPerPatch; ++k)
       if (isPositionPoint(patches[p].kind, k)) {
         lo = glm::min(lo, patches[p].origin + patches[p].cp[k]);
@@ -553,65 +620,38 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   radius_ = 0.5 * glm::length(hi - lo);
   if (!(radius_ > 0.0) || !std::isfinite(radius_)) radius_ = std::max(1e-12 * glm::length(center_), 1e-300);
   if (!sameSequence) unit_ = std::ldexp(1.0, std::ilogb(radius_));
-  const double perUnit = 1.0 / unit_;
+}
 
-  // Per patch: its frame; per control point: the GPU form (see "Precision") and the world point
-  // as hi + lo (for positions and tessellation levels), interleaved. Written in place (this runs
-  // every frame of a vertex drag); only the patches not already on the GPU.
-  const size_t added = patches.size() - reused;
+void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stableStamp, size_t stableCount) {
+  Impl& g = *impl_;
+  const SlotLayout layout = layoutSlots(patches.size(), stableStamp, stableCount, stableStamp_, stableOnGpu_);
+  stableStamp_ = stableStamp;
+  stableOnGpu_ = layout.stableSlots;
+  reusedPatches_ = layout.reused;
+  patchCount_ = static_cast<int>(patches.size());
+  drawRanges_.clear();
+  if (layout.stableCount > 0) drawRanges_.push_back({0, layout.stableCount, 0});
+  if (layout.tailCount > 0) drawRanges_.push_back({layout.stableSlots, layout.tailCount, layout.stableCount});
+  placeBounds(patches, layout.reused, layout.sameSequence);
+
+  // Written in place (this runs every frame of a vertex drag); only the patches not already on
+  // the GPU.
+  const size_t added = patches.size() - layout.reused;
   const std::unique_ptr<float[]> positions(new float[added * kFloatsPerPatch]);  // every float written below
   std::vector<float> frameTexels(added * kFloatsPerFrame);
-  // Kinds and level jumps by slot (the jumps change with the level: all of them), and the
-  // transition unit length, in one pass over all patches split over the cores: fixed chunks summed
-  // in order, so the sum does not depend on the number of threads.
-  std::vector<int32_t> kindRings(totalSlots * 2, 0);
-  constexpr size_t kChunk = 4096;
-  const size_t chunks = (patches.size() + kChunk - 1) / kChunk;
-  std::vector<TransitionSides> chunkSides(chunks);
-  const unsigned scanParts = threadsFor(patches.size() * 4);
-  runParts(scanParts, [&](unsigned part) {
-    for (size_t c = part; c < chunks; c += scanParts)
-      for (size_t p = c * kChunk; p < std::min(patches.size(), (c + 1) * kChunk); ++p) {
-        const Patch& patch = patches[p];
-        const size_t slot = p < stableCount ? p : stableSlots + (p - stableCount);
-        kindRings[2 * slot] = packKindLevelJumps(patch);
-        kindRings[2 * slot + 1] = patch.ring;
-        addTransitionSides(patch, chunkSides[c]);
-      }
-  });
-  TransitionSides transitions;
-  for (const TransitionSides& part : chunkSides) transitions.add(part.level, part.sum, part.sides);
-  // Each patch's frame and forward differences are computed in double: split over the cores.
-  const unsigned parts = threadsFor(added * 8);
-  runParts(parts, [&](unsigned part) {
-    const size_t end = reused + size_t(partBound(Index(added), parts, part + 1));
-    for (size_t p = reused + size_t(partBound(Index(added), parts, part)); p < end; ++p) {
-      const Patch& patch = patches[p];
-      const GpuPatch gpu = gpuForm(patch);
-      const PatchFrameCpu& frame = gpu.frame;
-      float* texels = frameTexels.data() + (p - reused) * kFloatsPerFrame;
-      splitHiLo((frame.origin - center_) * perUnit, texels, texels + 3);
-      for (int axis = 0; axis < 3; ++axis)
-        for (int c = 0; c < 3; ++c) texels[6 + 3 * axis + c] = frame.axes[axis][c];
-      float* point = positions.get() + (p - reused) * kFloatsPerPatch;
-      for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
-        const glm::vec3 local(inUnits(patch.kind, k, gpu.cp[k], perUnit));
-        point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center_) + patch.cp[k]) * perUnit
-                                                 : inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit),
-                  point + 3, point + 6);
-      }
-    }
-  });
-  impl_->transitionUnitLength = transitions.sides > 0 ? transitions.sum / double(transitions.sides) : 0.0;
+  std::vector<int32_t> kindRings;
+  const double transitionUnitLength = packKindsAndTransitions(patches, layout, kindRings);
+  packGpuPatches(patches, layout.reused, center_, 1.0 / unit_, positions.get(), frameTexels.data());
+  impl_->transitionUnitLength = transitionUnitLength;
 
   // The new stable patches go after the valid ones, the rest after every stable slot.
-  const size_t newStable = stableCount - reused;
+  const size_t reused = layout.reused, stableSlots = layout.stableSlots, tailCount = layout.tailCount;
+  const size_t newStable = layout.stableCount - reused;
   const size_t pointBytes = kFloatsPerPatch * sizeof(float), frameBytes = kFloatsPerFrame * sizeof(float);
-  g.patchPositions = reserveBuffer(g.patchPositions, &g.positionsCapacity, validBefore * pointBytes, totalSlots * pointBytes);
+  g.patchPositions = reserveBuffer(g.patchPositions, &g.positionsCapacity, layout.validBefore * pointBytes, layout.totalSlots * pointBytes);
   writeBuffer(GL_ARRAY_BUFFER, g.patchPositions, reused, newStable, pointBytes, positions.get());
   writeBuffer(GL_ARRAY_BUFFER, g.patchPositions, stableSlots, tailCount, pointBytes, positions.get() + newStable * kFloatsPerPatch);
-  g.frameBuffer = reserveBuffer(g.frameBuffer, &g.frameCapacity, validBefore * frameBytes, totalSlots * frameBytes);
+  g.frameBuffer = reserveBuffer(g.frameBuffer, &g.frameCapacity, layout.validBefore * frameBytes, layout.totalSlots * frameBytes);
   writeBuffer(GL_TEXTURE_BUFFER, g.frameBuffer, reused, newStable, frameBytes, frameTexels.data());
   writeBuffer(GL_TEXTURE_BUFFER, g.frameBuffer, stableSlots, tailCount, frameBytes, frameTexels.data() + newStable * kFloatsPerFrame);
   g.kindBuffer = reserveBuffer(g.kindBuffer, &g.kindCapacity, 0, kindRings.size() * sizeof(int32_t));
@@ -620,7 +660,7 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   g.attachBuffers();
 
   // Overlays are stored relative to the centre too: re-upload them when it moved.
-  if (!sameSequence) {
+  if (!layout.sameSequence) {
     g.uploadOverlay(g.netVao, g.netBuffer, g.netPointsWorld, g.netColors, center_, unit_);
     g.uploadOverlay(g.poleVao, g.poleBuffer, g.polesWorld, {glm::vec3(1.0f, 0.85f, 0.1f)}, center_, unit_);
   }
@@ -715,18 +755,9 @@ int PatchRenderer::transitionDensity(const ViewParams& view, const ShadingParams
   return static_cast<int>(std::clamp(std::lround(std::log2(std::max(segments, 1e-30))), -64L, 64L));
 }
 
-void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
-                         const DisplayFlags& flags) {
-  Impl& g = *impl_;
-  glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.w);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LEQUAL);
-  glDisable(GL_CULL_FACE);  // two-sided surfaces
-  glDisable(GL_BLEND);
-
-  const glm::vec3 eye((view.eye - center_) / unit_);  // for highlight lines, relative to the centre
-
+void PatchRenderer::startGpuTimer() {
   // GPU time of the previous use of this query slot (non-blocking when available).
+  Impl& g = *impl_;
   const int slot = g.timerIndex;
   if (g.timerPending[slot]) {
     GLuint64 nanoseconds = 0;
@@ -736,113 +767,140 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glBeginQuery(GL_TIME_ELAPSED, g.timerQueries[slot]);
   g.timerPending[slot] = true;
   g.timerIndex = 1 - slot;
+}
+
+void PatchRenderer::setShadingUniforms(unsigned program, const ViewParams& view, const ShadingParams& shading,
+                                       const DisplayFlags& flags) const {
+  const glm::vec3 eye((view.eye - center_) / unit_);  // for highlight lines, relative to the centre
+  // Light lines: direction B, across E = W x B, plane normal W = B x E (docs/shading.md,
+  // Highlight lines).
+  const glm::vec3 B = glm::normalize(shading.highlightDir);
+  const glm::vec3 W = perpendicularTo(B, shading.highlightPlaneNormal);
+  const glm::vec3 E = glm::cross(W, B);
+  const float radius = static_cast<float>(radius_ / unit_);  // GPU units
+  // Key light fixed in view space (upper left, in front), expressed in world axes.
+  const glm::vec3 keyView = glm::length(shading.keyLightView) > 1e-6f ? glm::normalize(shading.keyLightView)
+                                                                       : glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::vec3 keyWorld = glm::normalize(glm::transpose(glm::mat3(view.view)) * keyView);
+
+  setTessellationUniforms(program, view, shading);
+  setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
+  // The GPU's K and H are in its units: K unit^2, H unit.
+  const double curvatureUnit = shading.mode == ShadingParams::Mode::Gaussian ? unit_ * unit_ : unit_;
+  setUniform(program, "u_range", floatInRange(shading.range * curvatureUnit));
+  setUniform(program, "u_rangeBelow", floatInRange((shading.rangeBelow > 0.0 ? shading.rangeBelow : shading.range) * curvatureUnit));
+  setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
+  setUniform(program, "u_eye", eye);
+  setUniform(program, "u_keyLight", keyWorld);
+  setUniform(program, "u_surfaceColor", shading.surfaceColor);
+  setUniform(program, "u_lineDirection", B);
+  setUniform(program, "u_lineAcross", E);
+  setUniform(program, "u_planeNormal", W);
+  setUniform(program, "u_planePoint", W * (2.0f * radius));
+  setUniform(program, "u_lineSpacing",
+             shading.mode == ShadingParams::Mode::Reflection
+                 ? std::max(shading.reflectionSpacing, 1e-4f)
+                 : std::max(shading.highlightSpacing * radius, 1e-12f));
+  setUniform(program, "u_lineWidth", std::clamp(shading.highlightWidth, 0.0f, 1.0f));
+  setUniform(program, "u_drawSurface", flags.surface ? 1 : 0);
+  setUniform(program, "u_wireColor", glm::vec3(0.05f, 0.05f, 0.08f));
+}
+
+void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags) {
+  const GLuint program = surfaceProgram(shading.mode, flags.wireframe);
+  setShadingUniforms(program, view, shading, flags);
+  glUseProgram(program);
+  glBindVertexArray(impl_->patchVao);
+  glPatchParameteri(GL_PATCH_VERTICES, kControlPointsPerPatch);
+  // Push the surface back a little so boundary curves and markers on it stay visible.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 2.0f);
+  drawPatchRuns(drawRanges_, largestTessLevel(shading));
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void PatchRenderer::drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags) {
+  Impl& g = *impl_;
+  const GLuint program = g.shaders->program(kBoundaryProgram);
+  setEyeUniforms(program, view);
+  setUniform(program, "u_boundarySegments", 16.0f);
+  setUniform(program, "u_colorByRing", flags.boundaryColor == DisplayFlags::BoundaryColor::Ring);
+  glm::vec3 kindColors[5], ringColors[8];
+  for (int k = 0; k < 5; ++k) kindColors[k] = patchKindColor(static_cast<PatchKind>(k));
+  for (int k = 0; k < 8; ++k) ringColors[k] = ringColor(k);
+  glProgramUniform3fv(program, glGetUniformLocation(program, "u_kindColors"), 5,
+                      glm::value_ptr(kindColors[0]));
+  glProgramUniform3fv(program, glGetUniformLocation(program, "u_ringColors"), 8,
+                      glm::value_ptr(ringColors[0]));
+  setUniform(program, "u_noRingColor", ringColor(-1));
+  glUseProgram(program);
+  glBindVertexArray(g.patchVao);
+  glPatchParameteri(GL_PATCH_VERTICES, kControlPointsPerPatch);
+  drawPatchRuns(drawRanges_, 1);
+}
+
+void PatchRenderer::drawControlNet(unsigned overlay, bool overSurface) {
+  Impl& g = *impl_;
+  // Dark lines over the surface, light ones over the background when the surface is hidden (the
+  // dark net vanished against the dark background). With the surface shown, the parts of the net
+  // behind it are drawn faintly first, so the net reads as one piece, as CAD viewers show hidden lines.
+  const glm::vec3 netColour = overSurface ? glm::vec3(0.06f, 0.06f, 0.08f) : glm::vec3(0.85f, 0.87f, 0.9f);
+  setUniform(overlay, "u_roundPoints", 0);
+  setUniform(overlay, "u_pointSize", 1.0f);
+  setUniform(overlay, "u_colorOverride", glm::vec4(netColour, 1.0f));
+  glUseProgram(overlay);
+  glBindVertexArray(g.netVao);
+  if (overSurface) {
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the image's alpha
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_GREATER);
+    setUniform(overlay, "u_depthBias", 0.0f);
+    setUniform(overlay, "u_alpha", 0.3f);
+    glDrawArrays(GL_LINES, 0, g.netVertexCount);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    setUniform(overlay, "u_alpha", 1.0f);
+  }
+  // Where the net meets the surface (boundaries, poles) a small bias keeps it in front.
+  setUniform(overlay, "u_depthBias", 0.0005f);
+  glDrawArrays(GL_LINES, 0, g.netVertexCount);
+  setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
+}
+
+void PatchRenderer::drawPoleMarkers(unsigned overlay) {
+  Impl& g = *impl_;
+  setUniform(overlay, "u_depthBias", 0.002f);
+  setUniform(overlay, "u_roundPoints", 1);
+  setUniform(overlay, "u_pointSize", 11.0f);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glUseProgram(overlay);
+  glBindVertexArray(g.poleVao);
+  glDrawArrays(GL_POINTS, 0, g.poleCount);
+  glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
+void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
+                         const DisplayFlags& flags) {
+  Impl& g = *impl_;
+  glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.w);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_CULL_FACE);  // two-sided surfaces
+  glDisable(GL_BLEND);
+  startGpuTimer();
   stats_.patchCount = patchCount_;
 
-  if (patchCount_ > 0 && (flags.surface || flags.wireframe)) {
-    const GLuint program = surfaceProgram(shading.mode, flags.wireframe);
-    // Light lines: direction B, across E = W x B, plane normal W = B x E (SCHEMES.md section 7).
-    const glm::vec3 B = glm::normalize(shading.highlightDir);
-    const glm::vec3 W = perpendicularTo(B, shading.highlightPlaneNormal);
-    const glm::vec3 E = glm::cross(W, B);
-    const float radius = static_cast<float>(radius_ / unit_);  // GPU units
-    // Key light fixed in view space (upper left, in front), expressed in world axes.
-    const glm::vec3 keyView = glm::length(shading.keyLightView) > 1e-6f ? glm::normalize(shading.keyLightView)
-                                                                         : glm::vec3(0.0f, 0.0f, 1.0f);
-    const glm::vec3 keyWorld = glm::normalize(glm::transpose(glm::mat3(view.view)) * keyView);
-
-    setTessellationUniforms(program, view, shading);
-    setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
-    // The GPU's K and H are in its units: K unit^2, H unit.
-    const double curvatureUnit = shading.mode == ShadingParams::Mode::Gaussian ? unit_ * unit_ : unit_;
-    setUniform(program, "u_range", floatInRange(shading.range * curvatureUnit));
-    setUniform(program, "u_rangeBelow", floatInRange((shading.rangeBelow > 0.0 ? shading.rangeBelow : shading.range) * curvatureUnit));
-    setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
-    setUniform(program, "u_eye", eye);
-    setUniform(program, "u_keyLight", keyWorld);
-    setUniform(program, "u_surfaceColor", shading.surfaceColor);
-    setUniform(program, "u_lineDirection", B);
-    setUniform(program, "u_lineAcross", E);
-    setUniform(program, "u_planeNormal", W);
-    setUniform(program, "u_planePoint", W * (2.0f * radius));
-    setUniform(program, "u_lineSpacing",
-               shading.mode == ShadingParams::Mode::Reflection
-                   ? std::max(shading.reflectionSpacing, 1e-4f)
-                   : std::max(shading.highlightSpacing * radius, 1e-12f));
-    setUniform(program, "u_lineWidth", std::clamp(shading.highlightWidth, 0.0f, 1.0f));
-    setUniform(program, "u_drawSurface", flags.surface ? 1 : 0);
-    setUniform(program, "u_wireColor", glm::vec3(0.05f, 0.05f, 0.08f));
-
-    glUseProgram(program);
-    glBindVertexArray(g.patchVao);
-    glPatchParameteri(GL_PATCH_VERTICES, kControlPointsPerPatch);
-    // Push the surface back a little so boundary curves and markers on it stay visible.
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 2.0f);
-    drawPatchRuns(drawRanges_, largestTessLevel(shading));
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  }
-
-  if (patchCount_ > 0 && flags.patchBoundaries) {
-    const GLuint program = g.shaders->program(kBoundaryProgram);
-    setEyeUniforms(program, view);
-    setUniform(program, "u_boundarySegments", 16.0f);
-    setUniform(program, "u_colorByRing", flags.boundaryColor == DisplayFlags::BoundaryColor::Ring);
-    glm::vec3 kindColors[5], ringColors[8];
-    for (int k = 0; k < 5; ++k) kindColors[k] = patchKindColor(static_cast<PatchKind>(k));
-    for (int k = 0; k < 8; ++k) ringColors[k] = ringColor(k);
-    glProgramUniform3fv(program, glGetUniformLocation(program, "u_kindColors"), 5,
-                        glm::value_ptr(kindColors[0]));
-    glProgramUniform3fv(program, glGetUniformLocation(program, "u_ringColors"), 8,
-                        glm::value_ptr(ringColors[0]));
-    setUniform(program, "u_noRingColor", ringColor(-1));
-    glUseProgram(program);
-    glBindVertexArray(g.patchVao);
-    glPatchParameteri(GL_PATCH_VERTICES, kControlPointsPerPatch);
-    drawPatchRuns(drawRanges_, 1);
-  }
+  if (patchCount_ > 0 && (flags.surface || flags.wireframe)) drawSurface(view, shading, flags);
+  if (patchCount_ > 0 && flags.patchBoundaries) drawPatchBoundaries(view, flags);
 
   const GLuint overlay = g.shaders->program(kOverlayProgram);
   setEyeUniforms(overlay, view);
   setUniform(overlay, "u_alpha", 1.0f);
   setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
-  if (flags.controlNet && g.netVertexCount > 0) {
-    // Dark lines over the surface, light ones over the background when the surface is hidden (the
-    // dark net vanished against the dark background). With the surface shown, the parts of the net
-    // behind it are drawn faintly first, so the net reads as one piece, as CAD viewers show hidden lines.
-    const glm::vec3 netColour = flags.surface ? glm::vec3(0.06f, 0.06f, 0.08f) : glm::vec3(0.85f, 0.87f, 0.9f);
-    setUniform(overlay, "u_roundPoints", 0);
-    setUniform(overlay, "u_pointSize", 1.0f);
-    setUniform(overlay, "u_colorOverride", glm::vec4(netColour, 1.0f));
-    glUseProgram(overlay);
-    glBindVertexArray(g.netVao);
-    if (flags.surface) {
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the image's alpha
-      glDepthMask(GL_FALSE);
-      glDepthFunc(GL_GREATER);
-      setUniform(overlay, "u_depthBias", 0.0f);
-      setUniform(overlay, "u_alpha", 0.3f);
-      glDrawArrays(GL_LINES, 0, g.netVertexCount);
-      glDepthFunc(GL_LEQUAL);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_BLEND);
-      setUniform(overlay, "u_alpha", 1.0f);
-    }
-    // Where the net meets the surface (boundaries, poles) a small bias keeps it in front.
-    setUniform(overlay, "u_depthBias", 0.0005f);
-    glDrawArrays(GL_LINES, 0, g.netVertexCount);
-    setUniform(overlay, "u_colorOverride", glm::vec4(0.0f));
-  }
-  if (flags.poleMarkers && g.poleCount > 0) {
-    setUniform(overlay, "u_depthBias", 0.002f);
-    setUniform(overlay, "u_roundPoints", 1);
-    setUniform(overlay, "u_pointSize", 11.0f);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-    glUseProgram(overlay);
-    glBindVertexArray(g.poleVao);
-    glDrawArrays(GL_POINTS, 0, g.poleCount);
-    glDisable(GL_PROGRAM_POINT_SIZE);
-  }
+  if (flags.controlNet && g.netVertexCount > 0) drawControlNet(overlay, flags.surface);
+  if (flags.poleMarkers && g.poleCount > 0) drawPoleMarkers(overlay);
   glBindVertexArray(0);
   glUseProgram(0);
   glEndQuery(GL_TIME_ELAPSED);

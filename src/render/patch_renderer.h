@@ -114,6 +114,18 @@ class PatchRenderer {
  private:
   struct Impl;
   unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe);
+  // setPatches' steps: the bounding box, centre, radius and GPU unit of the set (patches before
+  // `first` are already inside the box when `sameSequence`).
+  void placeBounds(const std::vector<Patch>& patches, size_t first, bool sameSequence);
+  // draw()'s steps: the GL_TIME_ELAPSED query (reading the one of two draws ago), the surface and
+  // its uniforms, patch boundary curves, and the overlays in program `overlay`.
+  void startGpuTimer();
+  void setShadingUniforms(unsigned program, const ViewParams& view, const ShadingParams& shading,
+                          const DisplayFlags& flags) const;
+  void drawSurface(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
+  void drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags);
+  void drawControlNet(unsigned overlay, bool overSurface);
+  void drawPoleMarkers(unsigned overlay);
   // Sets the relative-to-eye uniforms of common/patch_frame.glsl and binds the patch frames.
   void setEyeUniforms(unsigned program, const ViewParams& view) const;
   void setTessellationUniforms(unsigned program, const ViewParams& view,

@@ -1,6 +1,7 @@
 // OpenSubdiv's regression shapes, read where the workplace keeps them beside the project
 // (shared/meshes/opensubdiv; the environment's POLARVIEW_OSD_SHAPES overrides), never copied into
-// it. Their `t` tags are commented out as `#t`.
+// it. Optional: a test finding no shapes (osdShapeFiles empty) says so and skips (tests/CMakeLists.txt,
+// POLARVIEW_OSD_SHAPES_DIR). Their `t` tags are commented out as `#t`.
 #pragma once
 
 #include <algorithm>

@@ -84,20 +84,9 @@ Index findRoot(std::vector<Index>& parent, Index c) {
   return c;
 }
 
-}  // namespace
-
-std::vector<Point> ManifoldSplit::splitPoints(const std::vector<Point>& inputPoints) const {
-  std::vector<Point> points(sourceVertex.size());
-  for (size_t v = 0; v < sourceVertex.size(); ++v) points[v] = inputPoints[size_t(sourceVertex[v])];
-  return points;
-}
-
-ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
-  const std::vector<Index>& fv = mesh.faceVerts;
-  const size_t corners = fv.size(), vertices = size_t(mesh.vertexCount());
-  const EdgeInstances edges = makeEdges(mesh);
-
-  // Fans: corners at a vertex joined across its manifold edges (both ends of each).
+// Fans: corners at a vertex joined across its manifold edges (both ends of each). Returns the
+// union-find parents; findRoot gives a corner's fan. [O(corners)]
+std::vector<Index> joinFans(const EdgeInstances& edges, size_t corners) {
   std::vector<Index> parent(corners);
   std::iota(parent.begin(), parent.end(), Index(0));
   auto join = [&](Index a, Index b) {
@@ -110,33 +99,53 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
     join(c1, edges.next[size_t(c2)]);
     join(edges.next[size_t(c1)], c2);
   }
+  return parent;
+}
 
-  // Per vertex what Far counts (an edge once per end, a loop twice): incident edges, boundary and
-  // non-manifold ones, faces (once per corner).
-  std::vector<uint8_t> nonManifold(vertices, 0);
-  std::vector<int> edgeCount(vertices, 0), boundaryEdges(vertices, 0), nonManifoldEdges(vertices, 0), cornerCount(vertices, 0);
-  ManifoldSplit split;
+// Per input vertex what Far counts (an edge once per end, a loop twice): incident edges, boundary
+// and non-manifold ones, faces (once per corner); whether it is non-manifold, and its first fan.
+struct VertexCounts {
+  std::vector<uint8_t> nonManifold;
+  std::vector<int> edgeCount, boundaryEdges, nonManifoldEdges, cornerCount;
+  std::vector<Index> firstRoot;  // the fan (root corner) of its first corner
+};
+
+// Counts at every vertex, and the non-manifold edges and vertices into `split`. [O(corners)]
+VertexCounts countAtVertices(const PolyMesh& mesh, const EdgeInstances& edges, std::vector<Index>& parent,
+                             ManifoldSplit& split) {
+  const std::vector<Index>& fv = mesh.faceVerts;
+  const size_t corners = fv.size(), vertices = size_t(mesh.vertexCount());
+  VertexCounts at;
+  at.nonManifold.assign(vertices, 0);
+  at.edgeCount.assign(vertices, 0), at.boundaryEdges.assign(vertices, 0);
+  at.nonManifoldEdges.assign(vertices, 0), at.cornerCount.assign(vertices, 0);
   for (size_t e = 0; e < edges.count(); ++e) {
     for (const Index v : {edges.from[e], edges.to[e]}) {
-      ++edgeCount[size_t(v)];
-      boundaryEdges[size_t(v)] += edges.sides[e] < 2;
-      nonManifoldEdges[size_t(v)] += edges.nonManifold[e];
-      if (edges.nonManifold[e]) nonManifold[size_t(v)] = 1;
+      ++at.edgeCount[size_t(v)];
+      at.boundaryEdges[size_t(v)] += edges.sides[e] < 2;
+      at.nonManifoldEdges[size_t(v)] += edges.nonManifold[e];
+      if (edges.nonManifold[e]) at.nonManifold[size_t(v)] = 1;
     }
     split.nonManifoldEdges += edges.nonManifold[e];
   }
   // Several fans at a vertex (Far's orderVertexFacesAndEdges fails).
-  std::vector<Index> firstRoot(vertices, -1);
+  at.firstRoot.assign(vertices, -1);
   for (size_t c = 0; c < corners; ++c) {
     const Index v = fv[c], root = findRoot(parent, Index(c));
-    ++cornerCount[size_t(v)];
-    if (firstRoot[size_t(v)] < 0) firstRoot[size_t(v)] = root;
-    else if (firstRoot[size_t(v)] != root) nonManifold[size_t(v)] = 1;
+    ++at.cornerCount[size_t(v)];
+    if (at.firstRoot[size_t(v)] < 0) at.firstRoot[size_t(v)] = root;
+    else if (at.firstRoot[size_t(v)] != root) at.nonManifold[size_t(v)] = 1;
   }
-  split.nonManifoldVertices = size_t(std::count(nonManifold.begin(), nonManifold.end(), uint8_t(1)));
-  if (split.nonManifoldEdges == 0 && split.nonManifoldVertices == 0) return ManifoldSplit{};
+  split.nonManifoldVertices = size_t(std::count(at.nonManifold.begin(), at.nonManifold.end(), uint8_t(1)));
+  return at;
+}
 
-  // Copies: a vertex's first fan keeps its id, each further fan gets a new vertex after the input's.
+// Copies: a vertex's first fan keeps its id, each further fan gets a new vertex after the input's.
+// Fills split.mesh's points and faces and split.sourceVertex. [O(corners)]
+void copyVertexPerFan(const PolyMesh& mesh, std::vector<Index>& parent, const std::vector<Index>& firstRoot,
+                      ManifoldSplit& split) {
+  const std::vector<Index>& fv = mesh.faceVerts;
+  const size_t corners = fv.size(), vertices = size_t(mesh.vertexCount());
   PolyMesh& out = split.mesh;
   out.points = mesh.points;
   split.sourceVertex.resize(vertices);
@@ -159,14 +168,26 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
     }
     out.faceVerts[c] = copy;
   }
+}
 
-  // Tags: OpenSubdiv's sharpening of the input, on the copies.
+// What the crease tags of the input leave for the vertex and hole rules.
+struct UserCreases {
+  std::vector<uint8_t> infiniteEdge;  // per edge: a tag made it infinitely sharp
+  std::vector<double> userSharpest;   // per input vertex: the sharpest tag on a manifold edge at it
+};
+
+// Crease tags of the split mesh: the input's on manifold edges, every side of a non-manifold edge
+// infinitely sharp; one tag per vertex pair, the sharpest. Also copies the input's tags that need
+// no translation. [O(edges log edges)]
+UserCreases addCreaseTags(const PolyMesh& mesh, const EdgeInstances& edges, ManifoldSplit& split) {
+  const size_t corners = mesh.faceVerts.size(), vertices = size_t(mesh.vertexCount());
   const SubdivTags& in = mesh.tags;
+  PolyMesh& out = split.mesh;
   SubdivTags& tags = out.tags;
   tags.creaseMethod = in.creaseMethod;
   tags.triangles = in.triangles;
   tags.holes = in.holes;
-  tags.boundary = BoundaryInterpolation::EdgeOnly;  // the other rules are written out below
+  tags.boundary = BoundaryInterpolation::EdgeOnly;  // the other rules are written out as corners and holes
   auto userCrease = [&](Index a, Index b) {
     const auto it = std::lower_bound(in.creases.begin(), in.creases.end(), std::pair<Index, Index>(a, b),
                                      [](const CreaseEdge& e, const std::pair<Index, Index>& k) {
@@ -179,15 +200,15 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
     tags.creases.push_back({std::min(a, b), std::max(a, b), sharpness});
   };
   // A tag names a vertex pair: Far's FindEdge gives it to the pair's first edge.
-  std::vector<uint8_t> infiniteEdge(edges.count(), 0);
-  std::vector<double> userSharpest(vertices, 0.0);  // the sharpest tag on a manifold edge, per end
+  UserCreases user{std::vector<uint8_t>(edges.count(), 0), std::vector<double>(vertices, 0.0)};
   for (size_t e = 0; e < edges.count(); ++e) {
     if (!edges.firstOfPair[e]) continue;
-    const double user = userCrease(std::min(edges.from[e], edges.to[e]), std::max(edges.from[e], edges.to[e]));
-    infiniteEdge[e] = user >= kInfiniteSharpness;
-    if (!edges.nonManifold[e] && user > 0.0) {
-      addCrease(edges.firstSide[e], user);
-      for (const Index v : {edges.from[e], edges.to[e]}) userSharpest[size_t(v)] = std::max(userSharpest[size_t(v)], user);
+    const double sharpness = userCrease(std::min(edges.from[e], edges.to[e]), std::max(edges.from[e], edges.to[e]));
+    user.infiniteEdge[e] = sharpness >= kInfiniteSharpness;
+    if (!edges.nonManifold[e] && sharpness > 0.0) {
+      addCrease(edges.firstSide[e], sharpness);
+      for (const Index v : {edges.from[e], edges.to[e]})
+        user.userSharpest[size_t(v)] = std::max(user.userSharpest[size_t(v)], sharpness);
     }
   }
   for (size_t c = 0; c < corners; ++c)
@@ -198,13 +219,21 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
   tags.creases.erase(std::unique(tags.creases.begin(), tags.creases.end(),
                                  [](const CreaseEdge& x, const CreaseEdge& y) { return x.v0 == y.v0 && x.v1 == y.v1; }),
                      tags.creases.end());
+  return user;
+}
 
+// Corner tags of the split mesh: the input's, sharpened non-manifold vertices, and
+// `interpolateboundary 1`'s topological corners, on every copy. [O(vertices)]
+void addCornerTags(const PolyMesh& mesh, const VertexCounts& at, const std::vector<double>& userSharpest,
+                   ManifoldSplit& split) {
+  const SubdivTags& in = mesh.tags;
+  const size_t vertices = size_t(mesh.vertexCount());
   std::vector<double> vertexSharpness(vertices, 0.0);
   for (const CornerVertex& corner : in.corners) vertexSharpness[size_t(corner.vertex)] = corner.sharpness;
   for (size_t v = 0; v < vertices; ++v) {
-    const bool topologicalCorner = cornerCount[v] == 1 && edgeCount[v] == 2;
-    const bool interiorCrease = nonManifoldEdges[v] == 2 && boundaryEdges[v] == 0 && cornerCount[v] > edgeCount[v];
-    if ((topologicalCorner && in.boundary == BoundaryInterpolation::EdgeAndCorner) || (nonManifold[v] && !interiorCrease))
+    const bool topologicalCorner = at.cornerCount[v] == 1 && at.edgeCount[v] == 2;
+    const bool interiorCrease = at.nonManifoldEdges[v] == 2 && at.boundaryEdges[v] == 0 && at.cornerCount[v] > at.edgeCount[v];
+    if ((topologicalCorner && in.boundary == BoundaryInterpolation::EdgeAndCorner) || (at.nonManifold[v] && !interiorCrease))
       vertexSharpness[v] = kInfiniteSharpness;
     // An interior non-manifold crease with a tagged edge more has three sharp edges, Far's corner
     // rule, until the tag decays; each copy's fan sees only its own edges, so every copy gets the
@@ -214,26 +243,51 @@ ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
       vertexSharpness[v] = std::max(vertexSharpness[v], userSharpest[v]);
   }
   for (size_t w = 0; w < split.sourceVertex.size(); ++w)
-    if (const double s = vertexSharpness[size_t(split.sourceVertex[w])]; s > 0.0) tags.corners.push_back({Index(w), s});
+    if (const double s = vertexSharpness[size_t(split.sourceVertex[w])]; s > 0.0)
+      split.mesh.tags.corners.push_back({Index(w), s});
+}
 
-  // interpolateboundary 0: faces at a boundary or non-manifold vertex with a boundary edge the
-  // tags did not make infinitely sharp are holes (decided before any sharpening, as Far does).
-  if (in.boundary == BoundaryInterpolation::None) {
-    std::vector<uint8_t> excluded(vertices, 0);
-    for (size_t e = 0; e < edges.count(); ++e) {
-      if (edges.sides[e] != 1 || infiniteEdge[e]) continue;
-      for (const Index v : {edges.from[e], edges.to[e]})
-        if (edgeCount[size_t(v)] != cornerCount[size_t(v)] || nonManifold[size_t(v)]) excluded[size_t(v)] = 1;
-    }
-    for (Index f = 0; f < mesh.faceCount(); ++f)
-      for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
-        if (excluded[size_t(fv[size_t(c)])]) {
-          tags.holes.push_back(f);
-          break;
-        }
-    std::sort(tags.holes.begin(), tags.holes.end());
-    tags.holes.erase(std::unique(tags.holes.begin(), tags.holes.end()), tags.holes.end());
+// interpolateboundary 0: faces at a boundary or non-manifold vertex with a boundary edge the
+// tags did not make infinitely sharp are holes (decided before any sharpening, as Far does).
+void addBoundaryHoles(const PolyMesh& mesh, const EdgeInstances& edges, const VertexCounts& at,
+                      const std::vector<uint8_t>& infiniteEdge, SubdivTags& tags) {
+  std::vector<uint8_t> excluded(size_t(mesh.vertexCount()), 0);
+  for (size_t e = 0; e < edges.count(); ++e) {
+    if (edges.sides[e] != 1 || infiniteEdge[e]) continue;
+    for (const Index v : {edges.from[e], edges.to[e]})
+      if (at.edgeCount[size_t(v)] != at.cornerCount[size_t(v)] || at.nonManifold[size_t(v)]) excluded[size_t(v)] = 1;
   }
+  for (Index f = 0; f < mesh.faceCount(); ++f)
+    for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c)
+      if (excluded[size_t(mesh.faceVerts[size_t(c)])]) {
+        tags.holes.push_back(f);
+        break;
+      }
+  std::sort(tags.holes.begin(), tags.holes.end());
+  tags.holes.erase(std::unique(tags.holes.begin(), tags.holes.end()), tags.holes.end());
+}
+
+}  // namespace
+
+std::vector<Point> ManifoldSplit::splitPoints(const std::vector<Point>& inputPoints) const {
+  std::vector<Point> points(sourceVertex.size());
+  for (size_t v = 0; v < sourceVertex.size(); ++v) points[v] = inputPoints[size_t(sourceVertex[v])];
+  return points;
+}
+
+ManifoldSplit splitNonManifold(const PolyMesh& mesh) {
+  const EdgeInstances edges = makeEdges(mesh);
+  std::vector<Index> parent = joinFans(edges, mesh.faceVerts.size());
+  ManifoldSplit split;
+  const VertexCounts at = countAtVertices(mesh, edges, parent, split);
+  if (split.nonManifoldEdges == 0 && split.nonManifoldVertices == 0) return ManifoldSplit{};
+
+  copyVertexPerFan(mesh, parent, at.firstRoot, split);
+  // Tags: OpenSubdiv's sharpening of the input, on the copies.
+  const UserCreases user = addCreaseTags(mesh, edges, split);
+  addCornerTags(mesh, at, user.userSharpest, split);
+  if (mesh.tags.boundary == BoundaryInterpolation::None)
+    addBoundaryHoles(mesh, edges, at, user.infiniteEdge, split.mesh.tags);
   return split;
 }
 
