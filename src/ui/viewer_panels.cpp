@@ -463,6 +463,169 @@ void drawHelpWindow(ViewerState& state) {
   ImGui::End();
 }
 
+// The strip under the views: a line legend (if a view shows light lines) above the colour bar (if
+// one shows a curvature map).
+float lineLegendReserve(const ViewerState& state, float scale) { return state.lineShade() ? 30.0f * scale : 0.0f; }
+float colourBarOnlyReserve(const ViewerState& state, float scale) {
+  return state.showsColourBar() ? (64.0f + kHistogramHeight + 4.0f) * scale : 0.0f;
+}
+
+// What the overlay draws with: the list, the font, its size and the scale (supersampled screenshots).
+struct OverlayPen {
+  ImDrawList* list;
+  ImFont* font;
+  float fontSize, scale;
+};
+constexpr ImU32 kOverlayText = IM_COL32(255, 255, 255, 255);
+constexpr ImU32 kOverlayBox = IM_COL32(20, 20, 24, 190);
+
+// Labels "scheme · level" at the top of each view, centred, and the lines between views; returns
+// the labels' boxes (x0, y0, x1, y1).
+std::vector<ImVec4> drawViewLabels(const OverlayPen& pen, const ViewerState& state, const std::vector<ScreenRect>& views,
+                                   const ScreenRect& frame) {
+  ImDrawList* list = pen.list;
+  ImFont* font = pen.font;
+  const float fontSize = pen.fontSize, scale = pen.scale;
+  std::vector<ImVec4> labelBoxes;
+  for (size_t v = 0; v < views.size(); ++v) {
+    const ScreenRect& r = views[v];
+    const ViewStatus& status = state.status[v];
+    const ViewSettings& wanted = state.views[v];
+    std::string label = viewTitle(status);
+    if (!wanted.caption.empty()) label = wanted.caption;
+    else if (wanted.shade) label += " \xC2\xB7 " + std::string(shadeModeName(*wanted.shade));
+    if (status.refining) {
+      label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
+               std::to_string(wanted.level) + "...";
+    }
+    if (v == 0 && state.file.loading) label += "   loading " + state.file.loadingPath + "...";
+    // Wraps in a narrow view instead of running past its sides.
+    const float wrap = std::max(r.w - 24.0f * scale, 40.0f * scale);
+    ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, wrap, label.c_str());
+    ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f * scale);
+    list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
+                        kOverlayBox, 4.0f * scale);
+    list->AddText(font, fontSize, at, kOverlayText, label.c_str(), nullptr, wrap);
+    labelBoxes.emplace_back(at.x - 6 * scale, at.y - 3 * scale, at.x + size.x + 6 * scale, at.y + size.y + 3 * scale);
+    if (r.x > frame.x) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
+    if (r.y > frame.y) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y), IM_COL32(128, 128, 128, 160), scale);
+  }
+
+  return labelBoxes;
+}
+
+void drawPoleRings(const OverlayPen& pen, const std::vector<PoleMarker>& poles, const std::vector<ImVec4>& labelBoxes) {
+  ImDrawList* list = pen.list;
+  const float scale = pen.scale;
+  // Pole rings: an outline only (white over a dark rim, readable on every colour map) so the
+  // colour at the pole itself, the value the paper's Taylor expansion gives, stays visible.
+  const float ringRadius = 7.0f * scale;
+  for (const PoleMarker& pole : poles) {
+    const ImVec2 centre(pole.x, pole.y);
+    const bool underLabel = std::any_of(labelBoxes.begin(), labelBoxes.end(), [&](const ImVec4& b) {
+      return centre.x > b.x - ringRadius && centre.x < b.z + ringRadius && centre.y > b.y - ringRadius &&
+             centre.y < b.w + ringRadius;
+    });
+    if (underLabel) continue;
+    list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
+    list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
+  }
+}
+
+void drawVertexMarkers(const OverlayPen& pen, const std::vector<VertexMarker>& vertices) {
+  ImDrawList* list = pen.list;
+  const float scale = pen.scale;
+  // Control vertices: the selected one filled (orange on a dark rim), the one under the cursor ringed.
+  for (const VertexMarker& vertex : vertices) {
+    const ImVec2 centre(vertex.x, vertex.y);
+    if (vertex.selected) {
+      list->AddCircleFilled(centre, 6.0f * scale, IM_COL32(0, 0, 0, 220), 20);
+      list->AddCircleFilled(centre, 4.5f * scale, IM_COL32(255, 150, 30, 255), 20);
+    } else {
+      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(0, 0, 0, 200), 20, 3.0f * scale);
+      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(255, 200, 80, 255), 20, 1.5f * scale);
+    }
+  }
+}
+
+void drawLineLegend(const OverlayPen& pen, const ViewerState& state, const ScreenRect& frame) {
+  ImDrawList* list = pen.list;
+  ImFont* font = pen.font;
+  const float fontSize = pen.fontSize, scale = pen.scale;
+  // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
+  // still say what they show.
+  ShadingParams lines = state.shading;
+  lines.mode = state.lineShade().value_or(ShadingParams::Mode::Shaded);
+  if (std::string legend = lineLegend(lines); !legend.empty()) {
+    const float legendSize = fontSize * 0.9f;
+    // Wraps in a narrow window; extra lines grow the box upwards over the views' bottom edge.
+    const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
+    ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, wrap, legend.c_str());
+    const float oneLine = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, "M").y;
+    ImVec2 at(frame.x + 0.5f * (frame.w - size.x),
+              frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale - (size.y - oneLine));
+    list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
+                        kOverlayBox, 4.0f * scale);
+    list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str(), nullptr, wrap);
+  }
+}
+
+void drawColourBar(const OverlayPen& pen, const ViewerState& state, const ScreenRect& frame) {
+  ImDrawList* list = pen.list;
+  ImFont* font = pen.font;
+  const float fontSize = pen.fontSize, scale = pen.scale;
+  // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
+  const double range = state.colourRange(), below = state.colourRangeBelow();
+  const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
+  const float barHeight = 14.0f * scale;
+  const float reserve = colourBarOnlyReserve(state, scale);
+  const float left = frame.x + 0.5f * (frame.w - barWidth);
+  const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
+  const bool gaussian = state.curvatureShade() == ShadingParams::Mode::Gaussian;
+  std::string title = gaussian ? "Gaussian curvature K" : "mean curvature H";
+  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
+  ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
+  if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
+    title = fullTitle;
+  } else {  // a narrow window: the short form fits on the one line the strip has
+    title = std::string(gaussian ? "K" : "H") + " (" +
+            colourMapName(state.shading.colormap) + ")";
+    titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
+  }
+  const float histogramHeight = kHistogramHeight * scale;
+  list->AddRectFilled(ImVec2(left - 40 * scale, top - histogramHeight - 6 * scale),
+                      ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), kOverlayBox, 4.0f * scale);
+  // The bar's position t in [-1, 1] -> value, two slopes (below zero / above zero).
+  auto valueAt = [&](double t) { return t < 0.0 ? t * below : t * range; };
+  // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
+  const std::vector<float>& bins = state.colour.histogram;
+  for (size_t b = 0; b < bins.size(); ++b) {
+    const float x0 = left + barWidth * float(b) / float(bins.size()), x1 = left + barWidth * float(b + 1) / float(bins.size());
+    const float h = std::sqrt(std::clamp(bins[b], 0.0f, 1.0f)) * histogramHeight;  // sqrt: small bins stay visible
+    if (h > 0.0f) list->AddRectFilled(ImVec2(x0 + 0.5f * scale, top - 2 * scale - h), ImVec2(x1 - 0.5f * scale, top - 2 * scale),
+                                      IM_COL32(200, 200, 205, 220));
+  }
+  const int segments = 96;
+  for (int i = 0; i < segments; ++i) {
+    const double v0 = valueAt(-1.0 + 2.0 * i / segments), v1 = valueAt(-1.0 + 2.0 * (i + 1) / segments);
+    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range, below));
+    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range, below));
+    float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
+    list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
+  }
+  list->AddRect(ImVec2(left, top), ImVec2(left + barWidth, top + barHeight), IM_COL32(230, 230, 230, 255), 0.0f, 0, scale);
+  for (int t = 0; t <= 4; ++t) {
+    float x = left + barWidth * float(t) / 4.0f;
+    const double value = valueAt(-1.0 + 2.0 * t / 4.0);
+    list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), kOverlayText, scale);
+    std::string tick = formatTick(value, std::max(range, below));
+    ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());
+    list->AddText(font, fontSize, ImVec2(x - 0.5f * tickSize.x, top + barHeight + 5 * scale), kOverlayText, tick.c_str());
+  }
+  list->AddText(font, fontSize * 0.9f, ImVec2(left + 0.5f * (barWidth - titleSize.x * 0.9f), top + barHeight + 5 * scale + fontSize),
+                IM_COL32(210, 210, 210, 255), title.c_str());
+}
+
 }  // namespace
 
 // [SECTION] Public functions
@@ -491,14 +654,6 @@ float viewTitleHeight(float scale) { return 34.0f * scale; }
 
 float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
 
-namespace {
-// The strip under the views: a line legend (if a view shows light lines) above the colour bar (if
-// one shows a curvature map).
-float lineLegendReserve(const ViewerState& state, float scale) { return state.lineShade() ? 30.0f * scale : 0.0f; }
-float colourBarOnlyReserve(const ViewerState& state, float scale) {
-  return state.showsColourBar() ? (64.0f + kHistogramHeight + 4.0f) * scale : 0.0f;
-}
-}  // namespace
 
 float colourBarReserve(const ViewerState& state, float scale) {
   return lineLegendReserve(state, scale) + colourBarOnlyReserve(state, scale);
@@ -596,130 +751,13 @@ void drawViewerPanels(ViewerState& state) {
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles,
                      const std::vector<VertexMarker>& vertices) {
-  const float fontSize = 15.0f * scale;
-  const ImU32 text = IM_COL32(255, 255, 255, 255);
-  const ImU32 box = IM_COL32(20, 20, 24, 190);
-
-  // Labels "scheme · level" at the top of each view, centred; the pole rings leave them alone.
-  std::vector<ImVec4> labelBoxes;
-  for (size_t v = 0; v < views.size(); ++v) {
-    const ScreenRect& r = views[v];
-    const ViewStatus& status = state.status[v];
-    const ViewSettings& wanted = state.views[v];
-    std::string label = viewTitle(status);
-    if (!wanted.caption.empty()) label = wanted.caption;
-    else if (wanted.shade) label += " \xC2\xB7 " + std::string(shadeModeName(*wanted.shade));
-    if (status.refining) {
-      label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
-               std::to_string(wanted.level) + "...";
-    }
-    if (v == 0 && state.file.loading) label += "   loading " + state.file.loadingPath + "...";
-    // Wraps in a narrow view instead of running past its sides.
-    const float wrap = std::max(r.w - 24.0f * scale, 40.0f * scale);
-    ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, wrap, label.c_str());
-    ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f * scale);
-    list->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
-                        box, 4.0f * scale);
-    list->AddText(font, fontSize, at, text, label.c_str(), nullptr, wrap);
-    labelBoxes.emplace_back(at.x - 6 * scale, at.y - 3 * scale, at.x + size.x + 6 * scale, at.y + size.y + 3 * scale);
-    if (r.x > frame.x) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x, r.y + r.h), IM_COL32(128, 128, 128, 160), scale);
-    if (r.y > frame.y) list->AddLine(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y), IM_COL32(128, 128, 128, 160), scale);
-  }
-
-  // Pole rings: an outline only (white over a dark rim, readable on every colour map) so the
-  // colour at the pole itself, the value the paper's Taylor expansion gives, stays visible.
-  const float ringRadius = 7.0f * scale;
-  for (const PoleMarker& pole : poles) {
-    const ImVec2 centre(pole.x, pole.y);
-    const bool underLabel = std::any_of(labelBoxes.begin(), labelBoxes.end(), [&](const ImVec4& b) {
-      return centre.x > b.x - ringRadius && centre.x < b.z + ringRadius && centre.y > b.y - ringRadius &&
-             centre.y < b.w + ringRadius;
-    });
-    if (underLabel) continue;
-    list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
-    list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
-  }
-
-  // Control vertices: the selected one filled (orange on a dark rim), the one under the cursor ringed.
-  for (const VertexMarker& vertex : vertices) {
-    const ImVec2 centre(vertex.x, vertex.y);
-    if (vertex.selected) {
-      list->AddCircleFilled(centre, 6.0f * scale, IM_COL32(0, 0, 0, 220), 20);
-      list->AddCircleFilled(centre, 4.5f * scale, IM_COL32(255, 150, 30, 255), 20);
-    } else {
-      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(0, 0, 0, 200), 20, 3.0f * scale);
-      list->AddCircle(centre, kPickRadiusPixels * scale, IM_COL32(255, 200, 80, 255), 20, 1.5f * scale);
-    }
-  }
-
-  // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
-  // still say what they show.
-  ShadingParams lines = state.shading;
-  lines.mode = state.lineShade().value_or(ShadingParams::Mode::Shaded);
-  if (std::string legend = lineLegend(lines); !legend.empty()) {
-    const float legendSize = fontSize * 0.9f;
-    // Wraps in a narrow window; extra lines grow the box upwards over the views' bottom edge.
-    const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
-    ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, wrap, legend.c_str());
-    const float oneLine = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, "M").y;
-    ImVec2 at(frame.x + 0.5f * (frame.w - size.x),
-              frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale - (size.y - oneLine));
-    list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
-                        box, 4.0f * scale);
-    list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str(), nullptr, wrap);
-  }
-
-  if (!state.showsColourBar()) return;
-  // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
-  const double range = state.colourRange(), below = state.colourRangeBelow();
-  const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
-  const float barHeight = 14.0f * scale;
-  const float reserve = colourBarOnlyReserve(state, scale);
-  const float left = frame.x + 0.5f * (frame.w - barWidth);
-  const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
-  const bool gaussian = state.curvatureShade() == ShadingParams::Mode::Gaussian;
-  std::string title = gaussian ? "Gaussian curvature K" : "mean curvature H";
-  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
-  ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
-  if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
-    title = fullTitle;
-  } else {  // a narrow window: the short form fits on the one line the strip has
-    title = std::string(gaussian ? "K" : "H") + " (" +
-            colourMapName(state.shading.colormap) + ")";
-    titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
-  }
-  const float histogramHeight = kHistogramHeight * scale;
-  list->AddRectFilled(ImVec2(left - 40 * scale, top - histogramHeight - 6 * scale),
-                      ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), box, 4.0f * scale);
-  // The bar's position t in [-1, 1] -> value, two slopes (below zero / above zero).
-  auto valueAt = [&](double t) { return t < 0.0 ? t * below : t * range; };
-  // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
-  const std::vector<float>& bins = state.colour.histogram;
-  for (size_t b = 0; b < bins.size(); ++b) {
-    const float x0 = left + barWidth * float(b) / float(bins.size()), x1 = left + barWidth * float(b + 1) / float(bins.size());
-    const float h = std::sqrt(std::clamp(bins[b], 0.0f, 1.0f)) * histogramHeight;  // sqrt: small bins stay visible
-    if (h > 0.0f) list->AddRectFilled(ImVec2(x0 + 0.5f * scale, top - 2 * scale - h), ImVec2(x1 - 0.5f * scale, top - 2 * scale),
-                                      IM_COL32(200, 200, 205, 220));
-  }
-  const int segments = 96;
-  for (int i = 0; i < segments; ++i) {
-    const double v0 = valueAt(-1.0 + 2.0 * i / segments), v1 = valueAt(-1.0 + 2.0 * (i + 1) / segments);
-    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range, below));
-    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range, below));
-    float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
-    list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
-  }
-  list->AddRect(ImVec2(left, top), ImVec2(left + barWidth, top + barHeight), IM_COL32(230, 230, 230, 255), 0.0f, 0, scale);
-  for (int t = 0; t <= 4; ++t) {
-    float x = left + barWidth * float(t) / 4.0f;
-    const double value = valueAt(-1.0 + 2.0 * t / 4.0);
-    list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), text, scale);
-    std::string tick = formatTick(value, std::max(range, below));
-    ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());
-    list->AddText(font, fontSize, ImVec2(x - 0.5f * tickSize.x, top + barHeight + 5 * scale), text, tick.c_str());
-  }
-  list->AddText(font, fontSize * 0.9f, ImVec2(left + 0.5f * (barWidth - titleSize.x * 0.9f), top + barHeight + 5 * scale + fontSize),
-                IM_COL32(210, 210, 210, 255), title.c_str());
+  const OverlayPen pen{list, font, 15.0f * scale, scale};
+  // The pole rings leave the labels alone.
+  const std::vector<ImVec4> labelBoxes = drawViewLabels(pen, state, views, frame);
+  drawPoleRings(pen, poles, labelBoxes);
+  drawVertexMarkers(pen, vertices);
+  drawLineLegend(pen, state, frame);
+  if (state.showsColourBar()) drawColourBar(pen, state, frame);
 }
 
 void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches) {
