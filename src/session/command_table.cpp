@@ -137,7 +137,7 @@ void addLevelCommands(std::vector<Command>& rows) {
                                 {key('0' + level), key(keys::kKeypad0 + level)},
                                 level == 0 ? "subdivision level (all views when levels are linked, else the active one)" : "",
                                 [level](ViewerState& state) { requestLevel(state, level); }));
-  rows.back().helpKeys = rows[rows.size() - 10].helpKeys = "0 - 9";
+  rows[rows.size() - 10].helpKeys = "0 - 9";
   // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
   rows.push_back(stateCommand("level.deeper", "Deeper", {key(']'), key(keys::kPageUp), key(keys::kKeypadAdd)},
                               "one level deeper / shallower (levels past 9, to the model's limit)", [](ViewerState& state) {
@@ -292,8 +292,11 @@ void CommandTable::runQueued(ViewerState& state, CommandHost& host) const {
   state.queuedCommands.clear();
 }
 
+std::string CommandTable::helpKeysText(const Command& command) {
+  return command.helpKeys.empty() ? keysText(command) : command.helpKeys;
+}
+
 std::string CommandTable::keysText(const Command& command) {
-  if (!command.helpKeys.empty()) return command.helpKeys;
   std::string text;
   for (const KeyChord& chord : command.keys) {
     if (chord.key >= keys::kKeypad0 && chord.key <= keys::kKeypadAdd) continue;  // the keypad twins

@@ -74,8 +74,10 @@ class CommandTable {
   bool run(std::string_view id, ViewerState& state, CommandHost& host) const;
   // Runs and clears the commands queued in `state` (panels, keys, `view --do`), in order.
   void runQueued(ViewerState& state, CommandHost& host) const;
-  // "Ctrl+Shift+Z / Ctrl+Y", or the row's helpKeys.
+  // The command's keys: "Ctrl+Shift+Z / Ctrl+Y" (keypad twins left out).
   static std::string keysText(const Command& command);
+  // The help window's keys column: the row's helpKeys where one line stands for several ("0 - 9").
+  static std::string helpKeysText(const Command& command);
   // "Gaussian K (G)": a button's label with its first key.
   static std::string buttonLabel(const Command& command);
 

@@ -456,7 +456,7 @@ void drawHelpWindow(ViewerState& state) {
       };
       for (const GestureHelp& gesture : gestureHelp()) row(gesture.gesture, gesture.action);
       for (const Command& command : viewerCommands().commands())
-        if (!command.help.empty()) row(CommandTable::keysText(command), command.help);
+        if (!command.help.empty()) row(CommandTable::helpKeysText(command), command.help);
       ImGui::EndTable();
     }
   }

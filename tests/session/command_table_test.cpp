@@ -2,6 +2,8 @@
 // come from the same rows, and commands act on the state and the host as the viewer's keys did.
 #include <doctest/doctest.h>
 
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -143,10 +145,22 @@ TEST_CASE("command table: help and button texts come from the rows") {
   CHECK(CommandTable::buttonLabel(*table.find("camera.frame")) == "Frame model (F)");
   CHECK(CommandTable::buttonLabel(*table.find("shade.gaussian")) == "Gaussian K (G)");
   CHECK(CommandTable::keysText(*table.find("edit.redo")) == "Ctrl+Shift+Z / Ctrl+Y");
-  CHECK(CommandTable::keysText(*table.find("level.0")) == "0 - 9");
+  CHECK(CommandTable::helpKeysText(*table.find("level.0")) == "0 - 9");
+  CHECK(CommandTable::keysText(*table.find("level.9")) == "9");
   // Every key of the viewer is listed in the help (a row's own keys or a shared line's).
   int helpLines = 0;
   for (const Command& command : table.commands()) helpLines += command.help.empty() ? 0 : 1;
   CHECK(helpLines >= 20);
   CHECK(table.find("scheme.next")->help.find("CC, C2PS, C2PS-U, RTS, RTS-U, BPS") != std::string::npos);
+}
+
+TEST_CASE("command table: docs/viewer.md lists every command") {
+  std::ifstream in(std::string(POLARVIEW_ASSET_DIR) + "/../docs/viewer.md");
+  REQUIRE(in.good());
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const Command& command : viewerCommands().commands()) {
+    CAPTURE(command.id);
+    const bool level = command.id.rfind("level.", 0) == 0 && command.id.size() == 7;  // level.0 ... level.9
+    CHECK(doc.find("`" + (level ? std::string("level.0` … `level.9") : command.id) + "`") != std::string::npos);
+  }
 }
