@@ -55,25 +55,12 @@ RefineOptions refineOptionsFor(SchemeChoice scheme, int level) {
   return RefineOptions{variant.scheme, level, variant.uniformFirstStep};
 }
 
-const char* shadeModeName(ShadingParams::Mode mode) {
-  switch (mode) {
-    case ShadingParams::Mode::Shaded: return "shaded";
-    case ShadingParams::Mode::Gaussian: return "gaussian";
-    case ShadingParams::Mode::Mean: return "mean";
-    case ShadingParams::Mode::Highlight: return "highlight";
-    case ShadingParams::Mode::Reflection: return "reflection";
-  }
-  return "?";
-}
+const char* shadeModeName(ShadingParams::Mode mode) { return shadingModeInfo(mode).name; }
 
 std::optional<ShadingParams::Mode> parseShadeMode(const std::string& name) {
-  std::string key = lowercase(name);
-  if (key == "lit") return ShadingParams::Mode::Shaded;
-  if (key == "zebra") return ShadingParams::Mode::Reflection;
-  for (auto mode : {ShadingParams::Mode::Shaded, ShadingParams::Mode::Gaussian, ShadingParams::Mode::Mean,
-                    ShadingParams::Mode::Highlight, ShadingParams::Mode::Reflection}) {
-    if (key == shadeModeName(mode)) return mode;
-  }
+  const std::string key = lowercase(name);
+  for (const ShadingModeInfo& info : shadingModes())
+    if (key == info.name || key == info.alias) return info.mode;
   return std::nullopt;
 }
 

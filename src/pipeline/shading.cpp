@@ -18,6 +18,24 @@ glm::vec3 fiveStops(float t, const glm::vec3 (&c)[5]) {
 
 }  // namespace
 
+const std::vector<ShadingModeInfo>& shadingModes() {
+  using Mode = ShadingParams::Mode;
+  static const std::vector<ShadingModeInfo> modes = {
+      {Mode::Shaded, "shaded", "lit", "Lit", 'L', false, false},
+      {Mode::Gaussian, "gaussian", "", "Gaussian K", 'G', true, false},
+      {Mode::Mean, "mean", "", "Mean H", 'M', true, false},
+      {Mode::Highlight, "highlight", "", "Highlight lines", 'H', false, true},
+      {Mode::Reflection, "reflection", "zebra", "Reflection lines / zebra", 'Z', false, true},
+  };
+  return modes;
+}
+
+const ShadingModeInfo& shadingModeInfo(ShadingParams::Mode mode) {
+  for (const ShadingModeInfo& info : shadingModes())
+    if (info.mode == mode) return info;
+  return shadingModes().front();
+}
+
 glm::vec3 patchKindColor(PatchKind kind) {
   switch (kind) {
     case PatchKind::Regular: return {0.15f, 0.15f, 0.15f};

@@ -7,6 +7,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <vector>
+
 #include "core/spline/patch.h"
 
 namespace polarview {
@@ -42,6 +44,21 @@ struct ShadingParams {
   int fixedTessLevel = 0;     // > 0: this level on every edge instead of the adaptive one
   glm::vec3 surfaceColor{0.78f, 0.80f, 0.84f};  // base colour of Shaded mode
 };
+
+// The shading modes, a row each: the name the command line and the viewer's commands use, the
+// panels' label and key, and what the mode draws. A new mode is a row here (and its enum value
+// above) plus its branch in shaders/patch.frag.
+struct ShadingModeInfo {
+  ShadingParams::Mode mode;
+  const char* name;   // "gaussian": `--shade gaussian`, the command shade.gaussian
+  const char* alias;  // another accepted name ("lit", "zebra"), or ""
+  const char* label;  // "Gaussian K"
+  char key;           // 'G'
+  bool curvature;     // a colour map of K or H: the colour bar and its range
+  bool lightLines;    // highlight or reflection lines: the light-line legend and controls
+};
+const std::vector<ShadingModeInfo>& shadingModes();
+const ShadingModeInfo& shadingModeInfo(ShadingParams::Mode mode);
 
 // What is drawn.
 struct DisplayFlags {

@@ -2,7 +2,6 @@
 #include "session/command_table.h"
 
 #include <algorithm>
-#include <iterator>
 #include <optional>
 
 #include "session/keys.h"
@@ -22,17 +21,6 @@ std::string schemeLabels() {
   return text;
 }
 
-// The shading modes' rows (ids "shade." + shadeModeName).
-struct ShadingModeRow {
-  ShadingParams::Mode mode;
-  const char* label;
-  int key;
-};
-constexpr ShadingModeRow kShadingModes[] = {{ShadingParams::Mode::Shaded, "Lit", 'L'},
-                                            {ShadingParams::Mode::Gaussian, "Gaussian K", 'G'},
-                                            {ShadingParams::Mode::Mean, "Mean H", 'M'},
-                                            {ShadingParams::Mode::Highlight, "Highlight lines", 'H'},
-                                            {ShadingParams::Mode::Reflection, "Reflection lines / zebra", 'Z'}};
 
 // The rows that set a state field or flip a flag, as (id, label, key, help, setter).
 Command stateCommand(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
@@ -157,12 +145,12 @@ void addLevelCommands(std::vector<Command>& rows) {
 }
 
 void addShadingCommands(std::vector<Command>& rows) {
-  for (const ShadingModeRow& mode : kShadingModes) {
+  for (const ShadingModeInfo& mode : shadingModes()) {
     const ShadingParams::Mode value = mode.mode;
     rows.push_back(stateCommand(shadingCommandId(value), mode.label, {key(mode.key)}, "",
                                 [value](ViewerState& state) { state.shading.mode = value; }));
   }
-  constexpr size_t kModes = std::size(kShadingModes);
+  const size_t kModes = shadingModes().size();
   rows[rows.size() - kModes].help = "lit / Gaussian / mean / highlight lines / reflection lines (zebra)";
   rows[rows.size() - kModes].helpKeys = "L / G / M / H / Z";
   rows.push_back(stateCommand("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",

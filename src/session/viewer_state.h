@@ -228,15 +228,11 @@ struct ViewerState {
   // The curvature map (Gaussian or mean) a visible surface is shaded with, if any: the first view's
   // that has one (one image holds one colour bar).
   std::optional<ShadingParams::Mode> curvatureShade() const {
-    return firstSurfaceShade([](ShadingParams::Mode m) {
-      return m == ShadingParams::Mode::Gaussian || m == ShadingParams::Mode::Mean;
-    });
+    return firstSurfaceShade([](ShadingParams::Mode m) { return shadingModeInfo(m).curvature; });
   }
   // The light lines (highlight or reflection) a visible surface shows, if any: they get a legend.
   std::optional<ShadingParams::Mode> lineShade() const {
-    return firstSurfaceShade([](ShadingParams::Mode m) {
-      return m == ShadingParams::Mode::Highlight || m == ShadingParams::Mode::Reflection;
-    });
+    return firstSurfaceShade([](ShadingParams::Mode m) { return shadingModeInfo(m).lightLines; });
   }
   // True when a view shows a curvature map (then the colour bar is shown).
   bool showsColourBar() const { return curvatureShade().has_value(); }

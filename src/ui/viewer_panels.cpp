@@ -38,16 +38,13 @@ const char* colourMapName(ShadingParams::ColorMap map) {
   return "?";
 }
 
-constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Shaded, ShadingParams::Mode::Gaussian,
-                                               ShadingParams::Mode::Mean, ShadingParams::Mode::Highlight,
-                                               ShadingParams::Mode::Reflection};
 
 // Ctrl+left drag: turns the light by the pixel deltas (0.4 degrees a pixel, as orbiting). Lit and
 // curvature modes turn the key light in view space; highlight and zebra modes turn the light lines
 // (direction and plane normal together) about world z and the screen's horizontal axis.
 void moveLight(ShadingParams& shading, const OrbitCamera& camera, float dxPixels, float dyPixels) {
   const float yaw = glm::radians(0.4f * dxPixels), pitch = glm::radians(0.4f * dyPixels);
-  if (shading.mode == ShadingParams::Mode::Highlight || shading.mode == ShadingParams::Mode::Reflection) {
+  if (shadingModeInfo(shading.mode).lightLines) {
     const glm::quat turn = glm::angleAxis(pitch, glm::vec3(camera.right())) * glm::angleAxis(yaw, glm::vec3(0, 0, 1));
     shading.highlightDir = glm::normalize(turn * shading.highlightDir);
     shading.highlightPlaneNormal = glm::normalize(turn * shading.highlightPlaneNormal);
@@ -268,11 +265,11 @@ void drawDisplayPanel(ViewerState& state) {
 
 void drawShadingPanel(ViewerState& state) {
   ShadingParams& s = state.shading;
-  for (const ShadingParams::Mode mode : kShadeModes) {
-    const Command& command = *viewerCommands().find(shadingCommandId(mode));
-    if (ImGui::RadioButton(CommandTable::buttonLabel(command).c_str(), s.mode == mode)) s.mode = mode;
+  for (const ShadingModeInfo& mode : shadingModes()) {
+    const Command& command = *viewerCommands().find(shadingCommandId(mode.mode));
+    if (ImGui::RadioButton(CommandTable::buttonLabel(command).c_str(), s.mode == mode.mode)) s.mode = mode.mode;
   }
-  if (s.mode == ShadingParams::Mode::Highlight || s.mode == ShadingParams::Mode::Reflection) {
+  if (shadingModeInfo(s.mode).lightLines) {
     if (ImGui::SliderFloat3("Light dir.", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
     if (ImGui::SliderFloat3("Plane normal", &s.highlightPlaneNormal.x, -1.0f, 1.0f, "%.2f"))
       normaliseDirection(s.highlightPlaneNormal);
