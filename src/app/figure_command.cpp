@@ -246,7 +246,7 @@ RgbaImage renderViews(ViewerApp& app, int width, int height, int supersample) {
   const ViewerState& state = app.state();
   const std::string& file = app.model().name;
   for (int v = 0; v < state.viewCount; ++v) {
-    const std::string& message = state.status[size_t(v)].message;
+    const std::string& message = state.views[size_t(v)].status.message;
     if (!message.empty()) throw std::runtime_error(message.rfind(file + ":", 0) == 0 ? message : file + ": " + message);
   }
   return renderStyledImage(app, width, height, supersample, false);
@@ -265,7 +265,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
   state.viewCount = int(row.panels.size());
   for (size_t v = 0; v < row.panels.size(); ++v) {
     const Panel& panel = row.panels[v];
-    ViewSettings& view = state.views[v];
+    View& view = state.views[v];
     const bool net = panel.draw == Draw::Net || panel.draw == Draw::RefinedNet;
     view.scheme = panel.scheme;
     view.level = net ? 0 : panel.level;  // a refined net is the level-0 net of the refined mesh

@@ -155,7 +155,7 @@ void GpuMirror::updateDrawnLevel(int v, double pixelsHigh, ViewerState& state, c
       slot.drawn = std::move(drawn);
     }
   }
-  ViewStatus& status = state.status[size_t(v)];
+  ViewStatus& status = state.views[size_t(v)].status;
   status.drawnLevel = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
   status.drawnPatches = int(slot.drawn ? slot.drawn->patches.size() : shown->patches.size());
 }

@@ -213,7 +213,7 @@ void ViewerApp::frameModel(const ScreenRect* viewRect) {
   if (state_.linkCameras) {
     frameCamera(state_.sharedCamera);
   } else {
-    for (ViewSettings& view : state_.views) frameCamera(view.camera);
+    for (View& view : state_.views) frameCamera(view.camera);
   }
   framedOnce_ = true;
   framedViewCount_ = state_.viewCount;
@@ -245,7 +245,7 @@ void ViewerApp::updateSurfaces() {
       cost->uploadMs += uploadMs;
       cost->totalMs += uploadMs;
     }
-    gpu_->report(v, state_.status[size_t(v)]);
+    gpu_->report(v, state_.views[size_t(v)].status);
   }
   if (cost) document().recordEditCost(*cost);
 }

@@ -99,11 +99,11 @@ bool reportViewErrors(const ViewerApp& app) {
   const ViewerState& state = app.state();
   for (int v = 0; v < state.viewCount; ++v) {
     const BuiltSurface* shown = app.shownSurface(v);
-    const ViewSettings& wanted = state.views[size_t(v)];
+    const View& wanted = state.views[size_t(v)];
     bool showsWanted = shown && shown->key.model == app.modelGeneration() && shown->key.scheme == wanted.scheme &&
                        shown->key.level == wanted.level;
-    if (!showsWanted || !state.status[size_t(v)].message.empty()) {
-      std::string message = state.status[size_t(v)].message;
+    if (!showsWanted || !state.views[size_t(v)].status.message.empty()) {
+      std::string message = state.views[size_t(v)].status.message;
       if (message.empty()) message = "view " + std::to_string(v + 1) + " could not be built";
       // Name the model file, as every input error does (refinement errors already start with it).
       const std::string& file = app.model().name;
@@ -147,7 +147,7 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   // Per view, one number of its status: "KEY":[view 0, view 1, ...].
   const auto perView = [&](const char* key, int ViewStatus::*field) {
     json << ",\"" << key << "\":[";
-    for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.status[size_t(v)].*field;
+    for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.views[size_t(v)].status.*field;
     json << "]";
   };
   perView("patches", &ViewStatus::patchCount);
@@ -160,7 +160,7 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   // The deepest level the view's memory budget admits for its scheme on this model.
   perView("deepest_levels", &ViewStatus::deepestLevel);
   json << ",\"titles\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.status[size_t(v)]) << '"';
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.views[size_t(v)].status) << '"';
   const double range = state.colourRange(), rangeBelow = state.colourRangeBelow();
   const double medianMs = median(frameMs);
   const double minMs = frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end());
@@ -322,7 +322,7 @@ int renderWithApp(const RenderRequest& r) {
   setViews(state, r.schemes, r.level.value_or(kDefaultRenderLevel));
   if (!r.level)
     for (int v = 0; v < state.viewCount; ++v) {
-      ViewSettings& view = state.views[size_t(v)];
+      View& view = state.views[size_t(v)];
       const int deepest = deepestLevel(app.model(), view.scheme, options.faceBudget);
       if (deepest >= view.level) continue;
       std::cerr << "polarview: " << r.input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
@@ -460,7 +460,7 @@ std::string runLevelSteps(ViewerApp& app, int level) {
     app.runFrame();  // starts the job
     app.waitUntilIdle();
     app.runFrame();  // shows it: upload + draw
-    const ViewStatus& status = state.status[0];
+    const ViewStatus& status = state.views[0].status;
     char entry[480];
     std::snprintf(entry, sizeof entry,
                   "%s{\"from\":%d,\"to\":%d,\"scheme\":\"%s\",\"shown\":%d,\"refine_ms\":%.2f,\"patches_ms\":%.2f,"

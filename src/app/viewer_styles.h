@@ -1,5 +1,5 @@
 // Images whose views differ in style (shading mode, what is drawn): `render --shade a,b,...` and
-// `figure`. The app draws each view in its ViewSettings::shade / display (unset: the shared style).
+// `figure`. The app draws each view in its View::shade / display (unset: the shared style).
 #pragma once
 
 #include "app/viewer_app.h"

@@ -18,7 +18,7 @@ bool sameModelAndPoints(const SurfaceKey& a, const SurfaceKey& b) { return a.mod
 }  // namespace
 
 SurfaceKey wantedKey(const ViewerState& state, const Model& model, int v) {
-  const ViewSettings& view = state.views[size_t(v)];
+  const View& view = state.views[size_t(v)];
   return SurfaceKey{model.generation, view.scheme, view.level, model.points};
 }
 
@@ -46,7 +46,7 @@ size_t SurfaceCache::facesHeld(const ViewerState& state, const Model& model, boo
   }
   for (int v = 0; v < state.viewCount; ++v) {
     if (wantedLevels) {
-      const ViewSettings& settings = state.views[size_t(v)];
+      const View& settings = state.views[size_t(v)];
       faces += levelFaces(model, settings.scheme, patchLevelFor(model, settings.scheme, settings.level, faceBudget_));
     } else if (const BuiltSurface* shown = views_[size_t(v)].shown.get()) {
       faces += levelFaces(model, shown->key.scheme, shown->patchLevel);
@@ -63,7 +63,7 @@ void SurfaceCache::show(int v, std::shared_ptr<const BuiltSurface> surface) {
 
 void SurfaceCache::modelChanged(ViewerState& state) {
   for (ViewSurfaces& view : views_) view.failed.reset();
-  for (ViewStatus& status : state.status) status.message.clear();
+  for (View& view : state.views) view.status.message.clear();
 }
 
 std::optional<EditCost> SurfaceCache::update(ViewerState& state, const Model& model, bool dragging) {
@@ -86,7 +86,7 @@ std::optional<EditCost> SurfaceCache::update(ViewerState& state, const Model& mo
     const bool dirty = v < state.viewCount && (!view.shown || view.shown->key != wanted) && !refreshable &&
                        !(view.failed && *view.failed == wanted);
     if (dirty && !view.job.running()) satisfy(v, state, model, wanted);
-    state.status[size_t(v)].deepestLevel = deepestLevel(model, state.views[size_t(v)].scheme, faceBudget_);
+    state.views[size_t(v)].status.deepestLevel = deepestLevel(model, state.views[size_t(v)].scheme, faceBudget_);
     prepareNextLevel(v, state, model, wanted, dragging);
     report(v, state, model);
   }
@@ -119,7 +119,7 @@ std::optional<EditCost> SurfaceCache::refreshEditedViews(ViewerState& state, con
       } catch (const std::exception& e) {
         // Not expected (the topology is the one it was built with); the view is rebuilt instead.
         view.refreshFailed = wanted;
-        state.status[size_t(v)].message = std::string("positions-only update failed (rebuilding): ") + e.what();
+        state.views[size_t(v)].status.message = std::string("positions-only update failed (rebuilding): ") + e.what();
         continue;
       }
       refreshed.emplace_back(view.shown.get(), surface);
@@ -147,7 +147,7 @@ void SurfaceCache::takeFinishedJob(int v, ViewerState& state, const Model& model
   ViewSurfaces& view = views_[size_t(v)];
   std::optional<SurfaceJob::Outcome> outcome = view.job.poll();
   if (!outcome) return;
-  ViewStatus& status = state.status[size_t(v)];
+  ViewStatus& status = state.views[size_t(v)].status;
   if (!outcome->error.empty()) {
     view.failed = outcome->key;
     status.message = outcome->error;
@@ -175,7 +175,7 @@ void SurfaceCache::dropStale(int v, const ViewerState& state, const Model& model
 
 void SurfaceCache::satisfy(int v, ViewerState& state, const Model& model, const SurfaceKey& wanted) {
   ViewSurfaces& view = views_[size_t(v)];
-  ViewStatus& status = state.status[size_t(v)];
+  ViewStatus& status = state.views[size_t(v)].status;
   const bool zoomed = state.poleInspector.zoomRing >= 0;
   std::shared_ptr<const BuiltSurface> twin;  // another view's surface of the same key
   for (const ViewSurfaces& other : views_)
@@ -273,7 +273,7 @@ void SurfaceCache::prepareNextLevel(int v, const ViewerState& state, const Model
   if (!prepareNextLevel_ || v >= state.viewCount || v != std::clamp(state.activeView, 0, state.viewCount - 1) ||
       view.job.running() || dragging || !view.shown || !view.shown->hierarchy || view.shown->key != wanted)
     return;
-  if (wanted.level + 1 > state.status[size_t(v)].deepestLevel) return;
+  if (wanted.level + 1 > state.views[size_t(v)].status.deepestLevel) return;
   if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
   if (view.previousLevel && view.previousLevel->key.level == wanted.level + 1) return;  // kept from before
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
@@ -299,7 +299,7 @@ void SurfaceCache::prepareNextLevel(int v, const ViewerState& state, const Model
 
 void SurfaceCache::report(int v, ViewerState& state, const Model& model) const {
   const ViewSurfaces& view = views_[size_t(v)];
-  ViewStatus& status = state.status[size_t(v)];
+  ViewStatus& status = state.views[size_t(v)].status;
   status.levelLimit = levelRefusal(model, state.views[size_t(v)].scheme, status.deepestLevel + 1, faceBudget_);
   status.refining = view.job.running();
   status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;

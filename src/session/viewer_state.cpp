@@ -17,7 +17,7 @@ void requestLevel(ViewerState& state, int level) {
   // face-budget estimate); otherwise nothing changes and the notice says how deep it can go.
   for (int v = 0; v < state.viewCount; ++v) {
     if (!state.linkLevels && v != state.activeView) continue;
-    const ViewStatus& status = state.status[size_t(v)];
+    const ViewStatus& status = state.views[size_t(v)].status;
     if (level > status.deepestLevel || level < 0) {
       state.notice = level < 0 ? "level " + std::to_string(level) + " refused"
                                : "level " + std::to_string(level) + " refused: " +
@@ -28,7 +28,7 @@ void requestLevel(ViewerState& state, int level) {
   }
   if (state.notice.rfind("level ", 0) == 0) state.notice.clear();  // an earlier refusal is stale now
   if (state.linkLevels) {
-    for (ViewSettings& view : state.views) view.level = level;
+    for (View& view : state.views) view.level = level;
   } else {
     state.views[size_t(state.activeView)].level = level;
   }
@@ -36,7 +36,7 @@ void requestLevel(ViewerState& state, int level) {
 
 void setOrthographic(ViewerState& state, bool orthographic) {
   state.sharedCamera.orthographic = orthographic;
-  for (ViewSettings& view : state.views) view.camera.orthographic = orthographic;
+  for (View& view : state.views) view.camera.orthographic = orthographic;
 }
 
 void cycleScheme(ViewerState& state, int view, int step) {

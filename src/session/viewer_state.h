@@ -20,25 +20,6 @@ namespace polarview {
 
 constexpr int kMaxViews = 4;
 
-// What one view shows.
-struct ViewSettings {
-  SchemeChoice scheme = SchemeChoice::C2PS;
-  int level = 3;
-  OrbitCamera camera;  // used when the cameras are not linked
-  // Per-view styles of `render --shade a,b` and `figure` (the viewer leaves them unset): this view's
-  // shading mode and what it draws instead of ViewerState::shading.mode / display, and a caption in
-  // place of its title ("(c) C2PS · 4"). The app draws each view in its own style.
-  std::optional<ShadingParams::Mode> shade;
-  std::optional<DisplayFlags> display;
-  std::string caption;
-};
-
-inline ViewSettings viewOf(SchemeChoice scheme) {
-  ViewSettings view;
-  view.scheme = scheme;
-  return view;
-}
-
 // What the app reports about one view (read-only for panels).
 struct ViewStatus {
   bool refining = false;           // a refinement job is running for this view
@@ -69,6 +50,27 @@ struct ViewStatus {
   int deepestLevel = kMaxLevel;    // deepest level of the view's scheme on this model (face budget)
   std::string levelLimit;          // the refusal a level one deeper gets (empty at kMaxLevel)
 };
+
+// One view: what it shows (its settings, which panels, keys and commands edit) and what the
+// session reports about it (its status).
+struct View {
+  SchemeChoice scheme = SchemeChoice::C2PS;
+  int level = 3;
+  OrbitCamera camera;  // used when the cameras are not linked
+  // Per-view styles of `render --shade a,b` and `figure` (the viewer leaves them unset): this view's
+  // shading mode and what it draws instead of ViewerState::shading.mode / display, and a caption in
+  // place of its title ("(c) C2PS · 4"). The app draws each view in its own style.
+  std::optional<ShadingParams::Mode> shade;
+  std::optional<DisplayFlags> display;
+  std::string caption;
+  ViewStatus status;  // written by the session and the window each frame; read-only for panels
+};
+
+inline View viewOf(SchemeChoice scheme) {
+  View view;
+  view.scheme = scheme;
+  return view;
+}
 
 // The colour range shared by all views.
 struct ColourRangeSettings {
@@ -180,7 +182,7 @@ struct PoleInspectorSettings {
 struct ViewerState {
   int viewCount = 1;
   // New views start on different schemes: the point of several views is comparing them.
-  std::array<ViewSettings, kMaxViews> views{viewOf(SchemeChoice::C2PS), viewOf(SchemeChoice::RTS),
+  std::array<View, kMaxViews> views{viewOf(SchemeChoice::C2PS), viewOf(SchemeChoice::RTS),
                                             viewOf(SchemeChoice::BPS), viewOf(SchemeChoice::CatmullClark)};
   int activeView = 0;          // the view hotkeys (0-9, scheme) apply to; last one hovered/clicked
   bool linkCameras = true;     // all views use sharedCamera
@@ -203,7 +205,6 @@ struct ViewerState {
   bool showPanels = true;      // Tab
   bool showHelp = false;       // ?
   bool showStats = true;
-  std::array<ViewStatus, kMaxViews> status{};
   double frameMs = 0.0;        // CPU wall time of the last frame (to swap, GL finished)
   std::string glInfo;          // GL_VERSION / GL_RENDERER
   std::string notice;          // last message for the user (screenshot path, camera copied, ...)

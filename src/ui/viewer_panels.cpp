@@ -211,8 +211,8 @@ void drawViewsPanel(ViewerState& state) {
   ImGui::Checkbox("Link levels", &state.linkLevels);
   for (int v = 0; v < state.viewCount; ++v) {
     ImGui::PushID(v);
-    ViewSettings& view = state.views[v];
-    const ViewStatus& status = state.status[v];
+    View& view = state.views[v];
+    const ViewStatus& status = state.views[v].status;
     ImGui::Separator();
     ImGui::Text("View %d%s", v + 1, v == state.activeView ? " (active)" : "");
     int scheme = int(view.scheme);
@@ -373,7 +373,7 @@ void drawStatsPanel(const ViewerState& state) {
                        edit.uploadMs);
   }
   for (int v = 0; v < state.viewCount; ++v) {
-    const ViewStatus& s = state.status[v];
+    const ViewStatus& s = state.views[v].status;
     if (!s.hasSurface) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
@@ -486,8 +486,8 @@ std::vector<ImVec4> drawViewLabels(const OverlayPen& pen, const ViewerState& sta
   std::vector<ImVec4> labelBoxes;
   for (size_t v = 0; v < views.size(); ++v) {
     const ScreenRect& r = views[v];
-    const ViewStatus& status = state.status[v];
-    const ViewSettings& wanted = state.views[v];
+    const ViewStatus& status = state.views[v].status;
+    const View& wanted = state.views[v];
     std::string label = viewTitle(status);
     if (!wanted.caption.empty()) label = wanted.caption;
     else if (wanted.shade) label += " \xC2\xB7 " + std::string(shadeModeName(*wanted.shade));

@@ -170,7 +170,7 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
   const std::vector<Point> loaded = app->model().mesh->points;
   const glm::dvec3 forward = state.sharedCamera.forward();
   const AdaptiveRefinement* refinements[2] = {app->shownSurface(0)->refinement.get(), app->shownSurface(1)->refinement.get()};
-  const int patches[2] = {state.status[0].patchCount, state.status[1].patchCount};
+  const int patches[2] = {state.views[0].status.patchCount, state.views[1].status.patchCount};
   const uint64_t generation = app->modelGeneration();
 
   // Press on the vertex, then move frame by frame: every frame each view shows the new points.
@@ -194,7 +194,7 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
       CHECK(shown->refinement.get() == refinements[v]);  // same hierarchy: topology not rebuilt
       CHECK(int(shown->patches.size()) == patches[v]);
       CHECK(shown->controlMesh.points[size_t(target.vertex)] == moved);
-      CHECK(state.status[size_t(v)].patchCount == patches[v]);
+      CHECK(state.views[size_t(v)].status.patchCount == patches[v]);
     }
   }
   pointer(*app, target.x + 30.0f, target.y + 20.0f, false);
@@ -462,19 +462,19 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   toggle(SchemeChoice::CatmullClark);
   const BuiltSurface* catmullClark = app->shownSurface(0);
   CHECK(catmullClark != c2ps);
-  CHECK_FALSE(state.status[0].unparked);
+  CHECK_FALSE(state.views[0].status.unparked);
   CHECK(app->renderer(0).patchCount() == int(catmullClark->patches.size()));
 
   toggle(SchemeChoice::C2PS);
   CHECK(app->shownSurface(0) == c2ps);  // not rebuilt
-  CHECK(state.status[0].unparked);
+  CHECK(state.views[0].status.unparked);
   CHECK(app->renderer(0).patchCount() == int(c2ps->patches.size()));
   const RgbaImage again = app->renderImage(400, 300, 1, false);
   CHECK(again.pixels == before.pixels);
 
   toggle(SchemeChoice::CatmullClark);  // and forth: the Catmull-Clark surface was parked in turn
   CHECK(app->shownSurface(0) == catmullClark);
-  CHECK(state.status[0].unparked);
+  CHECK(state.views[0].status.unparked);
 
   // Moved points: the parked C2PS surface is stale, toggling back builds the edited one.
   const ScreenVertex target = centralVertex(*app);
@@ -484,7 +484,7 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   REQUIRE(app->editor().undoCount() == 1);
   toggle(SchemeChoice::C2PS);
   const BuiltSurface* edited = app->shownSurface(0);
-  CHECK_FALSE(state.status[0].unparked);
+  CHECK_FALSE(state.views[0].status.unparked);
   CHECK(edited->key.points == app->model().points);
   const double scale = glm::length(app->modelMax() - app->modelMin());
   checkSamePatches(edited->patches, buildSurface(app->model(), edited->key, kDefaultFaceBudget)->patches, 1e-12 * scale);

@@ -39,7 +39,7 @@ void runFrames(ViewerApp& app, int frames) {
 // A shown surface equals what the settings ask for.
 bool showsWanted(const ViewerApp& app, int v) {
   const BuiltSurface* shown = app.shownSurface(v);
-  const ViewSettings& wanted = app.state().views[size_t(v)];
+  const View& wanted = app.state().views[size_t(v)];
   return shown && shown->key.model == app.modelGeneration() && shown->key.scheme == wanted.scheme &&
          shown->key.level == wanted.level;
 }
@@ -124,10 +124,10 @@ TEST_CASE("viewer app: after many quick scheme and level changes every view show
     REQUIRE(showsWanted(*app, v));
     // What is shown is what a fresh build of the same key gives.
     auto fresh = buildSurface(app->model(), app->shownSurface(v)->key, kDefaultFaceBudget);
-    CHECK(state.status[size_t(v)].patchCount == int(fresh->patches.size()));
+    CHECK(state.views[size_t(v)].status.patchCount == int(fresh->patches.size()));
     int sum = 0;
-    for (int count : state.status[size_t(v)].patchesPerKind) sum += count;
-    CHECK(sum == state.status[size_t(v)].patchCount);
+    for (int count : state.views[size_t(v)].status.patchesPerKind) sum += count;
+    CHECK(sum == state.views[size_t(v)].status.patchCount);
   }
 }
 
@@ -169,7 +169,7 @@ TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps r
     runFrames(*app, 2);
     for (int v = 0; v < 2; ++v) {
       // Either the level is shown, or it was refused / failed with a message and the app goes on.
-      CHECK((showsWanted(*app, v) || !state.status[size_t(v)].message.empty()));
+      CHECK((showsWanted(*app, v) || !state.views[size_t(v)].status.message.empty()));
     }
     CHECK(state.frameMs > 0.0);
   }
@@ -185,7 +185,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   ViewerState& state = app->state();
   // One limit: the slider's range, the keys' refusal and the app's refusal agree.
   const int deepest = deepestLevel(app->model(), SchemeChoice::C2PS, 20000);
-  CHECK(state.status[0].deepestLevel == deepest);
+  CHECK(state.views[0].status.deepestLevel == deepest);
   CHECK(deepest >= 1);
   CHECK(deepest < 8);
   requestLevel(state, 8);  // a key or the slider: refused at once, nothing changes
@@ -198,8 +198,8 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
   state.views[0].level = 8;  // set directly (as `view --level` does): the app refuses it
   app->waitUntilIdle();
   runFrames(*app, 2);
-  CHECK(state.status[0].message.find("level 8 refused: C2PS stops at level " + std::to_string(deepest)) == 0);
-  CHECK(state.status[0].message == levelRefusal(app->model(), SchemeChoice::C2PS, 8, 20000));
+  CHECK(state.views[0].status.message.find("level 8 refused: C2PS stops at level " + std::to_string(deepest)) == 0);
+  CHECK(state.views[0].status.message == levelRefusal(app->model(), SchemeChoice::C2PS, 8, 20000));
   CHECK(state.views[0].level == deepest);
   CHECK(app->shownSurface(0)->key.level == deepest);
 }
@@ -360,27 +360,27 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
   state.views[0].scheme = SchemeChoice::RTS;
   state.views[1].scheme = SchemeChoice::BPS;
   state.views[2].scheme = SchemeChoice::C2PS;
-  for (ViewSettings& view : state.views) view.level = 2;
+  for (View& view : state.views) view.level = 2;
   app->waitUntilIdle();
   runFrames(*app, 1);
   for (int v = 0; v < 2; ++v) {
     CAPTURE(v);
-    CHECK(state.status[v].polesByScheme == 0);
-    CHECK(state.status[v].polesByCatmullClark == 1);
-    CHECK(state.status[v].fallbackReason.find("valence >= 5") != std::string::npos);
-    CHECK(viewTitle(state.status[v]).find("poles by CC") != std::string::npos);
+    CHECK(state.views[v].status.polesByScheme == 0);
+    CHECK(state.views[v].status.polesByCatmullClark == 1);
+    CHECK(state.views[v].status.fallbackReason.find("valence >= 5") != std::string::npos);
+    CHECK(viewTitle(state.views[v].status).find("poles by CC") != std::string::npos);
   }
-  CHECK(viewTitle(state.status[0]).rfind("RTS", 0) == 0);
+  CHECK(viewTitle(state.views[0].status).rfind("RTS", 0) == 0);
   // C2PS refines any valence >= 3: a plain title.
-  CHECK(state.status[2].polesByScheme == 1);
-  CHECK(state.status[2].polesByCatmullClark == 0);
-  CHECK(viewTitle(state.status[2]) == "C2PS \xC2\xB7 2");
+  CHECK(state.views[2].status.polesByScheme == 1);
+  CHECK(state.views[2].status.polesByCatmullClark == 0);
+  CHECK(viewTitle(state.views[2].status) == "C2PS \xC2\xB7 2");
   // Valence 6: RTS refines it.
   REQUIRE(app->loadMesh(fanWithOneRing(6), "valence-6 fan"));
   app->waitUntilIdle();
   runFrames(*app, 1);
-  CHECK(state.status[0].polesByScheme == 1);
-  CHECK(viewTitle(state.status[0]) == "RTS \xC2\xB7 2");
+  CHECK(state.views[0].status.polesByScheme == 1);
+  CHECK(viewTitle(state.views[0].status) == "RTS \xC2\xB7 2");
 }
 
 TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a preset shows the whole model again") {
@@ -476,7 +476,7 @@ TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's lim
   CHECK(state.views[0].level == 12);
   tap(GLFW_KEY_LEFT_BRACKET);
   CHECK(state.views[0].level == 11);
-  const int deepest = state.status[0].deepestLevel;
+  const int deepest = state.views[0].status.deepestLevel;
   REQUIRE(deepest >= 12);
   requestLevel(state, deepest);
   tap(GLFW_KEY_RIGHT_BRACKET);
@@ -510,9 +510,9 @@ TEST_CASE("viewer app: level steps reuse the view's refinement, the next level i
     CHECK(shown.hierarchy->deepestMade.load() >= level + 1);
     // (After a step down from level + 1 the view keeps that surface instead: nothing made ahead.)
     if (previous != level + 1) CHECK(shown.hierarchy->aheadLevel.load() == level + 1);
-    if (level == previous + 1) CHECK(state.status[0].patchesMs == 0.0);
+    if (level == previous + 1) CHECK(state.views[0].status.patchesMs == 0.0);
     previous = level;
-    CHECK(state.status[0].keptPatches > 0);  // regular patches of shared levels stayed on the GPU
+    CHECK(state.views[0].status.keptPatches > 0);  // regular patches of shared levels stayed on the GPU
     for (int v = 0; v < 2; ++v) {
       const BuiltSurface& surface = *app->shownSurface(v);
       // RTS is not C2 at the pole: its holes are closed at kNonC2CapLevel whatever the level asked.
@@ -544,15 +544,15 @@ TEST_CASE("viewer app: a step back to the level shown before shows its surface a
   const BuiltSurface* five = app->shownSurface(0);
   step(6);
   const BuiltSurface* six = app->shownSurface(0);
-  CHECK_FALSE(state.status[0].reshown);
+  CHECK_FALSE(state.views[0].status.reshown);
   step(5);
   CHECK(app->shownSurface(0) == five);
-  CHECK(state.status[0].reshown);
-  CHECK(state.status[0].keptPatches > 0);
+  CHECK(state.views[0].status.reshown);
+  CHECK(state.views[0].status.keptPatches > 0);
   CHECK(app->renderer(0).patchCount() == int(five->patches.size()));
   step(6);
   CHECK(app->shownSurface(0) == six);  // and forth again
-  CHECK(state.status[0].reshown);
+  CHECK(state.views[0].status.reshown);
 
   // Another scheme between: the kept level is of the old scheme, so it goes.
   state.views[0].scheme = SchemeChoice::RTS;
@@ -560,7 +560,7 @@ TEST_CASE("viewer app: a step back to the level shown before shows its surface a
   state.views[0].scheme = SchemeChoice::C2PS;
   step(6);  // the parked C2PS 6
   step(5);
-  CHECK_FALSE(state.status[0].reshown);
+  CHECK_FALSE(state.views[0].status.reshown);
   CHECK(app->shownSurface(0)->key.level == 5);
 }
 
@@ -671,7 +671,7 @@ TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refi
   state.views[0].level = 2;
   app->waitUntilIdle();
   app->runFrame();
-  CHECK(state.status[0].polesByScheme == 0);
+  CHECK(state.views[0].status.polesByScheme == 0);
   const int cubeFaces = app->model().mesh->faceCount();
   for (bool pentagons : {false, true}) {
     CAPTURE(pentagons);
@@ -681,7 +681,7 @@ TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refi
     app->runFrame();
     CHECK(app->model().mesh->faceCount() > cubeFaces);
     CHECK_FALSE(modelPoles(*app->model().mesh).empty());
-    CHECK(state.status[0].polesByScheme == int(modelPoles(*app->model().mesh).size()));  // C2PS refines them
+    CHECK(state.views[0].status.polesByScheme == int(modelPoles(*app->model().mesh).size()));  // C2PS refines them
     queueCommand(state, "file.previous-model");  // Ctrl+Z with no edit to undo
     app->runFrame();
     app->waitUntilIdle();
@@ -728,15 +728,15 @@ TEST_CASE("pole zoom: the views draw rings m..m+2 of the pole scaled by 2^m, and
   app->runFrame();
   // What the renderer draws of the whole surface (its level of detail: rings below a pixel left out).
   const int whole = app->renderer(0).patchCount();
-  CHECK(whole == state.status[0].drawnPatches);
+  CHECK(whole == state.views[0].status.drawnPatches);
   state.poleInspector.zoomRing = 6;
   app->runFrame();
   app->runFrame();
   const BuiltSurface& shown = *app->shownSurface(0);
   const std::vector<Patch> zoomed = zoomAboutPole(shown.patches, 0, 6, 3, shown.poles[0]);
   CHECK(app->renderer(0).patchCount() == int(zoomed.size()));
-  CHECK(state.status[0].zoomRing == 6);
-  CHECK(viewTitle(state.status[0]).find("rings 6-8") != std::string::npos);
+  CHECK(state.views[0].status.zoomRing == 6);
+  CHECK(viewTitle(state.views[0].status).find("rings 6-8") != std::string::npos);
   const char* out = std::getenv("POLARVIEW_TEST_SHOTS");
   if (out) {
     const RgbaImage image = app->renderImage(800, 500, 1, false);

@@ -90,11 +90,11 @@ TEST_CASE("command table: commands change the state as the keys always did, and 
   ViewerState state;
   RecordingHost host;
   const CommandTable& table = viewerCommands();
-  for (ViewStatus& status : state.status) status.deepestLevel = 6;
+  for (View& view : state.views) view.status.deepestLevel = 6;
   CHECK(table.run("shade.mean", state, host));
   CHECK(state.shading.mode == ShadingParams::Mode::Mean);
   CHECK(table.run("level.5", state, host));
-  for (const ViewSettings& view : state.views) CHECK(view.level == 5);  // levels linked
+  for (const View& view : state.views) CHECK(view.level == 5);  // levels linked
   CHECK(table.run("level.deeper", state, host));
   CHECK(state.views[0].level == 6);
   CHECK(table.run("level.deeper", state, host));  // past the deepest level: refused, said

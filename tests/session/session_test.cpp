@@ -63,7 +63,7 @@ TEST_CASE("session: the default model through a command, its surface, and a fail
   CHECK(state.file.modelName.rfind("default", 0) == 0);
   REQUIRE(session.surfaces().shown(0) != nullptr);
   CHECK(session.surfaces().shown(0)->key == wantedKey(state, session.model(), 0));
-  CHECK(state.status[0].patchCount > 0);
+  CHECK(state.views[0].status.patchCount > 0);
 
   const uint64_t generation = session.model().generation;
   state.file.pathField = "/nonexistent/model.obj";

@@ -40,9 +40,9 @@ TEST_CASE("surface cache: a view shows the surface its settings ask for, and rep
   settle(cache, state, model);
   REQUIRE(cache.shown(0).get() != nullptr);
   CHECK(cache.shown(0)->key == wantedKey(state, model, 0));
-  CHECK(state.status[0].hasSurface);
-  CHECK(state.status[0].shownLevel == 2);
-  CHECK(state.status[0].patchCount == int(cache.shown(0)->patches.size()));
+  CHECK(state.views[0].status.hasSurface);
+  CHECK(state.views[0].status.shownLevel == 2);
+  CHECK(state.views[0].status.patchCount == int(cache.shown(0)->patches.size()));
   CHECK(cache.shown(1).get() == nullptr);  // invisible views build nothing
 }
 
@@ -62,7 +62,7 @@ TEST_CASE("surface cache: a scheme toggle back is a swap, a level step back show
   settle(cache, state, model);
   CHECK(cache.shown(0).get() == c2ps);  // not rebuilt
   CHECK(cache.unparked(0));
-  CHECK(state.status[0].unparked);
+  CHECK(state.views[0].status.unparked);
   CHECK(cache.parked(0)->key.scheme == SchemeChoice::CatmullClark);
 
   state.views[0].level = 3;
@@ -121,11 +121,11 @@ TEST_CASE("surface cache: a level over the budget is refused with a message and 
   SurfaceCache cache(budget, false);
   ViewerState state = oneView(SchemeChoice::C2PS, 2);
   settle(cache, state, model);
-  const int deepest = state.status[0].deepestLevel;
+  const int deepest = state.views[0].status.deepestLevel;
   REQUIRE(deepest < 6);
   state.views[0].level = 6;  // as a scripted setting would (the keys refuse it before)
   settle(cache, state, model);
-  CHECK(state.status[0].message == levelRefusal(model, SchemeChoice::C2PS, 6, budget));
+  CHECK(state.views[0].status.message == levelRefusal(model, SchemeChoice::C2PS, 6, budget));
   cache.update(state, model, false);  // the next frame
   CHECK(state.views[0].level == 2);  // reverted to what it shows, so the controls tell the truth
   CHECK(cache.shown(0)->key.level == 2);

@@ -30,5 +30,5 @@ TEST_CASE("new views start on different schemes: C2PS, RTS, BPS, Catmull-Clark (
   CHECK(state.views[1].scheme == SchemeChoice::RTS);
   CHECK(state.views[2].scheme == SchemeChoice::BPS);
   CHECK(state.views[3].scheme == SchemeChoice::CatmullClark);
-  for (const ViewSettings& view : state.views) CHECK(view.level == 3);
+  for (const View& view : state.views) CHECK(view.level == 3);
 }
