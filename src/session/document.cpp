@@ -138,11 +138,13 @@ void Document::undoModelReplacement() {
     state_.notice = "nothing to undo";
     return;
   }
-  // Swap back (a second Ctrl+Z redoes): the previous mesh is shown as a new model generation.
+  // Swap back (a second Ctrl+Z redoes): the previous model is shown as a new model generation,
+  // with its analysis (the faces are the same: nothing to analyse again).
   Model previous = previousModel_;
+  previous.points = 0;
   const std::string previousPath = previousPath_;
-  adoptMesh(PolyMesh(*previous.mesh), previous.name, previousPath);
-  state_.notice = "back to " + previous.name;
+  adoptModel(std::move(previous), previousPath);
+  state_.notice = "back to " + model_.name;
 }
 
 bool Document::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
@@ -155,6 +157,11 @@ bool Document::loadMesh(PolyMesh mesh, const std::string& name, const std::strin
 }
 
 void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
+  adoptModel(makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0), path);
+}
+
+void Document::adoptModel(Model model, const std::string& path) {
+  const PolyMesh& mesh = *model.mesh;
   modelMin_ = modelMax_ = mesh.points.front();
   for (const Point& p : mesh.points) {
     modelMin_ = glm::min(modelMin_, p);
@@ -162,12 +169,14 @@ void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::stri
   }
   state_.file.modelVertices = mesh.vertexCount();
   state_.file.modelFaces = mesh.faceCount();
+  model.generation = model_.generation + 1;
   if (model_.mesh) {  // what Ctrl+Z returns to
     previousModel_ = model_;
     previousPath_ = state_.file.loadedPath;
     state_.file.previousModelName = model_.name;
   }
-  model_ = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, model_.generation + 1);
+  model_ = std::move(model);
+  const std::string& name = model_.name;
   // Editing starts over: the loaded points are what Reset returns to.
   editor_.start(model_.mesh->points);
   movedVertices_ = 0;

@@ -91,6 +91,8 @@ class Document {
 
  private:
   void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
+  // Shows `model` as the next model generation (what Ctrl+Z returns to is the one shown now).
+  void adoptModel(Model model, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);
   void undoEdit();
   void redoEdit();
