@@ -45,16 +45,18 @@ namespace {
 // How many rejected pole candidates `info` lists in text (the JSON lists all).
 constexpr size_t kRejectedListed = 10;
 
-// Options shared by the subcommands, parsed from "--name value" / "--flag" pairs.
+// Options shared by the subcommands: the storage their option tables write into.
 struct CommonOptions {
   std::string input, output;
   Scheme scheme = Scheme::C2PS;
   bool schemeGiven = false;
+  bool uniformScheme = false;  // --scheme c2ps-u or rts-u
+  bool uniformFlag = false;    // --uniform-first-step
   int levels = -1;
   int reps = 5;
   int rings = 0;  // pole --rings M
   size_t memoryBudget = 0;  // --memory-budget SIZE in bytes (0: from the available memory)
-  bool uniformFirstStep = false;
+  bool uniformFirstStep = false;  // either of the two above (checkFirstStep)
   bool json = false;
   bool adaptive = false, edit = false;  // bench --adaptive [--edit]
   bool vsOpenSubdiv = false;             // bench --vs-opensubdiv
@@ -84,11 +86,8 @@ size_t parseByteSize(const std::string& flag, const std::string& text) {
   return size_t(value * scale);
 }
 
-// Bytes a refinement takes per face of its finest level: all levels' points, faces and topology
-// tables and the output (measured: Catmull-Clark on a cube, levels 8 and 9: 248 and 236 bytes of
-// peak RSS per finest face), with a margin.
-constexpr double kBytesPerFinestFace = 300.0;
-// The feature-adaptive path's bytes per face: the viewer's kBytesPerAdaptiveFace (surface_pipeline.h).
+// A face of a uniform refinement's finest level costs kBytesPerUniformFace, of the feature-adaptive
+// path kBytesPerAdaptiveFace (both measured, surface_pipeline.h).
 
 // The memory a refinement may take: --memory-budget, else 80% of what the machine has available
 // now (MemAvailable), else 4 GiB where that cannot be read.
@@ -121,7 +120,7 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adap
   const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] == budgetFaces + 1;  // not made: "more than"
   auto bytesAt = [&](int level) {
     if (adaptive) return double(adaptiveFaces[size_t(level)]) * kBytesPerAdaptiveFace;
-    return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerFinestFace;
+    return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerUniformFace;
   };
   if (bytesAt(o.levels) > double(budget)) {
     int fits = o.levels;
@@ -133,64 +132,68 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adap
                          (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
                          ": level " + std::to_string(fits) + " fits");
   }
-  return size_t(double(budget) / (adaptive ? kBytesPerAdaptiveFace : kBytesPerFinestFace));
+  return size_t(double(budget) / double(adaptive ? kBytesPerAdaptiveFace : kBytesPerUniformFace));
 }
 
-int parseInt(const std::string& flag, const std::string& text, int low, int high) {
-  return parseIntArgument(flag, text, low, high);
-}
-
-// The scheme names every command takes (the scheme table's, "c2ps-u" and "rts-u" for the paper's
-// Section-6 variant, the same as --uniform-first-step).
-std::optional<Scheme> parseCliScheme(const std::string& name, bool* uniformFirstStep) {
-  const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
-  *uniformFirstStep = variant && variant->uniformFirstStep;
-  if (!variant) return std::nullopt;
-  return variant->scheme;
-}
-
-// The name parseCliScheme reads back: "c2ps-u" for C2PS with the uniform first step.
+// The name a scheme prints as: "c2ps-u" for C2PS with the uniform first step.
 std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) { return schemeVariantName({scheme, uniformFirstStep}); }
 
-CommonOptions parseOptions(const std::string& command, const Args& args, const std::vector<std::string>& allowed) {
-  CommonOptions o;
-  bool uniformFlag = false, uniformScheme = false;
-  auto isAllowed = [&](const std::string& flag) { return std::find(allowed.begin(), allowed.end(), flag) != allowed.end(); };
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
-      return args[++k];
-    };
-    if (a.size() > 1 && a[0] == '-' && !isAllowed(a)) throw UsageError{"unknown option " + a};
-    if (a == "-o" || a == "--output") o.output = next();
-    else if (a == "--scheme") {
-      std::optional<Scheme> s = parseCliScheme(next(), &uniformScheme);
-      if (!s) throw UsageError{"unknown scheme '" + args[k] + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)"};
-      o.scheme = *s;
-      o.schemeGiven = true;
-    } else if (a == "--levels" || a == "--level") o.levels = parseInt(a, next(), 0, 64);
-    else if (a == "--reps") o.reps = parseInt(a, next(), 1, 1000);
-    else if (a == "--rings") o.rings = parseInt(a, next(), 1, 20);
-    else if (a == "--memory-budget") o.memoryBudget = parseByteSize(a, next());
-    else if (a == "--uniform-first-step") uniformFlag = true;
-    else if (a == "--json") o.json = true;
-    else if (a == "--adaptive") o.adaptive = true;
-    else if (a == "--edit") o.edit = true;
-    else if (a == "--vs-opensubdiv") o.vsOpenSubdiv = true;
-    else if (a == "--uniform") o.uniform = true;
-    else if (a == "--ev-to-polar") o.evToPolar = true;
-    else if (a == "--pentagons") o.pentagons = true;
-    else if (o.input.empty()) o.input = a;
-    else throw UsageError{"unexpected argument '" + a + "'"};
-  }
-  if (o.input.empty()) throw UsageError{"missing input file"};
-  // The Section-6 variant changes the first step's 2-link of C2PS and RTS only; elsewhere the flag
-  // would be accepted and do nothing.
-  o.uniformFirstStep = uniformFlag || uniformScheme;
-  if (uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
-    throw UsageError{command + ": --uniform-first-step applies to c2ps and rts only"};
-  return o;
+// [SECTION] Option rows the commands share
+
+// Which scheme variants a command takes (every one, or those with a property of the scheme table).
+using SchemeFilter = bool (*)(const SchemeVariant&);
+bool anyScheme(const SchemeVariant&) { return true; }
+bool polarScheme(const SchemeVariant& v) { return schemeTraits(v.scheme).polar(); }
+// spectrum: a scheme-table row as it is (the Section-6 first step is no subdivision matrix of its own).
+bool plainScheme(const SchemeVariant& v) { return !v.uniformFirstStep; }
+
+// The names `accepts` takes, from the scheme-choice table: "cc|c2ps|c2ps-u|rts|rts-u|bps".
+std::string schemeNames(SchemeFilter accepts, const std::string& separator) {
+  return schemeChoiceNames(separator, [accepts](SchemeChoice c) { return accepts(schemeChoiceVariant(c)); });
+}
+
+// --scheme S: the scheme table's names, "-u" for the paper's Section-6 variant (the same as
+// --uniform-first-step); a name `accepts` refuses is a usage error that lists the ones it takes.
+// `help` names them (schemeNames).
+OptionRow schemeRow(Scheme* scheme, bool* given, bool* uniform, SchemeFilter accepts, const std::string& help) {
+  return actionOption({"--scheme"}, "S", help, [=](const std::string& name) {
+    const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
+    if (!variant) throw UsageError{"unknown scheme '" + name + "' (" + schemeNames(accepts, ", ") + ")"};
+    if (!accepts(*variant)) throw UsageError{"--scheme " + name + ": this command takes " + schemeNames(accepts, ", ")};
+    *scheme = variant->scheme;
+    *uniform = variant->uniformFirstStep;
+    if (given) *given = true;
+  });
+}
+// --scheme S for the commands that read IN.obj; `listed`: the schemes the help names.
+OptionRow schemeRow(CommonOptions& o, const std::string& help = "the scheme, default c2ps", SchemeFilter listed = anyScheme) {
+  return schemeRow(&o.scheme, &o.schemeGiven, &o.uniformScheme, anyScheme,
+                   help + " (" + schemeNames(listed, "|") + ")");
+}
+
+OptionRow inputRow(CommonOptions& o) { return required(positionalOption("IN.obj", "the input mesh (OBJ)", &o.input)); }
+OptionRow outputRow(std::string* output, const std::string& metavar, const std::string& help) {
+  return required(textOption({"-o", "--output"}, metavar, help, output));
+}
+OptionRow levelsRow(CommonOptions& o, std::vector<std::string> names) {
+  return required(intOption(std::move(names), "L", "refinement levels (0..64)", &o.levels, 0, 64));
+}
+OptionRow uniformFirstStepRow(CommonOptions& o) {
+  return flagOption({"--uniform-first-step"}, "the paper's Section-6 first step (c2ps and rts only; = --scheme c2ps-u, rts-u)",
+                    &o.uniformFlag);
+}
+OptionRow memoryBudgetRow(CommonOptions& o) {
+  return actionOption({"--memory-budget"}, "SIZE", "refuse levels whose estimate needs more (2G, 500M, bytes; default 80% of "
+                      "the available memory)", [&o](const std::string& text) { o.memoryBudget = parseByteSize("--memory-budget", text); });
+}
+OptionRow jsonRow(bool* json) { return flagOption({"--json"}, "print JSON", json); }
+
+// After parsing: --scheme c2ps-u and --uniform-first-step are one choice. The Section-6 variant
+// changes the first step's 2-link of C2PS and RTS only; elsewhere the flag would do nothing.
+void checkFirstStep(CommonOptions& o) {
+  o.uniformFirstStep = o.uniformFlag || o.uniformScheme;
+  if (o.uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
+    throw UsageError{"--uniform-first-step applies to c2ps and rts only"};
 }
 
 // Loads the OBJ and prints its warnings on stderr.
@@ -247,66 +250,15 @@ int countBoundaryLoops(const MeshTopology& topo) {
   return loops;
 }
 
-}  // namespace
+// [SECTION] refine, export, convert
 
-const char* usageText() {
-  return "usage:\n"
-         "  polarview                          open the viewer on the built-in model\n"
-         "  polarview view [FILE.obj] [--scheme S[,S...]] [--level L] [--shade MODE] [--size WxH]\n"
-         "                 [--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
-         "                 [--inspect-poles]\n"
-         "  polarview render FILE.obj -o OUT.png [--scheme S[,S...] (1 to 4 views)] [--level L]\n"
-         "                 [--shade MODE[,MODE...]] (gaussian|mean|highlight|reflection|shaded: one, or one\n"
-         "                 per view) [--size WxH]\n"
-         "                 [--range R | --range MIN:MAX | --percentile P [--asymmetric]]\n"
-         "                 [--colormap paper|coolwarm|viridis|magnitude] [--camera JSON] [--preset front|top|side|iso]\n"
-         "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
-         "                 [--wireframe] [--no-poles] [--full-draw] [--time N]\n"
-         "  polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
-         "                 the paper's figures as DIR/figNN.png (all: and the gallery DIR/README.md)\n"
-         "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"
-         "  polarview export IN.obj -o OUT.bv --scheme S --level L [--uniform] [--memory-budget SIZE]\n"
-         "  polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj   (paper Fig. 14)\n"
-         "  polarview info IN.obj [--json]\n"
-         "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
-         "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--vs-opensubdiv] [--json]\n"
-         "                 --vs-opensubdiv: OpenSubdiv 3.5 in the same run (uniform: its points checked against\n"
-         "                 ours; --adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)\n"
-         "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
-         "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
-         "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--vectors] [--json]\n"
-         "                 leading eigenvalues; --vectors: their right and left eigenvectors\n"
-         "  polarview spectrum --scheme c2ps --valence N [--steps M] [--json]\n"
-         "                 C2PS on RTS's eigenvectors: Lemma 5's eigencoefficient scaling, (30)'s O(8^-m)\n"
-         "  polarview help                     this text\n"
-         "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
-         "  uniform first step of the paper's Section 6\n"
-         "  (also written --scheme c2ps|rts --uniform-first-step, which no other scheme takes)\n";
+OptionTable refineTable(CommonOptions& o) {
+  return {inputRow(o), outputRow(&o.output, "OUT.obj", "the finest level's mesh (OBJ)"), schemeRow(o),
+          levelsRow(o, {"--levels", "--level"}), uniformFirstStepRow(o), memoryBudgetRow(o)};
 }
 
-int guarded(const std::string& file, int (*command)(const Args&), const Args& args) {
-  try {
-    return command(args);
-  } catch (const UsageError& e) {
-    std::cerr << "polarview: " << e.what() << "\n" << usageText();
-    return 2;
-  } catch (const InputError& e) {
-    std::cerr << "polarview: " << e.what() << "\n";
-    return 1;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": out of memory\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": " << e.what() << "\n";
-    return 1;
-  }
-}
-
-int runRefine(const Args& args) {
-  CommonOptions o = parseOptions("refine", args,
-                                 {"-o", "--output", "--scheme", "--levels", "--level", "--uniform-first-step", "--memory-budget"});
-  if (o.output.empty()) throw UsageError{"refine needs -o OUT.obj"};
-  if (o.levels < 0) throw UsageError{"refine needs --levels L"};
+int runRefine(CommonOptions& o) {
+  checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
   const size_t maxFaces = checkMemoryBudget(mesh, o);
   RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
@@ -318,13 +270,18 @@ int runRefine(const Args& args) {
   return 0;
 }
 
-int runExport(const Args& args) {
-  CommonOptions o = parseOptions("export", args,
-                                 {"-o", "--output", "--scheme", "--level", "--levels", "--uniform", "--uniform-first-step",
-                                  "--memory-budget"});
-  if (o.output.empty()) throw UsageError{"export needs -o OUT.bv"};
-  if (!o.schemeGiven) throw UsageError{"export needs --scheme S"};
-  if (o.levels < 0) throw UsageError{"export needs --level L"};
+OptionTable exportTable(CommonOptions& o) {
+  return {inputRow(o),
+          outputRow(&o.output, "OUT.bv", "the limit surface as Bezier patches (BezierView .bv)"),
+          required(schemeRow(o, "the scheme")),
+          levelsRow(o, {"--level", "--levels"}),
+          flagOption({"--uniform"}, "refine every face (default: feature-adaptive, as view and render)", &o.uniform),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o)};
+}
+
+int runExport(CommonOptions& o) {
+  checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
   // The adaptive path's hard face limit leaves room over its estimate (an extrapolation past level 6).
   const size_t maxFaces = checkMemoryBudget(mesh, o, !o.uniform) * (o.uniform ? 1 : 2);
@@ -343,10 +300,14 @@ int runExport(const Args& args) {
   return 0;
 }
 
-int runConvert(const Args& args) {
-  CommonOptions o = parseOptions("convert", args, {"-o", "--output", "--ev-to-polar", "--pentagons"});
-  if (o.output.empty()) throw UsageError{"convert needs -o OUT.obj"};
-  if (!o.evToPolar) throw UsageError{"convert needs --ev-to-polar (the one conversion polarview offers)"};
+OptionTable convertTable(CommonOptions& o) {
+  return {inputRow(o), outputRow(&o.output, "OUT.obj", "the converted mesh (OBJ)"),
+          required(flagOption({"--ev-to-polar"}, "extraordinary vertices into polar configurations (paper Fig. 14)",
+                              &o.evToPolar)),
+          flagOption({"--pentagons"}, "n-valent poles ringed by pentagons (Fig. 14c; default 2n-valent, 14a)", &o.pentagons)};
+}
+
+int runConvert(CommonOptions& o) {
   PolyMesh mesh = loadInput(o.input);
   const PolarConversion conversion = convertExtraordinaryToPolar(mesh, o.pentagons, o.input);
   saveObj(o.output, conversion.mesh, o.input);
@@ -359,8 +320,11 @@ int runConvert(const Args& args) {
   return 0;
 }
 
-int runInfo(const Args& args) {
-  CommonOptions o = parseOptions("info", args, {"--json"});
+// [SECTION] info
+
+OptionTable infoTable(CommonOptions& o) { return {inputRow(o), jsonRow(&o.json)}; }
+
+int runInfo(CommonOptions& o) {
   const PolyMesh input = loadInput(o.input);
   ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
   MeshTopology topo;
@@ -490,9 +454,19 @@ int runInfo(const Args& args) {
   return 0;
 }
 
-int runPole(const Args& args) {
-  CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json", "--rings"});
-  if (!schemeTraits(o.scheme).polar()) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
+// [SECTION] pole
+
+OptionTable poleTable(CommonOptions& o) {
+  // Any scheme parses (--uniform-first-step is judged first); runPole refuses a scheme without poles.
+  return {inputRow(o), schemeRow(o, "the polar scheme, default c2ps", polarScheme),
+          uniformFirstStepRow(o),
+          intOption({"--rings"}, "M", "curvature over spline rings 1..M (1..20)", &o.rings, 1, 20), jsonRow(&o.json)};
+}
+
+int runPole(CommonOptions& o) {
+  checkFirstStep(o);
+  if (!polarScheme({o.scheme, o.uniformFirstStep}))
+    throw UsageError{"pole analysis needs --scheme " + schemeNames(polarScheme, ", ")};
   // RTS is not C2 for finite n: its K keeps depending on the direction. Its text report gives the
   // range over ring 8 at least, rather than one K as if it were defined.
   // Where the curvature depends on the direction (RTS), the text says over which range at ring 8.
@@ -631,7 +605,7 @@ double refinementBytes(const Refinement& refinement) {
 // numbers in "peer", the ratios and patches_agree at the top level (docs/performance.md).
 int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
+  const size_t budgetFaces = size_t(double(memoryBudgetBytes(o)) / double(kBytesPerUniformFace));
   std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain, madeAhead, levelUpMadeAhead;
   std::string viewerStepRefusal;  // why the viewer's step is not timed (the viewer would refuse it)
   const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
@@ -828,12 +802,23 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
   return 0;
 }
 
-int runBench(const Args& args) {
-  CommonOptions o = parseOptions("bench", args,
-                                 {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json", "--memory-budget",
-                                  "--adaptive", "--edit", "--vs-opensubdiv"});
-  if (o.levels < 0) throw UsageError{"bench needs --levels L"};
-  if (o.edit && !o.adaptive) throw UsageError{"bench: --edit needs --adaptive"};
+OptionTable benchTable(CommonOptions& o) {
+  return {inputRow(o),
+          schemeRow(o),
+          levelsRow(o, {"--levels", "--level"}),
+          intOption({"--reps"}, "N", "repetitions; medians are reported (1..1000, default 5)", &o.reps, 1, 1000),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o),
+          flagOption({"--adaptive"}, "the feature-adaptive path of view, render and export", &o.adaptive),
+          flagOption({"--edit"}, "with --adaptive: time one moved vertex's update", &o.edit),
+          flagOption({"--vs-opensubdiv"}, "OpenSubdiv 3.5 in the same run (uniform: its points checked against ours; "
+                     "--adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)", &o.vsOpenSubdiv),
+          jsonRow(&o.json)};
+}
+
+int runBench(CommonOptions& o) {
+  checkFirstStep(o);
+  if (o.edit && !o.adaptive) throw UsageError{"--edit needs --adaptive"};
   PolyMesh mesh = loadInput(o.input);
   if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);
@@ -1013,153 +998,207 @@ int runC2psSpectrum(int valence, int steps, bool json) {
   return 0;
 }
 
-int runSpectrum(const Args& args) {
-  // Own parsing: no input file. --scheme rts|bps|cc|c2ps --valence n [--count k] [--vectors] [--steps m] [--json]
-  std::optional<Scheme> scheme;
+// [SECTION] spectrum
+
+struct SpectrumOptions {
+  Scheme scheme = Scheme::RTS;
+  bool uniform = false;  // never set: the filter refuses the "-u" names
   int valence = -1, count = 8, steps = -1;
-  bool json = false, uniform = false, vectors = false, counted = false;
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
-      return args[++k];
-    };
-    if (a == "--scheme") {
-      scheme = parseCliScheme(next(), &uniform);
-      if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps, cc or c2ps, got '" + args[k] + "'"};
-    } else if (a == "--valence") valence = parseInt(a, next(), 3, 64);
-    else if (a == "--count") count = parseInt(a, next(), 1, 1000), counted = true;
-    else if (a == "--steps") steps = parseInt(a, next(), 1, 12);
-    else if (a == "--vectors") vectors = true;
-    else if (a == "--json") json = true;
-    else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
-  }
-  if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc|c2ps and --valence n (3..64)"};
-  const bool c2ps = schemeTraits(*scheme).polar() && !schemeTraits(*scheme).keepsValence;
-  if (c2ps && (vectors || counted))
-    throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix and no "
+  bool json = false, vectors = false, counted = false;
+};
+
+OptionTable spectrumTable(SpectrumOptions& o) {
+  return {required(schemeRow(&o.scheme, nullptr, &o.uniform, plainScheme,
+                             "the scheme (" + schemeNames(plainScheme, "|") + "); c2ps: Lemma 5 and (30) measured")),
+          required(intOption({"--valence"}, "N", "the valence (3..64)", &o.valence, 3, 64)),
+          actionOption({"--count"}, "K", "how many eigenvalues (1..1000, default 8)",
+                       [&o](const std::string& v) { o.count = parseIntArgument("--count", v, 1, 1000), o.counted = true; }),
+          flagOption({"--vectors"}, "and their right and left eigenvectors (not c2ps)", &o.vectors),
+          intOption({"--steps"}, "M", "c2ps: steps measured on RTS's eigenvectors (1..12, default 8)", &o.steps, 1, 12),
+          jsonRow(&o.json)};
+}
+
+// The combinations the table cannot refuse: C2PS has no matrix of its own, RTS and BPS a least valence.
+void checkSpectrumOptions(const SpectrumOptions& o, bool c2ps) {
+  if (c2ps && (o.vectors || o.counted))
+    throw UsageError{"C2PS doubles the valence every step, so it has no stationary matrix and no "
                      "eigenvectors of its own (--scheme rts has them); --scheme c2ps takes --steps M"};
-  if (!c2ps && steps > 0) throw UsageError{"spectrum: --steps applies to --scheme c2ps"};
+  if (!c2ps && o.steps > 0) throw UsageError{"--steps applies to --scheme c2ps"};
   // C2PS is measured on RTS's eigenvectors, so RTS's valence bound applies.
-  const Scheme bounded = c2ps ? Scheme::RTS : *scheme;
-  if (valence < schemeTraits(bounded).minValence)
-    throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= " +
+  const Scheme bounded = c2ps ? Scheme::RTS : o.scheme;
+  if (o.valence < schemeTraits(bounded).minValence)
+    throw UsageError{std::string(schemeName(o.scheme)) + " is defined for valence >= " +
                      std::to_string(schemeTraits(bounded).minValence) + " (" +
                      (c2ps ? "it is measured on RTS's eigenvectors" : "its weights alias below") + ")"};
-  if (c2ps) return runC2psSpectrum(valence, steps > 0 ? steps : 8, json);
-  const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
-  const size_t shown = std::min(all.size(), size_t(count));
-  const std::string name = cliSchemeName(*scheme, false);
-  const bool polar = schemeTraits(*scheme).polar();
+}
+
+// An eigenvalue whose imaginary part is round-off is printed as real.
+double visibleImaginary(const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; }
+
+// What `spectrum` prints: the leading eigenvalues, and with --vectors their eigenpairs and the matrix.
+struct SpectrumReport {
+  std::string name;
+  bool polar = false;
+  std::vector<TaggedEigenvalue> all;
+  size_t shown = 0;
   std::vector<EigenPair> pairs;
   Matrix matrix;
-  if (vectors) {
-    pairs = schemeEigenPairs(*scheme, valence, shown);
-    matrix = schemeMatrix(*scheme, valence);
-  }
   // The support's order, as the matrix lists it (schemeMatrix).
-  const char* order = polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
-                            : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
-  // An eigenvalue whose imaginary part is round-off is printed as real.
-  auto imaginary = [](const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; };
-  if (json) {
-    JsonWriter w("spectrum");
-    w.beginObject().field("scheme", name).field("valence", valence).field("size", all.size());
-    if (vectors) w.field("order", order);
-    w.key("eigenvalues").beginArray();
-    for (size_t k = 0; k < shown; ++k) {
-      w.beginObject().field("re", all[k].value.real()).field("im", imaginary(all[k].value));
-      w.field("modulus", std::abs(all[k].value));
-      if (all[k].alpha >= 0) w.field("fourier_block", all[k].alpha);
-      if (vectors) {
-        const EigenPair& p = pairs[k];
-        w.field("mode", fourierModeName(p.mode));
-        writeSpectrumVector(w, "right", p.right);
-        writeSpectrumVector(w, "left", p.left);
-        writeSpectrumVector(w, "right_profile", p.rightProfile);
-        writeSpectrumVector(w, "left_profile", p.leftProfile);
-        if (p.right.empty()) w.field("note", "zero or defective eigenvalue: no basis of eigenvectors");
-        else w.field("residual", eigenPairResidual(matrix, p));
-      }
-      w.endObject();
-    }
-    w.endArray().endObject();
-    std::cout << w.str() << "\n";
-    return 0;
+  const char* order() const {
+    return polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
+                 : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
   }
-  std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", name.c_str(), valence, all.size(),
-              !polar ? "1-ring matrix, by Fourier block" : "matrix (13) on links 0..5, by Fourier block", shown);
-  // A block profile as "[a, b, ...]" (real parts; complex entries as re+imi).
-  auto profile = [](const std::vector<Complex>& v) {
-    double top = 0.0;
-    for (const Complex& x : v) top = std::max(top, std::abs(x));
-    auto clean = [top](double x) { return std::abs(x) <= 1e-12 * top ? 0.0 : x; };  // round-off as 0
-    std::string text = "[";
-    char number[64];
-    for (size_t i = 0; i < v.size(); ++i) {
-      if (clean(v[i].imag()) != 0.0) std::snprintf(number, sizeof number, "%.6g%+.6gi", clean(v[i].real()), v[i].imag());
-      else std::snprintf(number, sizeof number, "%.6g", clean(v[i].real()));
-      text += (i ? ", " : "") + std::string(number);
+};
+
+void writeSpectrumJson(const SpectrumReport& r, int valence, bool vectors) {
+  JsonWriter w("spectrum");
+  w.beginObject().field("scheme", r.name).field("valence", valence).field("size", r.all.size());
+  if (vectors) w.field("order", r.order());
+  w.key("eigenvalues").beginArray();
+  for (size_t k = 0; k < r.shown; ++k) {
+    w.beginObject().field("re", r.all[k].value.real()).field("im", visibleImaginary(r.all[k].value));
+    w.field("modulus", std::abs(r.all[k].value));
+    if (r.all[k].alpha >= 0) w.field("fourier_block", r.all[k].alpha);
+    if (vectors) {
+      const EigenPair& p = r.pairs[k];
+      w.field("mode", fourierModeName(p.mode));
+      writeSpectrumVector(w, "right", p.right);
+      writeSpectrumVector(w, "left", p.left);
+      writeSpectrumVector(w, "right_profile", p.rightProfile);
+      writeSpectrumVector(w, "left_profile", p.leftProfile);
+      if (p.right.empty()) w.field("note", "zero or defective eigenvalue: no basis of eigenvectors");
+      else w.field("residual", eigenPairResidual(r.matrix, p));
     }
-    return text + "]";
-  };
-  for (size_t k = 0; k < shown; ++k) {
-    const double im = imaginary(all[k].value);
-    std::printf("  %2zu  %.15g%s", k + 1, all[k].value.real(), im != 0.0 ? "" : "\n");
+    w.endObject();
+  }
+  w.endArray().endObject();
+  std::cout << w.str() << "\n";
+}
+
+// A block profile as "[a, b, ...]" (real parts; complex entries as re+imi; round-off as 0).
+std::string profileText(const std::vector<Complex>& v) {
+  double top = 0.0;
+  for (const Complex& x : v) top = std::max(top, std::abs(x));
+  auto clean = [top](double x) { return std::abs(x) <= 1e-12 * top ? 0.0 : x; };
+  std::string text = "[";
+  char number[64];
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (clean(v[i].imag()) != 0.0) std::snprintf(number, sizeof number, "%.6g%+.6gi", clean(v[i].real()), v[i].imag());
+    else std::snprintf(number, sizeof number, "%.6g", clean(v[i].real()));
+    text += (i ? ", " : "") + std::string(number);
+  }
+  return text + "]";
+}
+
+void printSpectrumText(const SpectrumReport& r, int valence, bool vectors) {
+  std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", r.name.c_str(), valence, r.all.size(),
+              !r.polar ? "1-ring matrix, by Fourier block" : "matrix (13) on links 0..5, by Fourier block", r.shown);
+  for (size_t k = 0; k < r.shown; ++k) {
+    const double im = visibleImaginary(r.all[k].value);
+    std::printf("  %2zu  %.15g%s", k + 1, r.all[k].value.real(), im != 0.0 ? "" : "\n");
     if (im != 0.0) std::printf(" %+.15gi\n", im);
-    if (all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", all[k].alpha);
+    if (r.all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", r.all[k].alpha);
     if (!vectors) continue;
-    const EigenPair& p = pairs[k];
+    const EigenPair& p = r.pairs[k];
     if (p.right.empty()) {
       std::printf("      no eigenvectors: zero or defective eigenvalue\n");
       continue;
     }
     std::printf("      %s mode, residual %.1e\n      right profile %s\n      left profile  %s\n", fourierModeName(p.mode),
-                eigenPairResidual(matrix, p), profile(p.rightProfile).c_str(), profile(p.leftProfile).c_str());
+                eigenPairResidual(r.matrix, p), profileText(p.rightProfile).c_str(), profileText(p.leftProfile).c_str());
   }
   if (vectors)
     std::printf("profiles v^, w^ of block alpha: v_ij = v^_i omega^(j alpha), w_ij = w^_i omega^(-j alpha) / n, cos and sin\n"
                 "modes their real and imaginary parts (paper (14), (26)); the whole vectors with --json\n");
+}
+
+int runSpectrum(SpectrumOptions& o) {
+  const bool c2ps = schemeTraits(o.scheme).polar() && !schemeTraits(o.scheme).keepsValence;
+  checkSpectrumOptions(o, c2ps);
+  if (c2ps) return runC2psSpectrum(o.valence, o.steps > 0 ? o.steps : 8, o.json);
+  SpectrumReport r;
+  r.all = schemeSpectrum(o.scheme, o.valence);
+  r.shown = std::min(r.all.size(), size_t(o.count));
+  r.name = cliSchemeName(o.scheme, false);
+  r.polar = schemeTraits(o.scheme).polar();
+  if (o.vectors) {
+    r.pairs = schemeEigenPairs(o.scheme, o.valence, r.shown);
+    r.matrix = schemeMatrix(o.scheme, o.valence);
+  }
+  if (o.json) writeSpectrumJson(r, o.valence, o.vectors);
+  else printSpectrumText(r, o.valence, o.vectors);
   return 0;
 }
 
-int runShape(const Args& args) {
+// [SECTION] shape
+
+// The shapes `shape` makes (makeShape), and the height functions of shapes::paperHeight
+// (core/mesh/shapes.h) a cap can follow.
+constexpr const char* kShapes[] = {"globe", "cap", "mushroom", "cube", "torus", "valence20", "fingertips"};
+constexpr const char* kHeights[] = {"paraboloid", "saddle", "monkey", "flat4", "saddle4", "convex"};
+
+template <size_t N>
+std::string joinNames(const char* const (&names)[N], const char* separator) {
+  std::string text;
+  for (const char* name : names) text += (text.empty() ? "" : separator) + std::string(name);
+  return text;
+}
+
+struct ShapeOptions {
   std::string name, output, height;
   int valence = 12, links = 6;
   bool sized = false;  // --valence or --links given
-  for (size_t k = 0; k < args.size(); ++k) {
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{args[k] + " needs a value"};
-      return args[++k];
-    };
-    if (args[k] == "-o" || args[k] == "--output") output = next();
-    else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20), sized = true;
-    else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16), sized = true;
-    else if (args[k] == "--height") height = next();
-    else if (name.empty() && args[k][0] != '-') name = args[k];
-    else throw UsageError{"unexpected argument '" + args[k] + "'"};
+};
+
+OptionTable shapeTable(ShapeOptions& o) {
+  return {required(positionalOption("NAME", joinNames(kShapes, "|") + " (valence20, fingertips: the paper's Figs. 12 "
+                                    "and 2c, fixed)", &o.name)),
+          actionOption({"--valence"}, "N", "the pole's valence (default 12)",
+                       [&o](const std::string& v) { o.valence = parseIntArgument("--valence", v, 3, 1 << 20), o.sized = true; }),
+          actionOption({"--links"}, "K", "links around the pole (default 6)",
+                       [&o](const std::string& v) { o.links = parseIntArgument("--links", v, 1, 1 << 16), o.sized = true; }),
+          textOption({"--height"}, "NAME", "the cap over a height function: " + joinNames(kHeights, "|"), &o.height),
+          outputRow(&o.output, "OUT.obj", "the mesh (OBJ)")};
+}
+
+PolyMesh makeShape(const ShapeOptions& o) {
+  const std::string& name = o.name;
+  if (name == "globe") return shapes::globe(o.valence, o.links);
+  if (name == "cap" && !o.height.empty()) {
+    const auto function = shapes::paperHeight(o.height);
+    if (!function) throw UsageError{"unknown height '" + o.height + "' (" + joinNames(kHeights, ", ") + ")"};
+    return shapes::heightCap(o.valence, o.links, function);
   }
-  if (output.empty()) throw UsageError{"shape needs -o OUT.obj"};
-  PolyMesh mesh;
-  if (name == "globe") mesh = shapes::globe(valence, links);
-  else if (name == "cap" && !height.empty()) {
-    const auto function = shapes::paperHeight(height);
-    if (!function) throw UsageError{"unknown height '" + height + "' (paraboloid, saddle, monkey, flat4, saddle4, convex)"};
-    mesh = shapes::heightCap(valence, links, function);
-  } else if (name == "cap") mesh = shapes::polarCap(valence, links);
-  else if (name == "mushroom") {
-    if (valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
-    mesh = shapes::mushroom(valence);
-  } else if (name == "cube") mesh = shapes::cube();
-  else if (name == "torus") mesh = shapes::torus(valence, links);
-  else if (name == "valence20" || name == "fingertips") {
-    // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
-    if (sized) throw UsageError{"--valence and --links do not apply to " + name};
-    mesh = name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
-  } else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus, valence20, fingertips)"};
-  if (!height.empty() && name != "cap") throw UsageError{"--height applies to the cap"};
-  saveObj(output, mesh);
+  if (name == "cap") return shapes::polarCap(o.valence, o.links);
+  if (name == "mushroom") {
+    if (o.valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
+    return shapes::mushroom(o.valence);
+  }
+  if (name == "cube") return shapes::cube();
+  if (name == "torus") return shapes::torus(o.valence, o.links);
+  // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
+  if (o.sized) throw UsageError{"--valence and --links do not apply to " + name};
+  return name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
+}
+
+int runShape(ShapeOptions& o) {
+  const bool known = std::any_of(std::begin(kShapes), std::end(kShapes), [&](const char* name) { return o.name == name; });
+  if (!known) throw UsageError{"unknown shape '" + o.name + "' (" + joinNames(kShapes, ", ") + ")"};
+  const PolyMesh mesh = makeShape(o);
+  if (!o.height.empty() && o.name != "cap") throw UsageError{"--height applies to the cap"};
+  saveObj(o.output, mesh);
   return 0;
 }
+
+}  // namespace
+
+CommandParser refineCommand() { return makeCommandParser(refineTable, runRefine); }
+CommandParser exportCommand() { return makeCommandParser(exportTable, runExport); }
+CommandParser convertCommand() { return makeCommandParser(convertTable, runConvert); }
+CommandParser infoCommand() { return makeCommandParser(infoTable, runInfo); }
+CommandParser poleCommand() { return makeCommandParser(poleTable, runPole); }
+CommandParser benchCommand() { return makeCommandParser(benchTable, runBench); }
+CommandParser shapeCommand() { return makeCommandParser(shapeTable, runShape); }
+CommandParser spectrumCommand() { return makeCommandParser(spectrumTable, runSpectrum); }
 
 }  // namespace polarview::cli

@@ -74,6 +74,7 @@ struct ViewerOptions {
   // every view draws the level it shows (render --full-draw, comparisons).
   bool levelOfDetail = true;
   double levelOfDetailPixels = 3.0;
+  std::vector<std::string> scriptedCommands;  // `view --do`: viewer command ids run once the model is loaded
 };
 
 class ViewerApp {

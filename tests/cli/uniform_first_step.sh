@@ -22,7 +22,7 @@ usage_error() {
   [ $rc -eq 2 ] || fail "$command $*: exit $rc, expected 2"
   [ "$(head -n 1 "$tmp/err")" = "polarview: $command: --uniform-first-step applies to c2ps and rts only" ] ||
     fail "$command $*: error line '$(head -n 1 "$tmp/err")'"
-  sed -n 2p "$tmp/err" | grep -qx "usage:" || fail "$command $*: no usage after the error"
+  sed -n 2p "$tmp/err" | grep -q "^usage: polarview $command " || fail "$command $*: no usage after the error"
   [ ! -s "$tmp/out" ] || fail "$command $*: printed on stdout"
 }
 for scheme in cc bps; do
