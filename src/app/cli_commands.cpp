@@ -324,133 +324,161 @@ int runConvert(CommonOptions& o) {
 
 OptionTable infoTable(CommonOptions& o) { return {inputRow(o), jsonRow(&o.json)}; }
 
-int runInfo(CommonOptions& o) {
-  const PolyMesh input = loadInput(o.input);
-  ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
-  MeshTopology topo;
-  const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
-  // Poles (configurations a polar scheme refines) apart from vertices that only look polar: on a
-  // triangle mesh nearly every vertex is such a candidate, and Catmull-Clark refines it.
-  std::vector<PolarConfig> poles, rejected;
-  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? poles : rejected).push_back(std::move(c));
-  std::map<PolarRejection, int> rejectedPerReason;
-  for (const PolarConfig& c : rejected) ++rejectedPerReason[c.rejection];
+// Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
+struct Extraordinary {
+  Index vertex;
+  int valence;
+  bool boundary;
+  bool pole;
+};
 
-  // Which schemes refine the whole mesh radially (RTS/BPS on caps and globes).
-  bool radialMesh = false;
-  if (!poles.empty()) {
+// What `info` reports on a mesh (the split mesh's counts where the input is non-manifold).
+struct MeshReport {
+  std::vector<PolarConfig> poles, rejected;  // poles a polar scheme refines; vertices that only look polar
+  std::map<PolarRejection, int> rejectedPerReason;
+  bool radialMesh = false;  // RTS/BPS refine the whole mesh radially (caps and globes)
+  int used = 0, copies = 0, triangles = 0, quads = 0, polygons = 0, holeFaces = 0, loops = 0;
+  std::vector<Extraordinary> extraordinary;
+};
+
+// The poles apart from rejected candidates: on a triangle mesh nearly every vertex is such a
+// candidate, and Catmull-Clark refines it.
+void findPoles(const PolyMesh& mesh, const MeshTopology& topo, MeshReport& r) {
+  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? r.poles : r.rejected).push_back(std::move(c));
+  for (const PolarConfig& c : r.rejected) ++r.rejectedPerReason[c.rejection];
+  if (!r.poles.empty()) {
     try {
-      radialMesh = refinesRadially(mesh, Scheme::RTS);
+      r.radialMesh = refinesRadially(mesh, Scheme::RTS);
     } catch (const std::exception&) {
     }
   }
+}
+
+MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTopology& topo) {
+  MeshReport r;
+  findPoles(mesh, topo, r);
   std::vector<uint8_t> isPole(topo.vertexCount, 0);
-  for (const PolarConfig& c : poles) isPole[c.pole] = 1;
-  int used = 0, triangles = 0, quads = 0, polygons = 0;
-  for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
-  const int copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
-  used -= copies;
+  for (const PolarConfig& c : r.poles) isPole[c.pole] = 1;
+  for (Index v = 0; v < topo.vertexCount; ++v) r.used += topo.vertexUsed[v];
+  r.copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
+  r.used -= r.copies;
   // Hole faces (`t hole`, and the boundary faces of `t interpolateboundary 0`): no surface there.
   const std::vector<uint8_t> holes = baseHoles(mesh, topo);
-  const int holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
+  r.holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     int k = mesh.faceSize(f);
-    triangles += k == 3;
-    quads += k == 4;
-    polygons += k > 4;
+    r.triangles += k == 3;
+    r.quads += k == 4;
+    r.polygons += k > 4;
   }
-  // Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
-  struct Extraordinary { Index vertex; int valence; bool boundary; bool pole; };
-  std::vector<Extraordinary> extraordinary;
   for (Index v = 0; v < topo.vertexCount; ++v) {
     if (!topo.vertexUsed[v]) continue;
     int k = topo.valence(v);
     bool boundary = topo.vertexOnBoundary[v];
-    if ((!boundary && k != 4) || (boundary && k > 3)) extraordinary.push_back({v, k, boundary, bool(isPole[v])});
+    if ((!boundary && k != 4) || (boundary && k > 3)) r.extraordinary.push_back({v, k, boundary, bool(isPole[v])});
   }
-  const int loops = countBoundaryLoops(topo);
+  r.loops = countBoundaryLoops(topo);
+  return r;
+}
 
-  if (o.json) {
-    JsonWriter w(o.input);
-    w.beginObject();
-    w.field("file", o.input).field("vertices", used).field("unreferenced_vertices", topo.vertexCount - used);
-    w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", triangles);
-    w.field("quads", quads).field("polygons", polygons).field("boundary_loops", loops);
-    w.field("closed", loops == 0).field("radial_mesh", radialMesh);
-    w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
-    w.field("hole_faces", holeFaces);
-    w.key("poles").beginArray();
-    for (const PolarConfig& c : poles) {
-      w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
-      w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
-      if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
-      w.field("refinable", true);
-      w.key("schemes").beginObject();
-      for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, radialMesh));
-      w.endObject().endObject();
-    }
-    w.endArray();
-    w.key("rejected_candidates").beginArray();
-    for (const PolarConfig& c : rejected) {
-      w.beginObject().field("vertex", c.pole).field("valence", c.valence);
-      w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
-    }
-    w.endArray();
-    w.key("rejected_reasons").beginObject();
-    for (const auto& [rejection, count] : rejectedPerReason) w.field(polarRejectionKey(rejection), count);
+void writeInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                   const MeshReport& r) {
+  JsonWriter w(file);
+  w.beginObject();
+  w.field("file", file).field("vertices", r.used).field("unreferenced_vertices", topo.vertexCount - r.used);
+  w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", r.triangles);
+  w.field("quads", r.quads).field("polygons", r.polygons).field("boundary_loops", r.loops);
+  w.field("closed", r.loops == 0).field("radial_mesh", r.radialMesh);
+  w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
+  w.field("hole_faces", r.holeFaces);
+  w.key("poles").beginArray();
+  for (const PolarConfig& c : r.poles) {
+    w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
+    w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
+    if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
+    w.field("refinable", true);
+    w.key("schemes").beginObject();
+    for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, r.radialMesh));
+    w.endObject().endObject();
+  }
+  w.endArray();
+  w.key("rejected_candidates").beginArray();
+  for (const PolarConfig& c : r.rejected) {
+    w.beginObject().field("vertex", c.pole).field("valence", c.valence);
+    w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
+  }
+  w.endArray();
+  w.key("rejected_reasons").beginObject();
+  for (const auto& [rejection, count] : r.rejectedPerReason) w.field(polarRejectionKey(rejection), count);
+  w.endObject();
+  w.key("extraordinary_vertices").beginArray();
+  for (const Extraordinary& x : r.extraordinary) {
+    w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
+    w.field("pole", x.pole);
+    w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
     w.endObject();
-    w.key("extraordinary_vertices").beginArray();
-    for (const Extraordinary& x : extraordinary) {
-      w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
-      w.field("pole", x.pole);
-      w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
-      w.endObject();
-    }
-    w.endArray().endObject();
-    std::cout << w.str() << "\n";
-    return 0;
   }
+  w.endArray().endObject();
+  std::cout << w.str() << "\n";
+}
 
-  std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
-              o.input.c_str(), used, mesh.faceCount(), triangles, quads, polygons, topo.edgeCount, loops, loops == 1 ? "" : "s");
-  if (topo.vertexCount - copies > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - copies - used);
-  if (holeFaces > 0)
-    std::printf("holes: %d faces ('t hole' or 'interpolateboundary 0'): refined, no surface there\n", holeFaces);
-  if (!split.empty())
-    std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
-                " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",
-                split.nonManifoldEdges, split.nonManifoldVertices, copies);
-  std::printf("poles: %zu\n", poles.size());
-  for (const PolarConfig& c : poles) {
+// The text report's poles and rejected candidates.
+void printInfoPoles(const MeshReport& r) {
+  std::printf("poles: %zu\n", r.poles.size());
+  for (const PolarConfig& c : r.poles) {
     std::printf("  vertex %d: valence %d, %d link%s (%d regular), ends at %s", c.pole, c.valence, c.linkCount,
                 c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
     if (c.oppositePole >= 0) std::printf(" %d", c.oppositePole);
     std::printf("\n");
     for (const SchemeTraits& s : schemeTable())  // the polar schemes first, Catmull-Clark last
-      if (s.polar()) std::printf("    %-4s %s\n", s.name, schemeAction(s.scheme, c, radialMesh).c_str());
-    std::printf("    %-4s %s\n", schemeName(Scheme::CatmullClark), schemeAction(Scheme::CatmullClark, c, radialMesh).c_str());
+      if (s.polar()) std::printf("    %-4s %s\n", s.name, schemeAction(s.scheme, c, r.radialMesh).c_str());
+    std::printf("    %-4s %s\n", schemeName(Scheme::CatmullClark), schemeAction(Scheme::CatmullClark, c, r.radialMesh).c_str());
   }
-  if (!rejected.empty()) {
-    std::printf("rejected pole candidates: %zu (reasons:", rejected.size());
-    const char* separator = " ";
-    for (const auto& [rejection, count] : rejectedPerReason) {
-      std::printf("%s%d %s", separator, count, polarRejectionWords(rejection));
-      separator = "; ";
-    }
-    std::printf("); refined by Catmull-Clark in every scheme\n");
-    // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
-    const size_t shown = std::min<size_t>(rejected.size(), kRejectedListed);
-    for (size_t k = 0; k < shown; ++k)
-      std::printf("  vertex %d (valence %d): %s\n", rejected[k].pole, rejected[k].valence, rejected[k].reason.c_str());
-    if (rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", rejected.size() - shown);
+  if (r.rejected.empty()) return;
+  std::printf("rejected pole candidates: %zu (reasons:", r.rejected.size());
+  const char* separator = " ";
+  for (const auto& [rejection, count] : r.rejectedPerReason) {
+    std::printf("%s%d %s", separator, count, polarRejectionWords(rejection));
+    separator = "; ";
   }
-  std::printf("extraordinary vertices (Catmull-Clark): %zu\n", extraordinary.size());
-  for (const Extraordinary& x : extraordinary)
+  std::printf("); refined by Catmull-Clark in every scheme\n");
+  // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
+  const size_t shown = std::min<size_t>(r.rejected.size(), kRejectedListed);
+  for (size_t k = 0; k < shown; ++k)
+    std::printf("  vertex %d (valence %d): %s\n", r.rejected[k].pole, r.rejected[k].valence, r.rejected[k].reason.c_str());
+  if (r.rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", r.rejected.size() - shown);
+}
+
+void printInfoText(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                   const MeshReport& r) {
+  std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
+              file.c_str(), r.used, mesh.faceCount(), r.triangles, r.quads, r.polygons, topo.edgeCount, r.loops,
+              r.loops == 1 ? "" : "s");
+  if (topo.vertexCount - r.copies > r.used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - r.copies - r.used);
+  if (r.holeFaces > 0)
+    std::printf("holes: %d faces ('t hole' or 'interpolateboundary 0'): refined, no surface there\n", r.holeFaces);
+  if (!split.empty())
+    std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
+                " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",
+                split.nonManifoldEdges, split.nonManifoldVertices, r.copies);
+  printInfoPoles(r);
+  std::printf("extraordinary vertices (Catmull-Clark): %zu\n", r.extraordinary.size());
+  for (const Extraordinary& x : r.extraordinary)
     std::printf("  vertex %d: valence %d%s%s\n", x.vertex, x.valence, x.boundary ? " (boundary)" : "",
                 x.pole ? " — a pole: polar schemes refine it, cc treats it as extraordinary" : " — Catmull-Clark in every scheme");
-  if (triangles + polygons > 0)
+  if (r.triangles + r.polygons > 0)
     std::printf("non-quad faces: %d (their face points become extraordinary vertices after one Catmull-Clark step)\n",
-                triangles + polygons);
+                r.triangles + r.polygons);
+}
+
+int runInfo(CommonOptions& o) {
+  const PolyMesh input = loadInput(o.input);
+  ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
+  MeshTopology topo;
+  const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
+  const MeshReport report = reportMesh(input, mesh, topo);
+  if (o.json) writeInfoJson(o.input, mesh, topo, split, report);
+  else printInfoText(o.input, mesh, topo, split, report);
   return 0;
 }
 
@@ -556,6 +584,22 @@ int runPole(CommonOptions& o) {
   return 0;
 }
 
+// [SECTION] bench
+
+OptionTable benchTable(CommonOptions& o) {
+  return {inputRow(o),
+          schemeRow(o),
+          levelsRow(o, {"--levels", "--level"}),
+          intOption({"--reps"}, "N", "repetitions; medians are reported (1..1000, default 5)", &o.reps, 1, 1000),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o),
+          flagOption({"--adaptive"}, "the feature-adaptive path of view, render and export", &o.adaptive),
+          flagOption({"--edit"}, "with --adaptive: time one moved vertex's update", &o.edit),
+          flagOption({"--vs-opensubdiv"}, "OpenSubdiv 3.5 in the same run (uniform: its points checked against ours; "
+                     "--adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)", &o.vsOpenSubdiv),
+          jsonRow(&o.json)};
+}
+
 // Bytes the positions pass must move at least, all levels: each level's parent points read once,
 // child points written once, and the index tables the point rules stream (catmull_clark.cpp:
 // faces, edges' ends and faces, vertex rings). Gathers of neighbours are not counted again.
@@ -603,152 +647,134 @@ double refinementBytes(const Refinement& refinement) {
 // (level_up_made_ahead_ms: buildSurface handing it out; the GPU upload is not in it).
 // --vs-opensubdiv: OpenSubdiv's RefineAdaptive + PatchTableFactory beside it (AdaptivePeer), its
 // numbers in "peer", the ratios and patches_agree at the top level (docs/performance.md).
-int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
-  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  const size_t budgetFaces = size_t(double(memoryBudgetBytes(o)) / double(kBytesPerUniformFace));
+// What the adaptive bench measured, repetition by repetition, and the peer's timing.
+struct AdaptiveBench {
   std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain, madeAhead, levelUpMadeAhead;
   std::string viewerStepRefusal;  // why the viewer's step is not timed (the viewer would refuse it)
-  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
-  const Model model{std::make_shared<const PolyMesh>(mesh), o.input, 1, 0, refinesRadially(mesh, Scheme::RTS)};
-  const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
   size_t patchCount = 0, totalFaces = 0, finestFaces = 0, polesRefined = 0;
   std::vector<size_t> levelFaces;
   double peakRssMb = 0.0;
-  // One repetition of our path: the refinement, its patches, the edit and the level steps.
-  auto runOurs = [&](int rep) {
-    auto t0 = std::chrono::steady_clock::now();
-    AdaptiveRefinement refinement(mesh, options, o.input, budgetFaces);
-    build.push_back(millisecondsSince(t0));
-    t0 = std::chrono::steady_clock::now();
-    refinement.updatePositions(mesh.points);
-    positions.push_back(millisecondsSince(t0));
-    t0 = std::chrono::steady_clock::now();
-    PatchSources sources;
-    PatchSet set = extractPatches(refinement, &sources);
-    patches.push_back(millisecondsSince(t0));
-    patchCount = set.patches.size();
-    // The path's own peak: before the level steps below keep more refinements and surfaces alive.
-    if (rep == 0) peakRssMb = peakResidentMegabytes();
-    totalFaces = refinement.totalFaces();
-    finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
-    polesRefined = refinement.level(0).poles.size();
-    levelFaces.clear();
-    for (int m = 0; m < refinement.levelCount(); ++m)
-      levelFaces.push_back(size_t(refinement.level(m).mesh.faceCount()));
-    if (o.edit) {  // drag vertex 0 by 1% of the first edge's length, as the viewer does per frame
-      std::vector<Point> moved = mesh.points;
-      moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
-      t0 = std::chrono::steady_clock::now();
-      refinement.updatePositions(moved);
-      refreshPatches(refinement, sources, set);
-      edits.push_back(millisecondsSince(t0));
-    }
-    if (o.levels >= 1) {
-      AdaptiveRefinement stepped(mesh, RefineOptions{o.scheme, o.levels - 1, o.uniformFirstStep}, o.input, budgetFaces);
-      LevelPatchCache cache;
-      PatchSources stepSources;
-      cache.patchSet(stepped, o.levels - 1, &stepSources);  // what the view showed
-      t0 = std::chrono::steady_clock::now();
-      stepped.extend(1, budgetFaces);
-      cache.patchSet(stepped, o.levels, &stepSources);
-      levelUp.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      cache.patchSet(stepped, o.levels - 1, &stepSources);
-      levelDown.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      cache.patchSet(stepped, o.levels, &stepSources);
-      levelUpAgain.push_back(millisecondsSince(t0));
-
-      if (!viewerStepRefusal.empty()) return;
-      const SurfaceKey shownKey{model.generation, *parseSchemeChoice(scheme), o.levels - 1, model.points};
-      SurfaceKey nextKey = shownKey;
-      nextKey.level = o.levels;
-      // The viewer offers fewer levels than the bench refines (its level cap, its bytes a face):
-      // where it would refuse these, the bench says so instead of timing them.
-      viewerStepRefusal = checkFaceBudget(model, nextKey, viewFaceBudget);
-      if (!viewerStepRefusal.empty()) return;
-      const std::shared_ptr<const BuiltSurface> shown = buildSurface(model, shownKey, viewFaceBudget);
-      t0 = std::chrono::steady_clock::now();
-      if (!prepareLevel(*shown->hierarchy, model, nextKey, viewFaceBudget)) {
-        viewerStepRefusal = "level " + std::to_string(o.levels) + " could not be made ahead (memory)";
-        return;
-      }
-      madeAhead.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      const std::shared_ptr<const BuiltSurface> next = buildSurface(model, nextKey, viewFaceBudget, shown->hierarchy);
-      levelUpMadeAhead.push_back(millisecondsSince(t0));
-    }
-  };
-
-  // --vs-opensubdiv: OpenSubdiv's own feature-adaptive path (bench_peer.h), alternated with ours
-  // repetition by repetition (ours first on even repetitions, the peer first on odd ones) so that a
-  // noisy machine's drift falls on both. It computes Catmull-Clark only: run where this run's
-  // surface is the same (cc, or a polar scheme that refines no pole of this mesh), known after
-  // our first repetition.
-  std::optional<AdaptivePeer> peer;
-  if (o.vsOpenSubdiv) peer.emplace(mesh, o.levels);
-  bool peerWanted = false;
-  std::string comparison;
-  auto runPeer = [&] {
-    if (peer && peerWanted && peer->unavailable().empty()) peer->run();
-  };
-  for (int rep = 0; rep < o.reps; ++rep) {
-    if (rep % 2 == 1) runPeer();
-    runOurs(rep);
-    if (rep == 0 && peer) {
-      if (schemeTraits(o.scheme).polar() && polesRefined > 0)
-        comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
-                     (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
-      else
-        peerWanted = true;
-    }
-    if (rep % 2 == 0) runPeer();
-  }
-  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
-  const double patchesMs = median(patches);
+  double topologyMs = 0, positionsMs = 0, patchesMs = 0;
   bool compared = false, peerFailed = false;
+  std::string comparison;
   AdaptivePeerTiming theirs;
-  if (peer && !peer->unavailable().empty() && (peerWanted || o.levels <= AdaptivePeer::kMaxLevels)) {
-    // No OpenSubdiv (or it refused the mesh) fails the command, as the uniform bench's peer; too
-    // many levels for it only says so.
-    comparison = "no peer: " + peer->unavailable();
-    peerFailed = o.levels <= AdaptivePeer::kMaxLevels;
-  } else if (peer && peerWanted) {
-    theirs = peer->result();
-    compared = true;
-    comparison = "same surface: Catmull-Clark, OpenSubdiv's RefineAdaptive + PatchTableFactory (B-spline end caps)";
+};
+
+// One repetition of our path: the refinement, its patches and --edit's update.
+void timeAdaptiveRefinement(const CommonOptions& o, const PolyMesh& mesh, int rep, size_t budgetFaces, AdaptiveBench& b) {
+  auto t0 = std::chrono::steady_clock::now();
+  AdaptiveRefinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, budgetFaces);
+  b.build.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  refinement.updatePositions(mesh.points);
+  b.positions.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  PatchSources sources;
+  PatchSet set = extractPatches(refinement, &sources);
+  b.patches.push_back(millisecondsSince(t0));
+  b.patchCount = set.patches.size();
+  // The path's own peak: before the level steps keep more refinements and surfaces alive.
+  if (rep == 0) b.peakRssMb = peakResidentMegabytes();
+  b.totalFaces = refinement.totalFaces();
+  b.finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
+  b.polesRefined = refinement.level(0).poles.size();
+  b.levelFaces.clear();
+  for (int m = 0; m < refinement.levelCount(); ++m) b.levelFaces.push_back(size_t(refinement.level(m).mesh.faceCount()));
+  if (!o.edit) return;
+  // Drag vertex 0 by 1% of the first edge's length, as the viewer does per frame.
+  std::vector<Point> moved = mesh.points;
+  moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
+  t0 = std::chrono::steady_clock::now();
+  refinement.updatePositions(moved);
+  refreshPatches(refinement, sources, set);
+  b.edits.push_back(millisecondsSince(t0));
+}
+
+// The level steps on one kept refinement and LevelPatchCache (levels >= 1).
+void timeLevelSteps(const CommonOptions& o, const PolyMesh& mesh, size_t budgetFaces, AdaptiveBench& b) {
+  AdaptiveRefinement stepped(mesh, RefineOptions{o.scheme, o.levels - 1, o.uniformFirstStep}, o.input, budgetFaces);
+  LevelPatchCache cache;
+  PatchSources stepSources;
+  cache.patchSet(stepped, o.levels - 1, &stepSources);  // what the view showed
+  auto t0 = std::chrono::steady_clock::now();
+  stepped.extend(1, budgetFaces);
+  cache.patchSet(stepped, o.levels, &stepSources);
+  b.levelUp.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  cache.patchSet(stepped, o.levels - 1, &stepSources);
+  b.levelDown.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  cache.patchSet(stepped, o.levels, &stepSources);
+  b.levelUpAgain.push_back(millisecondsSince(t0));
+}
+
+// The viewer's own step (surface_pipeline.h): level L made ahead while L-1 is shown, then the step.
+// The viewer offers fewer levels than the bench refines (its level cap, its bytes a face): where it
+// would refuse these, the bench says so instead of timing them.
+void timeViewerStep(const CommonOptions& o, const Model& model, const std::string& scheme, size_t viewFaceBudget,
+                    AdaptiveBench& b) {
+  if (!b.viewerStepRefusal.empty()) return;
+  const SurfaceKey shownKey{model.generation, *parseSchemeChoice(scheme), o.levels - 1, model.points};
+  SurfaceKey nextKey = shownKey;
+  nextKey.level = o.levels;
+  b.viewerStepRefusal = checkFaceBudget(model, nextKey, viewFaceBudget);
+  if (!b.viewerStepRefusal.empty()) return;
+  const std::shared_ptr<const BuiltSurface> shown = buildSurface(model, shownKey, viewFaceBudget);
+  auto t0 = std::chrono::steady_clock::now();
+  if (!prepareLevel(*shown->hierarchy, model, nextKey, viewFaceBudget)) {
+    b.viewerStepRefusal = "level " + std::to_string(o.levels) + " could not be made ahead (memory)";
+    return;
   }
-  const double ourTotal = topologyMs + positionsMs + patchesMs;
-  const double theirTotal = theirs.topologyMs + theirs.positionsMs + theirs.patchesMs;
-  const bool patchesAgree = compared && theirs.patches == patchCount;
-  const double topologySpeedup = theirs.topologyMs / std::max(topologyMs, 1e-9);
-  const double positionsSpeedup = theirs.positionsMs / std::max(positionsMs, 1e-9);
-  const double patchesSpeedup = theirs.patchesMs / std::max(patchesMs, 1e-9);
-  const double speedup = theirTotal / std::max(ourTotal, 1e-9);
-  const double facesRatio = double(totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1));
+  b.madeAhead.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  const std::shared_ptr<const BuiltSurface> next = buildSurface(model, nextKey, viewFaceBudget, shown->hierarchy);
+  b.levelUpMadeAhead.push_back(millisecondsSince(t0));
+}
+
+// --vs-opensubdiv: the peer's result where it computed the same surface; no OpenSubdiv (or it
+// refused the mesh) fails the command, as the uniform bench's peer; too many levels only says so.
+void compareWithAdaptivePeer(const CommonOptions& o, std::optional<AdaptivePeer>& peer, bool peerWanted, AdaptiveBench& b) {
+  if (peer && !peer->unavailable().empty() && (peerWanted || o.levels <= AdaptivePeer::kMaxLevels)) {
+    b.comparison = "no peer: " + peer->unavailable();
+    b.peerFailed = o.levels <= AdaptivePeer::kMaxLevels;
+  } else if (peer && peerWanted) {
+    b.theirs = peer->result();
+    b.compared = true;
+    b.comparison = "same surface: Catmull-Clark, OpenSubdiv's RefineAdaptive + PatchTableFactory (B-spline end caps)";
+  }
+}
+
+// Ours against OpenSubdiv's: topology, positions and patches together.
+double adaptiveSpeedup(const AdaptiveBench& b) {
+  const AdaptivePeerTiming& t = b.theirs;
+  return (t.topologyMs + t.positionsMs + t.patchesMs) / std::max(b.topologyMs + b.positionsMs + b.patchesMs, 1e-9);
+}
+
+std::string adaptiveBenchJson(const CommonOptions& o, const std::string& scheme, const Model& model, const AdaptiveBench& b) {
+  const AdaptivePeerTiming& theirs = b.theirs;
   JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels).field("adaptive", true);
-  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
-  w.field("patches_ms", median(patches)).field("patches", patchCount).field("total_faces", totalFaces);
-  w.field("finest_faces", finestFaces);
-  if (o.edit) w.field("edit_ms", median(edits));
+  w.field("reps", o.reps).field("topology_ms", b.topologyMs).field("positions_ms", b.positionsMs);
+  w.field("patches_ms", b.patchesMs).field("patches", b.patchCount).field("total_faces", b.totalFaces);
+  w.field("finest_faces", b.finestFaces);
+  if (o.edit) w.field("edit_ms", median(b.edits));
   if (o.levels >= 1)
-    w.field("level_up_ms", median(levelUp)).field("level_down_ms", median(levelDown)).field("level_up_again_ms", median(levelUpAgain));
-  if (o.levels >= 1 && viewerStepRefusal.empty())
-    w.field("made_ahead_ms", median(madeAhead)).field("level_up_made_ahead_ms", median(levelUpMadeAhead));
+    w.field("level_up_ms", median(b.levelUp)).field("level_down_ms", median(b.levelDown)).field("level_up_again_ms", median(b.levelUpAgain));
+  if (o.levels >= 1 && b.viewerStepRefusal.empty())
+    w.field("made_ahead_ms", median(b.madeAhead)).field("level_up_made_ahead_ms", median(b.levelUpMadeAhead));
   else if (o.levels >= 1)
-    w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", viewerStepRefusal);
-  w.field("peak_rss_mb", peakRssMb);
+    w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", b.viewerStepRefusal);
+  w.field("peak_rss_mb", b.peakRssMb);
   // Memory a refined face and a patch cost at the peak (the whole process's peak over either count),
   // and the deepest level of this scheme a view's memory budget (640 MB) admits on the model.
-  w.field("peak_bytes_per_face", peakRssMb * 1048576.0 / double(std::max<size_t>(totalFaces, 1)));
-  w.field("peak_bytes_per_patch", peakRssMb * 1048576.0 / double(std::max<size_t>(patchCount, 1)));
+  w.field("peak_bytes_per_face", b.peakRssMb * 1048576.0 / double(std::max<size_t>(b.totalFaces, 1)));
+  w.field("peak_bytes_per_patch", b.peakRssMb * 1048576.0 / double(std::max<size_t>(b.patchCount, 1)));
   w.field("view_deepest_level", deepestLevel(model, *parseSchemeChoice(scheme), kDefaultFaceBudget));
   w.key("level_faces").beginArray();
-  for (size_t faces : levelFaces) w.value(faces);
+  for (size_t faces : b.levelFaces) w.value(faces);
   w.endArray();
   if (o.vsOpenSubdiv) {
-    if (compared) {
+    if (b.compared) {
       w.key("peer").beginObject().field("name", theirs.name);
       w.field("what",
               "Far::TopologyRefiner::RefineAdaptive (useInfSharpPatch) + Far::PatchTableFactory (ENDCAP_BSPLINE_BASIS) + "
@@ -762,58 +788,223 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
       if (theirs.peakRssMb > 0) w.field("peak_rss_mb", theirs.peakRssMb);
       w.endObject();
     }
-    w.field("compared", compared).field("comparison", comparison);
-    if (compared) {
-      w.field("topology_speedup", topologySpeedup).field("patches_speedup", patchesSpeedup);
-      w.field("positions_speedup", positionsSpeedup).field("speedup", speedup).field("faces_ratio", facesRatio);
-      w.field("patches_agree", patchesAgree);
+    w.field("compared", b.compared).field("comparison", b.comparison);
+    if (b.compared) {
+      w.field("topology_speedup", theirs.topologyMs / std::max(b.topologyMs, 1e-9))
+          .field("patches_speedup", theirs.patchesMs / std::max(b.patchesMs, 1e-9));
+      w.field("positions_speedup", theirs.positionsMs / std::max(b.positionsMs, 1e-9))
+          .field("speedup", adaptiveSpeedup(b))
+          .field("faces_ratio", double(b.totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1)));
+      w.field("patches_agree", theirs.patches == b.patchCount);
     }
   }
   w.endObject();
-  if (o.json) {
-    std::cout << w.str() << "\n";
-  } else {
-    std::printf("%s %s level %d (adaptive): topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches, %zu faces in "
-                "all levels; peak RSS %.1f MB\n",
-                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), patchCount, totalFaces,
-                peakRssMb);
-    if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(edits));
-    if (o.levels >= 1)
-      std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
-                  o.levels, median(levelUp), median(levelDown), median(levelUpAgain));
-    if (o.levels >= 1 && viewerStepRefusal.empty())
-      std::printf("the viewer's step: level %d made ahead while idle %.3f ms, then the step %.3f ms (upload not counted)\n",
-                  o.levels, median(madeAhead), median(levelUpMadeAhead));
-    else if (o.levels >= 1)
-      std::printf("the viewer's step: not timed (%s)\n", viewerStepRefusal.c_str());
-    if (compared)
-      std::printf("%s adaptive: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches (%s), %zu faces in all "
-                  "levels (ours %.2fx); speed-up %.2fx (topology), %.2fx (positions), %.2fx (patches), %.2fx (all)\n",
-                  theirs.name.c_str(), theirs.topologyMs, theirs.positionsMs, theirs.patchesMs, theirs.patches,
-                  patchesAgree ? "agree" : ("DIFFER: ours " + std::to_string(patchCount)).c_str(), theirs.totalFaces,
-                  facesRatio, topologySpeedup, positionsSpeedup, patchesSpeedup, speedup);
-    else if (o.vsOpenSubdiv)
-      std::printf("vs OpenSubdiv adaptive: not compared (%s)\n", comparison.c_str());
+  return w.str();
+}
+
+void printAdaptiveBench(const CommonOptions& o, const std::string& scheme, const AdaptiveBench& b) {
+  const AdaptivePeerTiming& theirs = b.theirs;
+  std::printf("%s %s level %d (adaptive): topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches, %zu faces in "
+              "all levels; peak RSS %.1f MB\n",
+              o.input.c_str(), scheme.c_str(), o.levels, b.topologyMs, b.positionsMs, b.patchesMs, b.patchCount, b.totalFaces,
+              b.peakRssMb);
+  if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(b.edits));
+  if (o.levels >= 1)
+    std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
+                o.levels, median(b.levelUp), median(b.levelDown), median(b.levelUpAgain));
+  if (o.levels >= 1 && b.viewerStepRefusal.empty())
+    std::printf("the viewer's step: level %d made ahead while idle %.3f ms, then the step %.3f ms (upload not counted)\n",
+                o.levels, median(b.madeAhead), median(b.levelUpMadeAhead));
+  else if (o.levels >= 1)
+    std::printf("the viewer's step: not timed (%s)\n", b.viewerStepRefusal.c_str());
+  if (b.compared)
+    std::printf("%s adaptive: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches (%s), %zu faces in all "
+                "levels (ours %.2fx); speed-up %.2fx (topology), %.2fx (positions), %.2fx (patches), %.2fx (all)\n",
+                theirs.name.c_str(), theirs.topologyMs, theirs.positionsMs, theirs.patchesMs, theirs.patches,
+                theirs.patches == b.patchCount ? "agree" : ("DIFFER: ours " + std::to_string(b.patchCount)).c_str(),
+                theirs.totalFaces, double(b.totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1)),
+                theirs.topologyMs / std::max(b.topologyMs, 1e-9), theirs.positionsMs / std::max(b.positionsMs, 1e-9),
+                theirs.patchesMs / std::max(b.patchesMs, 1e-9), adaptiveSpeedup(b));
+  else if (o.vsOpenSubdiv)
+    std::printf("vs OpenSubdiv adaptive: not compared (%s)\n", b.comparison.c_str());
+}
+
+int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
+  const size_t budgetFaces = size_t(double(memoryBudgetBytes(o)) / double(kBytesPerUniformFace));
+  const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
+  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
+  const Model model{std::make_shared<const PolyMesh>(mesh), o.input, 1, 0, refinesRadially(mesh, Scheme::RTS)};
+  AdaptiveBench b;
+  // --vs-opensubdiv: OpenSubdiv's own feature-adaptive path (bench_peer.h), alternated with ours
+  // repetition by repetition (ours first on even repetitions, the peer first on odd ones) so that a
+  // noisy machine's drift falls on both. It computes Catmull-Clark only: run where this run's
+  // surface is the same (cc, or a polar scheme that refines no pole of this mesh), known after
+  // our first repetition.
+  std::optional<AdaptivePeer> peer;
+  if (o.vsOpenSubdiv) peer.emplace(mesh, o.levels);
+  bool peerWanted = false;
+  auto runPeer = [&] {
+    if (peer && peerWanted && peer->unavailable().empty()) peer->run();
+  };
+  for (int rep = 0; rep < o.reps; ++rep) {
+    if (rep % 2 == 1) runPeer();
+    timeAdaptiveRefinement(o, mesh, rep, budgetFaces, b);
+    if (o.levels >= 1) {
+      timeLevelSteps(o, mesh, budgetFaces, b);
+      timeViewerStep(o, model, scheme, viewFaceBudget, b);
+    }
+    if (rep == 0 && peer) {
+      if (schemeTraits(o.scheme).polar() && b.polesRefined > 0)
+        b.comparison = "different surfaces: " + scheme + " refines " + std::to_string(b.polesRefined) + " pole" +
+                       (b.polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+      else
+        peerWanted = true;
+    }
+    if (rep % 2 == 0) runPeer();
   }
-  if (peerFailed) {
-    std::fprintf(stderr, "polarview: bench --adaptive --vs-opensubdiv: %s\n", comparison.c_str());
+  b.positionsMs = median(b.positions), b.topologyMs = std::max(0.0, median(b.build) - b.positionsMs);
+  b.patchesMs = median(b.patches);
+  compareWithAdaptivePeer(o, peer, peerWanted, b);
+  const std::string json = adaptiveBenchJson(o, scheme, model, b);  // also for text: it refuses a non-finite number
+  if (o.json) std::cout << json << "\n";
+  else printAdaptiveBench(o, scheme, b);
+  if (b.peerFailed) {
+    std::fprintf(stderr, "polarview: bench --adaptive --vs-opensubdiv: %s\n", b.comparison.c_str());
     return 2;
   }
   return 0;
 }
 
-OptionTable benchTable(CommonOptions& o) {
-  return {inputRow(o),
-          schemeRow(o),
-          levelsRow(o, {"--levels", "--level"}),
-          intOption({"--reps"}, "N", "repetitions; medians are reported (1..1000, default 5)", &o.reps, 1, 1000),
-          uniformFirstStepRow(o),
-          memoryBudgetRow(o),
-          flagOption({"--adaptive"}, "the feature-adaptive path of view, render and export", &o.adaptive),
-          flagOption({"--edit"}, "with --adaptive: time one moved vertex's update", &o.edit),
-          flagOption({"--vs-opensubdiv"}, "OpenSubdiv 3.5 in the same run (uniform: its points checked against ours; "
-                     "--adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)", &o.vsOpenSubdiv),
-          jsonRow(&o.json)};
+// What the uniform bench measured (medians over the repetitions) and what it compares against.
+struct UniformBench {
+  std::vector<double> build, positions, patches;
+  size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
+  double trafficBytes = 0, outputBytes = 0, finestBytes = 0, refinePeakRssMb = 0, peakRssMb = 0;
+  double topologyMs = 0, positionsMs = 0, coldTopologyMs = 0, triadGbs = 0, positionsGbs = 0;
+  std::optional<PeerTiming> peer;
+  bool compared = false;
+  std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
+  double topologySpeedup = 0, positionsSpeedup = 0, speedup = 0;
+  bool checked = false, equal = false;  // --vs-opensubdiv: the finest points against the peer's
+  double maxDifference = 0;
+};
+
+// The repetitions: topology as `refine` builds it (and OpenSubdiv's RefineUniform), no vertex rings
+// at the finest level; the patches need them, so patches_ms includes making them. `kept` gets the
+// last repetition's refinement (for --vs-opensubdiv's check).
+void timeUniformRefinement(const CommonOptions& o, const PolyMesh& mesh, UniformBench& b, std::optional<Refinement>& kept) {
+  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  options.finestVertexRings = false;
+  for (int rep = 0; rep < o.reps; ++rep) {
+    auto t0 = std::chrono::steady_clock::now();
+    Refinement refinement(mesh, options, o.input);
+    b.build.push_back(millisecondsSince(t0));
+    t0 = std::chrono::steady_clock::now();
+    refinement.updatePositions(mesh.points);
+    b.positions.push_back(millisecondsSince(t0));
+    if (rep == 0) {  // the refinement as `refine` has it: its own peak and its arrays
+      b.refinePeakRssMb = peakResidentMegabytes();
+      b.outputBytes = refinementBytes(refinement);
+      b.finestBytes = levelBytes(refinement.finest());
+    }
+    t0 = std::chrono::steady_clock::now();
+    refinement.completeFinestTopology();
+    PatchSet set = extractPatches(refinement);
+    b.patches.push_back(millisecondsSince(t0));
+    b.outVertices = refinement.finest().mesh.points.size();
+    b.outFaces = size_t(refinement.finest().mesh.faceCount());
+    b.patchCount = set.patches.size();
+    b.polesRefined = refinement.level(0).poles.size();
+    b.trafficBytes = positionsTrafficBytes(refinement);
+    if (o.vsOpenSubdiv && rep + 1 == o.reps) kept.emplace(std::move(refinement));
+  }
+}
+
+// The peer computes Catmull-Clark only: timings compare only where this run computed the same
+// surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
+void compareWithPeer(const CommonOptions& o, const std::string& scheme, UniformBench& b) {
+  if (!b.peer) {
+    b.comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
+  } else if (schemeTraits(o.scheme).polar() && b.polesRefined > 0) {
+    b.comparison = "different surfaces: " + scheme + " refines " + std::to_string(b.polesRefined) + " pole" +
+                   (b.polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+  } else if (b.peer->outFaces != b.outFaces) {
+    b.comparison = "not compared: Catmull-Clark both, but the face counts differ (" + std::to_string(b.outFaces) + " vs " +
+                   std::to_string(b.peer->outFaces) + ")";
+    b.peerWhat = "OpenSubdiv Catmull-Clark (face counts differ: not compared)";
+  } else {
+    b.compared = true;
+    b.comparison = "same surface: Catmull-Clark, equal face counts";
+    b.peerWhat = "OpenSubdiv Catmull-Clark (the same surface: compared)";
+  }
+  if (b.compared) {
+    b.topologySpeedup = b.peer->topologyMs / std::max(b.topologyMs, 1e-9);
+    b.positionsSpeedup = b.peer->positionsMs / std::max(b.positionsMs, 1e-9);
+    b.speedup = (b.peer->topologyMs + b.peer->positionsMs) / std::max(b.topologyMs + b.positionsMs, 1e-9);
+  }
+}
+
+// --vs-opensubdiv: the finest points must equal OpenSubdiv's (double weights) to round-off,
+// relative to the mesh's size.
+void checkPeerPoints(const CommonOptions& o, const PolyMesh& mesh, UniformBench& b) {
+  b.checked = o.vsOpenSubdiv && b.compared && b.peer->checked;
+  double size = 1.0;
+  if (b.checked) {
+    Point lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const Point& p : mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    size = std::max(size, glm::length(hi - lo));
+  }
+  b.maxDifference = b.checked ? b.peer->maxDifference : 0.0;
+  b.equal = b.checked && b.maxDifference <= 1e-12 * size;
+}
+
+std::string uniformBenchJson(const CommonOptions& o, const std::string& scheme, const UniformBench& b) {
+  JsonWriter w(o.input);
+  w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
+  w.field("reps", o.reps).field("topology_ms", b.topologyMs).field("positions_ms", b.positionsMs);
+  w.field("cold_topology_ms", b.coldTopologyMs).field("cold_over_warm", b.coldTopologyMs / std::max(b.topologyMs, 1e-9));
+  w.field("patches_ms", median(b.patches)).field("out_vertices", b.outVertices).field("out_faces", b.outFaces);
+  // Memory (docs/performance.md): the refinement's peak against the arrays it holds, all levels.
+  w.field("patches", b.patchCount).field("peak_rss_mb", b.refinePeakRssMb).field("peak_rss_with_patches_mb", b.peakRssMb);
+  w.field("output_mb", b.outputBytes / (1 << 20))
+      .field("peak_over_output", b.refinePeakRssMb * (1 << 20) / std::max(b.outputBytes, 1.0));
+  w.field("output_bytes_per_vertex", b.outputBytes / double(std::max<size_t>(b.outVertices, 1)));
+  w.field("finest_mb", b.finestBytes / (1 << 20));
+  w.field("positions_gbs", b.positionsGbs).field("triad_gbs", b.triadGbs).field("positions_over_triad", b.positionsGbs / b.triadGbs);
+  if (b.peer) {
+    w.key("peer").beginObject().field("what", b.peerWhat).field("name", b.peer->name).field("topology_ms", b.peer->topologyMs);
+    w.field("positions_ms", b.peer->positionsMs).field("out_vertices", b.peer->outVertices).field("out_faces", b.peer->outFaces);
+    if (b.peer->peakRssMb > 0 && !o.vsOpenSubdiv) w.field("peak_rss_mb", b.peer->peakRssMb);  // (the check keeps ours alive)
+    w.endObject();
+  }
+  w.field("compared", b.compared).field("comparison", b.comparison);
+  if (b.compared)
+    w.field("topology_speedup", b.topologySpeedup).field("positions_speedup", b.positionsSpeedup).field("speedup", b.speedup);
+  if (o.vsOpenSubdiv) {
+    w.key("vs_opensubdiv").beginObject().field("checked", b.checked);
+    if (b.checked) w.field("equal", b.equal).field("max_difference", b.maxDifference);
+    else w.field("why", b.compared ? "no points from the peer" : b.comparison);
+    w.endObject();
+  }
+  w.endObject();
+  return w.str();
+}
+
+void printUniformBench(const CommonOptions& o, const std::string& scheme, const UniformBench& b) {
+  std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
+              "%zu patches; peak RSS %.1f MB refining (arrays held: %.1f MB, all levels), %.1f MB with the patches\n",
+              o.input.c_str(), scheme.c_str(), o.levels, b.topologyMs, b.coldTopologyMs, b.positionsMs, median(b.patches),
+              b.outVertices, b.outFaces, b.patchCount, b.refinePeakRssMb, b.outputBytes / (1 << 20), b.peakRssMb);
+  std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", b.positionsGbs, b.triadGbs, 100.0 * b.positionsGbs / b.triadGbs);
+  if (b.peer)
+    std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", b.peer->name.c_str(),
+                b.peerWhat.c_str(), b.peer->topologyMs, b.peer->positionsMs, b.peer->outVertices, b.peer->outFaces);
+  if (b.compared)
+    std::printf("%s: speed-up %.2fx (topology), %.2fx (positions), %.2fx (both)\n", b.comparison.c_str(), b.topologySpeedup,
+                b.positionsSpeedup, b.speedup);
+  else std::printf("%s\n", b.comparison.c_str());
+  if (b.checked) std::printf("vs OpenSubdiv: %s (max difference %.3g)\n", b.equal ? "equal" : "DIFFERENT", b.maxDifference);
+  else if (o.vsOpenSubdiv) std::printf("vs OpenSubdiv: not checked (%s)\n", b.compared ? "no points from the peer" : b.comparison.c_str());
 }
 
 int runBench(CommonOptions& o) {
@@ -822,136 +1013,34 @@ int runBench(CommonOptions& o) {
   PolyMesh mesh = loadInput(o.input);
   if (o.adaptive) return runAdaptiveBench(o, mesh);
   checkMemoryBudget(mesh, o);
-  // Topology as `refine` builds it (and OpenSubdiv's RefineUniform): no vertex rings at the finest
-  // level; the patches need them, so patches_ms includes making them.
-  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  options.finestVertexRings = false;
-  std::vector<double> build, positions, patches;
-  size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
-  double trafficBytes = 0, outputBytes = 0, finestBytes = 0, refinePeakRssMb = 0;
+  UniformBench b;
   std::optional<Refinement> kept;  // --vs-opensubdiv: the last repetition's, for the check
-  for (int rep = 0; rep < o.reps; ++rep) {
-    auto t0 = std::chrono::steady_clock::now();
-    Refinement refinement(mesh, options, o.input);
-    build.push_back(millisecondsSince(t0));
-    t0 = std::chrono::steady_clock::now();
-    refinement.updatePositions(mesh.points);
-    positions.push_back(millisecondsSince(t0));
-    if (rep == 0) {  // the refinement as `refine` has it: its own peak and its arrays
-      refinePeakRssMb = peakResidentMegabytes();
-      outputBytes = refinementBytes(refinement);
-      finestBytes = levelBytes(refinement.finest());
-    }
-    t0 = std::chrono::steady_clock::now();
-    refinement.completeFinestTopology();
-    PatchSet set = extractPatches(refinement);
-    patches.push_back(millisecondsSince(t0));
-    outVertices = refinement.finest().mesh.points.size();
-    outFaces = size_t(refinement.finest().mesh.faceCount());
-    patchCount = set.patches.size();
-    polesRefined = refinement.level(0).poles.size();
-    trafficBytes = positionsTrafficBytes(refinement);
-    if (o.vsOpenSubdiv && rep + 1 == o.reps) kept.emplace(std::move(refinement));
-  }
-  const double peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
+  timeUniformRefinement(o, mesh, b, kept);
+  b.peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
   clearTablePool();  // the peer and the triad start from the memory the process had before
   // The constructor builds topology and computes positions once: topology = build - positions.
   // Repetitions after the first reuse the previous refinement's tables (table_pool.h), as the
   // viewer does when levels change; the first repetition, on fresh memory, is reported apart.
-  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
-  const double coldTopologyMs = std::max(0.0, build.front() - positions.front());
+  b.positionsMs = median(b.positions), b.topologyMs = std::max(0.0, median(b.build) - b.positionsMs);
+  b.coldTopologyMs = std::max(0.0, b.build.front() - b.positions.front());
   // The check compares Catmull-Clark points only (a polar scheme's poles are not OpenSubdiv's).
-  const bool sameRules = !schemeTraits(o.scheme).polar() || polesRefined == 0;
-  std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps, kept && sameRules ? &*kept : nullptr);
+  const bool sameRules = !schemeTraits(o.scheme).polar() || b.polesRefined == 0;
+  b.peer = benchPeer(mesh, o.levels, o.reps, kept && sameRules ? &*kept : nullptr);
   kept.reset();
   // The roof for positions_gbs, on as many threads as the point rules use on large meshes.
-  const double triadGbs = triadGigabytesPerSecond(size_t(128) << 20, threadsFor(size_t(1) << 30), 5);
-  const double positionsGbs = trafficBytes / (std::max(positionsMs, 1e-9) * 1e6);
-
-  // The peer computes Catmull-Clark only: timings compare only where this run computed the same
-  // surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
+  b.triadGbs = triadGigabytesPerSecond(size_t(128) << 20, threadsFor(size_t(1) << 30), 5);
+  b.positionsGbs = b.trafficBytes / (std::max(b.positionsMs, 1e-9) * 1e6);
   const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
-  bool compared = false;
-  std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
-  if (!peer) {
-    comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
-  } else if (schemeTraits(o.scheme).polar() && polesRefined > 0) {
-    comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
-                 (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
-  } else if (peer->outFaces != outFaces) {
-    comparison = "not compared: Catmull-Clark both, but the face counts differ (" + std::to_string(outFaces) + " vs " +
-                 std::to_string(peer->outFaces) + ")";
-    peerWhat = "OpenSubdiv Catmull-Clark (face counts differ: not compared)";
-  } else {
-    compared = true;
-    comparison = "same surface: Catmull-Clark, equal face counts";
-    peerWhat = "OpenSubdiv Catmull-Clark (the same surface: compared)";
-  }
-  const double topologySpeedup = compared ? peer->topologyMs / std::max(topologyMs, 1e-9) : 0.0;
-  const double positionsSpeedup = compared ? peer->positionsMs / std::max(positionsMs, 1e-9) : 0.0;
-  const double speedup = compared ? (peer->topologyMs + peer->positionsMs) / std::max(topologyMs + positionsMs, 1e-9) : 0.0;
-
-  // --vs-opensubdiv: the finest points must equal OpenSubdiv's (double weights) to round-off,
-  // relative to the mesh's size.
-  const bool checked = o.vsOpenSubdiv && compared && peer->checked;
-  double size = 1.0;
-  if (checked) {
-    Point lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const Point& p : mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    size = std::max(size, glm::length(hi - lo));
-  }
-  const double maxDifference = checked ? peer->maxDifference : 0.0;
-  const bool equal = checked && maxDifference <= 1e-12 * size;
-
-  JsonWriter w(o.input);
-  w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
-  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
-  w.field("cold_topology_ms", coldTopologyMs).field("cold_over_warm", coldTopologyMs / std::max(topologyMs, 1e-9));
-  w.field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
-  // Memory (docs/performance.md): the refinement's peak against the arrays it holds, all levels.
-  w.field("patches", patchCount).field("peak_rss_mb", refinePeakRssMb).field("peak_rss_with_patches_mb", peakRssMb);
-  w.field("output_mb", outputBytes / (1 << 20)).field("peak_over_output", refinePeakRssMb * (1 << 20) / std::max(outputBytes, 1.0));
-  w.field("output_bytes_per_vertex", outputBytes / double(std::max<size_t>(outVertices, 1)));
-  w.field("finest_mb", finestBytes / (1 << 20));
-  w.field("positions_gbs", positionsGbs).field("triad_gbs", triadGbs).field("positions_over_triad", positionsGbs / triadGbs);
-  if (peer) {
-    w.key("peer").beginObject().field("what", peerWhat).field("name", peer->name).field("topology_ms", peer->topologyMs);
-    w.field("positions_ms", peer->positionsMs).field("out_vertices", peer->outVertices).field("out_faces", peer->outFaces);
-    if (peer->peakRssMb > 0 && !o.vsOpenSubdiv) w.field("peak_rss_mb", peer->peakRssMb);  // (the check keeps ours alive)
-    w.endObject();
-  }
-  w.field("compared", compared).field("comparison", comparison);
-  if (compared) w.field("topology_speedup", topologySpeedup).field("positions_speedup", positionsSpeedup).field("speedup", speedup);
-  if (o.vsOpenSubdiv) {
-    w.key("vs_opensubdiv").beginObject().field("checked", checked);
-    if (checked) w.field("equal", equal).field("max_difference", maxDifference);
-    else w.field("why", compared ? "no points from the peer" : comparison);
-    w.endObject();
-  }
-  w.endObject();
-  if (o.json) {
-    std::cout << w.str() << "\n";
-  } else {
-    std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
-                "%zu patches; peak RSS %.1f MB refining (arrays held: %.1f MB, all levels), %.1f MB with the patches\n",
-                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, coldTopologyMs, positionsMs, median(patches), outVertices,
-                outFaces, patchCount, refinePeakRssMb, outputBytes / (1 << 20), peakRssMb);
-    std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", positionsGbs, triadGbs, 100.0 * positionsGbs / triadGbs);
-    if (peer)
-      std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", peer->name.c_str(),
-                  peerWhat.c_str(), peer->topologyMs, peer->positionsMs, peer->outVertices, peer->outFaces);
-    if (compared)
-      std::printf("%s: speed-up %.2fx (topology), %.2fx (positions), %.2fx (both)\n", comparison.c_str(), topologySpeedup,
-                  positionsSpeedup, speedup);
-    else std::printf("%s\n", comparison.c_str());
-    if (checked) std::printf("vs OpenSubdiv: %s (max difference %.3g)\n", equal ? "equal" : "DIFFERENT", maxDifference);
-    else if (o.vsOpenSubdiv) std::printf("vs OpenSubdiv: not checked (%s)\n", compared ? "no points from the peer" : comparison.c_str());
-  }
-  if (o.vsOpenSubdiv && !peer) {
-    std::fprintf(stderr, "polarview: bench --vs-opensubdiv: %s\n", comparison.c_str());
+  compareWithPeer(o, scheme, b);
+  checkPeerPoints(o, mesh, b);
+  const std::string json = uniformBenchJson(o, scheme, b);  // also when printing text: it refuses a non-finite number
+  if (o.json) std::cout << json << "\n";
+  else printUniformBench(o, scheme, b);
+  if (o.vsOpenSubdiv && !b.peer) {
+    std::fprintf(stderr, "polarview: bench --vs-opensubdiv: %s\n", b.comparison.c_str());
     return 2;
   }
-  return checked && !equal ? 1 : 0;
+  return b.checked && !b.equal ? 1 : 0;
 }
 
 // `spectrum --vectors`: a vector's entries as a JSON array (real parts; "<key>_im" adds the
