@@ -109,30 +109,39 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+// The refusal of a level over the memory budget: what it would need, the budget, where the budget
+// comes from, and the deepest level that fits.
+InputError budgetRefusal(const CommonOptions& o, size_t budget, const std::string& needed, int fits) {
+  return InputError(o.input, 0,
+                    "level " + std::to_string(o.levels) + " would need " + needed + ", over the memory budget of " +
+                        gigabytes(double(budget)) +
+                        (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
+                        ": level " + std::to_string(fits) + " fits");
+}
+
 // Refuses at once, before any allocation, a level whose estimated memory exceeds the budget, and
 // names the deepest level that fits. Returns the budget as a face count for the refiner.
 size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adaptive = false) {
   const size_t budget = memoryBudgetBytes(o);
-  const bool radial = refinesRadially(mesh, o.scheme);
+  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  const bool radial = refinesRadially(mesh, o.scheme);  // (checks the mesh for either path)
+  if (!adaptive) {
+    const UniformLevelEstimate e = estimateUniformLevel(mesh, options, radial, budget / kBytesPerUniformFace);
+    if (!e.fits) throw budgetRefusal(o, budget, "about " + gigabytes(double(e.faces) * kBytesPerUniformFace), e.deepestFitting);
+    return size_t(double(budget) / double(kBytesPerUniformFace));
+  }
+  // The feature-adaptive estimate stops past the budget: "more than" the budget there.
   const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
-  const std::vector<size_t> adaptiveFaces =
-      adaptive ? estimateAdaptiveFaceCounts(mesh, {o.scheme, o.levels, o.uniformFirstStep}, budgetFaces) : std::vector<size_t>{};
-  const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] == budgetFaces + 1;  // not made: "more than"
-  auto bytesAt = [&](int level) {
-    if (adaptive) return double(adaptiveFaces[size_t(level)]) * kBytesPerAdaptiveFace;
-    return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerUniformFace;
-  };
+  const std::vector<size_t> faces = estimateAdaptiveFaceCounts(mesh, options, budgetFaces);
+  auto bytesAt = [&](int level) { return double(faces[size_t(level)]) * kBytesPerAdaptiveFace; };
   if (bytesAt(o.levels) > double(budget)) {
     int fits = o.levels;
     while (fits > 0 && bytesAt(fits) > double(budget)) --fits;
-    throw InputError(o.input, 0,
-                     "level " + std::to_string(o.levels) + " would need " +
-                         (beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels))) +
-                         ", over the memory budget of " + gigabytes(double(budget)) +
-                         (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
-                         ": level " + std::to_string(fits) + " fits");
+    const bool beyondEstimate = faces[size_t(o.levels)] == budgetFaces + 1;
+    throw budgetRefusal(o, budget, beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels)),
+                        fits);
   }
-  return size_t(double(budget) / double(adaptive ? kBytesPerAdaptiveFace : kBytesPerUniformFace));
+  return size_t(double(budget) / double(kBytesPerAdaptiveFace));
 }
 
 // The name a scheme prints as: "c2ps-u" for C2PS with the uniform first step.

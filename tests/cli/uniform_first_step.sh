@@ -53,5 +53,5 @@ set +e
 "$exe" refine "$tmp/globe.obj" -o "$tmp/out.obj" --scheme bps-u --levels 1 2> /dev/null; rc=$?
 set -e
 [ $rc -eq 2 ] || fail "--scheme bps-u: exit $rc, expected 2"
-"$exe" --help | grep -q "c2ps-u" || fail "the usage does not name c2ps-u"
+grep -q "c2ps-u" <<< "$("$exe" --help)" || fail "the usage does not name c2ps-u"
 echo "uniform_first_step: ok"
