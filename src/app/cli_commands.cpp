@@ -187,9 +187,19 @@ OptionRow outputRow(std::string* output, const std::string& metavar, const std::
 OptionRow levelsRow(CommonOptions& o, std::vector<std::string> names) {
   return required(intOption(std::move(names), "L", "refinement levels (0..64)", &o.levels, 0, 64));
 }
+// The schemes with the paper's Section-6 variant (the choices with a uniform first step): "c2ps and
+// rts", or as names "c2ps-u, rts-u".
+bool firstStepVariant(const SchemeVariant& v) { return v.uniformFirstStep; }
+std::string firstStepSchemes() {
+  std::string names;
+  for (const SchemeTraits& s : schemeTable())
+    if (s.hasUniformFirstStep) names += (names.empty() ? "" : " and ") + std::string(s.name);
+  return names;
+}
+
 OptionRow uniformFirstStepRow(CommonOptions& o) {
-  return flagOption({"--uniform-first-step"}, "the paper's Section-6 first step (c2ps and rts only; = --scheme c2ps-u, rts-u)",
-                    &o.uniformFlag);
+  return flagOption({"--uniform-first-step"}, "the paper's Section-6 first step (" + firstStepSchemes() + " only; = --scheme " +
+                    schemeNames(firstStepVariant, ", ") + ")", &o.uniformFlag);
 }
 OptionRow memoryBudgetRow(CommonOptions& o) {
   return actionOption({"--memory-budget"}, "SIZE", "refuse levels whose estimate needs more (2G, 500M, bytes; default 80% of "
@@ -202,7 +212,7 @@ OptionRow jsonRow(bool* json) { return flagOption({"--json"}, "print JSON", json
 void checkFirstStep(CommonOptions& o) {
   o.uniformFirstStep = o.uniformFlag || o.uniformScheme;
   if (o.uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
-    throw UsageError{"--uniform-first-step applies to c2ps and rts only"};
+    throw UsageError{"--uniform-first-step applies to " + firstStepSchemes() + " only"};
 }
 
 // Loads the OBJ and prints its warnings on stderr.

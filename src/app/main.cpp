@@ -6,7 +6,7 @@
 
 #include "app/cli_commands.h"
 #include "app/command_args.h"
-#include "core/subdiv/scheme.h"
+#include "pipeline/scheme_choice.h"
 #ifdef POLARVIEW_HAVE_VIEWER
 #include "app/figure_command.h"
 #include "app/viewer_commands.h"
@@ -59,17 +59,16 @@ const Command* findCommand(const std::string& name) {
   return nullptr;
 }
 
-// The scheme names every --scheme takes, from the scheme table.
+// The scheme names every --scheme takes, from the scheme-choice table.
 std::string schemeNote() {
-  std::string names, uniform;
-  for (const SchemeTraits& s : schemeTable()) {
-    names += std::string(names.empty() ? "" : ", ") + s.name;
-    if (!s.hasUniformFirstStep) continue;
-    names += std::string(", ") + s.name + "-u";
-    uniform += std::string(uniform.empty() ? "" : " and ") + s.name;
-  }
-  return "schemes S: " + names + "; the -u names are " + uniform +
-         " with the uniform first step of the paper's Section 6\n"
+  const auto uniform = [](SchemeChoice c) { return schemeChoiceVariant(c).uniformFirstStep; };
+  const auto plain = [&](SchemeChoice c) {
+    if (uniform(c)) return false;
+    const SchemeVariant v = schemeChoiceVariant(c);
+    return schemeTraits(v.scheme).hasUniformFirstStep;
+  };
+  return "schemes S: " + schemeChoiceNames(", ") + ";\n  " + schemeChoiceNames(", ", uniform) + " are " +
+         schemeChoiceNames(" and ", plain) + " with the uniform first step of the paper's Section 6\n"
          "  (also written --scheme S --uniform-first-step, which no other scheme takes)\n";
 }
 
