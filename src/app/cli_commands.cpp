@@ -666,6 +666,7 @@ double refinementBytes(const Refinement& refinement) {
 // (level_up_made_ahead_ms: buildSurface handing it out; the GPU upload is not in it).
 // --vs-opensubdiv: OpenSubdiv's RefineAdaptive + PatchTableFactory beside it (AdaptivePeer), its
 // numbers in "peer", the ratios and patches_agree at the top level (docs/performance.md).
+
 // What the adaptive bench measured, repetition by repetition, and the peer's timing.
 struct AdaptiveBench {
   std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain, madeAhead, levelUpMadeAhead;

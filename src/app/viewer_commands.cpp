@@ -22,7 +22,6 @@ namespace {
 
 // [SECTION] Shared option parsing
 
-
 std::pair<int, int> parseSize(const std::string& text) {
   size_t x = text.find('x');
   if (x == std::string::npos) throw UsageError("--size expects WxH, got '" + text + "'");

@@ -125,9 +125,9 @@ grep -q "^polarview: .*mushroom.obj" "$tmp/err" || fail "huge level: no file nam
 help="$("$exe" help)"
 for cmd in render view; do
   own="$("$exe" "$cmd" /nonexistent.obj --frobnicate 2>&1 || true)"
-  printf '%s\n' "$own" | grep -q "^usage: polarview $cmd" || fail "$cmd: no usage on a usage error"
+  grep -q "^usage: polarview $cmd" <<< "$own" || fail "$cmd: no usage on a usage error"
   for opt in $(printf '%s\n' "$own" | sed -n '/^usage:/,$p' | grep -o -- '--[a-z-]*' | sort -u); do
-    printf '%s\n' "$help" | grep -q -- "$opt" || fail "'polarview help' lacks $cmd's $opt"
+    grep -q -- "$opt" <<< "$help" || fail "'polarview help' lacks $cmd's $opt"  # (no pipe: grep -q stops early)
   done
 done
 # the memory budget is bytes: a refusal comes at once, in one line, and names the deepest level that fits
