@@ -510,13 +510,90 @@ OptionTable poleTable(CommonOptions& o) {
           intOption({"--rings"}, "M", "curvature over spline rings 1..M (1..20)", &o.rings, 1, 20), jsonRow(&o.json)};
 }
 
+// C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
+// depends on the input is bad input (exit 1), checked before anything is printed.
+void checkC2psRings(const std::string& file, const RefinedLevel& level, int rings) {
+  for (size_t k = 0; k < level.poles.size(); ++k)
+    if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
+      throw InputError(file, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
+                                    std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
+                                    "); at most --rings " +
+                                    std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
+}
+
+// One pole's JSON object: limit, normal, K and H (null where undefined), p0..p5, and rings 1..M
+// (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
+std::vector<RingCurvature> writePoleJson(JsonWriter& w, const CommonOptions& o, const RefinedLevel& level, size_t k,
+                                         const PoleDifferential& d, int rings) {
+  const TaylorCoefficients& t = level.poleTaylor[k];
+  w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
+  w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
+  if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
+  else w.key("gaussian_curvature").null().key("mean_curvature").null();
+  w.key("p").beginArray();
+  for (const Point& p : t.p) w.value(p);
+  w.endArray();
+  std::vector<RingCurvature> ringStats;
+  if (rings > 0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    ringStats = ringCurvatures(level.poleGrids[k], o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
+                               d.curvatureDefined ? d.mean : nan, d.normal);
+    w.key("rings").beginArray();
+    for (const RingCurvature& r : ringStats) {
+      w.beginObject().field("m", r.m).field("valence", r.valence);
+      if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
+      else w.key("max_abs_dK").null();
+      w.field("K_min", r.minK).field("K_max", r.maxK);
+      if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
+      else w.key("max_abs_dH").null();
+      w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
+    }
+    w.endArray();
+  }
+  w.endObject();
+  return ringStats;
+}
+
+// One pole's text line (and with --rings its ring table). Why K and H are missing: no tangent
+// plane (any scheme), or BPS's expansion, which stops at the tangent plane; where K depends on the
+// direction (RTS), over which range on the last ring.
+void printPole(const CommonOptions& o, const RefinedLevel& level, size_t k, const PoleDifferential& d,
+               const std::vector<RingCurvature>& ringStats, bool directional) {
+  const SchemeTraits& traits = schemeTraits(o.scheme);
+  std::string note;
+  if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
+  else if (!d.curvatureDefined && traits.taylorOrder < 2)
+    note = " (curvature not defined: " + std::string(traits.label) + " is C1 at the pole)";
+  if (directional && d.curvatureDefined && !ringStats.empty()) {
+    const RingCurvature& last = ringStats.back();
+    char range[200];
+    std::snprintf(range, sizeof range,
+                  " (Taylor (32); %s is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
+                  traits.label, last.m, last.minK, last.maxK);
+    note += range;
+  }
+  // Where the JSON has null, the text says "undefined" (the note above says why).
+  const auto defined = [&](double value, const char* format) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, value);
+    return d.curvatureDefined ? std::string(text) : std::string("undefined");
+  };
+  std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %s H %s%s\n",
+              level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
+              d.normal.z, defined(d.gaussian, "%.9g").c_str(), defined(d.mean, "%.9g").c_str(), note.c_str());
+  if (o.rings <= 0) return;
+  std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
+  for (const RingCurvature& r : ringStats)
+    std::printf("  %4d  %7d  %-12s  %-12.6g .. %-12.6g  %-12s\n", r.m, r.valence, defined(r.maxAbsDeltaK, "%.4g").c_str(),
+                r.minK, r.maxK, defined(r.maxAbsDeltaH, "%.4g").c_str());
+}
+
 int runPole(CommonOptions& o) {
   checkFirstStep(o);
   if (!polarScheme({o.scheme, o.uniformFirstStep}))
     throw UsageError{"pole analysis needs --scheme " + schemeNames(polarScheme, ", ")};
   // RTS is not C2 for finite n: its K keeps depending on the direction. Its text report gives the
   // range over ring 8 at least, rather than one K as if it were defined.
-  // Where the curvature depends on the direction (RTS), the text says over which range at ring 8.
   const SchemeTraits& traits = schemeTraits(o.scheme);
   const bool directional = traits.taylorOrder == 2 && !traits.curvatureContinuous;
   const int rings = directional && !o.json ? std::max(o.rings, 8) : o.rings;
@@ -525,77 +602,14 @@ int runPole(CommonOptions& o) {
   // leaves links 0 and 1, hence p0..p5, unchanged).
   Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
   const RefinedLevel& level = refinement.level(0);
-  // C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
-  // depends on the input is bad input (exit 1), checked before anything is printed.
-  if (rings > 0 && !traits.keepsValence)
-    for (size_t k = 0; k < level.poles.size(); ++k)
-      if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
-        throw InputError(o.input, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
-                                         std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
-                                         "); at most --rings " + std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
+  if (rings > 0 && !traits.keepsValence) checkC2psRings(o.input, level, rings);
   JsonWriter w(o.input);
   w.beginObject().key("poles").beginArray();
   for (size_t k = 0; k < level.poles.size(); ++k) {
-    const TaylorCoefficients& t = level.poleTaylor[k];
-    PoleDifferential d = analyzePole(t);
+    const PoleDifferential d = analyzePole(level.poleTaylor[k]);
     // The JSON first, text or not: it refuses a non-finite number before anything is printed.
-    w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
-    w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
-    if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
-    else w.key("gaussian_curvature").null().key("mean_curvature").null();
-    w.key("p").beginArray();
-    for (const Point& p : t.p) w.value(p);
-    w.endArray();
-    // Rings 1..M (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5.
-    std::vector<RingCurvature> ringStats;
-    if (rings > 0) {
-      const PolarGrid& grid = level.poleGrids[k];
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      ringStats = ringCurvatures(grid, o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
-                                 d.curvatureDefined ? d.mean : nan, d.normal);
-      w.key("rings").beginArray();
-      for (const RingCurvature& r : ringStats) {
-        w.beginObject().field("m", r.m).field("valence", r.valence);
-        if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
-        else w.key("max_abs_dK").null();
-        w.field("K_min", r.minK).field("K_max", r.maxK);
-        if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
-        else w.key("max_abs_dH").null();
-        w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
-      }
-      w.endArray();
-    }
-    w.endObject();
-    if (o.json) continue;
-    // Why K and H are missing: no tangent plane (any scheme), or BPS's expansion, which stops at
-    // the tangent plane.
-    std::string note;
-    if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
-    else if (!d.curvatureDefined && traits.taylorOrder < 2)
-      note = " (curvature not defined: " + std::string(traits.label) + " is C1 at the pole)";
-    if (directional && d.curvatureDefined && !ringStats.empty()) {
-      const RingCurvature& last = ringStats.back();
-      char range[200];
-      std::snprintf(range, sizeof range,
-                    " (Taylor (32); %s is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
-                    traits.label, last.m, last.minK, last.maxK);
-      note += range;
-    }
-    // Where the JSON has null, the text says "undefined" (the note above says why).
-    const auto defined = [&](double value, const char* format) {
-      char text[64];
-      std::snprintf(text, sizeof text, format, value);
-      return d.curvatureDefined ? std::string(text) : std::string("undefined");
-    };
-    std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %s H %s%s\n",
-                level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
-                d.normal.z, defined(d.gaussian, "%.9g").c_str(), defined(d.mean, "%.9g").c_str(), note.c_str());
-    if (o.rings > 0) {
-      std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
-      for (const RingCurvature& r : ringStats)
-        std::printf("  %4d  %7d  %-12s  %-12.6g .. %-12.6g  %-12s\n", r.m, r.valence, defined(r.maxAbsDeltaK, "%.4g").c_str(),
-                    r.minK, r.maxK, defined(r.maxAbsDeltaH, "%.4g").c_str());
-    }
+    const std::vector<RingCurvature> ringStats = writePoleJson(w, o, level, k, d, rings);
+    if (!o.json) printPole(o, level, k, d, ringStats, directional);
   }
   w.endArray().endObject();
   if (o.json) std::cout << w.str() << "\n";
