@@ -45,16 +45,18 @@ namespace {
 // How many rejected pole candidates `info` lists in text (the JSON lists all).
 constexpr size_t kRejectedListed = 10;
 
-// Options shared by the subcommands, parsed from "--name value" / "--flag" pairs.
+// Options shared by the subcommands: the storage their option tables write into.
 struct CommonOptions {
   std::string input, output;
   Scheme scheme = Scheme::C2PS;
   bool schemeGiven = false;
+  bool uniformScheme = false;  // --scheme c2ps-u or rts-u
+  bool uniformFlag = false;    // --uniform-first-step
   int levels = -1;
   int reps = 5;
   int rings = 0;  // pole --rings M
   size_t memoryBudget = 0;  // --memory-budget SIZE in bytes (0: from the available memory)
-  bool uniformFirstStep = false;
+  bool uniformFirstStep = false;  // either of the two above (checkFirstStep)
   bool json = false;
   bool adaptive = false, edit = false;  // bench --adaptive [--edit]
   bool vsOpenSubdiv = false;             // bench --vs-opensubdiv
@@ -84,11 +86,8 @@ size_t parseByteSize(const std::string& flag, const std::string& text) {
   return size_t(value * scale);
 }
 
-// Bytes a refinement takes per face of its finest level: all levels' points, faces and topology
-// tables and the output (measured: Catmull-Clark on a cube, levels 8 and 9: 248 and 236 bytes of
-// peak RSS per finest face), with a margin.
-constexpr double kBytesPerFinestFace = 300.0;
-// The feature-adaptive path's bytes per face: the viewer's kBytesPerAdaptiveFace (surface_pipeline.h).
+// A face of a uniform refinement's finest level costs kBytesPerUniformFace, of the feature-adaptive
+// path kBytesPerAdaptiveFace (both measured, surface_pipeline.h).
 
 // The memory a refinement may take: --memory-budget, else 80% of what the machine has available
 // now (MemAvailable), else 4 GiB where that cannot be read.
@@ -110,87 +109,110 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+// The refusal of a level over the memory budget: what it would need, the budget, where the budget
+// comes from, and the deepest level that fits.
+InputError budgetRefusal(const CommonOptions& o, size_t budget, const std::string& needed, int fits) {
+  return InputError(o.input, 0,
+                    "level " + std::to_string(o.levels) + " would need " + needed + ", over the memory budget of " +
+                        gigabytes(double(budget)) +
+                        (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
+                        ": level " + std::to_string(fits) + " fits");
+}
+
 // Refuses at once, before any allocation, a level whose estimated memory exceeds the budget, and
 // names the deepest level that fits. Returns the budget as a face count for the refiner.
 size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adaptive = false) {
   const size_t budget = memoryBudgetBytes(o);
-  const bool radial = refinesRadially(mesh, o.scheme);
+  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  const bool radial = refinesRadially(mesh, o.scheme);  // (checks the mesh for either path)
+  if (!adaptive) {
+    const UniformLevelEstimate e = estimateUniformLevel(mesh, options, radial, budget / kBytesPerUniformFace);
+    if (!e.fits) throw budgetRefusal(o, budget, "about " + gigabytes(double(e.faces) * kBytesPerUniformFace), e.deepestFitting);
+    return size_t(double(budget) / double(kBytesPerUniformFace));
+  }
+  // The feature-adaptive estimate stops past the budget: "more than" the budget there.
   const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
-  const std::vector<size_t> adaptiveFaces =
-      adaptive ? estimateAdaptiveFaceCounts(mesh, {o.scheme, o.levels, o.uniformFirstStep}, budgetFaces) : std::vector<size_t>{};
-  const bool beyondEstimate = adaptive && adaptiveFaces[size_t(o.levels)] == budgetFaces + 1;  // not made: "more than"
-  auto bytesAt = [&](int level) {
-    if (adaptive) return double(adaptiveFaces[size_t(level)]) * kBytesPerAdaptiveFace;
-    return double(estimateFaceCount(mesh, {o.scheme, level, o.uniformFirstStep}, radial)) * kBytesPerFinestFace;
-  };
+  const std::vector<size_t> faces = estimateAdaptiveFaceCounts(mesh, options, budgetFaces);
+  auto bytesAt = [&](int level) { return double(faces[size_t(level)]) * kBytesPerAdaptiveFace; };
   if (bytesAt(o.levels) > double(budget)) {
     int fits = o.levels;
     while (fits > 0 && bytesAt(fits) > double(budget)) --fits;
-    throw InputError(o.input, 0,
-                     "level " + std::to_string(o.levels) + " would need " +
-                         (beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels))) +
-                         ", over the memory budget of " + gigabytes(double(budget)) +
-                         (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
-                         ": level " + std::to_string(fits) + " fits");
+    const bool beyondEstimate = faces[size_t(o.levels)] == budgetFaces + 1;
+    throw budgetRefusal(o, budget, beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels)),
+                        fits);
   }
-  return size_t(double(budget) / (adaptive ? kBytesPerAdaptiveFace : kBytesPerFinestFace));
+  return size_t(double(budget) / double(kBytesPerAdaptiveFace));
 }
 
-int parseInt(const std::string& flag, const std::string& text, int low, int high) {
-  return parseIntArgument(flag, text, low, high);
-}
-
-// The scheme names every command takes (the scheme table's, "c2ps-u" and "rts-u" for the paper's
-// Section-6 variant, the same as --uniform-first-step).
-std::optional<Scheme> parseCliScheme(const std::string& name, bool* uniformFirstStep) {
-  const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
-  *uniformFirstStep = variant && variant->uniformFirstStep;
-  if (!variant) return std::nullopt;
-  return variant->scheme;
-}
-
-// The name parseCliScheme reads back: "c2ps-u" for C2PS with the uniform first step.
+// The name a scheme prints as: "c2ps-u" for C2PS with the uniform first step.
 std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) { return schemeVariantName({scheme, uniformFirstStep}); }
 
-CommonOptions parseOptions(const std::string& command, const Args& args, const std::vector<std::string>& allowed) {
-  CommonOptions o;
-  bool uniformFlag = false, uniformScheme = false;
-  auto isAllowed = [&](const std::string& flag) { return std::find(allowed.begin(), allowed.end(), flag) != allowed.end(); };
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
-      return args[++k];
-    };
-    if (a.size() > 1 && a[0] == '-' && !isAllowed(a)) throw UsageError{"unknown option " + a};
-    if (a == "-o" || a == "--output") o.output = next();
-    else if (a == "--scheme") {
-      std::optional<Scheme> s = parseCliScheme(next(), &uniformScheme);
-      if (!s) throw UsageError{"unknown scheme '" + args[k] + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)"};
-      o.scheme = *s;
-      o.schemeGiven = true;
-    } else if (a == "--levels" || a == "--level") o.levels = parseInt(a, next(), 0, 64);
-    else if (a == "--reps") o.reps = parseInt(a, next(), 1, 1000);
-    else if (a == "--rings") o.rings = parseInt(a, next(), 1, 20);
-    else if (a == "--memory-budget") o.memoryBudget = parseByteSize(a, next());
-    else if (a == "--uniform-first-step") uniformFlag = true;
-    else if (a == "--json") o.json = true;
-    else if (a == "--adaptive") o.adaptive = true;
-    else if (a == "--edit") o.edit = true;
-    else if (a == "--vs-opensubdiv") o.vsOpenSubdiv = true;
-    else if (a == "--uniform") o.uniform = true;
-    else if (a == "--ev-to-polar") o.evToPolar = true;
-    else if (a == "--pentagons") o.pentagons = true;
-    else if (o.input.empty()) o.input = a;
-    else throw UsageError{"unexpected argument '" + a + "'"};
-  }
-  if (o.input.empty()) throw UsageError{"missing input file"};
-  // The Section-6 variant changes the first step's 2-link of C2PS and RTS only; elsewhere the flag
-  // would be accepted and do nothing.
-  o.uniformFirstStep = uniformFlag || uniformScheme;
-  if (uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
-    throw UsageError{command + ": --uniform-first-step applies to c2ps and rts only"};
-  return o;
+// [SECTION] Option rows the commands share
+
+// Which scheme variants a command takes (every one, or those with a property of the scheme table).
+using SchemeFilter = bool (*)(const SchemeVariant&);
+bool anyScheme(const SchemeVariant&) { return true; }
+bool polarScheme(const SchemeVariant& v) { return schemeTraits(v.scheme).polar(); }
+// spectrum: a scheme-table row as it is (the Section-6 first step is no subdivision matrix of its own).
+bool plainScheme(const SchemeVariant& v) { return !v.uniformFirstStep; }
+
+// The names `accepts` takes, from the scheme-choice table: "cc|c2ps|c2ps-u|rts|rts-u|bps".
+std::string schemeNames(SchemeFilter accepts, const std::string& separator) {
+  return schemeChoiceNames(separator, [accepts](SchemeChoice c) { return accepts(schemeChoiceVariant(c)); });
+}
+
+// --scheme S: the scheme table's names, "-u" for the paper's Section-6 variant (the same as
+// --uniform-first-step); a name `accepts` refuses is a usage error that lists the ones it takes.
+// `help` names them (schemeNames).
+OptionRow schemeRow(Scheme* scheme, bool* given, bool* uniform, SchemeFilter accepts, const std::string& help) {
+  return actionOption({"--scheme"}, "S", help, [=](const std::string& name) {
+    const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
+    if (!variant) throw UsageError{"unknown scheme '" + name + "' (" + schemeNames(accepts, ", ") + ")"};
+    if (!accepts(*variant)) throw UsageError{"--scheme " + name + ": this command takes " + schemeNames(accepts, ", ")};
+    *scheme = variant->scheme;
+    *uniform = variant->uniformFirstStep;
+    if (given) *given = true;
+  });
+}
+// --scheme S for the commands that read IN.obj; `listed`: the schemes the help names.
+OptionRow schemeRow(CommonOptions& o, const std::string& help = "the scheme, default c2ps", SchemeFilter listed = anyScheme) {
+  return schemeRow(&o.scheme, &o.schemeGiven, &o.uniformScheme, anyScheme,
+                   help + " (" + schemeNames(listed, "|") + ")");
+}
+
+OptionRow inputRow(CommonOptions& o) { return required(positionalOption("IN.obj", "the input mesh (OBJ)", &o.input)); }
+OptionRow outputRow(std::string* output, const std::string& metavar, const std::string& help) {
+  return required(textOption({"-o", "--output"}, metavar, help, output));
+}
+OptionRow levelsRow(CommonOptions& o, std::vector<std::string> names) {
+  return required(intOption(std::move(names), "L", "refinement levels (0..64)", &o.levels, 0, 64));
+}
+// The schemes with the paper's Section-6 variant (the choices with a uniform first step): "c2ps and
+// rts", or as names "c2ps-u, rts-u".
+bool firstStepVariant(const SchemeVariant& v) { return v.uniformFirstStep; }
+std::string firstStepSchemes() {
+  std::string names;
+  for (const SchemeTraits& s : schemeTable())
+    if (s.hasUniformFirstStep) names += (names.empty() ? "" : " and ") + std::string(s.name);
+  return names;
+}
+
+OptionRow uniformFirstStepRow(CommonOptions& o) {
+  return flagOption({"--uniform-first-step"}, "the paper's Section-6 first step (" + firstStepSchemes() + " only; = --scheme " +
+                    schemeNames(firstStepVariant, ", ") + ")", &o.uniformFlag);
+}
+OptionRow memoryBudgetRow(CommonOptions& o) {
+  return actionOption({"--memory-budget"}, "SIZE", "refuse levels whose estimate needs more (2G, 500M, bytes; default 80% of "
+                      "the available memory)", [&o](const std::string& text) { o.memoryBudget = parseByteSize("--memory-budget", text); });
+}
+OptionRow jsonRow(bool* json) { return flagOption({"--json"}, "print JSON", json); }
+
+// After parsing: --scheme c2ps-u and --uniform-first-step are one choice. The Section-6 variant
+// changes the first step's 2-link of C2PS and RTS only; elsewhere the flag would do nothing.
+void checkFirstStep(CommonOptions& o) {
+  o.uniformFirstStep = o.uniformFlag || o.uniformScheme;
+  if (o.uniformFlag && !schemeTraits(o.scheme).hasUniformFirstStep)
+    throw UsageError{"--uniform-first-step applies to " + firstStepSchemes() + " only"};
 }
 
 // Loads the OBJ and prints its warnings on stderr.
@@ -247,66 +269,15 @@ int countBoundaryLoops(const MeshTopology& topo) {
   return loops;
 }
 
-}  // namespace
+// [SECTION] refine, export, convert
 
-const char* usageText() {
-  return "usage:\n"
-         "  polarview                          open the viewer on the built-in model\n"
-         "  polarview view [FILE.obj] [--scheme S[,S...]] [--level L] [--shade MODE] [--size WxH]\n"
-         "                 [--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help]\n"
-         "                 [--inspect-poles]\n"
-         "  polarview render FILE.obj -o OUT.png [--scheme S[,S...] (1 to 4 views)] [--level L]\n"
-         "                 [--shade MODE[,MODE...]] (gaussian|mean|highlight|reflection|shaded: one, or one\n"
-         "                 per view) [--size WxH]\n"
-         "                 [--range R | --range MIN:MAX | --percentile P [--asymmetric]]\n"
-         "                 [--colormap paper|coolwarm|viridis|magnitude] [--camera JSON] [--preset front|top|side|iso]\n"
-         "                 [--supersample 1|2|4] [--transparent] [--net] [--no-surface] [--boundaries]\n"
-         "                 [--wireframe] [--no-poles] [--full-draw] [--time N]\n"
-         "  polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
-         "                 the paper's figures as DIR/figNN.png (all: and the gallery DIR/README.md)\n"
-         "  polarview refine IN.obj -o OUT.obj --scheme cc|c2ps|c2ps-u|rts|rts-u|bps --levels L [--memory-budget SIZE]\n"
-         "  polarview export IN.obj -o OUT.bv --scheme S --level L [--uniform] [--memory-budget SIZE]\n"
-         "  polarview convert IN.obj --ev-to-polar [--pentagons] -o OUT.obj   (paper Fig. 14)\n"
-         "  polarview info IN.obj [--json]\n"
-         "  polarview pole IN.obj [--scheme c2ps|c2ps-u|rts|rts-u|bps] [--rings M] [--json]\n"
-         "  polarview bench IN.obj --scheme S --levels L [--reps N] [--memory-budget SIZE] [--adaptive [--edit]] [--vs-opensubdiv] [--json]\n"
-         "                 --vs-opensubdiv: OpenSubdiv 3.5 in the same run (uniform: its points checked against\n"
-         "                 ours; --adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)\n"
-         "  polarview shape globe|cap|mushroom|cube|torus|valence20|fingertips [--valence N] [--links K]\n"
-         "                 [--height paraboloid|saddle|monkey|flat4|saddle4|convex] -o OUT.obj\n"
-         "  polarview spectrum --scheme rts|bps|cc --valence N [--count K] [--vectors] [--json]\n"
-         "                 leading eigenvalues; --vectors: their right and left eigenvectors\n"
-         "  polarview spectrum --scheme c2ps --valence N [--steps M] [--json]\n"
-         "                 C2PS on RTS's eigenvectors: Lemma 5's eigencoefficient scaling, (30)'s O(8^-m)\n"
-         "  polarview help                     this text\n"
-         "schemes S: cc, c2ps, c2ps-u, rts, rts-u, bps; c2ps-u and rts-u are c2ps and rts with the\n"
-         "  uniform first step of the paper's Section 6\n"
-         "  (also written --scheme c2ps|rts --uniform-first-step, which no other scheme takes)\n";
+OptionTable refineTable(CommonOptions& o) {
+  return {inputRow(o), outputRow(&o.output, "OUT.obj", "the finest level's mesh (OBJ)"), schemeRow(o),
+          levelsRow(o, {"--levels", "--level"}), uniformFirstStepRow(o), memoryBudgetRow(o)};
 }
 
-int guarded(const std::string& file, int (*command)(const Args&), const Args& args) {
-  try {
-    return command(args);
-  } catch (const UsageError& e) {
-    std::cerr << "polarview: " << e.what() << "\n" << usageText();
-    return 2;
-  } catch (const InputError& e) {
-    std::cerr << "polarview: " << e.what() << "\n";
-    return 1;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": out of memory\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "polarview: " << (file.empty() ? "<input>" : file) << ": " << e.what() << "\n";
-    return 1;
-  }
-}
-
-int runRefine(const Args& args) {
-  CommonOptions o = parseOptions("refine", args,
-                                 {"-o", "--output", "--scheme", "--levels", "--level", "--uniform-first-step", "--memory-budget"});
-  if (o.output.empty()) throw UsageError{"refine needs -o OUT.obj"};
-  if (o.levels < 0) throw UsageError{"refine needs --levels L"};
+int runRefine(CommonOptions& o) {
+  checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
   const size_t maxFaces = checkMemoryBudget(mesh, o);
   RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
@@ -318,13 +289,18 @@ int runRefine(const Args& args) {
   return 0;
 }
 
-int runExport(const Args& args) {
-  CommonOptions o = parseOptions("export", args,
-                                 {"-o", "--output", "--scheme", "--level", "--levels", "--uniform", "--uniform-first-step",
-                                  "--memory-budget"});
-  if (o.output.empty()) throw UsageError{"export needs -o OUT.bv"};
-  if (!o.schemeGiven) throw UsageError{"export needs --scheme S"};
-  if (o.levels < 0) throw UsageError{"export needs --level L"};
+OptionTable exportTable(CommonOptions& o) {
+  return {inputRow(o),
+          outputRow(&o.output, "OUT.bv", "the limit surface as Bezier patches (BezierView .bv)"),
+          required(schemeRow(o, "the scheme")),
+          levelsRow(o, {"--level", "--levels"}),
+          flagOption({"--uniform"}, "refine every face (default: feature-adaptive, as view and render)", &o.uniform),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o)};
+}
+
+int runExport(CommonOptions& o) {
+  checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
   // The adaptive path's hard face limit leaves room over its estimate (an extrapolation past level 6).
   const size_t maxFaces = checkMemoryBudget(mesh, o, !o.uniform) * (o.uniform ? 1 : 2);
@@ -343,10 +319,14 @@ int runExport(const Args& args) {
   return 0;
 }
 
-int runConvert(const Args& args) {
-  CommonOptions o = parseOptions("convert", args, {"-o", "--output", "--ev-to-polar", "--pentagons"});
-  if (o.output.empty()) throw UsageError{"convert needs -o OUT.obj"};
-  if (!o.evToPolar) throw UsageError{"convert needs --ev-to-polar (the one conversion polarview offers)"};
+OptionTable convertTable(CommonOptions& o) {
+  return {inputRow(o), outputRow(&o.output, "OUT.obj", "the converted mesh (OBJ)"),
+          required(flagOption({"--ev-to-polar"}, "extraordinary vertices into polar configurations (paper Fig. 14)",
+                              &o.evToPolar)),
+          flagOption({"--pentagons"}, "n-valent poles ringed by pentagons (Fig. 14c; default 2n-valent, 14a)", &o.pentagons)};
+}
+
+int runConvert(CommonOptions& o) {
   PolyMesh mesh = loadInput(o.input);
   const PolarConversion conversion = convertExtraordinaryToPolar(mesh, o.pentagons, o.input);
   saveObj(o.output, conversion.mesh, o.input);
@@ -359,143 +339,261 @@ int runConvert(const Args& args) {
   return 0;
 }
 
-int runInfo(const Args& args) {
-  CommonOptions o = parseOptions("info", args, {"--json"});
-  const PolyMesh input = loadInput(o.input);
-  ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
-  MeshTopology topo;
-  const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
-  // Poles (configurations a polar scheme refines) apart from vertices that only look polar: on a
-  // triangle mesh nearly every vertex is such a candidate, and Catmull-Clark refines it.
-  std::vector<PolarConfig> poles, rejected;
-  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? poles : rejected).push_back(std::move(c));
-  std::map<PolarRejection, int> rejectedPerReason;
-  for (const PolarConfig& c : rejected) ++rejectedPerReason[c.rejection];
+// [SECTION] info
 
-  // Which schemes refine the whole mesh radially (RTS/BPS on caps and globes).
-  bool radialMesh = false;
-  if (!poles.empty()) {
+OptionTable infoTable(CommonOptions& o) { return {inputRow(o), jsonRow(&o.json)}; }
+
+// Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
+struct Extraordinary {
+  Index vertex;
+  int valence;
+  bool boundary;
+  bool pole;
+};
+
+// What `info` reports on a mesh (the split mesh's counts where the input is non-manifold).
+struct MeshReport {
+  std::vector<PolarConfig> poles, rejected;  // poles a polar scheme refines; vertices that only look polar
+  std::map<PolarRejection, int> rejectedPerReason;
+  bool radialMesh = false;  // RTS/BPS refine the whole mesh radially (caps and globes)
+  int used = 0, copies = 0, triangles = 0, quads = 0, polygons = 0, holeFaces = 0, loops = 0;
+  std::vector<Extraordinary> extraordinary;
+};
+
+// The poles apart from rejected candidates: on a triangle mesh nearly every vertex is such a
+// candidate, and Catmull-Clark refines it.
+void findPoles(const PolyMesh& mesh, const MeshTopology& topo, MeshReport& r) {
+  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? r.poles : r.rejected).push_back(std::move(c));
+  for (const PolarConfig& c : r.rejected) ++r.rejectedPerReason[c.rejection];
+  if (!r.poles.empty()) {
     try {
-      radialMesh = refinesRadially(mesh, Scheme::RTS);
+      r.radialMesh = refinesRadially(mesh, Scheme::RTS);
     } catch (const std::exception&) {
     }
   }
+}
+
+MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTopology& topo) {
+  MeshReport r;
+  findPoles(mesh, topo, r);
   std::vector<uint8_t> isPole(topo.vertexCount, 0);
-  for (const PolarConfig& c : poles) isPole[c.pole] = 1;
-  int used = 0, triangles = 0, quads = 0, polygons = 0;
-  for (Index v = 0; v < topo.vertexCount; ++v) used += topo.vertexUsed[v];
-  const int copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
-  used -= copies;
+  for (const PolarConfig& c : r.poles) isPole[c.pole] = 1;
+  for (Index v = 0; v < topo.vertexCount; ++v) r.used += topo.vertexUsed[v];
+  r.copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
+  r.used -= r.copies;
   // Hole faces (`t hole`, and the boundary faces of `t interpolateboundary 0`): no surface there.
   const std::vector<uint8_t> holes = baseHoles(mesh, topo);
-  const int holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
+  r.holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
   for (Index f = 0; f < mesh.faceCount(); ++f) {
     int k = mesh.faceSize(f);
-    triangles += k == 3;
-    quads += k == 4;
-    polygons += k > 4;
+    r.triangles += k == 3;
+    r.quads += k == 4;
+    r.polygons += k > 4;
   }
-  // Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
-  struct Extraordinary { Index vertex; int valence; bool boundary; bool pole; };
-  std::vector<Extraordinary> extraordinary;
   for (Index v = 0; v < topo.vertexCount; ++v) {
     if (!topo.vertexUsed[v]) continue;
     int k = topo.valence(v);
     bool boundary = topo.vertexOnBoundary[v];
-    if ((!boundary && k != 4) || (boundary && k > 3)) extraordinary.push_back({v, k, boundary, bool(isPole[v])});
+    if ((!boundary && k != 4) || (boundary && k > 3)) r.extraordinary.push_back({v, k, boundary, bool(isPole[v])});
   }
-  const int loops = countBoundaryLoops(topo);
+  r.loops = countBoundaryLoops(topo);
+  return r;
+}
 
-  if (o.json) {
-    JsonWriter w(o.input);
-    w.beginObject();
-    w.field("file", o.input).field("vertices", used).field("unreferenced_vertices", topo.vertexCount - used);
-    w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", triangles);
-    w.field("quads", quads).field("polygons", polygons).field("boundary_loops", loops);
-    w.field("closed", loops == 0).field("radial_mesh", radialMesh);
-    w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
-    w.field("hole_faces", holeFaces);
-    w.key("poles").beginArray();
-    for (const PolarConfig& c : poles) {
-      w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
-      w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
-      if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
-      w.field("refinable", true);
-      w.key("schemes").beginObject();
-      for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, radialMesh));
-      w.endObject().endObject();
-    }
-    w.endArray();
-    w.key("rejected_candidates").beginArray();
-    for (const PolarConfig& c : rejected) {
-      w.beginObject().field("vertex", c.pole).field("valence", c.valence);
-      w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
-    }
-    w.endArray();
-    w.key("rejected_reasons").beginObject();
-    for (const auto& [rejection, count] : rejectedPerReason) w.field(polarRejectionKey(rejection), count);
+void writeInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                   const MeshReport& r) {
+  JsonWriter w(file);
+  w.beginObject();
+  w.field("file", file).field("vertices", r.used).field("unreferenced_vertices", topo.vertexCount - r.used);
+  w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", r.triangles);
+  w.field("quads", r.quads).field("polygons", r.polygons).field("boundary_loops", r.loops);
+  w.field("closed", r.loops == 0).field("radial_mesh", r.radialMesh);
+  w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
+  w.field("hole_faces", r.holeFaces);
+  w.key("poles").beginArray();
+  for (const PolarConfig& c : r.poles) {
+    w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
+    w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
+    if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
+    w.field("refinable", true);
+    w.key("schemes").beginObject();
+    for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, r.radialMesh));
+    w.endObject().endObject();
+  }
+  w.endArray();
+  w.key("rejected_candidates").beginArray();
+  for (const PolarConfig& c : r.rejected) {
+    w.beginObject().field("vertex", c.pole).field("valence", c.valence);
+    w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
+  }
+  w.endArray();
+  w.key("rejected_reasons").beginObject();
+  for (const auto& [rejection, count] : r.rejectedPerReason) w.field(polarRejectionKey(rejection), count);
+  w.endObject();
+  w.key("extraordinary_vertices").beginArray();
+  for (const Extraordinary& x : r.extraordinary) {
+    w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
+    w.field("pole", x.pole);
+    w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
     w.endObject();
-    w.key("extraordinary_vertices").beginArray();
-    for (const Extraordinary& x : extraordinary) {
-      w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
-      w.field("pole", x.pole);
-      w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
-      w.endObject();
-    }
-    w.endArray().endObject();
-    std::cout << w.str() << "\n";
-    return 0;
   }
+  w.endArray().endObject();
+  std::cout << w.str() << "\n";
+}
 
-  std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
-              o.input.c_str(), used, mesh.faceCount(), triangles, quads, polygons, topo.edgeCount, loops, loops == 1 ? "" : "s");
-  if (topo.vertexCount - copies > used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - copies - used);
-  if (holeFaces > 0)
-    std::printf("holes: %d faces ('t hole' or 'interpolateboundary 0'): refined, no surface there\n", holeFaces);
-  if (!split.empty())
-    std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
-                " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",
-                split.nonManifoldEdges, split.nonManifoldVertices, copies);
-  std::printf("poles: %zu\n", poles.size());
-  for (const PolarConfig& c : poles) {
+// The text report's poles and rejected candidates.
+void printInfoPoles(const MeshReport& r) {
+  std::printf("poles: %zu\n", r.poles.size());
+  for (const PolarConfig& c : r.poles) {
     std::printf("  vertex %d: valence %d, %d link%s (%d regular), ends at %s", c.pole, c.valence, c.linkCount,
                 c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
     if (c.oppositePole >= 0) std::printf(" %d", c.oppositePole);
     std::printf("\n");
     for (const SchemeTraits& s : schemeTable())  // the polar schemes first, Catmull-Clark last
-      if (s.polar()) std::printf("    %-4s %s\n", s.name, schemeAction(s.scheme, c, radialMesh).c_str());
-    std::printf("    %-4s %s\n", schemeName(Scheme::CatmullClark), schemeAction(Scheme::CatmullClark, c, radialMesh).c_str());
+      if (s.polar()) std::printf("    %-4s %s\n", s.name, schemeAction(s.scheme, c, r.radialMesh).c_str());
+    std::printf("    %-4s %s\n", schemeName(Scheme::CatmullClark), schemeAction(Scheme::CatmullClark, c, r.radialMesh).c_str());
   }
-  if (!rejected.empty()) {
-    std::printf("rejected pole candidates: %zu (reasons:", rejected.size());
-    const char* separator = " ";
-    for (const auto& [rejection, count] : rejectedPerReason) {
-      std::printf("%s%d %s", separator, count, polarRejectionWords(rejection));
-      separator = "; ";
-    }
-    std::printf("); refined by Catmull-Clark in every scheme\n");
-    // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
-    const size_t shown = std::min<size_t>(rejected.size(), kRejectedListed);
-    for (size_t k = 0; k < shown; ++k)
-      std::printf("  vertex %d (valence %d): %s\n", rejected[k].pole, rejected[k].valence, rejected[k].reason.c_str());
-    if (rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", rejected.size() - shown);
+  if (r.rejected.empty()) return;
+  std::printf("rejected pole candidates: %zu (reasons:", r.rejected.size());
+  const char* separator = " ";
+  for (const auto& [rejection, count] : r.rejectedPerReason) {
+    std::printf("%s%d %s", separator, count, polarRejectionWords(rejection));
+    separator = "; ";
   }
-  std::printf("extraordinary vertices (Catmull-Clark): %zu\n", extraordinary.size());
-  for (const Extraordinary& x : extraordinary)
+  std::printf("); refined by Catmull-Clark in every scheme\n");
+  // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
+  const size_t shown = std::min<size_t>(r.rejected.size(), kRejectedListed);
+  for (size_t k = 0; k < shown; ++k)
+    std::printf("  vertex %d (valence %d): %s\n", r.rejected[k].pole, r.rejected[k].valence, r.rejected[k].reason.c_str());
+  if (r.rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", r.rejected.size() - shown);
+}
+
+void printInfoText(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                   const MeshReport& r) {
+  std::printf("%s: %d vertices, %d faces (%d triangles, %d quads, %d polygons), %d edges, %d boundary loop%s\n",
+              file.c_str(), r.used, mesh.faceCount(), r.triangles, r.quads, r.polygons, topo.edgeCount, r.loops,
+              r.loops == 1 ? "" : "s");
+  if (topo.vertexCount - r.copies > r.used) std::printf("  %d unreferenced vertices ignored\n", topo.vertexCount - r.copies - r.used);
+  if (r.holeFaces > 0)
+    std::printf("holes: %d faces ('t hole' or 'interpolateboundary 0'): refined, no surface there\n", r.holeFaces);
+  if (!split.empty())
+    std::printf("non-manifold: %zu edges, %zu vertices; refined as OpenSubdiv does (made infinitely sharp: creases and corners),"
+                " the mesh split along them (%d vertex copies; edges and boundary loops above count the split mesh)\n",
+                split.nonManifoldEdges, split.nonManifoldVertices, r.copies);
+  printInfoPoles(r);
+  std::printf("extraordinary vertices (Catmull-Clark): %zu\n", r.extraordinary.size());
+  for (const Extraordinary& x : r.extraordinary)
     std::printf("  vertex %d: valence %d%s%s\n", x.vertex, x.valence, x.boundary ? " (boundary)" : "",
                 x.pole ? " — a pole: polar schemes refine it, cc treats it as extraordinary" : " — Catmull-Clark in every scheme");
-  if (triangles + polygons > 0)
+  if (r.triangles + r.polygons > 0)
     std::printf("non-quad faces: %d (their face points become extraordinary vertices after one Catmull-Clark step)\n",
-                triangles + polygons);
+                r.triangles + r.polygons);
+}
+
+int runInfo(CommonOptions& o) {
+  const PolyMesh input = loadInput(o.input);
+  ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
+  MeshTopology topo;
+  const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
+  const MeshReport report = reportMesh(input, mesh, topo);
+  if (o.json) writeInfoJson(o.input, mesh, topo, split, report);
+  else printInfoText(o.input, mesh, topo, split, report);
   return 0;
 }
 
-int runPole(const Args& args) {
-  CommonOptions o = parseOptions("pole", args, {"--scheme", "--uniform-first-step", "--json", "--rings"});
-  if (!schemeTraits(o.scheme).polar()) throw UsageError{"pole analysis needs --scheme c2ps, c2ps-u, rts, rts-u or bps"};
+// [SECTION] pole
+
+OptionTable poleTable(CommonOptions& o) {
+  // Any scheme parses (--uniform-first-step is judged first); runPole refuses a scheme without poles.
+  return {inputRow(o), schemeRow(o, "the polar scheme, default c2ps", polarScheme),
+          uniformFirstStepRow(o),
+          intOption({"--rings"}, "M", "curvature over spline rings 1..M (1..20)", &o.rings, 1, 20), jsonRow(&o.json)};
+}
+
+// C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
+// depends on the input is bad input (exit 1), checked before anything is printed.
+void checkC2psRings(const std::string& file, const RefinedLevel& level, int rings) {
+  for (size_t k = 0; k < level.poles.size(); ++k)
+    if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
+      throw InputError(file, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
+                                    std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
+                                    "); at most --rings " +
+                                    std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
+}
+
+// One pole's JSON object: limit, normal, K and H (null where undefined), p0..p5, and rings 1..M
+// (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
+std::vector<RingCurvature> writePoleJson(JsonWriter& w, const CommonOptions& o, const RefinedLevel& level, size_t k,
+                                         const PoleDifferential& d, int rings) {
+  const TaylorCoefficients& t = level.poleTaylor[k];
+  w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
+  w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
+  if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
+  else w.key("gaussian_curvature").null().key("mean_curvature").null();
+  w.key("p").beginArray();
+  for (const Point& p : t.p) w.value(p);
+  w.endArray();
+  std::vector<RingCurvature> ringStats;
+  if (rings > 0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    ringStats = ringCurvatures(level.poleGrids[k], o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
+                               d.curvatureDefined ? d.mean : nan, d.normal);
+    w.key("rings").beginArray();
+    for (const RingCurvature& r : ringStats) {
+      w.beginObject().field("m", r.m).field("valence", r.valence);
+      if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
+      else w.key("max_abs_dK").null();
+      w.field("K_min", r.minK).field("K_max", r.maxK);
+      if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
+      else w.key("max_abs_dH").null();
+      w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
+    }
+    w.endArray();
+  }
+  w.endObject();
+  return ringStats;
+}
+
+// One pole's text line (and with --rings its ring table). Why K and H are missing: no tangent
+// plane (any scheme), or BPS's expansion, which stops at the tangent plane; where K depends on the
+// direction (RTS), over which range on the last ring.
+void printPole(const CommonOptions& o, const RefinedLevel& level, size_t k, const PoleDifferential& d,
+               const std::vector<RingCurvature>& ringStats, bool directional) {
+  const SchemeTraits& traits = schemeTraits(o.scheme);
+  std::string note;
+  if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
+  else if (!d.curvatureDefined && traits.taylorOrder < 2)
+    note = " (curvature not defined: " + std::string(traits.label) + " is C1 at the pole)";
+  if (directional && d.curvatureDefined && !ringStats.empty()) {
+    const RingCurvature& last = ringStats.back();
+    char range[200];
+    std::snprintf(range, sizeof range,
+                  " (Taylor (32); %s is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
+                  traits.label, last.m, last.minK, last.maxK);
+    note += range;
+  }
+  // Where the JSON has null, the text says "undefined" (the note above says why).
+  const auto defined = [&](double value, const char* format) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, value);
+    return d.curvatureDefined ? std::string(text) : std::string("undefined");
+  };
+  std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %s H %s%s\n",
+              level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
+              d.normal.z, defined(d.gaussian, "%.9g").c_str(), defined(d.mean, "%.9g").c_str(), note.c_str());
+  if (o.rings <= 0) return;
+  std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
+  for (const RingCurvature& r : ringStats)
+    std::printf("  %4d  %7d  %-12s  %-12.6g .. %-12.6g  %-12s\n", r.m, r.valence, defined(r.maxAbsDeltaK, "%.4g").c_str(),
+                r.minK, r.maxK, defined(r.maxAbsDeltaH, "%.4g").c_str());
+}
+
+int runPole(CommonOptions& o) {
+  checkFirstStep(o);
+  if (!polarScheme({o.scheme, o.uniformFirstStep}))
+    throw UsageError{"pole analysis needs --scheme " + schemeNames(polarScheme, ", ")};
   // RTS is not C2 for finite n: its K keeps depending on the direction. Its text report gives the
   // range over ring 8 at least, rather than one K as if it were defined.
-  // Where the curvature depends on the direction (RTS), the text says over which range at ring 8.
   const SchemeTraits& traits = schemeTraits(o.scheme);
   const bool directional = traits.taylorOrder == 2 && !traits.curvatureContinuous;
   const int rings = directional && !o.json ? std::max(o.rings, 8) : o.rings;
@@ -504,82 +602,35 @@ int runPole(const Args& args) {
   // leaves links 0 and 1, hence p0..p5, unchanged).
   Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
   const RefinedLevel& level = refinement.level(0);
-  // C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
-  // depends on the input is bad input (exit 1), checked before anything is printed.
-  if (rings > 0 && !traits.keepsValence)
-    for (size_t k = 0; k < level.poles.size(); ++k)
-      if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
-        throw InputError(o.input, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
-                                         std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
-                                         "); at most --rings " + std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
+  if (rings > 0 && !traits.keepsValence) checkC2psRings(o.input, level, rings);
   JsonWriter w(o.input);
   w.beginObject().key("poles").beginArray();
   for (size_t k = 0; k < level.poles.size(); ++k) {
-    const TaylorCoefficients& t = level.poleTaylor[k];
-    PoleDifferential d = analyzePole(t);
+    const PoleDifferential d = analyzePole(level.poleTaylor[k]);
     // The JSON first, text or not: it refuses a non-finite number before anything is printed.
-    w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
-    w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
-    if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
-    else w.key("gaussian_curvature").null().key("mean_curvature").null();
-    w.key("p").beginArray();
-    for (const Point& p : t.p) w.value(p);
-    w.endArray();
-    // Rings 1..M (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5.
-    std::vector<RingCurvature> ringStats;
-    if (rings > 0) {
-      const PolarGrid& grid = level.poleGrids[k];
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      ringStats = ringCurvatures(grid, o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
-                                 d.curvatureDefined ? d.mean : nan, d.normal);
-      w.key("rings").beginArray();
-      for (const RingCurvature& r : ringStats) {
-        w.beginObject().field("m", r.m).field("valence", r.valence);
-        if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
-        else w.key("max_abs_dK").null();
-        w.field("K_min", r.minK).field("K_max", r.maxK);
-        if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
-        else w.key("max_abs_dH").null();
-        w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
-      }
-      w.endArray();
-    }
-    w.endObject();
-    if (o.json) continue;
-    // Why K and H are missing: no tangent plane (any scheme), or BPS's expansion, which stops at
-    // the tangent plane.
-    std::string note;
-    if (d.normal == Point(0.0)) note = " (no tangent plane: p1 x p2 = 0, normal and curvature not defined)";
-    else if (!d.curvatureDefined && traits.taylorOrder < 2)
-      note = " (curvature not defined: " + std::string(traits.label) + " is C1 at the pole)";
-    if (directional && d.curvatureDefined && !ringStats.empty()) {
-      const RingCurvature& last = ringStats.back();
-      char range[200];
-      std::snprintf(range, sizeof range,
-                    " (Taylor (32); %s is not C2 for finite n: K depends on the direction, on ring %d K in [%.6g, %.6g])",
-                    traits.label, last.m, last.minK, last.maxK);
-      note += range;
-    }
-    // Where the JSON has null, the text says "undefined" (the note above says why).
-    const auto defined = [&](double value, const char* format) {
-      char text[64];
-      std::snprintf(text, sizeof text, format, value);
-      return d.curvatureDefined ? std::string(text) : std::string("undefined");
-    };
-    std::printf("vertex %d (valence %d): limit (%.9g, %.9g, %.9g) normal (%.6f, %.6f, %.6f) K %s H %s%s\n",
-                level.poles[k].pole, level.poles[k].valence, d.limit.x, d.limit.y, d.limit.z, d.normal.x, d.normal.y,
-                d.normal.z, defined(d.gaussian, "%.9g").c_str(), defined(d.mean, "%.9g").c_str(), note.c_str());
-    if (o.rings > 0) {
-      std::printf("  ring  valence  max|K-K0|     K min .. max                 max|H-H0|\n");
-      for (const RingCurvature& r : ringStats)
-        std::printf("  %4d  %7d  %-12s  %-12.6g .. %-12.6g  %-12s\n", r.m, r.valence, defined(r.maxAbsDeltaK, "%.4g").c_str(),
-                    r.minK, r.maxK, defined(r.maxAbsDeltaH, "%.4g").c_str());
-    }
+    const std::vector<RingCurvature> ringStats = writePoleJson(w, o, level, k, d, rings);
+    if (!o.json) printPole(o, level, k, d, ringStats, directional);
   }
   w.endArray().endObject();
   if (o.json) std::cout << w.str() << "\n";
   else if (level.poles.empty()) std::printf("no refinable poles\n");
   return 0;
+}
+
+// [SECTION] bench
+
+OptionTable benchTable(CommonOptions& o) {
+  return {inputRow(o),
+          schemeRow(o),
+          levelsRow(o, {"--levels", "--level"}),
+          intOption({"--reps"}, "N", "repetitions; medians are reported (1..1000, default 5)", &o.reps, 1, 1000),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o),
+          flagOption({"--adaptive"}, "the feature-adaptive path of view, render and export", &o.adaptive),
+          flagOption({"--edit"}, "with --adaptive: time one moved vertex's update", &o.edit),
+          flagOption({"--vs-opensubdiv"}, "OpenSubdiv 3.5 in the same run (uniform: its points checked against ours; "
+                     "--adaptive: its RefineAdaptive + PatchTableFactory timed beside ours, patches counted)", &o.vsOpenSubdiv),
+          jsonRow(&o.json)};
 }
 
 // Bytes the positions pass must move at least, all levels: each level's parent points read once,
@@ -629,152 +680,135 @@ double refinementBytes(const Refinement& refinement) {
 // (level_up_made_ahead_ms: buildSurface handing it out; the GPU upload is not in it).
 // --vs-opensubdiv: OpenSubdiv's RefineAdaptive + PatchTableFactory beside it (AdaptivePeer), its
 // numbers in "peer", the ratios and patches_agree at the top level (docs/performance.md).
-int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
-  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  const size_t budgetFaces = memoryBudgetBytes(o) / kBytesPerFinestFace;
+
+// What the adaptive bench measured, repetition by repetition, and the peer's timing.
+struct AdaptiveBench {
   std::vector<double> build, positions, patches, edits, levelUp, levelDown, levelUpAgain, madeAhead, levelUpMadeAhead;
   std::string viewerStepRefusal;  // why the viewer's step is not timed (the viewer would refuse it)
-  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
-  const Model model = makeModel(std::make_shared<const PolyMesh>(mesh), o.input, 1);
-  const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
   size_t patchCount = 0, totalFaces = 0, finestFaces = 0, polesRefined = 0;
   std::vector<size_t> levelFaces;
   double peakRssMb = 0.0;
-  // One repetition of our path: the refinement, its patches, the edit and the level steps.
-  auto runOurs = [&](int rep) {
-    auto t0 = std::chrono::steady_clock::now();
-    AdaptiveRefinement refinement(mesh, options, o.input, budgetFaces);
-    build.push_back(millisecondsSince(t0));
-    t0 = std::chrono::steady_clock::now();
-    refinement.updatePositions(mesh.points);
-    positions.push_back(millisecondsSince(t0));
-    t0 = std::chrono::steady_clock::now();
-    PatchSources sources;
-    PatchSet set = extractPatches(refinement, &sources);
-    patches.push_back(millisecondsSince(t0));
-    patchCount = set.patches.size();
-    // The path's own peak: before the level steps below keep more refinements and surfaces alive.
-    if (rep == 0) peakRssMb = peakResidentMegabytes();
-    totalFaces = refinement.totalFaces();
-    finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
-    polesRefined = refinement.level(0).poles.size();
-    levelFaces.clear();
-    for (int m = 0; m < refinement.levelCount(); ++m)
-      levelFaces.push_back(size_t(refinement.level(m).mesh.faceCount()));
-    if (o.edit) {  // drag vertex 0 by 1% of the first edge's length, as the viewer does per frame
-      std::vector<Point> moved = mesh.points;
-      moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
-      t0 = std::chrono::steady_clock::now();
-      refinement.updatePositions(moved);
-      refreshPatches(refinement, sources, set);
-      edits.push_back(millisecondsSince(t0));
-    }
-    if (o.levels >= 1) {
-      AdaptiveRefinement stepped(mesh, RefineOptions{o.scheme, o.levels - 1, o.uniformFirstStep}, o.input, budgetFaces);
-      LevelPatchCache cache;
-      PatchSources stepSources;
-      cache.patchSet(stepped, o.levels - 1, &stepSources);  // what the view showed
-      t0 = std::chrono::steady_clock::now();
-      stepped.extend(1, budgetFaces);
-      cache.patchSet(stepped, o.levels, &stepSources);
-      levelUp.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      cache.patchSet(stepped, o.levels - 1, &stepSources);
-      levelDown.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      cache.patchSet(stepped, o.levels, &stepSources);
-      levelUpAgain.push_back(millisecondsSince(t0));
-
-      if (!viewerStepRefusal.empty()) return;
-      const SurfaceKey shownKey{model.generation, *parseSchemeChoice(scheme), o.levels - 1, model.points};
-      SurfaceKey nextKey = shownKey;
-      nextKey.level = o.levels;
-      // The viewer offers fewer levels than the bench refines (its level cap, its bytes a face):
-      // where it would refuse these, the bench says so instead of timing them.
-      viewerStepRefusal = checkFaceBudget(model, nextKey, viewFaceBudget);
-      if (!viewerStepRefusal.empty()) return;
-      const std::shared_ptr<const BuiltSurface> shown = buildSurface(model, shownKey, viewFaceBudget);
-      t0 = std::chrono::steady_clock::now();
-      if (!prepareLevel(*shown->hierarchy, model, nextKey, viewFaceBudget)) {
-        viewerStepRefusal = "level " + std::to_string(o.levels) + " could not be made ahead (memory)";
-        return;
-      }
-      madeAhead.push_back(millisecondsSince(t0));
-      t0 = std::chrono::steady_clock::now();
-      const std::shared_ptr<const BuiltSurface> next = buildSurface(model, nextKey, viewFaceBudget, shown->hierarchy);
-      levelUpMadeAhead.push_back(millisecondsSince(t0));
-    }
-  };
-
-  // --vs-opensubdiv: OpenSubdiv's own feature-adaptive path (bench_peer.h), alternated with ours
-  // repetition by repetition (ours first on even repetitions, the peer first on odd ones) so that a
-  // noisy machine's drift falls on both. It computes Catmull-Clark only: run where this run's
-  // surface is the same (cc, or a polar scheme that refines no pole of this mesh), known after
-  // our first repetition.
-  std::optional<AdaptivePeer> peer;
-  if (o.vsOpenSubdiv) peer.emplace(mesh, o.levels);
-  bool peerWanted = false;
-  std::string comparison;
-  auto runPeer = [&] {
-    if (peer && peerWanted && peer->unavailable().empty()) peer->run();
-  };
-  for (int rep = 0; rep < o.reps; ++rep) {
-    if (rep % 2 == 1) runPeer();
-    runOurs(rep);
-    if (rep == 0 && peer) {
-      if (schemeTraits(o.scheme).polar() && polesRefined > 0)
-        comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
-                     (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
-      else
-        peerWanted = true;
-    }
-    if (rep % 2 == 0) runPeer();
-  }
-  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
-  const double patchesMs = median(patches);
+  double topologyMs = 0, positionsMs = 0, patchesMs = 0;
   bool compared = false, peerFailed = false;
+  std::string comparison;
   AdaptivePeerTiming theirs;
-  if (peer && !peer->unavailable().empty() && (peerWanted || o.levels <= AdaptivePeer::kMaxLevels)) {
-    // No OpenSubdiv (or it refused the mesh) fails the command, as the uniform bench's peer; too
-    // many levels for it only says so.
-    comparison = "no peer: " + peer->unavailable();
-    peerFailed = o.levels <= AdaptivePeer::kMaxLevels;
-  } else if (peer && peerWanted) {
-    theirs = peer->result();
-    compared = true;
-    comparison = "same surface: Catmull-Clark, OpenSubdiv's RefineAdaptive + PatchTableFactory (B-spline end caps)";
+};
+
+// One repetition of our path: the refinement, its patches and --edit's update.
+void timeAdaptiveRefinement(const CommonOptions& o, const PolyMesh& mesh, int rep, size_t budgetFaces, AdaptiveBench& b) {
+  auto t0 = std::chrono::steady_clock::now();
+  AdaptiveRefinement refinement(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, budgetFaces);
+  b.build.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  refinement.updatePositions(mesh.points);
+  b.positions.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  PatchSources sources;
+  PatchSet set = extractPatches(refinement, &sources);
+  b.patches.push_back(millisecondsSince(t0));
+  b.patchCount = set.patches.size();
+  // The path's own peak: before the level steps keep more refinements and surfaces alive.
+  if (rep == 0) b.peakRssMb = peakResidentMegabytes();
+  b.totalFaces = refinement.totalFaces();
+  b.finestFaces = size_t(refinement.level(refinement.levelCount() - 1).mesh.faceCount());
+  b.polesRefined = refinement.level(0).poles.size();
+  b.levelFaces.clear();
+  for (int m = 0; m < refinement.levelCount(); ++m) b.levelFaces.push_back(size_t(refinement.level(m).mesh.faceCount()));
+  if (!o.edit) return;
+  // Drag vertex 0 by 1% of the first edge's length, as the viewer does per frame.
+  std::vector<Point> moved = mesh.points;
+  moved[0] += 0.01 * (mesh.points[size_t(mesh.faceVerts[1])] - mesh.points[size_t(mesh.faceVerts[0])]);
+  t0 = std::chrono::steady_clock::now();
+  refinement.updatePositions(moved);
+  refreshPatches(refinement, sources, set);
+  b.edits.push_back(millisecondsSince(t0));
+}
+
+// The level steps on one kept refinement and LevelPatchCache (levels >= 1).
+void timeLevelSteps(const CommonOptions& o, const PolyMesh& mesh, size_t budgetFaces, AdaptiveBench& b) {
+  AdaptiveRefinement stepped(mesh, RefineOptions{o.scheme, o.levels - 1, o.uniformFirstStep}, o.input, budgetFaces);
+  LevelPatchCache cache;
+  PatchSources stepSources;
+  cache.patchSet(stepped, o.levels - 1, &stepSources);  // what the view showed
+  auto t0 = std::chrono::steady_clock::now();
+  stepped.extend(1, budgetFaces);
+  cache.patchSet(stepped, o.levels, &stepSources);
+  b.levelUp.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  cache.patchSet(stepped, o.levels - 1, &stepSources);
+  b.levelDown.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  cache.patchSet(stepped, o.levels, &stepSources);
+  b.levelUpAgain.push_back(millisecondsSince(t0));
+}
+
+// The viewer's own step (surface_pipeline.h): level L made ahead while L-1 is shown, then the step.
+// The viewer offers fewer levels than the bench refines (its level cap, its bytes a face): where it
+// would refuse these, the bench says so instead of timing them.
+void timeViewerStep(const CommonOptions& o, const Model& model, const std::string& scheme, size_t viewFaceBudget,
+                    AdaptiveBench& b) {
+  if (!b.viewerStepRefusal.empty()) return;
+  const SurfaceKey shownKey{model.generation, *parseSchemeChoice(scheme), o.levels - 1, model.points};
+  SurfaceKey nextKey = shownKey;
+  nextKey.level = o.levels;
+  b.viewerStepRefusal = checkFaceBudget(model, nextKey, viewFaceBudget);
+  if (!b.viewerStepRefusal.empty()) return;
+  const std::shared_ptr<const BuiltSurface> shown = buildSurface(model, shownKey, viewFaceBudget);
+  auto t0 = std::chrono::steady_clock::now();
+  if (!prepareLevel(*shown->hierarchy, model, nextKey, viewFaceBudget)) {
+    b.viewerStepRefusal = "level " + std::to_string(o.levels) + " could not be made ahead (memory)";
+    return;
   }
-  const double ourTotal = topologyMs + positionsMs + patchesMs;
-  const double theirTotal = theirs.topologyMs + theirs.positionsMs + theirs.patchesMs;
-  const bool patchesAgree = compared && theirs.patches == patchCount;
-  const double topologySpeedup = theirs.topologyMs / std::max(topologyMs, 1e-9);
-  const double positionsSpeedup = theirs.positionsMs / std::max(positionsMs, 1e-9);
-  const double patchesSpeedup = theirs.patchesMs / std::max(patchesMs, 1e-9);
-  const double speedup = theirTotal / std::max(ourTotal, 1e-9);
-  const double facesRatio = double(totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1));
+  b.madeAhead.push_back(millisecondsSince(t0));
+  t0 = std::chrono::steady_clock::now();
+  const std::shared_ptr<const BuiltSurface> next = buildSurface(model, nextKey, viewFaceBudget, shown->hierarchy);
+  b.levelUpMadeAhead.push_back(millisecondsSince(t0));
+}
+
+// --vs-opensubdiv: the peer's result where it computed the same surface; no OpenSubdiv (or it
+// refused the mesh) fails the command, as the uniform bench's peer; too many levels only says so.
+void compareWithAdaptivePeer(const CommonOptions& o, std::optional<AdaptivePeer>& peer, bool peerWanted, AdaptiveBench& b) {
+  if (peer && !peer->unavailable().empty() && (peerWanted || o.levels <= AdaptivePeer::kMaxLevels)) {
+    b.comparison = "no peer: " + peer->unavailable();
+    b.peerFailed = o.levels <= AdaptivePeer::kMaxLevels;
+  } else if (peer && peerWanted) {
+    b.theirs = peer->result();
+    b.compared = true;
+    b.comparison = "same surface: Catmull-Clark, OpenSubdiv's RefineAdaptive + PatchTableFactory (B-spline end caps)";
+  }
+}
+
+// Ours against OpenSubdiv's: topology, positions and patches together.
+double adaptiveSpeedup(const AdaptiveBench& b) {
+  const AdaptivePeerTiming& t = b.theirs;
+  return (t.topologyMs + t.positionsMs + t.patchesMs) / std::max(b.topologyMs + b.positionsMs + b.patchesMs, 1e-9);
+}
+
+std::string adaptiveBenchJson(const CommonOptions& o, const std::string& scheme, const Model& model, const AdaptiveBench& b) {
+  const AdaptivePeerTiming& theirs = b.theirs;
   JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels).field("adaptive", true);
-  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
-  w.field("patches_ms", median(patches)).field("patches", patchCount).field("total_faces", totalFaces);
-  w.field("finest_faces", finestFaces);
-  if (o.edit) w.field("edit_ms", median(edits));
+  w.field("reps", o.reps).field("topology_ms", b.topologyMs).field("positions_ms", b.positionsMs);
+  w.field("patches_ms", b.patchesMs).field("patches", b.patchCount).field("total_faces", b.totalFaces);
+  w.field("finest_faces", b.finestFaces);
+  if (o.edit) w.field("edit_ms", median(b.edits));
   if (o.levels >= 1)
-    w.field("level_up_ms", median(levelUp)).field("level_down_ms", median(levelDown)).field("level_up_again_ms", median(levelUpAgain));
-  if (o.levels >= 1 && viewerStepRefusal.empty())
-    w.field("made_ahead_ms", median(madeAhead)).field("level_up_made_ahead_ms", median(levelUpMadeAhead));
+    w.field("level_up_ms", median(b.levelUp)).field("level_down_ms", median(b.levelDown)).field("level_up_again_ms", median(b.levelUpAgain));
+  if (o.levels >= 1 && b.viewerStepRefusal.empty())
+    w.field("made_ahead_ms", median(b.madeAhead)).field("level_up_made_ahead_ms", median(b.levelUpMadeAhead));
   else if (o.levels >= 1)
-    w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", viewerStepRefusal);
-  w.field("peak_rss_mb", peakRssMb);
+    w.key("made_ahead_ms").null().key("level_up_made_ahead_ms").null().field("viewer_step", b.viewerStepRefusal);
+  w.field("peak_rss_mb", b.peakRssMb);
   // Memory a refined face and a patch cost at the peak (the whole process's peak over either count),
   // and the deepest level of this scheme a view's memory budget (640 MB) admits on the model.
-  w.field("peak_bytes_per_face", peakRssMb * 1048576.0 / double(std::max<size_t>(totalFaces, 1)));
-  w.field("peak_bytes_per_patch", peakRssMb * 1048576.0 / double(std::max<size_t>(patchCount, 1)));
+  w.field("peak_bytes_per_face", b.peakRssMb * 1048576.0 / double(std::max<size_t>(b.totalFaces, 1)));
+  w.field("peak_bytes_per_patch", b.peakRssMb * 1048576.0 / double(std::max<size_t>(b.patchCount, 1)));
   w.field("view_deepest_level", deepestLevel(model, *parseSchemeChoice(scheme), kDefaultFaceBudget));
   w.key("level_faces").beginArray();
-  for (size_t faces : levelFaces) w.value(faces);
+  for (size_t faces : b.levelFaces) w.value(faces);
   w.endArray();
   if (o.vsOpenSubdiv) {
-    if (compared) {
+    if (b.compared) {
       w.key("peer").beginObject().field("name", theirs.name);
       w.field("what",
               "Far::TopologyRefiner::RefineAdaptive (useInfSharpPatch) + Far::PatchTableFactory (ENDCAP_BSPLINE_BASIS) + "
@@ -788,185 +822,259 @@ int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
       if (theirs.peakRssMb > 0) w.field("peak_rss_mb", theirs.peakRssMb);
       w.endObject();
     }
-    w.field("compared", compared).field("comparison", comparison);
-    if (compared) {
-      w.field("topology_speedup", topologySpeedup).field("patches_speedup", patchesSpeedup);
-      w.field("positions_speedup", positionsSpeedup).field("speedup", speedup).field("faces_ratio", facesRatio);
-      w.field("patches_agree", patchesAgree);
+    w.field("compared", b.compared).field("comparison", b.comparison);
+    if (b.compared) {
+      w.field("topology_speedup", theirs.topologyMs / std::max(b.topologyMs, 1e-9))
+          .field("patches_speedup", theirs.patchesMs / std::max(b.patchesMs, 1e-9));
+      w.field("positions_speedup", theirs.positionsMs / std::max(b.positionsMs, 1e-9))
+          .field("speedup", adaptiveSpeedup(b))
+          .field("faces_ratio", double(b.totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1)));
+      w.field("patches_agree", theirs.patches == b.patchCount);
     }
   }
   w.endObject();
-  if (o.json) {
-    std::cout << w.str() << "\n";
-  } else {
-    std::printf("%s %s level %d (adaptive): topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches, %zu faces in "
-                "all levels; peak RSS %.1f MB\n",
-                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, positionsMs, median(patches), patchCount, totalFaces,
-                peakRssMb);
-    if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(edits));
-    if (o.levels >= 1)
-      std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
-                  o.levels, median(levelUp), median(levelDown), median(levelUpAgain));
-    if (o.levels >= 1 && viewerStepRefusal.empty())
-      std::printf("the viewer's step: level %d made ahead while idle %.3f ms, then the step %.3f ms (upload not counted)\n",
-                  o.levels, median(madeAhead), median(levelUpMadeAhead));
-    else if (o.levels >= 1)
-      std::printf("the viewer's step: not timed (%s)\n", viewerStepRefusal.c_str());
-    if (compared)
-      std::printf("%s adaptive: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches (%s), %zu faces in all "
-                  "levels (ours %.2fx); speed-up %.2fx (topology), %.2fx (positions), %.2fx (patches), %.2fx (all)\n",
-                  theirs.name.c_str(), theirs.topologyMs, theirs.positionsMs, theirs.patchesMs, theirs.patches,
-                  patchesAgree ? "agree" : ("DIFFER: ours " + std::to_string(patchCount)).c_str(), theirs.totalFaces,
-                  facesRatio, topologySpeedup, positionsSpeedup, patchesSpeedup, speedup);
-    else if (o.vsOpenSubdiv)
-      std::printf("vs OpenSubdiv adaptive: not compared (%s)\n", comparison.c_str());
+  return w.str();
+}
+
+void printAdaptiveBench(const CommonOptions& o, const std::string& scheme, const AdaptiveBench& b) {
+  const AdaptivePeerTiming& theirs = b.theirs;
+  std::printf("%s %s level %d (adaptive): topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches, %zu faces in "
+              "all levels; peak RSS %.1f MB\n",
+              o.input.c_str(), scheme.c_str(), o.levels, b.topologyMs, b.positionsMs, b.patchesMs, b.patchCount, b.totalFaces,
+              b.peakRssMb);
+  if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(b.edits));
+  if (o.levels >= 1)
+    std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
+                o.levels, median(b.levelUp), median(b.levelDown), median(b.levelUpAgain));
+  if (o.levels >= 1 && b.viewerStepRefusal.empty())
+    std::printf("the viewer's step: level %d made ahead while idle %.3f ms, then the step %.3f ms (upload not counted)\n",
+                o.levels, median(b.madeAhead), median(b.levelUpMadeAhead));
+  else if (o.levels >= 1)
+    std::printf("the viewer's step: not timed (%s)\n", b.viewerStepRefusal.c_str());
+  if (b.compared)
+    std::printf("%s adaptive: topology %.3f ms, positions %.3f ms, patches %.3f ms; %zu patches (%s), %zu faces in all "
+                "levels (ours %.2fx); speed-up %.2fx (topology), %.2fx (positions), %.2fx (patches), %.2fx (all)\n",
+                theirs.name.c_str(), theirs.topologyMs, theirs.positionsMs, theirs.patchesMs, theirs.patches,
+                theirs.patches == b.patchCount ? "agree" : ("DIFFER: ours " + std::to_string(b.patchCount)).c_str(),
+                theirs.totalFaces, double(b.totalFaces) / double(std::max<size_t>(theirs.totalFaces, 1)),
+                theirs.topologyMs / std::max(b.topologyMs, 1e-9), theirs.positionsMs / std::max(b.positionsMs, 1e-9),
+                theirs.patchesMs / std::max(b.patchesMs, 1e-9), adaptiveSpeedup(b));
+  else if (o.vsOpenSubdiv)
+    std::printf("vs OpenSubdiv adaptive: not compared (%s)\n", b.comparison.c_str());
+}
+
+int runAdaptiveBench(const CommonOptions& o, const PolyMesh& mesh) {
+  const size_t budgetFaces = size_t(double(memoryBudgetBytes(o)) / double(kBytesPerUniformFace));
+  const size_t viewFaceBudget = size_t(double(memoryBudgetBytes(o)) / kBytesPerAdaptiveFace);
+  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
+  const Model model = makeModel(std::make_shared<const PolyMesh>(mesh), o.input, 1);
+  AdaptiveBench b;
+  // --vs-opensubdiv: OpenSubdiv's own feature-adaptive path (bench_peer.h), alternated with ours
+  // repetition by repetition (ours first on even repetitions, the peer first on odd ones) so that a
+  // noisy machine's drift falls on both. It computes Catmull-Clark only: run where this run's
+  // surface is the same (cc, or a polar scheme that refines no pole of this mesh), known after
+  // our first repetition.
+  std::optional<AdaptivePeer> peer;
+  if (o.vsOpenSubdiv) peer.emplace(mesh, o.levels);
+  bool peerWanted = false;
+  auto runPeer = [&] {
+    if (peer && peerWanted && peer->unavailable().empty()) peer->run();
+  };
+  for (int rep = 0; rep < o.reps; ++rep) {
+    if (rep % 2 == 1) runPeer();
+    timeAdaptiveRefinement(o, mesh, rep, budgetFaces, b);
+    if (o.levels >= 1) {
+      timeLevelSteps(o, mesh, budgetFaces, b);
+      timeViewerStep(o, model, scheme, viewFaceBudget, b);
+    }
+    if (rep == 0 && peer) {
+      if (schemeTraits(o.scheme).polar() && b.polesRefined > 0)
+        b.comparison = "different surfaces: " + scheme + " refines " + std::to_string(b.polesRefined) + " pole" +
+                       (b.polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+      else
+        peerWanted = true;
+    }
+    if (rep % 2 == 0) runPeer();
   }
-  if (peerFailed) {
-    std::fprintf(stderr, "polarview: bench --adaptive --vs-opensubdiv: %s\n", comparison.c_str());
+  b.positionsMs = median(b.positions), b.topologyMs = std::max(0.0, median(b.build) - b.positionsMs);
+  b.patchesMs = median(b.patches);
+  compareWithAdaptivePeer(o, peer, peerWanted, b);
+  const std::string json = adaptiveBenchJson(o, scheme, model, b);  // also for text: it refuses a non-finite number
+  if (o.json) std::cout << json << "\n";
+  else printAdaptiveBench(o, scheme, b);
+  if (b.peerFailed) {
+    std::fprintf(stderr, "polarview: bench --adaptive --vs-opensubdiv: %s\n", b.comparison.c_str());
     return 2;
   }
   return 0;
 }
 
-int runBench(const Args& args) {
-  CommonOptions o = parseOptions("bench", args,
-                                 {"--scheme", "--levels", "--level", "--reps", "--uniform-first-step", "--json", "--memory-budget",
-                                  "--adaptive", "--edit", "--vs-opensubdiv"});
-  if (o.levels < 0) throw UsageError{"bench needs --levels L"};
-  if (o.edit && !o.adaptive) throw UsageError{"bench: --edit needs --adaptive"};
-  PolyMesh mesh = loadInput(o.input);
-  if (o.adaptive) return runAdaptiveBench(o, mesh);
-  checkMemoryBudget(mesh, o);
-  // Topology as `refine` builds it (and OpenSubdiv's RefineUniform): no vertex rings at the finest
-  // level; the patches need them, so patches_ms includes making them.
-  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  options.finestVertexRings = false;
+// What the uniform bench measured (medians over the repetitions) and what it compares against.
+struct UniformBench {
   std::vector<double> build, positions, patches;
   size_t outVertices = 0, outFaces = 0, patchCount = 0, polesRefined = 0;
-  double trafficBytes = 0, outputBytes = 0, finestBytes = 0, refinePeakRssMb = 0;
-  std::optional<Refinement> kept;  // --vs-opensubdiv: the last repetition's, for the check
+  double trafficBytes = 0, outputBytes = 0, finestBytes = 0, refinePeakRssMb = 0, peakRssMb = 0;
+  double topologyMs = 0, positionsMs = 0, coldTopologyMs = 0, triadGbs = 0, positionsGbs = 0;
+  std::optional<PeerTiming> peer;
+  bool compared = false;
+  std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
+  double topologySpeedup = 0, positionsSpeedup = 0, speedup = 0;
+  bool checked = false, equal = false;  // --vs-opensubdiv: the finest points against the peer's
+  double maxDifference = 0;
+};
+
+// The repetitions: topology as `refine` builds it (and OpenSubdiv's RefineUniform), no vertex rings
+// at the finest level; the patches need them, so patches_ms includes making them. `kept` gets the
+// last repetition's refinement (for --vs-opensubdiv's check).
+void timeUniformRefinement(const CommonOptions& o, const PolyMesh& mesh, UniformBench& b, std::optional<Refinement>& kept) {
+  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
+  options.finestVertexRings = false;
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
     Refinement refinement(mesh, options, o.input);
-    build.push_back(millisecondsSince(t0));
+    b.build.push_back(millisecondsSince(t0));
     t0 = std::chrono::steady_clock::now();
     refinement.updatePositions(mesh.points);
-    positions.push_back(millisecondsSince(t0));
+    b.positions.push_back(millisecondsSince(t0));
     if (rep == 0) {  // the refinement as `refine` has it: its own peak and its arrays
-      refinePeakRssMb = peakResidentMegabytes();
-      outputBytes = refinementBytes(refinement);
-      finestBytes = levelBytes(refinement.finest());
+      b.refinePeakRssMb = peakResidentMegabytes();
+      b.outputBytes = refinementBytes(refinement);
+      b.finestBytes = levelBytes(refinement.finest());
     }
     t0 = std::chrono::steady_clock::now();
     refinement.completeFinestTopology();
     PatchSet set = extractPatches(refinement);
-    patches.push_back(millisecondsSince(t0));
-    outVertices = refinement.finest().mesh.points.size();
-    outFaces = size_t(refinement.finest().mesh.faceCount());
-    patchCount = set.patches.size();
-    polesRefined = refinement.level(0).poles.size();
-    trafficBytes = positionsTrafficBytes(refinement);
+    b.patches.push_back(millisecondsSince(t0));
+    b.outVertices = refinement.finest().mesh.points.size();
+    b.outFaces = size_t(refinement.finest().mesh.faceCount());
+    b.patchCount = set.patches.size();
+    b.polesRefined = refinement.level(0).poles.size();
+    b.trafficBytes = positionsTrafficBytes(refinement);
     if (o.vsOpenSubdiv && rep + 1 == o.reps) kept.emplace(std::move(refinement));
   }
-  const double peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
-  clearTablePool();  // the peer and the triad start from the memory the process had before
-  // The constructor builds topology and computes positions once: topology = build - positions.
-  // Repetitions after the first reuse the previous refinement's tables (table_pool.h), as the
-  // viewer does when levels change; the first repetition, on fresh memory, is reported apart.
-  const double positionsMs = median(positions), topologyMs = std::max(0.0, median(build) - positionsMs);
-  const double coldTopologyMs = std::max(0.0, build.front() - positions.front());
-  // The check compares Catmull-Clark points only (a polar scheme's poles are not OpenSubdiv's).
-  const bool sameRules = !schemeTraits(o.scheme).polar() || polesRefined == 0;
-  std::optional<PeerTiming> peer = benchPeer(mesh, o.levels, o.reps, kept && sameRules ? &*kept : nullptr);
-  kept.reset();
-  // The roof for positions_gbs, on as many threads as the point rules use on large meshes.
-  const double triadGbs = triadGigabytesPerSecond(size_t(128) << 20, threadsFor(size_t(1) << 30), 5);
-  const double positionsGbs = trafficBytes / (std::max(positionsMs, 1e-9) * 1e6);
+}
 
-  // The peer computes Catmull-Clark only: timings compare only where this run computed the same
-  // surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
-  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
-  bool compared = false;
-  std::string comparison, peerWhat = "OpenSubdiv Catmull-Clark (a different surface: not compared)";
-  if (!peer) {
-    comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
-  } else if (schemeTraits(o.scheme).polar() && polesRefined > 0) {
-    comparison = "different surfaces: " + scheme + " refines " + std::to_string(polesRefined) + " pole" +
-                 (polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
-  } else if (peer->outFaces != outFaces) {
-    comparison = "not compared: Catmull-Clark both, but the face counts differ (" + std::to_string(outFaces) + " vs " +
-                 std::to_string(peer->outFaces) + ")";
-    peerWhat = "OpenSubdiv Catmull-Clark (face counts differ: not compared)";
+// The peer computes Catmull-Clark only: timings compare only where this run computed the same
+// surface (cc, or a scheme that refines no pole of this mesh), checked by equal face counts.
+void compareWithPeer(const CommonOptions& o, const std::string& scheme, UniformBench& b) {
+  if (!b.peer) {
+    b.comparison = "no peer: built without OpenSubdiv (or it refused the mesh)";
+  } else if (schemeTraits(o.scheme).polar() && b.polesRefined > 0) {
+    b.comparison = "different surfaces: " + scheme + " refines " + std::to_string(b.polesRefined) + " pole" +
+                   (b.polesRefined == 1 ? "" : "s") + " by its own rules, OpenSubdiv computes Catmull-Clark only";
+  } else if (b.peer->outFaces != b.outFaces) {
+    b.comparison = "not compared: Catmull-Clark both, but the face counts differ (" + std::to_string(b.outFaces) + " vs " +
+                   std::to_string(b.peer->outFaces) + ")";
+    b.peerWhat = "OpenSubdiv Catmull-Clark (face counts differ: not compared)";
   } else {
-    compared = true;
-    comparison = "same surface: Catmull-Clark, equal face counts";
-    peerWhat = "OpenSubdiv Catmull-Clark (the same surface: compared)";
+    b.compared = true;
+    b.comparison = "same surface: Catmull-Clark, equal face counts";
+    b.peerWhat = "OpenSubdiv Catmull-Clark (the same surface: compared)";
   }
-  const double topologySpeedup = compared ? peer->topologyMs / std::max(topologyMs, 1e-9) : 0.0;
-  const double positionsSpeedup = compared ? peer->positionsMs / std::max(positionsMs, 1e-9) : 0.0;
-  const double speedup = compared ? (peer->topologyMs + peer->positionsMs) / std::max(topologyMs + positionsMs, 1e-9) : 0.0;
+  if (b.compared) {
+    b.topologySpeedup = b.peer->topologyMs / std::max(b.topologyMs, 1e-9);
+    b.positionsSpeedup = b.peer->positionsMs / std::max(b.positionsMs, 1e-9);
+    b.speedup = (b.peer->topologyMs + b.peer->positionsMs) / std::max(b.topologyMs + b.positionsMs, 1e-9);
+  }
+}
 
-  // --vs-opensubdiv: the finest points must equal OpenSubdiv's (double weights) to round-off,
-  // relative to the mesh's size.
-  const bool checked = o.vsOpenSubdiv && compared && peer->checked;
+// --vs-opensubdiv: the finest points must equal OpenSubdiv's (double weights) to round-off,
+// relative to the mesh's size.
+void checkPeerPoints(const CommonOptions& o, const PolyMesh& mesh, UniformBench& b) {
+  b.checked = o.vsOpenSubdiv && b.compared && b.peer->checked;
   double size = 1.0;
-  if (checked) {
+  if (b.checked) {
     Point lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const Point& p : mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     size = std::max(size, glm::length(hi - lo));
   }
-  const double maxDifference = checked ? peer->maxDifference : 0.0;
-  const bool equal = checked && maxDifference <= 1e-12 * size;
+  b.maxDifference = b.checked ? b.peer->maxDifference : 0.0;
+  b.equal = b.checked && b.maxDifference <= 1e-12 * size;
+}
 
+std::string uniformBenchJson(const CommonOptions& o, const std::string& scheme, const UniformBench& b) {
   JsonWriter w(o.input);
   w.beginObject().field("file", o.input).field("scheme", scheme).field("levels", o.levels);
-  w.field("reps", o.reps).field("topology_ms", topologyMs).field("positions_ms", positionsMs);
-  w.field("cold_topology_ms", coldTopologyMs).field("cold_over_warm", coldTopologyMs / std::max(topologyMs, 1e-9));
-  w.field("patches_ms", median(patches)).field("out_vertices", outVertices).field("out_faces", outFaces);
+  w.field("reps", o.reps).field("topology_ms", b.topologyMs).field("positions_ms", b.positionsMs);
+  w.field("cold_topology_ms", b.coldTopologyMs).field("cold_over_warm", b.coldTopologyMs / std::max(b.topologyMs, 1e-9));
+  w.field("patches_ms", median(b.patches)).field("out_vertices", b.outVertices).field("out_faces", b.outFaces);
   // Memory (docs/performance.md): the refinement's peak against the arrays it holds, all levels.
-  w.field("patches", patchCount).field("peak_rss_mb", refinePeakRssMb).field("peak_rss_with_patches_mb", peakRssMb);
-  w.field("output_mb", outputBytes / (1 << 20)).field("peak_over_output", refinePeakRssMb * (1 << 20) / std::max(outputBytes, 1.0));
-  w.field("output_bytes_per_vertex", outputBytes / double(std::max<size_t>(outVertices, 1)));
-  w.field("finest_mb", finestBytes / (1 << 20));
-  w.field("positions_gbs", positionsGbs).field("triad_gbs", triadGbs).field("positions_over_triad", positionsGbs / triadGbs);
-  if (peer) {
-    w.key("peer").beginObject().field("what", peerWhat).field("name", peer->name).field("topology_ms", peer->topologyMs);
-    w.field("positions_ms", peer->positionsMs).field("out_vertices", peer->outVertices).field("out_faces", peer->outFaces);
-    if (peer->peakRssMb > 0 && !o.vsOpenSubdiv) w.field("peak_rss_mb", peer->peakRssMb);  // (the check keeps ours alive)
+  w.field("patches", b.patchCount).field("peak_rss_mb", b.refinePeakRssMb).field("peak_rss_with_patches_mb", b.peakRssMb);
+  w.field("output_mb", b.outputBytes / (1 << 20))
+      .field("peak_over_output", b.refinePeakRssMb * (1 << 20) / std::max(b.outputBytes, 1.0));
+  w.field("output_bytes_per_vertex", b.outputBytes / double(std::max<size_t>(b.outVertices, 1)));
+  w.field("finest_mb", b.finestBytes / (1 << 20));
+  w.field("positions_gbs", b.positionsGbs).field("triad_gbs", b.triadGbs).field("positions_over_triad", b.positionsGbs / b.triadGbs);
+  if (b.peer) {
+    w.key("peer").beginObject().field("what", b.peerWhat).field("name", b.peer->name).field("topology_ms", b.peer->topologyMs);
+    w.field("positions_ms", b.peer->positionsMs).field("out_vertices", b.peer->outVertices).field("out_faces", b.peer->outFaces);
+    if (b.peer->peakRssMb > 0 && !o.vsOpenSubdiv) w.field("peak_rss_mb", b.peer->peakRssMb);  // (the check keeps ours alive)
     w.endObject();
   }
-  w.field("compared", compared).field("comparison", comparison);
-  if (compared) w.field("topology_speedup", topologySpeedup).field("positions_speedup", positionsSpeedup).field("speedup", speedup);
+  w.field("compared", b.compared).field("comparison", b.comparison);
+  if (b.compared)
+    w.field("topology_speedup", b.topologySpeedup).field("positions_speedup", b.positionsSpeedup).field("speedup", b.speedup);
   if (o.vsOpenSubdiv) {
-    w.key("vs_opensubdiv").beginObject().field("checked", checked);
-    if (checked) w.field("equal", equal).field("max_difference", maxDifference);
-    else w.field("why", compared ? "no points from the peer" : comparison);
+    w.key("vs_opensubdiv").beginObject().field("checked", b.checked);
+    if (b.checked) w.field("equal", b.equal).field("max_difference", b.maxDifference);
+    else w.field("why", b.compared ? "no points from the peer" : b.comparison);
     w.endObject();
   }
   w.endObject();
-  if (o.json) {
-    std::cout << w.str() << "\n";
-  } else {
-    std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
-                "%zu patches; peak RSS %.1f MB refining (arrays held: %.1f MB, all levels), %.1f MB with the patches\n",
-                o.input.c_str(), scheme.c_str(), o.levels, topologyMs, coldTopologyMs, positionsMs, median(patches), outVertices,
-                outFaces, patchCount, refinePeakRssMb, outputBytes / (1 << 20), peakRssMb);
-    std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", positionsGbs, triadGbs, 100.0 * positionsGbs / triadGbs);
-    if (peer)
-      std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", peer->name.c_str(),
-                  peerWhat.c_str(), peer->topologyMs, peer->positionsMs, peer->outVertices, peer->outFaces);
-    if (compared)
-      std::printf("%s: speed-up %.2fx (topology), %.2fx (positions), %.2fx (both)\n", comparison.c_str(), topologySpeedup,
-                  positionsSpeedup, speedup);
-    else std::printf("%s\n", comparison.c_str());
-    if (checked) std::printf("vs OpenSubdiv: %s (max difference %.3g)\n", equal ? "equal" : "DIFFERENT", maxDifference);
-    else if (o.vsOpenSubdiv) std::printf("vs OpenSubdiv: not checked (%s)\n", compared ? "no points from the peer" : comparison.c_str());
-  }
-  if (o.vsOpenSubdiv && !peer) {
-    std::fprintf(stderr, "polarview: bench --vs-opensubdiv: %s\n", comparison.c_str());
+  return w.str();
+}
+
+void printUniformBench(const CommonOptions& o, const std::string& scheme, const UniformBench& b) {
+  std::printf("%s %s level %d: topology %.3f ms (cold %.3f ms), positions %.3f ms, patches %.3f ms; %zu vertices, %zu faces, "
+              "%zu patches; peak RSS %.1f MB refining (arrays held: %.1f MB, all levels), %.1f MB with the patches\n",
+              o.input.c_str(), scheme.c_str(), o.levels, b.topologyMs, b.coldTopologyMs, b.positionsMs, median(b.patches),
+              b.outVertices, b.outFaces, b.patchCount, b.refinePeakRssMb, b.outputBytes / (1 << 20), b.peakRssMb);
+  std::printf("positions %.2f GB/s, triad %.2f GB/s (%.0f%%)\n", b.positionsGbs, b.triadGbs, 100.0 * b.positionsGbs / b.triadGbs);
+  if (b.peer)
+    std::printf("%s — %s: topology %.3f ms, positions %.3f ms; %zu vertices, %zu faces\n", b.peer->name.c_str(),
+                b.peerWhat.c_str(), b.peer->topologyMs, b.peer->positionsMs, b.peer->outVertices, b.peer->outFaces);
+  if (b.compared)
+    std::printf("%s: speed-up %.2fx (topology), %.2fx (positions), %.2fx (both)\n", b.comparison.c_str(), b.topologySpeedup,
+                b.positionsSpeedup, b.speedup);
+  else std::printf("%s\n", b.comparison.c_str());
+  if (b.checked) std::printf("vs OpenSubdiv: %s (max difference %.3g)\n", b.equal ? "equal" : "DIFFERENT", b.maxDifference);
+  else if (o.vsOpenSubdiv) std::printf("vs OpenSubdiv: not checked (%s)\n", b.compared ? "no points from the peer" : b.comparison.c_str());
+}
+
+int runBench(CommonOptions& o) {
+  checkFirstStep(o);
+  if (o.edit && !o.adaptive) throw UsageError{"--edit needs --adaptive"};
+  PolyMesh mesh = loadInput(o.input);
+  if (o.adaptive) return runAdaptiveBench(o, mesh);
+  checkMemoryBudget(mesh, o);
+  UniformBench b;
+  std::optional<Refinement> kept;  // --vs-opensubdiv: the last repetition's, for the check
+  timeUniformRefinement(o, mesh, b, kept);
+  b.peakRssMb = peakResidentMegabytes();  // before the peer and the triad allocate
+  clearTablePool();  // the peer and the triad start from the memory the process had before
+  // The constructor builds topology and computes positions once: topology = build - positions.
+  // Repetitions after the first reuse the previous refinement's tables (table_pool.h), as the
+  // viewer does when levels change; the first repetition, on fresh memory, is reported apart.
+  b.positionsMs = median(b.positions), b.topologyMs = std::max(0.0, median(b.build) - b.positionsMs);
+  b.coldTopologyMs = std::max(0.0, b.build.front() - b.positions.front());
+  // The check compares Catmull-Clark points only (a polar scheme's poles are not OpenSubdiv's).
+  const bool sameRules = !schemeTraits(o.scheme).polar() || b.polesRefined == 0;
+  b.peer = benchPeer(mesh, o.levels, o.reps, kept && sameRules ? &*kept : nullptr);
+  kept.reset();
+  // The roof for positions_gbs, on as many threads as the point rules use on large meshes.
+  b.triadGbs = triadGigabytesPerSecond(size_t(128) << 20, threadsFor(size_t(1) << 30), 5);
+  b.positionsGbs = b.trafficBytes / (std::max(b.positionsMs, 1e-9) * 1e6);
+  const std::string scheme = cliSchemeName(o.scheme, o.uniformFirstStep);
+  compareWithPeer(o, scheme, b);
+  checkPeerPoints(o, mesh, b);
+  const std::string json = uniformBenchJson(o, scheme, b);  // also when printing text: it refuses a non-finite number
+  if (o.json) std::cout << json << "\n";
+  else printUniformBench(o, scheme, b);
+  if (o.vsOpenSubdiv && !b.peer) {
+    std::fprintf(stderr, "polarview: bench --vs-opensubdiv: %s\n", b.comparison.c_str());
     return 2;
   }
-  return checked && !equal ? 1 : 0;
+  return b.checked && !b.equal ? 1 : 0;
 }
 
 // `spectrum --vectors`: a vector's entries as a JSON array (real parts; "<key>_im" adds the
@@ -1013,153 +1121,207 @@ int runC2psSpectrum(int valence, int steps, bool json) {
   return 0;
 }
 
-int runSpectrum(const Args& args) {
-  // Own parsing: no input file. --scheme rts|bps|cc|c2ps --valence n [--count k] [--vectors] [--steps m] [--json]
-  std::optional<Scheme> scheme;
+// [SECTION] spectrum
+
+struct SpectrumOptions {
+  Scheme scheme = Scheme::RTS;
+  bool uniform = false;  // never set: the filter refuses the "-u" names
   int valence = -1, count = 8, steps = -1;
-  bool json = false, uniform = false, vectors = false, counted = false;
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{a + " needs a value"};
-      return args[++k];
-    };
-    if (a == "--scheme") {
-      scheme = parseCliScheme(next(), &uniform);
-      if (!scheme || uniform) throw UsageError{"spectrum: --scheme rts, bps, cc or c2ps, got '" + args[k] + "'"};
-    } else if (a == "--valence") valence = parseInt(a, next(), 3, 64);
-    else if (a == "--count") count = parseInt(a, next(), 1, 1000), counted = true;
-    else if (a == "--steps") steps = parseInt(a, next(), 1, 12);
-    else if (a == "--vectors") vectors = true;
-    else if (a == "--json") json = true;
-    else throw UsageError{"spectrum: unexpected argument '" + a + "'"};
-  }
-  if (!scheme || valence < 0) throw UsageError{"spectrum needs --scheme rts|bps|cc|c2ps and --valence n (3..64)"};
-  const bool c2ps = schemeTraits(*scheme).polar() && !schemeTraits(*scheme).keepsValence;
-  if (c2ps && (vectors || counted))
-    throw UsageError{"spectrum: C2PS doubles the valence every step, so it has no stationary matrix and no "
+  bool json = false, vectors = false, counted = false;
+};
+
+OptionTable spectrumTable(SpectrumOptions& o) {
+  return {required(schemeRow(&o.scheme, nullptr, &o.uniform, plainScheme,
+                             "the scheme (" + schemeNames(plainScheme, "|") + "); c2ps: Lemma 5 and (30) measured")),
+          required(intOption({"--valence"}, "N", "the valence (3..64)", &o.valence, 3, 64)),
+          actionOption({"--count"}, "K", "how many eigenvalues (1..1000, default 8)",
+                       [&o](const std::string& v) { o.count = parseIntArgument("--count", v, 1, 1000), o.counted = true; }),
+          flagOption({"--vectors"}, "and their right and left eigenvectors (not c2ps)", &o.vectors),
+          intOption({"--steps"}, "M", "c2ps: steps measured on RTS's eigenvectors (1..12, default 8)", &o.steps, 1, 12),
+          jsonRow(&o.json)};
+}
+
+// The combinations the table cannot refuse: C2PS has no matrix of its own, RTS and BPS a least valence.
+void checkSpectrumOptions(const SpectrumOptions& o, bool c2ps) {
+  if (c2ps && (o.vectors || o.counted))
+    throw UsageError{"C2PS doubles the valence every step, so it has no stationary matrix and no "
                      "eigenvectors of its own (--scheme rts has them); --scheme c2ps takes --steps M"};
-  if (!c2ps && steps > 0) throw UsageError{"spectrum: --steps applies to --scheme c2ps"};
+  if (!c2ps && o.steps > 0) throw UsageError{"--steps applies to --scheme c2ps"};
   // C2PS is measured on RTS's eigenvectors, so RTS's valence bound applies.
-  const Scheme bounded = c2ps ? Scheme::RTS : *scheme;
-  if (valence < schemeTraits(bounded).minValence)
-    throw UsageError{"spectrum: " + std::string(schemeName(*scheme)) + " is defined for valence >= " +
+  const Scheme bounded = c2ps ? Scheme::RTS : o.scheme;
+  if (o.valence < schemeTraits(bounded).minValence)
+    throw UsageError{std::string(schemeName(o.scheme)) + " is defined for valence >= " +
                      std::to_string(schemeTraits(bounded).minValence) + " (" +
                      (c2ps ? "it is measured on RTS's eigenvectors" : "its weights alias below") + ")"};
-  if (c2ps) return runC2psSpectrum(valence, steps > 0 ? steps : 8, json);
-  const std::vector<TaggedEigenvalue> all = schemeSpectrum(*scheme, valence);
-  const size_t shown = std::min(all.size(), size_t(count));
-  const std::string name = cliSchemeName(*scheme, false);
-  const bool polar = schemeTraits(*scheme).polar();
+}
+
+// An eigenvalue whose imaginary part is round-off is printed as real.
+double visibleImaginary(const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; }
+
+// What `spectrum` prints: the leading eigenvalues, and with --vectors their eigenpairs and the matrix.
+struct SpectrumReport {
+  std::string name;
+  bool polar = false;
+  std::vector<TaggedEigenvalue> all;
+  size_t shown = 0;
   std::vector<EigenPair> pairs;
   Matrix matrix;
-  if (vectors) {
-    pairs = schemeEigenPairs(*scheme, valence, shown);
-    matrix = schemeMatrix(*scheme, valence);
-  }
   // The support's order, as the matrix lists it (schemeMatrix).
-  const char* order = polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
-                            : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
-  // An eigenvalue whose imaginary part is round-off is printed as real.
-  auto imaginary = [](const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; };
-  if (json) {
-    JsonWriter w("spectrum");
-    w.beginObject().field("scheme", name).field("valence", valence).field("size", all.size());
-    if (vectors) w.field("order", order);
-    w.key("eigenvalues").beginArray();
-    for (size_t k = 0; k < shown; ++k) {
-      w.beginObject().field("re", all[k].value.real()).field("im", imaginary(all[k].value));
-      w.field("modulus", std::abs(all[k].value));
-      if (all[k].alpha >= 0) w.field("fourier_block", all[k].alpha);
-      if (vectors) {
-        const EigenPair& p = pairs[k];
-        w.field("mode", fourierModeName(p.mode));
-        writeSpectrumVector(w, "right", p.right);
-        writeSpectrumVector(w, "left", p.left);
-        writeSpectrumVector(w, "right_profile", p.rightProfile);
-        writeSpectrumVector(w, "left_profile", p.leftProfile);
-        if (p.right.empty()) w.field("note", "zero or defective eigenvalue: no basis of eigenvectors");
-        else w.field("residual", eigenPairResidual(matrix, p));
-      }
-      w.endObject();
-    }
-    w.endArray().endObject();
-    std::cout << w.str() << "\n";
-    return 0;
+  const char* order() const {
+    return polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
+                 : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
   }
-  std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", name.c_str(), valence, all.size(),
-              !polar ? "1-ring matrix, by Fourier block" : "matrix (13) on links 0..5, by Fourier block", shown);
-  // A block profile as "[a, b, ...]" (real parts; complex entries as re+imi).
-  auto profile = [](const std::vector<Complex>& v) {
-    double top = 0.0;
-    for (const Complex& x : v) top = std::max(top, std::abs(x));
-    auto clean = [top](double x) { return std::abs(x) <= 1e-12 * top ? 0.0 : x; };  // round-off as 0
-    std::string text = "[";
-    char number[64];
-    for (size_t i = 0; i < v.size(); ++i) {
-      if (clean(v[i].imag()) != 0.0) std::snprintf(number, sizeof number, "%.6g%+.6gi", clean(v[i].real()), v[i].imag());
-      else std::snprintf(number, sizeof number, "%.6g", clean(v[i].real()));
-      text += (i ? ", " : "") + std::string(number);
+};
+
+void writeSpectrumJson(const SpectrumReport& r, int valence, bool vectors) {
+  JsonWriter w("spectrum");
+  w.beginObject().field("scheme", r.name).field("valence", valence).field("size", r.all.size());
+  if (vectors) w.field("order", r.order());
+  w.key("eigenvalues").beginArray();
+  for (size_t k = 0; k < r.shown; ++k) {
+    w.beginObject().field("re", r.all[k].value.real()).field("im", visibleImaginary(r.all[k].value));
+    w.field("modulus", std::abs(r.all[k].value));
+    if (r.all[k].alpha >= 0) w.field("fourier_block", r.all[k].alpha);
+    if (vectors) {
+      const EigenPair& p = r.pairs[k];
+      w.field("mode", fourierModeName(p.mode));
+      writeSpectrumVector(w, "right", p.right);
+      writeSpectrumVector(w, "left", p.left);
+      writeSpectrumVector(w, "right_profile", p.rightProfile);
+      writeSpectrumVector(w, "left_profile", p.leftProfile);
+      if (p.right.empty()) w.field("note", "zero or defective eigenvalue: no basis of eigenvectors");
+      else w.field("residual", eigenPairResidual(r.matrix, p));
     }
-    return text + "]";
-  };
-  for (size_t k = 0; k < shown; ++k) {
-    const double im = imaginary(all[k].value);
-    std::printf("  %2zu  %.15g%s", k + 1, all[k].value.real(), im != 0.0 ? "" : "\n");
+    w.endObject();
+  }
+  w.endArray().endObject();
+  std::cout << w.str() << "\n";
+}
+
+// A block profile as "[a, b, ...]" (real parts; complex entries as re+imi; round-off as 0).
+std::string profileText(const std::vector<Complex>& v) {
+  double top = 0.0;
+  for (const Complex& x : v) top = std::max(top, std::abs(x));
+  auto clean = [top](double x) { return std::abs(x) <= 1e-12 * top ? 0.0 : x; };
+  std::string text = "[";
+  char number[64];
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (clean(v[i].imag()) != 0.0) std::snprintf(number, sizeof number, "%.6g%+.6gi", clean(v[i].real()), v[i].imag());
+    else std::snprintf(number, sizeof number, "%.6g", clean(v[i].real()));
+    text += (i ? ", " : "") + std::string(number);
+  }
+  return text + "]";
+}
+
+void printSpectrumText(const SpectrumReport& r, int valence, bool vectors) {
+  std::printf("%s, valence %d: %zu eigenvalues (%s), the %zu largest by modulus:\n", r.name.c_str(), valence, r.all.size(),
+              !r.polar ? "1-ring matrix, by Fourier block" : "matrix (13) on links 0..5, by Fourier block", r.shown);
+  for (size_t k = 0; k < r.shown; ++k) {
+    const double im = visibleImaginary(r.all[k].value);
+    std::printf("  %2zu  %.15g%s", k + 1, r.all[k].value.real(), im != 0.0 ? "" : "\n");
     if (im != 0.0) std::printf(" %+.15gi\n", im);
-    if (all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", all[k].alpha);
+    if (r.all[k].alpha >= 0) std::printf("      (Fourier block %d)\n", r.all[k].alpha);
     if (!vectors) continue;
-    const EigenPair& p = pairs[k];
+    const EigenPair& p = r.pairs[k];
     if (p.right.empty()) {
       std::printf("      no eigenvectors: zero or defective eigenvalue\n");
       continue;
     }
     std::printf("      %s mode, residual %.1e\n      right profile %s\n      left profile  %s\n", fourierModeName(p.mode),
-                eigenPairResidual(matrix, p), profile(p.rightProfile).c_str(), profile(p.leftProfile).c_str());
+                eigenPairResidual(r.matrix, p), profileText(p.rightProfile).c_str(), profileText(p.leftProfile).c_str());
   }
   if (vectors)
     std::printf("profiles v^, w^ of block alpha: v_ij = v^_i omega^(j alpha), w_ij = w^_i omega^(-j alpha) / n, cos and sin\n"
                 "modes their real and imaginary parts (paper (14), (26)); the whole vectors with --json\n");
+}
+
+int runSpectrum(SpectrumOptions& o) {
+  const bool c2ps = schemeTraits(o.scheme).polar() && !schemeTraits(o.scheme).keepsValence;
+  checkSpectrumOptions(o, c2ps);
+  if (c2ps) return runC2psSpectrum(o.valence, o.steps > 0 ? o.steps : 8, o.json);
+  SpectrumReport r;
+  r.all = schemeSpectrum(o.scheme, o.valence);
+  r.shown = std::min(r.all.size(), size_t(o.count));
+  r.name = cliSchemeName(o.scheme, false);
+  r.polar = schemeTraits(o.scheme).polar();
+  if (o.vectors) {
+    r.pairs = schemeEigenPairs(o.scheme, o.valence, r.shown);
+    r.matrix = schemeMatrix(o.scheme, o.valence);
+  }
+  if (o.json) writeSpectrumJson(r, o.valence, o.vectors);
+  else printSpectrumText(r, o.valence, o.vectors);
   return 0;
 }
 
-int runShape(const Args& args) {
+// [SECTION] shape
+
+// The shapes `shape` makes (makeShape), and the height functions of shapes::paperHeight
+// (core/mesh/shapes.h) a cap can follow.
+constexpr const char* kShapes[] = {"globe", "cap", "mushroom", "cube", "torus", "valence20", "fingertips"};
+constexpr const char* kHeights[] = {"paraboloid", "saddle", "monkey", "flat4", "saddle4", "convex"};
+
+template <size_t N>
+std::string joinNames(const char* const (&names)[N], const char* separator) {
+  std::string text;
+  for (const char* name : names) text += (text.empty() ? "" : separator) + std::string(name);
+  return text;
+}
+
+struct ShapeOptions {
   std::string name, output, height;
   int valence = 12, links = 6;
   bool sized = false;  // --valence or --links given
-  for (size_t k = 0; k < args.size(); ++k) {
-    auto next = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{args[k] + " needs a value"};
-      return args[++k];
-    };
-    if (args[k] == "-o" || args[k] == "--output") output = next();
-    else if (args[k] == "--valence") valence = parseInt("--valence", next(), 3, 1 << 20), sized = true;
-    else if (args[k] == "--links") links = parseInt("--links", next(), 1, 1 << 16), sized = true;
-    else if (args[k] == "--height") height = next();
-    else if (name.empty() && args[k][0] != '-') name = args[k];
-    else throw UsageError{"unexpected argument '" + args[k] + "'"};
+};
+
+OptionTable shapeTable(ShapeOptions& o) {
+  return {required(positionalOption("NAME", joinNames(kShapes, "|") + " (valence20, fingertips: the paper's Figs. 12 "
+                                    "and 2c, fixed)", &o.name)),
+          actionOption({"--valence"}, "N", "the pole's valence (default 12)",
+                       [&o](const std::string& v) { o.valence = parseIntArgument("--valence", v, 3, 1 << 20), o.sized = true; }),
+          actionOption({"--links"}, "K", "links around the pole (default 6)",
+                       [&o](const std::string& v) { o.links = parseIntArgument("--links", v, 1, 1 << 16), o.sized = true; }),
+          textOption({"--height"}, "NAME", "the cap over a height function: " + joinNames(kHeights, "|"), &o.height),
+          outputRow(&o.output, "OUT.obj", "the mesh (OBJ)")};
+}
+
+PolyMesh makeShape(const ShapeOptions& o) {
+  const std::string& name = o.name;
+  if (name == "globe") return shapes::globe(o.valence, o.links);
+  if (name == "cap" && !o.height.empty()) {
+    const auto function = shapes::paperHeight(o.height);
+    if (!function) throw UsageError{"unknown height '" + o.height + "' (" + joinNames(kHeights, ", ") + ")"};
+    return shapes::heightCap(o.valence, o.links, function);
   }
-  if (output.empty()) throw UsageError{"shape needs -o OUT.obj"};
-  PolyMesh mesh;
-  if (name == "globe") mesh = shapes::globe(valence, links);
-  else if (name == "cap" && !height.empty()) {
-    const auto function = shapes::paperHeight(height);
-    if (!function) throw UsageError{"unknown height '" + height + "' (paraboloid, saddle, monkey, flat4, saddle4, convex)"};
-    mesh = shapes::heightCap(valence, links, function);
-  } else if (name == "cap") mesh = shapes::polarCap(valence, links);
-  else if (name == "mushroom") {
-    if (valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
-    mesh = shapes::mushroom(valence);
-  } else if (name == "cube") mesh = shapes::cube();
-  else if (name == "torus") mesh = shapes::torus(valence, links);
-  else if (name == "valence20" || name == "fingertips") {
-    // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
-    if (sized) throw UsageError{"--valence and --links do not apply to " + name};
-    mesh = name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
-  } else throw UsageError{"unknown shape '" + name + "' (globe, cap, mushroom, cube, torus, valence20, fingertips)"};
-  if (!height.empty() && name != "cap") throw UsageError{"--height applies to the cap"};
-  saveObj(output, mesh);
+  if (name == "cap") return shapes::polarCap(o.valence, o.links);
+  if (name == "mushroom") {
+    if (o.valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
+    return shapes::mushroom(o.valence);
+  }
+  if (name == "cube") return shapes::cube();
+  if (name == "torus") return shapes::torus(o.valence, o.links);
+  // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
+  if (o.sized) throw UsageError{"--valence and --links do not apply to " + name};
+  return name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
+}
+
+int runShape(ShapeOptions& o) {
+  const bool known = std::any_of(std::begin(kShapes), std::end(kShapes), [&](const char* name) { return o.name == name; });
+  if (!known) throw UsageError{"unknown shape '" + o.name + "' (" + joinNames(kShapes, ", ") + ")"};
+  const PolyMesh mesh = makeShape(o);
+  if (!o.height.empty() && o.name != "cap") throw UsageError{"--height applies to the cap"};
+  saveObj(o.output, mesh);
   return 0;
 }
+
+}  // namespace
+
+CommandParser refineCommand() { return makeCommandParser(refineTable, runRefine); }
+CommandParser exportCommand() { return makeCommandParser(exportTable, runExport); }
+CommandParser convertCommand() { return makeCommandParser(convertTable, runConvert); }
+CommandParser infoCommand() { return makeCommandParser(infoTable, runInfo); }
+CommandParser poleCommand() { return makeCommandParser(poleTable, runPole); }
+CommandParser benchCommand() { return makeCommandParser(benchTable, runBench); }
+CommandParser shapeCommand() { return makeCommandParser(shapeTable, runShape); }
+CommandParser spectrumCommand() { return makeCommandParser(spectrumTable, runSpectrum); }
 
 }  // namespace polarview::cli

@@ -1,8 +1,6 @@
 #include "app/figure_command.h"
 #include "app/command_args.h"
 
-#include <GLFW/glfw3.h>
-
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "app/viewer_commands.h"
 #include "app/viewer_styles.h"
 #include "core/mesh/atomic_file.h"
 #include "core/mesh/ev_to_polar.h"
@@ -74,17 +73,18 @@ constexpr SchemeChoice kCC = SchemeChoice::CatmullClark, kC2PS = SchemeChoice::C
                        kC2PSU = SchemeChoice::C2PSUniformFirstStep, kRTS = SchemeChoice::RTS,
                        kRTSU = SchemeChoice::RTSUniformFirstStep;
 
-// The figures, with the paper's captions (docs: /work/shared/paper, Section 6) in mind. The models
-// are the shipped OBJs (assets/README.md says which command made each).
-std::vector<Figure> paperFigures() {
-  std::vector<Figure> figures;
-  // Fig. 1: the RTS eigenvectors of valence 6 (spectrum.h) as nets over the characteristic map;
-  // models made in memory (eigenNet), not read from assets/.
-  auto eigenPanel = [](const std::string& caption, SchemeChoice scheme, int k, int steps) {
-    return Panel{caption, scheme, 6, Mode::Shaded, Draw::SurfaceNet, k, steps};
-  };
-  figures.push_back(
-      {1, "Making C2 subdivision work with degree bi-3",
+// The figures, one function each, with the paper's captions in mind (docs/schemes.md cites the
+// paper; docs/gallery/README.md is what `figure all` writes). The models are the shipped OBJs
+// (assets/README.md says which command made each).
+
+// Fig. 1: the RTS eigenvectors of valence 6 (spectrum.h) as nets over the characteristic map;
+// models made in memory (eigenNet), not read from assets/.
+Panel eigenPanel(const std::string& caption, SchemeChoice scheme, int k, int steps) {
+  return Panel{caption, scheme, 6, Mode::Shaded, Draw::SurfaceNet, k, steps};
+}
+
+Figure eigenvectorFigure() {
+  return {1, "Making C2 subdivision work with degree bi-3",
        "top, the right eigenvectors v3, v4, v5 of RTS at valence 6 (`spectrum --scheme rts --valence 6 "
        "--vectors`) as control nets (black: links 0..5 of a 6-valent polar configuration with points "
        "(v1, v2, v_k), heights over the characteristic map) with their eigensplines e_k, the RTS limit "
@@ -107,9 +107,11 @@ std::vector<Figure> paperFigures() {
          {eigenPanel("(d) T^3 v3, n = 48", kC2PS, 3, 3), eigenPanel("(e) T^3 v4, n = 48", kC2PS, 4, 3),
           eigenPanel("(f) T^3 v5, n = 48", kC2PS, 5, 3)},
          Conversion::None, std::nullopt, 0.9, 6}},
-       Map::Paper, false, -60.0, 20.0});
-  figures.push_back(
-      {2, "Polar configurations",
+       Map::Paper, false, -60.0, 20.0};
+}
+
+Figure polarConfigurationsFigure() {
+  return {2, "Polar configurations",
        "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
        "C2PS's level-2 mesh and the C2PS limit surface (lit)",
        "one row per model (the paper has one column per model); our own models: a UV globe of valence "
@@ -126,9 +128,11 @@ std::vector<Figure> paperFigures() {
          {{"(c) finger tips", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
           {"limit", kC2PS, 4, Mode::Shaded}}}},
-       Map::Paper, false, -70.0, 25.0});
-  figures.push_back(
-      {4, "Avoiding ripples",
+       Map::Paper, false, -70.0, 25.0};
+}
+
+Figure ripplesFigure() {
+  return {4, "Avoiding ripples",
        "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4 in "
        "Gaussian curvature and highlight lines: Catmull-Clark's curvature oscillates around the "
        "16-valent vertex, C2PS's does not",
@@ -142,9 +146,11 @@ std::vector<Figure> paperFigures() {
          {{"(a) input", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"(b)", kCC, 4, Mode::Highlight},
           {"(c)", kC2PS, 4, Mode::Highlight}}}},
-       Map::Paper, true, -60.0, 35.0});
-  figures.push_back(
-      {11, "Comparison of RTS and C2PS",
+       Map::Paper, true, -60.0, 35.0};
+}
+
+Figure rtsAndC2psFigure() {
+  return {11, "Comparison of RTS and C2PS",
        "a valence-8 cap of the paraboloid (x^2+y^2)/2 (K falls off monotonically from the pole): top, "
        "(a, b) C2PS applied directly, Gauss curvature (magnitude map: dark blue is zero) and lit; (c) "
        "spline rings of C2PS with the uniform first step, (d) that surface lit; bottom, close to the "
@@ -163,9 +169,11 @@ std::vector<Figure> paperFigures() {
           {"(f)", kRTSU, 5, Mode::Gaussian},
           {"(f)", kRTS, 5, Mode::Gaussian}},
          Conversion::None, 2.5f, 2.5}},
-       Map::Magnitude, false, -60.0, 70.0});
-  figures.push_back(
-      {12, "Polar configuration of valence 20",
+       Map::Magnitude, false, -60.0, 70.0};
+}
+
+Figure valence20Figure() {
+  return {12, "Polar configuration of valence 20",
        "RTS and C2PS on a valence-20 cap (an elliptic bump), lit and in Gaussian curvature (magnitude "
        "map: dark blue is near zero) at level 4: similar surfaces and curvature at this high valence",
        "our own valence-20 input (the paper's is not printed)",
@@ -174,7 +182,10 @@ std::vector<Figure> paperFigures() {
           {"", kRTS, 4, Mode::Gaussian},
           {"", kC2PS, 4, Mode::Shaded},
           {"", kC2PS, 4, Mode::Gaussian}}}},
-       Map::Magnitude, true, -60.0, 25.0, 220});
+       Map::Magnitude, true, -60.0, 25.0, 220};
+}
+
+Figure shapeGalleryFigure() {
   const char* caps[][2] = {{"cap12_paraboloid.obj", "paraboloid"},
                            {"cap12_saddle.obj", "saddle"},
                            {"cap12_monkey.obj", "monkey saddle"},
@@ -193,9 +204,11 @@ std::vector<Figure> paperFigures() {
                              {"(b) subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
                              {"(c)", kC2PS, 4, Mode::Gaussian},
                              {"(d)", kC2PS, 4, Mode::Highlight}}});
-  figures.push_back(gallery);
-  figures.push_back(
-      {14, "Conversion",
+  return gallery;
+}
+
+Figure conversionFigure() {
+  return {14, "Conversion",
        "the corners (valence-3 extraordinary vertices) of a twice refined cube: (b) as they are, under "
        "Catmull-Clark; (a) converted into 6-valent polar configurations with three 5-valent extraordinary "
        "vertices each, and (c) into 3-valent polar configurations with three pentagons each, under C2PS "
@@ -209,15 +222,16 @@ std::vector<Figure> paperFigures() {
         {"cube_cc2.obj",
          {{"(c) pentagons", kC2PS, 0, Mode::Shaded, Draw::Net}, {"(c)", kC2PS, 3, Mode::Gaussian}},
          Conversion::Pentagons}},
-       Map::Paper, true, 45.0, 30.0, 230});
-  return figures;
+       Map::Paper, true, 45.0, 30.0, 230};
+}
+
+// The figures in the paper's order.
+std::vector<Figure> paperFigures() {
+  return {eigenvectorFigure(), polarConfigurationsFigure(), ripplesFigure(), rtsAndC2psFigure(),
+          valence20Figure(),   shapeGalleryFigure(),        conversionFigure()};
 }
 
 // [SECTION] Rendering
-
-const char* kFigureUsage =
-    "usage: polarview figure 1|2|4|11|12|13|14|all -o DIR [--width W] [--supersample 1|2|4]\n"
-    "  writes DIR/figNN.png (and for all, the gallery DIR/README.md) from the models in assets/\n";
 
 constexpr int kDefaultWidth = 800;
 
@@ -352,37 +366,33 @@ struct FigureRequest {
   int width = kDefaultWidth, supersample = 2;
 };
 
-int parseNumber(const std::string& text, const std::string& what, int lo, int hi) { return parseIntArgument(what, text, lo, hi); }
-
-FigureRequest parseFigureArgs(const std::vector<std::string>& args) {
-  FigureRequest r;
-  bool named = false;
-  for (size_t k = 0; k < args.size(); ++k) {
-    auto value = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
-      return args[++k];
-    };
-    if (args[k] == "-o" || args[k] == "--output") r.directory = value();
-    else if (args[k] == "--width") r.width = parseNumber(value(), "--width", 320, 4096);
-    else if (args[k] == "--supersample") {
-      r.supersample = parseNumber(value(), "--supersample", 1, 4);
-      if (r.supersample == 3) throw UsageError("--supersample takes 1, 2 or 4, got 3");
-    } else if (!named && args[k] == "all") named = true;
-    else if (!named && !args[k].empty() && args[k][0] != '-') {
-      const int number = parseNumber(args[k], "figure", 1, 14);
-      const std::vector<Figure> figures = paperFigures();
-      if (std::none_of(figures.begin(), figures.end(), [&](const Figure& f) { return f.number == number; }))
-        throw UsageError("no figure " + args[k] + " (1, 2, 4, 11, 12, 13, 14 or all)");
-      r.numbers.push_back(number);
-      named = true;
-    } else throw UsageError("unexpected argument '" + args[k] + "'");
-  }
-  if (!named) throw UsageError("which figure? (1, 2, 4, 11, 12, 13, 14 or all)");
-  if (r.directory.empty()) throw UsageError("missing -o DIR");
-  return r;
+// The figures' numbers as usage lists them: "1|2|4|11|12|13|14".
+std::string figureNumbers(const char* separator) {
+  std::string text;
+  for (const Figure& f : paperFigures()) text += (text.empty() ? "" : separator) + std::to_string(f.number);
+  return text;
 }
 
-int renderFigures(const FigureRequest& r) {
+// A figure's number, or "all" (r.numbers stays empty).
+void chooseFigure(const std::string& word, FigureRequest& r) {
+  if (word == "all") return;
+  const int number = parseIntArgument("figure", word, 1, 14);
+  const std::vector<Figure> figures = paperFigures();
+  if (std::none_of(figures.begin(), figures.end(), [&](const Figure& f) { return f.number == number; }))
+    throw UsageError("no figure " + word + " (" + figureNumbers(", ") + " or all)");
+  r.numbers.push_back(number);
+}
+
+OptionTable figureTable(FigureRequest& r) {
+  return {required(OptionRow{{}, figureNumbers("|") + "|all", "the figure, or all of them and the gallery DIR/README.md",
+                             false, [&r](const std::string& word) { chooseFigure(word, r); }}),
+          required(textOption({"-o", "--output"}, "DIR", "writes DIR/figNN.png from the models in assets/", &r.directory)),
+          intOption({"--width"}, "W", "the image's width (320..4096, default " + std::to_string(kDefaultWidth) + ")", &r.width,
+                    320, 4096),
+          supersampleOption(&r.supersample)};
+}
+
+int renderFigures(FigureRequest& r) {
   std::filesystem::create_directories(r.directory);
   ViewerOptions options;
   options.hidden = true;
@@ -421,8 +431,11 @@ int renderFigures(const FigureRequest& r) {
 
 }  // namespace
 
-int runFigureCommand(const std::vector<std::string>& args) {
-  return runCommand("figure", kFigureUsage, [&] { return renderFigures(parseFigureArgs(args)); }, [] { glfwTerminate(); });
+CommandParser figureCommand() {
+  return makeCommandParser(figureTable, +[](FigureRequest& r) {
+    const GlfwSession session;  // ends after the figures' ViewerApp
+    return renderFigures(r);
+  });
 }
 
 }  // namespace polarview

@@ -4,13 +4,12 @@
 // it shows and where it differs from the paper.
 #pragma once
 
-#include <string>
-#include <vector>
+#include "app/command_args.h"
 
 namespace polarview {
 
-// The arguments after "figure"; 0 ok, 1 bad input or a failed render ("polarview: FILE: msg"),
-// 2 usage error.
-int runFigureCommand(const std::vector<std::string>& args);
+// The figure command's option table and body (command_args.h); main.cpp's command table runs it:
+// 0 ok, 1 bad input or a failed render ("polarview: FILE: msg"), 2 usage error.
+CommandParser figureCommand();
 
 }  // namespace polarview

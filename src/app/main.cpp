@@ -1,44 +1,122 @@
-// polarview: the viewer when run bare or with `view`, otherwise a command-line subcommand.
-#include <algorithm>
-#include <cstring>
+// polarview: the viewer when run bare, otherwise one of the commands of the table below. Every
+// command's usage and `polarview help` are generated from the commands' option tables.
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "app/cli_commands.h"
+#include "app/command_args.h"
+#include "pipeline/scheme_choice.h"
+#include "session/command_table.h"
 #ifdef POLARVIEW_HAVE_VIEWER
 #include "app/figure_command.h"
-#include "app/viewer_app.h"
+#include "app/viewer_commands.h"
+#define POLARVIEW_WINDOW_COMMAND(make) make
+#else
+#define POLARVIEW_WINDOW_COMMAND(make) nullptr
 #endif
 
+namespace {
+
+using namespace polarview;
+
+// One command: its name, what it does (for `help`), its option table and body, whether it opens
+// a window (such commands are left out of a build without the viewer), and what its failures name.
+struct CliCommand {
+  const char* name;
+  const char* summary;
+  CommandParser (*parser)();  // null: a window command in a build without the viewer
+  bool needsViewer;
+  FailureSubject failures;
+};
+
+const CliCommand kCommands[] = {
+    {"view", "open the viewer (with --frames: a benchmark)", POLARVIEW_WINDOW_COMMAND(viewCommand), true,
+     FailureSubject::None},
+    {"render", "1 to 4 views of a model in one PNG, without a window", POLARVIEW_WINDOW_COMMAND(renderCommand), true,
+     FailureSubject::None},
+    {"figure", "the paper's figures as DIR/figNN.png", POLARVIEW_WINDOW_COMMAND(figureCommand), true,
+     FailureSubject::None},
+    {"refine", "refine uniformly and write the finest level (OBJ)", cli::refineCommand, false,
+     FailureSubject::FirstArgument},
+    {"export", "the limit surface as Bezier patches (BezierView .bv)", cli::exportCommand, false,
+     FailureSubject::FirstArgument},
+    {"convert", "extraordinary vertices into polar configurations (paper Fig. 14)", cli::convertCommand, false,
+     FailureSubject::FirstArgument},
+    {"info", "faces, boundaries, poles and extraordinary vertices of a mesh", cli::infoCommand, false,
+     FailureSubject::FirstArgument},
+    {"pole", "limit, normal and curvature at each pole, ring by ring", cli::poleCommand, false,
+     FailureSubject::FirstArgument},
+    {"bench", "time refinement and patches (against OpenSubdiv where it computes the same)", cli::benchCommand, false,
+     FailureSubject::FirstArgument},
+    {"shape", "write one of the models polarview ships", cli::shapeCommand, false, FailureSubject::Placeholder},
+    {"spectrum", "the leading eigenvalues of a scheme's subdivision matrix", cli::spectrumCommand, false,
+     FailureSubject::Placeholder},
+};
+
+const CliCommand* findCommand(const std::string& name) {
+  for (const CliCommand& c : kCommands)
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+// The scheme names every --scheme takes, from the scheme-choice table.
+std::string schemeNote() {
+  const auto uniform = [](SchemeChoice c) { return schemeChoiceVariant(c).uniformFirstStep; };
+  const auto plain = [&](SchemeChoice c) {
+    if (uniform(c)) return false;
+    const SchemeVariant v = schemeChoiceVariant(c);
+    return schemeTraits(v.scheme).hasUniformFirstStep;
+  };
+  return "schemes S: " + schemeChoiceNames(", ") + ";\n  " + schemeChoiceNames(", ", uniform) + " are " +
+         schemeChoiceNames(" and ", plain) + " with the uniform first step of the paper's Section 6\n"
+         "  (also written --scheme S --uniform-first-step, which no other scheme takes)\n";
+}
+
+// `polarview help`: the commands and their summaries, then every command's options.
+std::string helpText() {
+  std::string text = "usage: polarview [COMMAND [ARGUMENTS]]   (no command: the viewer on the built-in model)\n\ncommands:\n";
+  for (const CliCommand& c : kCommands)
+    text += "  " + std::string(c.name) + std::string(10 - std::string(c.name).size(), ' ') + c.summary +
+            (c.parser ? "" : " (not in this build)") + "\n";
+  text += "  help      this text; `polarview help COMMAND` or `polarview COMMAND --help`: one command's;\n"
+          "            `polarview help keys`: the viewer's commands (keys, `view --do` ids)\n";
+  for (const CliCommand& c : kCommands)
+    if (c.parser) text += "\n" + commandHelp(c.name, c.parser().table());
+  return text + "\n" + schemeNote();
+}
+
+// `polarview help keys`: the viewer's command table (session/command_table.h), a row a command.
+std::string keysText() {
+  std::string text = "the viewer's commands: id, keys, what it does (`view --do ID[,ID...]` runs them)\n";
+  for (const polarview::Command& c : viewerCommands().commands()) {
+    const std::string keys = CommandTable::keysText(c);
+    text += "  " + c.id + std::string(c.id.size() < 28 ? 28 - c.id.size() : 1, ' ') + keys +
+            std::string(keys.size() < 24 ? 24 - keys.size() : 1, ' ') + (c.help.empty() ? c.label : c.help) + "\n";
+  }
+  return text;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  using namespace polarview::cli;
-  const std::string command = argc > 1 ? argv[1] : "";
-  Args args(argv + std::min(argc, 2), argv + argc);
-  const std::string file = args.empty() ? "" : args[0];
-  if (command == "refine") return guarded(file, runRefine, args);
-  if (command == "export") return guarded(file, runExport, args);
-  if (command == "convert") return guarded(file, runConvert, args);
-  if (command == "info") return guarded(file, runInfo, args);
-  if (command == "pole") return guarded(file, runPole, args);
-  if (command == "bench") return guarded(file, runBench, args);
-  if (command == "shape") return guarded("", runShape, args);
-  if (command == "spectrum") return guarded("", runSpectrum, args);
-  if (command == "-h" || command == "--help" || command == "help") {
-    std::cout << usageText();
+  const std::string name = argc > 1 ? argv[1] : "";
+  const Args args(argv + (argc > 1 ? 2 : argc), argv + argc);
+  if (name == "-h" || name == "--help" || name == "help") {
+    const CliCommand* about = args.empty() ? nullptr : findCommand(args[0]);
+    if (!args.empty() && args[0] == "keys") std::cout << keysText();
+    else if (about && about->parser) std::cout << "usage: " << commandHelp(about->name, about->parser().table());
+    else std::cout << helpText();
     return 0;
   }
-#ifdef POLARVIEW_HAVE_VIEWER
-  if (command.empty()) return polarview::runViewer("");
-  if (command == "view") return polarview::runViewerCommand(args);
-  if (command == "render") return polarview::runRenderCommand(args);
-  if (command == "figure") return polarview::runFigureCommand(args);
-#else
-  if (command.empty() || command == "view" || command == "render" || command == "figure") {
+  const CliCommand* command = findCommand(name.empty() ? "view" : name);
+  if (!command) {
+    std::cerr << "polarview: unknown command '" << name << "'\n" << helpText();
+    return 2;
+  }
+  if (!command->parser) {
     std::cerr << "polarview: built without the viewer (POLARVIEW_BUILD_VIEWER=OFF)\n";
     return 2;
   }
-#endif
-  std::cerr << "polarview: unknown command '" << command << "'\n" << usageText();
-  return 2;
+  return runGuarded(command->name, command->parser(), args, command->failures);
 }

@@ -1,4 +1,4 @@
-// `polarview` / `polarview view` and `polarview render`: argument parsing around ViewerApp.
+// `polarview` / `polarview view` and `polarview render`: their option tables around ViewerApp.
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "session/command_table.h"
+#include "app/viewer_commands.h"
 #include "app/command_args.h"
 #include "core/mesh/constants.h"
 #include "app/viewer_styles.h"
@@ -21,38 +23,11 @@ namespace {
 
 // [SECTION] Shared option parsing
 
-const char* kRenderUsage =
-    "usage: polarview render FILE.obj -o OUT.png [--scheme c2ps[,rts,bps,cc,c2ps-u,rts-u]] [--level L] "
-    "[--shade MODE[,MODE...] (gaussian|mean|highlight|reflection|shaded: one, or one per view)] [--size WxH] [--range R | --range MIN:MAX | --percentile P [--asymmetric]] [--camera JSON] "
-    "[--preset front|top|side|iso] [--colormap paper|coolwarm|viridis|magnitude] [--supersample 1|2|4] [--transparent] "
-    "[--net] [--no-surface] [--boundaries] [--wireframe] [--no-poles] [--full-draw] [--time N]\n";
-const char* kViewUsage =
-    "usage: polarview view [FILE.obj] [--scheme c2ps[,rts,...]] [--level L] [--shade MODE] [--size WxH] "
-    "[--frames N [--stats] [--edit] [--level-steps] [--capture WINDOW.png]] [--hidden] [--show-help] "
-    "[--inspect-poles]\n";
-
-// Walks the argument list; values of options are taken with value().
-class ArgCursor {
- public:
-  explicit ArgCursor(const std::vector<std::string>& args) : args_(args) {}
-  bool done() const { return i_ >= args_.size(); }
-  const std::string& next() { return args_[i_++]; }
-  const std::string& value(const std::string& option) {
-    if (done()) throw UsageError(option + " needs a value");
-    return next();
-  }
-
- private:
-  const std::vector<std::string>& args_;
-  size_t i_ = 0;
-};
-
-int parseInt(const std::string& text, const std::string& option, int lo, int hi) { return parseIntArgument(option, text, lo, hi); }
-
 std::pair<int, int> parseSize(const std::string& text) {
   size_t x = text.find('x');
   if (x == std::string::npos) throw UsageError("--size expects WxH, got '" + text + "'");
-  return {parseInt(text.substr(0, x), "--size width", 16, 8192), parseInt(text.substr(x + 1), "--size height", 16, 8192)};
+  return {parseIntArgument("--size width", text.substr(0, x), 16, 8192),
+          parseIntArgument("--size height", text.substr(x + 1), 16, 8192)};
 }
 
 std::vector<SchemeChoice> parseSchemes(const std::string& text) {
@@ -61,16 +36,27 @@ std::vector<SchemeChoice> parseSchemes(const std::string& text) {
   std::string name;
   while (std::getline(list, name, ',')) {
     std::optional<SchemeChoice> scheme = parseSchemeChoice(name);
-    if (!scheme) throw UsageError("unknown scheme '" + name + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)");
+    if (!scheme) throw UsageError("unknown scheme '" + name + "' (" + schemeChoiceNames(", ") + ")");
     schemes.push_back(*scheme);
   }
   if (schemes.empty() || int(schemes.size()) > kMaxViews) throw UsageError("--scheme takes 1 to 4 schemes");
   return schemes;
 }
 
+// The shading modes in the order usage lists them.
+constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Gaussian, ShadingParams::Mode::Mean,
+                                               ShadingParams::Mode::Highlight, ShadingParams::Mode::Reflection,
+                                               ShadingParams::Mode::Shaded};
+
+std::string shadeModeNames(const char* separator) {
+  std::string names;
+  for (ShadingParams::Mode mode : kShadeModes) names += (names.empty() ? "" : separator) + std::string(shadeModeName(mode));
+  return names;
+}
+
 ShadingParams::Mode parseShade(const std::string& text) {
   std::optional<ShadingParams::Mode> mode = parseShadeMode(text);
-  if (!mode) throw UsageError("unknown --shade '" + text + "' (gaussian, mean, highlight, reflection, shaded)");
+  if (!mode) throw UsageError("unknown --shade '" + text + "' (" + shadeModeNames(", ") + ")");
   return *mode;
 }
 
@@ -82,6 +68,22 @@ std::vector<ShadingParams::Mode> parseShadeList(const std::string& text) {
   while (std::getline(list, name, ',')) modes.push_back(parseShade(name));
   if (modes.empty() || int(modes.size()) > kMaxViews) throw UsageError("--shade takes 1 to 4 modes");
   return modes;
+}
+
+// The rows view and render share: the model, its views' schemes and level, the window's size.
+OptionRow modelRow(std::string* input) {
+  return positionalOption("FILE.obj", "the model (OBJ; default: the built-in model)", input);
+}
+OptionRow schemesRow(std::vector<SchemeChoice>* schemes) {
+  return actionOption({"--scheme", "--schemes"}, "S[,S...]",
+                      "1 to 4 views side by side, one scheme each (" + schemeChoiceNames("|") + ")",
+                      [schemes](const std::string& v) { *schemes = parseSchemes(v); });
+}
+OptionRow levelRow(std::optional<int>* level, const std::string& help) {
+  return intOption({"--level"}, "L", help + " (0.." + std::to_string(kMaxLevel) + ")", level, 0, kMaxLevel);
+}
+OptionRow sizeRow(int* width, int* height, const std::string& help) {
+  return actionOption({"--size"}, "WxH", help, [=](const std::string& v) { std::tie(*width, *height) = parseSize(v); });
 }
 
 // Puts one view per scheme, all at `level`.
@@ -204,69 +206,88 @@ struct RenderRequest {
   int timeFrames = 0;
 };
 
-RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
-  RenderRequest r;
-  ArgCursor cursor(args);
-  while (!cursor.done()) {
-    const std::string& arg = cursor.next();
-    if (arg == "-o" || arg == "--output") r.output = cursor.value(arg);
-    else if (arg == "--scheme" || arg == "--schemes") r.schemes = parseSchemes(cursor.value(arg));
-    else if (arg == "--level") r.level = parseInt(cursor.value(arg), arg, 0, kMaxLevel);
-    else if (arg == "--shade") r.shades = parseShadeList(cursor.value(arg));
-    else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
-    else if (arg == "--camera") r.cameraJson = cursor.value(arg);
-    else if (arg == "--supersample") {
-      r.supersample = parseInt(cursor.value(arg), arg, 1, 4);
-      if (r.supersample == 3) throw UsageError("--supersample takes 1, 2 or 4, got 3");
-    }
-    else if (arg == "--transparent") r.transparent = true;
-    else if (arg == "--net") r.controlNet = true;
-    else if (arg == "--no-surface") r.surface = false;
-    else if (arg == "--boundaries") r.boundaries = true;
-    else if (arg == "--wireframe") r.wireframe = true;
-    else if (arg == "--no-poles") r.poles = false;
-    else if (arg == "--time") r.timeFrames = parseInt(cursor.value(arg), arg, 1, 10000);
-    else if (arg == "--percentile") r.percentile = float(parseInt(cursor.value(arg), arg, 50, 100));
-    else if (arg == "--asymmetric") r.asymmetric = true;
-    else if (arg == "--full-draw") r.fullDraw = true;
-    else if (arg == "--range") {
-      // R (the map spans -R..R) or MIN:MAX with MIN < 0 < MAX (two slopes, zero in the middle).
-      const std::string& text = cursor.value(arg);
-      auto number = [&](const std::string& part) {
-        char* end = nullptr;
-        const double value = std::strtod(part.c_str(), &end);
-        if (part.empty() || *end != '\0' || !std::isfinite(value))
-          throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
-        return value;
-      };
-      const size_t colon = text.find(':');
-      const double low = colon == std::string::npos ? 0.0 : number(text.substr(0, colon));
-      const double high = number(colon == std::string::npos ? text : text.substr(colon + 1));
-      if (!(high > 0.0) || (colon != std::string::npos && !(low < 0.0)))
-        throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
-      r.range = high;
-      if (colon != std::string::npos) r.rangeBelow = -low;
-    } else if (arg == "--preset") {
-      const std::string& name = cursor.value(arg);
-      for (ViewPreset p : {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso}) {
-        if (name == viewPresetName(p)) r.preset = p;
-      }
-      if (!r.preset) throw UsageError("unknown --preset '" + name + "' (front, top, side, iso)");
-    } else if (arg == "--colormap") {
-      const std::string& name = cursor.value(arg);
-      if (name == "paper") r.colormap = ShadingParams::ColorMap::Paper;
-      else if (name == "coolwarm") r.colormap = ShadingParams::ColorMap::CoolWarm;
-      else if (name == "viridis") r.colormap = ShadingParams::ColorMap::Viridis;
-      else if (name == "magnitude") r.colormap = ShadingParams::ColorMap::Magnitude;
-      else throw UsageError("unknown --colormap '" + name + "' (paper, coolwarm, viridis, magnitude)");
-    } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
-      throw UsageError("unknown option '" + arg + "'");
-    } else if (r.input.empty()) {
-      r.input = arg;
-    } else {
-      throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
-    }
-  }
+// --range R (the map spans -R..R) or MIN:MAX with MIN < 0 < MAX (two slopes, zero in the middle).
+void parseRange(const std::string& text, RenderRequest& r) {
+  auto number = [&](const std::string& part) {
+    char* end = nullptr;
+    const double value = std::strtod(part.c_str(), &end);
+    if (part.empty() || *end != '\0' || !std::isfinite(value))
+      throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
+    return value;
+  };
+  const size_t colon = text.find(':');
+  const double low = colon == std::string::npos ? 0.0 : number(text.substr(0, colon));
+  const double high = number(colon == std::string::npos ? text : text.substr(colon + 1));
+  if (!(high > 0.0) || (colon != std::string::npos && !(low < 0.0)))
+    throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
+  r.range = high;
+  if (colon != std::string::npos) r.rangeBelow = -low;
+}
+
+constexpr ViewPreset kPresets[] = {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso};
+
+std::string presetNames(const char* separator) {
+  std::string names;
+  for (ViewPreset p : kPresets) names += (names.empty() ? "" : separator) + std::string(viewPresetName(p));
+  return names;
+}
+
+// The colour maps by their command-line names.
+struct ColormapName {
+  const char* name;
+  ShadingParams::ColorMap map;
+};
+constexpr ColormapName kColormaps[] = {{"paper", ShadingParams::ColorMap::Paper},
+                                       {"coolwarm", ShadingParams::ColorMap::CoolWarm},
+                                       {"viridis", ShadingParams::ColorMap::Viridis},
+                                       {"magnitude", ShadingParams::ColorMap::Magnitude}};
+
+std::string colormapNames(const char* separator) {
+  std::string names;
+  for (const ColormapName& c : kColormaps) names += (names.empty() ? "" : separator) + std::string(c.name);
+  return names;
+}
+
+OptionTable renderTable(RenderRequest& r) {
+  return {
+      modelRow(&r.input),
+      textOption({"-o", "--output"}, "OUT.png", "the image, written atomically (needed unless --time)", &r.output),
+      schemesRow(&r.schemes),
+      levelRow(&r.level, "the level; default 3, or each view's deepest within the memory budget"),
+      actionOption({"--shade"}, "MODE[,MODE...]", "one shading for every view, or one per view (" + shadeModeNames("|") + ")",
+                   [&r](const std::string& v) { r.shades = parseShadeList(v); }),
+      sizeRow(&r.width, &r.height, "the image's size (default 1200x800)"),
+      actionOption({"--range"}, "R|MIN:MAX", "the colour map spans -R..R, or MIN..MAX with MIN < 0 < MAX (default: automatic)",
+                   [&r](const std::string& v) { parseRange(v, r); }),
+      actionOption({"--percentile"}, "P", "automatic range at the P-th percentile of |K| or |H| by area (50..100)",
+                   [&r](const std::string& v) { r.percentile = float(parseIntArgument("--percentile", v, 50, 100)); }),
+      flagOption({"--asymmetric"}, "automatic range with each side of zero apart", &r.asymmetric),
+      actionOption({"--colormap"}, "NAME", "the colour map (" + colormapNames("|") + ")",
+                   [&r](const std::string& name) {
+                     for (const ColormapName& c : kColormaps)
+                       if (name == c.name) r.colormap = c.map;
+                     if (!r.colormap) throw UsageError("unknown --colormap '" + name + "' (" + colormapNames(", ") + ")");
+                   }),
+      textOption({"--camera"}, "JSON", "the camera, as the viewer's Camera panel copies it", &r.cameraJson),
+      actionOption({"--preset"}, "NAME", "look from the " + presetNames("|") + " direction",
+                   [&r](const std::string& name) {
+                     for (ViewPreset p : kPresets)
+                       if (name == viewPresetName(p)) r.preset = p;
+                     if (!r.preset) throw UsageError("unknown --preset '" + name + "' (" + presetNames(", ") + ")");
+                   }),
+      supersampleOption(&r.supersample),
+      flagOption({"--transparent"}, "a transparent background", &r.transparent),
+      flagOption({"--net"}, "draw the control net", &r.controlNet),
+      flagOption({"--no-surface"}, "no surface (the net, the wireframe or the boundaries alone)", &r.surface, false),
+      flagOption({"--boundaries"}, "draw the patch boundaries", &r.boundaries),
+      flagOption({"--wireframe"}, "draw the wireframe", &r.wireframe),
+      flagOption({"--no-poles"}, "no pole markers", &r.poles, false),
+      flagOption({"--full-draw"}, "draw every patch of the level, also those below a pixel", &r.fullDraw),
+      intOption({"--time"}, "N", "render N times and print the frame times as JSON (1..10000)", &r.timeFrames, 1, 10000)};
+}
+
+// The combinations the table cannot refuse.
+void checkRenderRequest(const RenderRequest& r) {
   if (r.output.empty() && r.timeFrames == 0) throw UsageError("missing -o OUT.png");
   if (r.shades.size() != 1 && r.shades.size() != r.schemes.size())
     throw UsageError("--shade takes one mode, or one per --scheme view (" + std::to_string(r.schemes.size()) + "), got " +
@@ -275,7 +296,6 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
   const auto has = [&](ShadingParams::Mode m) { return std::count(r.shades.begin(), r.shades.end(), m) > 0; };
   if (has(ShadingParams::Mode::Gaussian) && has(ShadingParams::Mode::Mean))
     throw UsageError("--shade: gaussian and mean in one image would need two colour bars");
-  return r;
 }
 
 // Loads the model (the default one when `input` is empty), then opens the window: a bad file
@@ -297,38 +317,25 @@ bool openModelAndWindow(ViewerApp& app, const std::string& input) {
   return true;
 }
 
-int renderWithApp(const RenderRequest& r) {
-  ViewerOptions options;
-  options.width = std::min(r.width, 1920);
-  options.height = std::min(r.height, 1080);
-  options.hidden = true;
-  options.persistRecent = false;
-  options.vsync = false;
-  options.prepareNextLevel = false;  // one picture: no level steps to come
-  options.levelOfDetail = !r.fullDraw;
-  ViewerApp app(options);
+// Views as asked. Without --level each view takes the default level, or the deepest its scheme
+// makes on this model within the budget (said on stderr): a level asked for and over the budget is
+// refused when the views are built.
+void setRenderViews(ViewerApp& app, const RenderRequest& r, size_t faceBudget) {
   ViewerState& state = app.state();
-  if (!openModelAndWindow(app, r.input)) return 1;
-  // An image this GL cannot hold is a usage error, said before any work.
-  if (std::string problem = checkRenderTargetSize(r.width, r.height, r.supersample); !problem.empty()) {
-    std::cerr << "polarview: render: --size " << r.width << "x" << r.height << " --supersample " << r.supersample
-              << ": " << problem << "\n";
-    return 2;
-  }
-
-  // Views, shading, colour range and camera as asked. Without --level each view takes the default
-  // level, or the deepest its scheme makes on this model within the budget (said on stderr): a
-  // level asked for and over the budget is refused below.
   setViews(state, r.schemes, r.level.value_or(kDefaultRenderLevel));
-  if (!r.level)
-    for (int v = 0; v < state.viewCount; ++v) {
-      View& view = state.views[size_t(v)];
-      const int deepest = deepestLevel(app.model(), view.scheme, options.faceBudget);
-      if (deepest >= view.level) continue;
-      std::cerr << "polarview: " << r.input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
-                << ", its deepest on this model within the memory budget (the default is " << kDefaultRenderLevel << ")\n";
-      view.level = deepest;
-    }
+  if (r.level) return;
+  for (int v = 0; v < state.viewCount; ++v) {
+    View& view = state.views[size_t(v)];
+    const int deepest = deepestLevel(app.model(), view.scheme, faceBudget);
+    if (deepest >= view.level) continue;
+    std::cerr << "polarview: " << r.input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
+              << ", its deepest on this model within the memory budget (the default is " << kDefaultRenderLevel << ")\n";
+    view.level = deepest;
+  }
+}
+
+// Shading, colour range and what is drawn, as asked.
+void setRenderStyle(ViewerState& state, const RenderRequest& r) {
   state.linkCameras = true;
   state.showPanels = false;
   state.shading.mode = r.shades.front();
@@ -350,25 +357,24 @@ int renderWithApp(const RenderRequest& r) {
   state.display.patchBoundaries = r.boundaries;
   state.display.wireframe = r.wireframe;
   state.display.poleMarkers = r.poles;
+}
+
+// The camera: framed on the model in the first view's shape (after --preset's direction), or --camera.
+void setRenderCamera(ViewerApp& app, const RenderRequest& r) {
+  ViewerState& state = app.state();
   ScreenRect imageRect{0, 0, float(r.width), float(r.height)};
   ScreenRect firstView = layoutViews(state.viewCount, imageRect, colourBarReserve(state, 1.0f)).front();
   if (r.preset) state.sharedCamera.applyPreset(*r.preset);  // the direction, then framing along it
   app.frameModel(&firstView);
-  if (!r.cameraJson.empty()) {
-    std::string error;
-    std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
-    if (!camera) {
-      std::cerr << "polarview: render: --camera: " << error << "\n" << kRenderUsage;
-      return 2;
-    }
-    state.sharedCamera = *camera;
-  }
+  if (r.cameraJson.empty()) return;
+  std::string error;
+  std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
+  if (!camera) throw UsageError("--camera: " + error);
+  state.sharedCamera = *camera;
+}
 
-  // Refine every view (a refused level or a refinement error is bad input: exit 1, no file).
-  app.runFrame();
-  app.waitUntilIdle();
-  if (reportViewErrors(app)) return 1;
-
+// Renders the image (--time: N times), then writes it, or prints the frame times.
+int renderAndWrite(ViewerApp& app, const RenderRequest& r) {
   RgbaImage image;
   std::vector<double> frameMs;
   int frames = std::max(r.timeFrames, 1);
@@ -390,6 +396,35 @@ int renderWithApp(const RenderRequest& r) {
   return 0;
 }
 
+int renderWithApp(RenderRequest& r) {
+  checkRenderRequest(r);
+  const GlfwSession session;
+  ViewerOptions options;
+  options.width = std::min(r.width, 1920);
+  options.height = std::min(r.height, 1080);
+  options.hidden = true;
+  options.persistRecent = false;
+  options.vsync = false;
+  options.prepareNextLevel = false;  // one picture: no level steps to come
+  options.levelOfDetail = !r.fullDraw;
+  ViewerApp app(options);
+  if (!openModelAndWindow(app, r.input)) return 1;
+  // An image this GL cannot hold is a usage error, said before any work.
+  if (std::string problem = checkRenderTargetSize(r.width, r.height, r.supersample); !problem.empty()) {
+    std::cerr << "polarview: render: --size " << r.width << "x" << r.height << " --supersample " << r.supersample
+              << ": " << problem << "\n";
+    return 2;
+  }
+  setRenderViews(app, r, options.faceBudget);
+  setRenderStyle(app.state(), r);
+  setRenderCamera(app, r);
+  // Refine every view (a refused level or a refinement error is bad input: exit 1, no file).
+  app.runFrame();
+  app.waitUntilIdle();
+  if (reportViewErrors(app)) return 1;
+  return renderAndWrite(app, r);
+}
+
 // [SECTION] view
 
 struct ViewRequest {
@@ -404,33 +439,36 @@ struct ViewRequest {
   bool levelSteps = false;  // first view: level L-1, then L (deeper), L-1, L again, each step timed
   bool inspectPoles = false;  // open the "Poles" section
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
+  std::vector<std::string> commands;  // --do: viewer command ids, run once the model is loaded
 };
 
-ViewRequest parseViewArgs(const std::vector<std::string>& args) {
-  ViewRequest r;
-  ArgCursor cursor(args);
-  while (!cursor.done()) {
-    const std::string& arg = cursor.next();
-    if (arg == "--scheme" || arg == "--schemes") r.schemes = parseSchemes(cursor.value(arg));
-    else if (arg == "--level") r.level = parseInt(cursor.value(arg), arg, 0, kMaxLevel);
-    else if (arg == "--shade") r.shade = parseShade(cursor.value(arg));
-    else if (arg == "--size") std::tie(r.width, r.height) = parseSize(cursor.value(arg));
-    else if (arg == "--frames") r.frames = parseInt(cursor.value(arg), arg, 1, 100000);
-    else if (arg == "--stats") r.stats = true;
-    else if (arg == "--edit") r.edit = true;
-    else if (arg == "--level-steps") r.levelSteps = true;
-    else if (arg == "--inspect-poles") r.inspectPoles = true;
-    else if (arg == "--hidden") r.hidden = true;
-    else if (arg == "--capture") r.capture = cursor.value(arg);
-    else if (arg == "--show-help") r.showHelp = true;
-    else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "'");
-    else if (r.input.empty()) r.input = arg;
-    else throw UsageError("more than one input file ('" + r.input + "', '" + arg + "')");
-  }
+OptionTable viewTable(ViewRequest& r) {
+  return {modelRow(&r.input),
+          schemesRow(&r.schemes),
+          levelRow(&r.level, "the views' level"),
+          actionOption({"--shade"}, "MODE", "the shading (" + shadeModeNames("|") + ")",
+                       [&r](const std::string& v) { r.shade = parseShade(v); }),
+          sizeRow(&r.width, &r.height, "the window's size (default 1600x900)"),
+          intOption({"--frames"}, "N", "run N frames, then close (a benchmark; 1..100000)", &r.frames, 1, 100000),
+          flagOption({"--stats"}, "with --frames: print the frame times as JSON", &r.stats),
+          flagOption({"--edit"}, "with --frames: the frames drag a control vertex", &r.edit),
+          flagOption({"--level-steps"}, "with --frames and --level L >= 1: time the steps L-1 -> L -> L-1 -> L",
+                     &r.levelSteps),
+          textOption({"--capture"}, "WINDOW.png", "with --frames: the whole window, panels included, as a PNG", &r.capture),
+          flagOption({"--hidden"}, "an invisible window", &r.hidden),
+          flagOption({"--show-help"}, "open the help window", &r.showHelp),
+          flagOption({"--inspect-poles"}, "open the Poles section", &r.inspectPoles),
+          listOption({"--do"}, "CMD[,CMD...]",
+                     "run these viewer commands (their ids: `polarview help keys`) after the model loads", &r.commands)};
+}
+
+// The combinations the table cannot refuse.
+void checkViewRequest(const ViewRequest& r) {
   if (r.edit && r.frames == 0) throw UsageError("--edit needs --frames N");
   if (r.levelSteps && (r.frames == 0 || !r.level || *r.level < 1))
     throw UsageError("--level-steps needs --frames N and --level L >= 1");
-  return r;
+  for (const std::string& id : r.commands)
+    if (!viewerCommands().find(id)) throw UsageError("--do: unknown viewer command '" + id + "' (polarview help keys lists them)");
 }
 
 // --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
@@ -527,13 +565,16 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   return frameMs;
 }
 
-int viewWithApp(const ViewRequest& r) {
+int viewWithApp(ViewRequest& r) {
+  checkViewRequest(r);
+  const GlfwSession session;
   ViewerOptions options;
   options.width = r.width;
   options.height = r.height;
   options.hidden = r.hidden;
   options.persistRecent = r.frames == 0;
   options.vsync = r.frames == 0;
+  options.scriptedCommands = r.commands;
   ViewerApp app(options);
   ViewerState& state = app.state();
   if (!openModelAndWindow(app, r.input)) return 1;
@@ -575,19 +616,19 @@ int viewWithApp(const ViewRequest& r) {
   return 0;
 }
 
-template <class Request, class Parse, class Run>
-int guardedCommand(const std::vector<std::string>& args, Parse parse, Run run, const char* name, const char* usage) {
-  return runCommand(name, usage, [&] { return run(parse(args)); }, [] { glfwTerminate(); });
-}
-
 }  // namespace
 
+GlfwSession::~GlfwSession() { glfwTerminate(); }
+
+CommandParser viewCommand() { return makeCommandParser(viewTable, viewWithApp); }
+CommandParser renderCommand() { return makeCommandParser(renderTable, renderWithApp); }
+
 int runViewerCommand(const std::vector<std::string>& args) {
-  return guardedCommand<ViewRequest>(args, parseViewArgs, viewWithApp, "view", kViewUsage);
+  return runGuarded("view", viewCommand(), args, FailureSubject::None);
 }
 
 int runRenderCommand(const std::vector<std::string>& args) {
-  return guardedCommand<RenderRequest>(args, parseRenderArgs, renderWithApp, "render", kRenderUsage);
+  return runGuarded("render", renderCommand(), args, FailureSubject::None);
 }
 
 int runViewer(const std::string& objPathOrEmpty) {

@@ -69,4 +69,16 @@ BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set
   return stats;
 }
 
+UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces) {
+  auto facesAt = [&](int level) {
+    RefineOptions at = options;
+    at.levels = level;
+    return estimateFaceCount(mesh, at, radial);
+  };
+  UniformLevelEstimate estimate{facesAt(options.levels), options.levels, true};
+  estimate.fits = estimate.faces <= maxFaces;
+  while (estimate.deepestFitting > 0 && facesAt(estimate.deepestFitting) > maxFaces) --estimate.deepestFitting;
+  return estimate;
+}
+
 }  // namespace polarview

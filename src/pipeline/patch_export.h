@@ -17,6 +17,17 @@ namespace polarview {
 PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, bool uniform,
                         size_t maxFaces);
 
+// A uniform refinement's size against a face budget, before any allocation: the faces of the
+// finest level (estimateFaceCount; `radial` where RTS/BPS refine the whole mesh radially) and the
+// deepest level within `maxFaces`. The uniform refusals read it: refine, bench and export --uniform
+// (as bytes, kBytesPerUniformFace a face) and the viewer's refined control mesh. [O(levels x mesh)]
+struct UniformLevelEstimate {
+  size_t faces = 0;        // at options.levels
+  int deepestFitting = 0;  // options.levels itself when it fits
+  bool fits = true;
+};
+UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces);
+
 // Writes `set` to `path` atomically (nothing is left on any error) and says what was written.
 BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source);
 

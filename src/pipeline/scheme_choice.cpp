@@ -50,6 +50,18 @@ std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
   return std::nullopt;
 }
 
+SchemeVariant schemeChoiceVariant(SchemeChoice scheme) { return kChoiceVariants[int(scheme)]; }
+
+std::string schemeChoiceNames(const std::string& separator, const std::function<bool(SchemeChoice)>& accepts) {
+  std::string names;
+  for (int i = 0; i < kSchemeChoiceCount; ++i) {
+    const auto scheme = static_cast<SchemeChoice>(i);
+    if (accepts && !accepts(scheme)) continue;
+    names += (names.empty() ? "" : separator) + schemeChoiceCliName(scheme);
+  }
+  return names;
+}
+
 RefineOptions refineOptionsFor(SchemeChoice scheme, int level) {
   const SchemeVariant variant = kChoiceVariants[int(scheme)];
   return RefineOptions{variant.scheme, level, variant.uniformFirstStep};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -26,6 +27,12 @@ const char* schemeChoiceLabel(SchemeChoice scheme);
 const char* schemeChoiceCliName(SchemeChoice scheme);
 // Accepts the command-line names (case-insensitive; also "c2ps-uniform", "rts-uniform", "catmull-clark").
 std::optional<SchemeChoice> parseSchemeChoice(const std::string& name);
+// The scheme-table row and first step a choice stands for (its traits: schemeTraits(variant.scheme)).
+SchemeVariant schemeChoiceVariant(SchemeChoice scheme);
+// The command-line names of the choices `accepts` takes (every one without it), in menu order,
+// joined by `separator`: "cc, c2ps, c2ps-u, rts, rts-u, bps". Usage texts and messages list the
+// schemes from here rather than typing them. [O(choices)]
+std::string schemeChoiceNames(const std::string& separator, const std::function<bool(SchemeChoice)>& accepts = {});
 // Refinement options of a scheme choice at `level`.
 RefineOptions refineOptionsFor(SchemeChoice scheme, int level);
 // Name of a shading mode for labels ("shaded", "gaussian", "mean", "highlight", "reflection").

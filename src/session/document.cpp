@@ -355,18 +355,12 @@ void Document::startExport(bool bezierView, const BuiltSurface* shown) {
     // when its estimate exceeds what a view may take.
     const size_t budget = faceBudget_ * kBytesPerAdaptiveFace / kBytesPerUniformFace;
     const bool radial = model.radialForRtsBps && (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS);
-    auto facesAt = [&](int l) {
-      RefineOptions o = options;
-      o.levels = l;
-      return estimateFaceCount(*model.mesh, o, radial);
-    };
-    if (facesAt(level) > budget) {
-      int fits = level;
-      while (fits > 0 && facesAt(fits) > budget) --fits;
+    const UniformLevelEstimate estimate = estimateUniformLevel(*model.mesh, options, radial, budget);
+    if (!estimate.fits) {
       state_.edit.error = std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
-                          std::to_string(level) + " would have about " + std::to_string(facesAt(level)) +
-                          " faces, over the budget of " + std::to_string(budget) + " (level " + std::to_string(fits) +
-                          " fits)";
+                          std::to_string(level) + " would have about " + std::to_string(estimate.faces) +
+                          " faces, over the budget of " + std::to_string(budget) + " (level " +
+                          std::to_string(estimate.deepestFitting) + " fits)";
       state_.notice = state_.edit.error;
       return;
     }

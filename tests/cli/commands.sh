@@ -120,12 +120,14 @@ set -e
 [ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "huge level: not one line"
 grep -q "^polarview: .*mushroom.obj" "$tmp/err" || fail "huge level: no file name"
 [ ! -e "$tmp/huge.obj" ] || fail "huge level left an output file"
-# the top-level usage lists every option `render` and `view` take (their own usage lines)
+# the top-level usage lists every option `render` and `view` take (their own usage, printed on a
+# usage error)
 help="$("$exe" help)"
 for cmd in render view; do
   own="$("$exe" "$cmd" /nonexistent.obj --frobnicate 2>&1 || true)"
-  for opt in $(printf '%s\n' "$own" | grep "^usage:" | grep -o -- '--[a-z-]*' | sort -u); do
-    printf '%s\n' "$help" | grep -q -- "$opt" || fail "'polarview help' lacks $cmd's $opt"
+  grep -q "^usage: polarview $cmd" <<< "$own" || fail "$cmd: no usage on a usage error"
+  for opt in $(printf '%s\n' "$own" | sed -n '/^usage:/,$p' | grep -o -- '--[a-z-]*' | sort -u); do
+    grep -q -- "$opt" <<< "$help" || fail "'polarview help' lacks $cmd's $opt"  # (no pipe: grep -q stops early)
   done
 done
 # the memory budget is bytes: a refusal comes at once, in one line, and names the deepest level that fits

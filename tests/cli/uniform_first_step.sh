@@ -22,7 +22,7 @@ usage_error() {
   [ $rc -eq 2 ] || fail "$command $*: exit $rc, expected 2"
   [ "$(head -n 1 "$tmp/err")" = "polarview: $command: --uniform-first-step applies to c2ps and rts only" ] ||
     fail "$command $*: error line '$(head -n 1 "$tmp/err")'"
-  sed -n 2p "$tmp/err" | grep -qx "usage:" || fail "$command $*: no usage after the error"
+  sed -n 2p "$tmp/err" | grep -q "^usage: polarview $command " || fail "$command $*: no usage after the error"
   [ ! -s "$tmp/out" ] || fail "$command $*: printed on stdout"
 }
 for scheme in cc bps; do
@@ -53,5 +53,5 @@ set +e
 "$exe" refine "$tmp/globe.obj" -o "$tmp/out.obj" --scheme bps-u --levels 1 2> /dev/null; rc=$?
 set -e
 [ $rc -eq 2 ] || fail "--scheme bps-u: exit $rc, expected 2"
-"$exe" --help | grep -q "c2ps-u" || fail "the usage does not name c2ps-u"
+grep -q "c2ps-u" <<< "$("$exe" --help)" || fail "the usage does not name c2ps-u"
 echo "uniform_first_step: ok"

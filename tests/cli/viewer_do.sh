@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# `polarview view --do ID,...` runs the viewer's commands (the same table as its keys, buttons and
+# help: src/session/command_table.cpp) once the model is loaded; `polarview help keys` lists them.
+# Usage: bash viewer_do.sh <polarview-exe> <repo>. Needs X: re-runs under Xvfb.
+set -u
+exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
+repo="$2"
+. "$repo/tests/support/gl_script.sh" "$@"  # Xvfb when needed; $work, fail, $failures
+
+"$exe" help keys > "$work/keys.txt" || fail "help keys exited with $?"
+grep -Eq '^  shade\.gaussian +G ' "$work/keys.txt" || fail "help keys does not list shade.gaussian with G: $(head -3 "$work/keys.txt")"
+grep -Eq '^  edit\.redo +Ctrl\+Shift\+Z / Ctrl\+Y ' "$work/keys.txt" || fail "help keys: edit.redo's keys"
+
+# The commands as keys would run them: G, V, 2, then S on the active (first) view: CC -> C2PS-U.
+(cd "$work" && "$exe" view --do shade.gaussian,views.cycle,level.2 --do scheme.next --frames 1 --stats --hidden \
+  --size 800x500) > "$work/stats.json" 2> "$work/err.txt" || fail "view --do exited with $?: $(cat "$work/err.txt")"
+python3 - "$work/stats.json" <<'PY' || fail "view --do stats: $(cat "$work/stats.json")"
+import json, sys
+d = json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])
+assert d["views"] == 2 and d["shade"] == "gaussian" and d["level"] == 2, d
+assert d["schemes"] == ["c2ps-u", "rts"], d["schemes"]
+PY
+
+"$exe" view --do shade.gaussian,no.such.command --frames 1 --hidden > /dev/null 2> "$work/usage.txt"
+[ $? -eq 2 ] || fail "an unknown --do command is not a usage error"
+grep -q "unknown viewer command 'no.such.command'" "$work/usage.txt" || fail "no message: $(cat "$work/usage.txt")"
+
+[ "$failures" -eq 0 ] || exit 1
+echo "viewer_do: ok"
