@@ -63,14 +63,14 @@ void Document::recordEditCost(const EditCost& cost) {
   state_.edit.updatedViews = cost.views;
 }
 
-bool Document::loadFile(const std::string& path) {
+bool Document::loadFile(const std::string& path, const std::string& name) {
   state_.file.pathField = path;
   LoadedModel loaded = readModelFile(path);
   if (!loaded.error.empty()) {
     loadFailed(path, loaded.error);
     return false;
   }
-  adoptMesh(std::move(loaded.mesh), path, path);
+  adoptMesh(std::move(loaded.mesh), name.empty() ? path : name, path);
   state_.file.warnings = std::move(loaded.warnings);
   return true;
 }
@@ -193,10 +193,9 @@ void Document::adoptModel(Model model, const std::string& path) {
 
 void Document::loadDefaultModel() {
   std::string asset = std::string(POLARVIEW_ASSET_DIR) + "/default.obj";
-  if (std::filesystem::exists(asset) && loadFile(asset)) {
-    state_.file.modelName = "default: " + asset;
-    return;
-  }
+  // Named as the default model from the start, so Ctrl+Z back to it still names it so (outputs
+  // default_edited.obj, not model_edited.obj).
+  if (std::filesystem::exists(asset) && loadFile(asset, "default: " + asset)) return;
   loadMesh(shapes::mushroom(12), "default: mushroom (generated, n = 12)");
 }
 

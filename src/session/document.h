@@ -45,8 +45,9 @@ class Document {
   const ControlMeshEditor& editor() const { return editor_; }
   ControlMeshEditor& editor() { return editor_; }
 
-  // Loads an OBJ now (blocks); on failure the message goes to state.file.error, the model stays.
-  bool loadFile(const std::string& path);
+  // Loads an OBJ now (blocks), named `name` (default: its path); on failure the message goes to
+  // state.file.error, the model stays.
+  bool loadFile(const std::string& path, const std::string& name = "");
   // Reads and checks an OBJ on a worker thread (pollLoad takes it); a request while one runs
   // replaces any queued one: the last request wins.
   void requestLoad(const std::string& path);

@@ -113,3 +113,20 @@ TEST_CASE("session: Save OBJ and Export .bv write what the model and the active 
   CHECK(state.notice.find(std::to_string(session.surfaces().shown(0)->patches.size()) + " Bezier patches") != std::string::npos);
   std::filesystem::remove_all(folder);
 }
+
+TEST_CASE("session: after an eigenvector net and Ctrl+Z, the outputs are named after the default model again") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  queueCommand(state, "file.default");
+  settle(session);
+  CHECK(state.edit.defaultSavePath == "default_edited.obj");
+  queueCommand(state, "model.eigenvector");
+  settle(session);
+  CHECK(state.file.modelName.rfind("RTS eigenvector", 0) == 0);
+  queueCommand(state, "edit.undo");  // no vertex drag to undo: back to the default model
+  settle(session);
+  CHECK(state.file.modelName.rfind("default: ", 0) == 0);
+  CHECK(state.edit.defaultSavePath == "default_edited.obj");
+  CHECK(state.edit.defaultBvPath.rfind("default_c2ps_", 0) == 0);
+}
