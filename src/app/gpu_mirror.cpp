@@ -196,10 +196,15 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     params.view = camera.viewMatrix();
     params.proj = camera.projectionMatrix(double(r.w) / std::max(double(r.h), 1.0), centre, radius);
     params.eye = camera.eye();  // double: the renderer draws relative to the eye
-    gpu.renderer->draw(params, shading, display);
-    if (markPoles) {
+    // The poles' visibility is read from the surface's depth before the control net is drawn: the
+    // net's lines meet at the pole vertex, in front of the limit pole, and hid every marker.
+    const bool netAfter = markPoles && display.controlNet && display.surface;
+    DisplayFlags first = display;
+    if (netAfter) first.controlNet = false;
+    gpu.renderer->draw(params, shading, first);
+    if (markPoles)
       visiblePoles(gpu.surface->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
-    }
+    if (netAfter) gpu.renderer->drawControlNetOver(params);
   }
   return markers;
 }

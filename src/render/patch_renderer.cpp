@@ -906,6 +906,20 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glEndQuery(GL_TIME_ELAPSED);
 }
 
+void PatchRenderer::drawControlNetOver(const ViewParams& view) {
+  Impl& g = *impl_;
+  if (g.netVertexCount == 0) return;
+  glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.w);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  const GLuint overlay = g.shaders->program(kOverlayProgram);
+  setEyeUniforms(overlay, view);
+  setUniform(overlay, "u_alpha", 1.0f);
+  drawControlNet(overlay, true);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
 // [SECTION] Probe (transform feedback)
 
 std::vector<SurfaceProbe> PatchRenderer::probeSurface(int tessLevel) {

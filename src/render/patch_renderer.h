@@ -90,6 +90,10 @@ class PatchRenderer {
   // The first draw in a new shading mode compiles that mode's program (~0.1 s on llvmpipe).
   // [O(patches)]
   void draw(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
+  // The control net alone, over what is in the bound framebuffer (a draw() of the surface without
+  // the net just before: its hidden parts faint, as draw() shows it over the surface). For reading
+  // the surface's depth in between (pole markers the net's lines would hide). [O(net edges)]
+  void drawControlNetOver(const ViewParams& view);
 
   // Runs the tessellation evaluation shader at a fixed level (every (i/level, j/level) of every
   // patch; caps have one vertex at the pole) and reads position, K, H back by transform feedback.

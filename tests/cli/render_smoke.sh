@@ -123,6 +123,13 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n' > "$work/unref.obj"
 grep -q "^polarview: warning: .*unref.obj: 1 unreferenced vertices ignored" "$work/unref.err" || fail "render did not print the load warning"
 [ -s "$work/unref.png" ] || fail "render with a warning wrote no image"
 
+# Pole markers over the control net: the net's lines meet in front of the pole and used to hide its
+# ring (P did nothing while the net was shown).
+"$exe" render -o "$work/net.png" --net --size 300x200 >/dev/null 2>&1 &&
+  "$exe" render -o "$work/net_nopoles.png" --net --no-poles --size 300x200 >/dev/null 2>&1 ||
+  fail "render --net failed"
+cmp -s "$work/net.png" "$work/net_nopoles.png" && fail "render --net: the pole marker is hidden by the net"
+
 if [ $failures -ne 0 ]; then
   echo "$failures failure(s)"
   exit 1
