@@ -317,21 +317,26 @@ bool openModelAndWindow(ViewerApp& app, const std::string& input) {
   return true;
 }
 
-// Views as asked. Without --level each view takes the default level, or the deepest its scheme
-// makes on this model within the budget (said on stderr): a level asked for and over the budget is
-// refused when the views are built.
-void setRenderViews(ViewerApp& app, const RenderRequest& r, size_t faceBudget) {
+// Each visible view whose level is past the deepest its scheme makes on this model within the
+// budget takes that deepest level, said on stderr ("... within the memory budget (`why`)").
+void clampToDeepestLevels(ViewerApp& app, const std::string& input, size_t faceBudget, const std::string& why) {
   ViewerState& state = app.state();
-  setViews(state, r.schemes, r.level.value_or(kDefaultRenderLevel));
-  if (r.level) return;
   for (int v = 0; v < state.viewCount; ++v) {
     View& view = state.views[size_t(v)];
     const int deepest = deepestLevel(app.model(), view.scheme, faceBudget);
     if (deepest >= view.level) continue;
-    std::cerr << "polarview: " << r.input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
-              << ", its deepest on this model within the memory budget (the default is " << kDefaultRenderLevel << ")\n";
+    std::cerr << "polarview: " << input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
+              << ", its deepest on this model within the memory budget (" << why << ")\n";
     view.level = deepest;
   }
+}
+
+// Views as asked. Without --level each view takes the default level, or the deepest its scheme
+// makes on this model within the budget (said on stderr): a level asked for and over the budget is
+// refused when the views are built.
+void setRenderViews(ViewerApp& app, const RenderRequest& r, size_t faceBudget) {
+  setViews(app.state(), r.schemes, r.level.value_or(kDefaultRenderLevel));
+  if (!r.level) clampToDeepestLevels(app, r.input, faceBudget, "the default is " + std::to_string(kDefaultRenderLevel));
 }
 
 // Shading, colour range and what is drawn, as asked.
@@ -582,6 +587,9 @@ int viewWithApp(ViewRequest& r) {
   const std::optional<int> firstLevel = r.levelSteps ? std::optional<int>(*r.level - 1) : r.level;
   if (!r.schemes.empty()) setViews(state, r.schemes, firstLevel.value_or(state.views[0].level));
   else if (firstLevel) requestLevel(state, *firstLevel);
+  // A window shows the deepest level a view can make rather than an empty view (render refuses).
+  if (firstLevel) clampToDeepestLevels(app, r.input.empty() ? "default model" : r.input, options.faceBudget,
+                                       "--level " + std::to_string(*firstLevel) + " asked");
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
