@@ -19,7 +19,7 @@
 #include "core/subdiv/refiner.h"
 #include "core/subdiv/spectrum.h"
 #include "pipeline/eigen_nets.h"
-#include "pipeline/indexed_png.h"
+#include "pipeline/image.h"
 
 namespace polarview {
 namespace {
@@ -32,7 +32,8 @@ using Map = ShadingParams::ColorMap;
 // What a panel draws: the limit surface, the input net, the net refined uniformly `level` times
 // (the viewer's net of a level is the feature-adaptive one, refined only near poles), the surface
 // with its patch boundaries coloured by spline ring (Fig. 11c), or the surface with the input net
-// over it (Fig. 1).
+// over it (Fig. 1). Nets are drawn over their lit limit surface (kNetSurfaceLevel), which hides
+// the lines behind it: a bare wireframe of a closed model reads as a tangle at figure size.
 enum class Draw { Surface, Net, RefinedNet, Rings, SurfaceNet };
 // Fig. 14: the model's extraordinary vertices turned into poles in memory (core/mesh/ev_to_polar.h).
 enum class Conversion { None, Polar, Pentagons };
@@ -67,7 +68,13 @@ struct Figure {
   bool sharedRange = true;  // rows after the first curvature row keep its colour range
   double yaw = -60.0, pitch = 40.0;  // camera direction (OrbitCamera), framed on each row's net
   int panelHeight = 250;             // above the colour bar / legend strip
+  int width = 800;                   // the image's (`--width` overrides it)
+  // Highlight lines (ShadingParams): > 0, this spacing and dark fraction instead of the viewer's.
+  float highlightSpacing = 0.0f, highlightWidth = 0.0f;
 };
+
+// The level at which a net panel's surface is drawn under its net.
+constexpr int kNetSurfaceLevel = 3;
 
 constexpr SchemeChoice kCC = SchemeChoice::CatmullClark, kC2PS = SchemeChoice::C2PS,
                        kC2PSU = SchemeChoice::C2PSUniformFirstStep, kRTS = SchemeChoice::RTS,
@@ -107,7 +114,7 @@ Figure eigenvectorFigure() {
          {eigenPanel("(d) T^3 v3, n = 48", kC2PS, 3, 3), eigenPanel("(e) T^3 v4, n = 48", kC2PS, 4, 3),
           eigenPanel("(f) T^3 v5, n = 48", kC2PS, 5, 3)},
          Conversion::None, std::nullopt, 0.9, 6}},
-       Map::Paper, false, -60.0, 20.0};
+       Map::Paper, false, -60.0, 20.0, 280, 900};
 }
 
 Figure polarConfigurationsFigure() {
@@ -128,7 +135,7 @@ Figure polarConfigurationsFigure() {
          {{"(c) finger tips", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
           {"limit", kC2PS, 4, Mode::Shaded}}}},
-       Map::Paper, false, -70.0, 25.0};
+       Map::Paper, false, -70.0, 25.0, 280, 900};
 }
 
 Figure ripplesFigure() {
@@ -143,10 +150,11 @@ Figure ripplesFigure() {
           {"(b)", kCC, 4, Mode::Gaussian},
           {"(c)", kC2PS, 4, Mode::Gaussian}}},
         {"convex16.obj",
-         {{"(a) input", kC2PS, 0, Mode::Shaded, Draw::Net},
+         {{"(a) close-up", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"(b)", kCC, 4, Mode::Highlight},
-          {"(c)", kC2PS, 4, Mode::Highlight}}}},
-       Map::Paper, true, -60.0, 35.0};
+          {"(c)", kC2PS, 4, Mode::Highlight}},
+         Conversion::None, std::nullopt, 2.2}},
+       Map::Paper, true, -60.0, 35.0, 330, 1050, 0.08f, 0.2f};
 }
 
 Figure rtsAndC2psFigure() {
@@ -182,7 +190,7 @@ Figure valence20Figure() {
           {"", kRTS, 4, Mode::Gaussian},
           {"", kC2PS, 4, Mode::Shaded},
           {"", kC2PS, 4, Mode::Gaussian}}}},
-       Map::Magnitude, true, -60.0, 25.0, 220};
+       Map::Magnitude, true, -60.0, 25.0, 260, 1040};
 }
 
 Figure shapeGalleryFigure() {
@@ -197,7 +205,7 @@ Figure shapeGalleryFigure() {
                  "(paper map: green straddles zero, blue negative, red positive; each row its own range), "
                  "(d) highlight lines",
                  "our own height-function inputs of one valence (the paper's are not printed); level 4 surfaces",
-                 {}, Map::Paper, false, -60.0, 40.0, 200};
+                 {}, Map::Paper, false, -60.0, 40.0, 290, 1200};
   for (const auto& cap : caps)
     gallery.rows.push_back({cap[0],
                             {{std::string("(a) ") + cap[1], kC2PS, 0, Mode::Shaded, Draw::Net},
@@ -222,7 +230,7 @@ Figure conversionFigure() {
         {"cube_cc2.obj",
          {{"(c) pentagons", kC2PS, 0, Mode::Shaded, Draw::Net}, {"(c)", kC2PS, 3, Mode::Gaussian}},
          Conversion::Pentagons}},
-       Map::Paper, true, 45.0, 30.0, 230};
+       Map::Paper, true, 45.0, 30.0, 330, 800};
 }
 
 // The figures in the paper's order.
@@ -232,8 +240,6 @@ std::vector<Figure> paperFigures() {
 }
 
 // [SECTION] Rendering
-
-constexpr int kDefaultWidth = 800;
 
 std::string assetPath(const std::string& name) { return std::string(POLARVIEW_ASSET_DIR) + "/" + name; }
 
@@ -282,7 +288,8 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     View& view = state.views[v];
     const bool net = panel.draw == Draw::Net || panel.draw == Draw::RefinedNet;
     view.scheme = panel.scheme;
-    view.level = net ? 0 : panel.level;  // a refined net is the level-0 net of the refined mesh
+    // A refined net is the level-0 net of the refined mesh, drawn in the second pass below.
+    view.level = panel.draw == Draw::RefinedNet ? 0 : net ? kNetSurfaceLevel : panel.level;
     view.shade = panel.shade;
     view.caption = panel.caption;
     if (panel.draw != Draw::Net) {
@@ -290,7 +297,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
       view.caption += (view.caption.empty() ? "" : " ") + drawn;
     }
     DisplayFlags display;
-    display.surface = !net;
+    display.surface = panel.draw != Draw::RefinedNet;  // the refined net's surface comes in the second pass
     display.controlNet = net || panel.draw == Draw::SurfaceNet;
     display.patchBoundaries = panel.draw == Draw::Rings;
     display.boundaryColor = DisplayFlags::BoundaryColor::Ring;
@@ -298,6 +305,9 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     view.display = display;
   }
   state.shading.colormap = figure.colormap;
+  const ShadingParams viewerDefaults;
+  state.shading.highlightSpacing = figure.highlightSpacing > 0 ? figure.highlightSpacing : viewerDefaults.highlightSpacing;
+  state.shading.highlightWidth = figure.highlightWidth > 0 ? figure.highlightWidth : viewerDefaults.highlightWidth;
   const std::optional<float> typed = row.range ? row.range : *range;
   state.colour.automatic = !typed;
   if (typed) state.colour.typedRange = *typed;
@@ -325,7 +335,9 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     if (panel.draw == Draw::RefinedNet) {
       const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
       showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
-      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only the net is needed
+      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only this panel is kept
+      state.views[v].level = kNetSurfaceLevel;
+      state.views[v].display->surface = true;
     } else if (panel.eigenvector >= 0 && v > 0) {
       showModel(app, eigenNet(row.eigenValence, panel.eigenvector, panel.c2psSteps), name);
     } else {
@@ -363,7 +375,7 @@ std::string galleryLine(const Figure& figure, const std::string& directory) {
 struct FigureRequest {
   std::vector<int> numbers;  // empty: all
   std::string directory;
-  int width = kDefaultWidth, supersample = 2;
+  int width = 0, supersample = 2;  // width 0: each figure's own
 };
 
 // The figures' numbers as usage lists them: "1|2|4|11|12|13|14".
@@ -387,7 +399,7 @@ OptionTable figureTable(FigureRequest& r) {
   return {required(OptionRow{{}, figureNumbers("|") + "|all", "the figure, or all of them and the gallery DIR/README.md",
                              false, [&r](const std::string& word) { chooseFigure(word, r); }}),
           required(textOption({"-o", "--output"}, "DIR", "writes DIR/figNN.png from the models in assets/", &r.directory)),
-          intOption({"--width"}, "W", "the image's width (320..4096, default " + std::to_string(kDefaultWidth) + ")", &r.width,
+          intOption({"--width"}, "W", "the image's width (320..4096; default each figure's own, 800..1200)", &r.width,
                     320, 4096),
           supersampleOption(&r.supersample)};
 }
@@ -409,15 +421,16 @@ int renderFigures(FigureRequest& r) {
   std::ostringstream gallery;
   gallery << "# Gallery\n\nThe paper's figures as polarview draws them, written by `polarview figure all -o "
              "docs/gallery` from the models in `assets/` (assets/README.md says which command made each). "
-             "One line per figure: what it shows, and where it differs from the paper. The PNGs hold 256 "
-             "colours (median cut) to stay small, so smooth shading shows steps.\n\n";
+             "One line per figure: what it shows, and where it differs from the paper. The PNGs are full-colour "
+             "RGB.\n\n";
   for (const Figure& figure : paperFigures()) {
     if (!r.numbers.empty() && std::find(r.numbers.begin(), r.numbers.end(), figure.number) == r.numbers.end()) continue;
     std::optional<float> range;
     std::vector<RgbaImage> rows;
-    for (const Row& row : figure.rows) rows.push_back(renderRow(app, figure, row, r.width, r.supersample, &range));
+    const int width = r.width > 0 ? r.width : figure.width;
+    for (const Row& row : figure.rows) rows.push_back(renderRow(app, figure, row, width, r.supersample, &range));
     const std::string path = (std::filesystem::path(r.directory) / figureFile(figure.number)).string();
-    writeIndexedPngAtomic(path, stackRows(rows));
+    writeOpaquePngAtomic(path, stackRows(rows));
     std::cout << path << "\n";
     gallery << galleryLine(figure, "") << "\n";
   }
