@@ -56,6 +56,7 @@ struct Row {
   std::optional<float> range{};  // a typed colour range (else the figure's shared or automatic one)
   double zoom = 1.0;             // > 1: that much closer than the framing (a close-up of the pole)
   int eigenValence = 0;          // > 0: the panels show RTS eigenvectors of this valence (Fig. 1)
+  bool atPole = false;           // look at vertex 0 (the pole of every cap in assets/), not the framing's centre
 };
 
 struct Figure {
@@ -120,7 +121,8 @@ Figure eigenvectorFigure() {
 Figure polarConfigurationsFigure() {
   return {2, "Polar configurations",
        "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
-       "C2PS's level-2 mesh and the C2PS limit surface (lit)",
+       "C2PS's level-2 mesh (both drawn over the lit limit surface, which hides the lines behind it) "
+       "and the C2PS limit surface (lit)",
        "one row per model (the paper has one column per model); our own models: a UV globe of valence "
        "16, the default mushroom of valence 12, a box hand with five valence-8 finger tips",
        {{"globe.obj",
@@ -140,9 +142,10 @@ Figure polarConfigurationsFigure() {
 
 Figure ripplesFigure() {
   return {4, "Avoiding ripples",
-       "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4 in "
-       "Gaussian curvature and highlight lines: Catmull-Clark's curvature oscillates around the "
-       "16-valent vertex, C2PS's does not",
+       "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4: top, "
+       "Gaussian curvature (Catmull-Clark's oscillates in a 16-pointed star around the 16-valent "
+       "vertex, C2PS's does not); bottom, a close-up of the pole in dense highlight lines (spacing 0.08 "
+       "of the model's radius): Catmull-Clark's lines wiggle around the pole, C2PS's run straight through it",
        "the caption names no shading: the ripples show here in K (paper map) and highlight lines; our "
        "own convex input (a dome steep at its rim)",
        {{"convex16.obj",
@@ -153,31 +156,29 @@ Figure ripplesFigure() {
          {{"(a) close-up", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"(b)", kCC, 4, Mode::Highlight},
           {"(c)", kC2PS, 4, Mode::Highlight}},
-         Conversion::None, std::nullopt, 2.2}},
+         Conversion::None, std::nullopt, 2.2, 0, true}},
        Map::Paper, true, -60.0, 35.0, 330, 1050, 0.08f, 0.2f};
 }
 
 Figure rtsAndC2psFigure() {
   return {11, "Comparison of RTS and C2PS",
-       "a valence-8 cap of the paraboloid (x^2+y^2)/2 (K falls off monotonically from the pole): top, "
-       "(a, b) C2PS applied directly, Gauss curvature (magnitude map: dark blue is zero) and lit; (c) "
-       "spline rings of C2PS with the uniform first step, (d) that surface lit; bottom, close to the "
-       "pole on a range of +-2.5: (a) C2PS's first rings overshoot in a ring around the pole, (e) less "
-       "so with the uniform first step, (f) RTS with and without it shows the 8-sidedness (a star)",
+       "a valence-6 cone (the net of z = -0.7 r: a sharp tip, K rising from 0 on the flank to 70.6 at "
+       "the pole; `pole --rings` measures it): top, Gauss curvature (magnitude map on +-5: dark blue is "
+       "zero), bottom, lit and the spline rings. (a, b) C2PS applied directly: K waves along every "
+       "spoke in the first ring (K from -16.6 to +3.6 there, a bright band with a dark zero circle "
+       "inside it) and the silhouette kinks there; (c) spline rings and (d, e) surface and K with the "
+       "uniform first step: K falls monotonically from 0 to -4.8 across the first ring, then rises to "
+       "the pole (dK/dr changes sign 96 times along 12 spokes for C2PS, 12 with the uniform first step); "
+       "(f) RTS with the uniform first step shows the 6-sidedness",
        "without Jet subdivision (Karciauskas et al. 2006), which polarview does not implement; our own "
-       "input (the paper's is not printed)",
-       {{"cap8_paraboloid.obj",
-         {{"(a)", kC2PS, 5, Mode::Gaussian},
-          {"(b)", kC2PS, 5, Mode::Shaded},
-          {"(c) rings", kC2PSU, 5, Mode::Shaded, Draw::Rings},
-          {"(d)", kC2PSU, 5, Mode::Shaded}}},
-        {"cap8_paraboloid.obj",
-         {{"(a)", kC2PS, 5, Mode::Gaussian},
-          {"(e)", kC2PSU, 5, Mode::Gaussian},
-          {"(f)", kRTSU, 5, Mode::Gaussian},
-          {"(f)", kRTS, 5, Mode::Gaussian}},
-         Conversion::None, 2.5f, 2.5}},
-       Map::Magnitude, false, -60.0, 70.0};
+       "input (the paper's is not printed); (f) is on the top row",
+       {{"cap6_cone.obj",
+         {{"(a)", kC2PS, 5, Mode::Gaussian}, {"(e)", kC2PSU, 5, Mode::Gaussian}, {"(f)", kRTSU, 5, Mode::Gaussian}},
+         Conversion::None, 5.0f, 3.5, 0, true},
+        {"cap6_cone.obj",
+         {{"(b)", kC2PS, 5, Mode::Shaded}, {"(d)", kC2PSU, 5, Mode::Shaded}, {"(c) rings", kC2PSU, 5, Mode::Shaded, Draw::Rings}},
+         Conversion::None, std::nullopt, 3.5, 0, true}},
+       Map::Magnitude, false, -60.0, 35.0, 330, 1050};
 }
 
 Figure valence20Figure() {
@@ -201,7 +202,7 @@ Figure shapeGalleryFigure() {
                            {"cap12_saddle4.obj", "4th-order saddle"}};
   Figure gallery{13, "Shape gallery",
                  "valence-12 caps of a paraboloid, saddle, monkey saddle, flat point (r^4) and 4th-order saddle: "
-                 "(a) input, (b) twice subdivided mesh, (c) Gaussian curvature of the C2PS limit surface "
+                 "(a) input and (b) twice subdivided mesh, each over the lit limit surface, (c) Gaussian curvature of the C2PS limit surface "
                  "(paper map: green straddles zero, blue negative, red positive; each row its own range), "
                  "(d) highlight lines",
                  "our own height-function inputs of one valence (the paper's are not printed); level 4 surfaces",
@@ -220,7 +221,9 @@ Figure conversionFigure() {
        "the corners (valence-3 extraordinary vertices) of a twice refined cube: (b) as they are, under "
        "Catmull-Clark; (a) converted into 6-valent polar configurations with three 5-valent extraordinary "
        "vertices each, and (c) into 3-valent polar configurations with three pentagons each, under C2PS "
-       "(`convert --ev-to-polar [--pentagons]`); nets and Gaussian curvature at level 3",
+       "(`convert --ev-to-polar [--pentagons]`); nets over the lit limit surface (lines behind it hidden) "
+       "and Gaussian curvature at level 3: the converted corners carry the extra extraordinary vertices' "
+       "curvature blemishes (green and blue around each corner), the paper's open question of shape",
        "the paper shows the connectivity only; valence 3 (a cube's corner) rather than a general n",
        {{"cube_cc2.obj",
          {{"(b) n-valent", kCC, 0, Mode::Shaded, Draw::Net}, {"(b)", kCC, 3, Mode::Gaussian}}},
@@ -320,6 +323,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
   state.sharedCamera.pitchDeg = figure.pitch;
   app.frameModel(&rects.front());
   state.sharedCamera.distance /= row.zoom;
+  if (row.atPole) state.sharedCamera.target = glm::dvec3(model.points.front());
   const OrbitCamera camera = state.sharedCamera;
   if (row.eigenValence > 0) {
     showModel(app, model, name);
