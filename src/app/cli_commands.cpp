@@ -536,8 +536,11 @@ std::vector<RingCurvature> writePoleJson(JsonWriter& w, const CommonOptions& o, 
   std::vector<RingCurvature> ringStats;
   if (rings > 0) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    ringStats = ringCurvatures(level.poleGrids[k], o.scheme, o.uniformFirstStep, rings, d.curvatureDefined ? d.gaussian : nan,
-                               d.curvatureDefined ? d.mean : nan, d.normal);
+    // Spokes along the input's column edges and middles: 2n of them.
+    const double poleK = d.curvatureDefined ? d.gaussian : nan;
+    ringStats = ringCurvatures(level.poleGrids[k], o.scheme, o.uniformFirstStep, rings, poleK,
+                               d.curvatureDefined ? d.mean : nan, d.normal, 5, 0, 2 * level.poles[k].valence);
+    w.field("spoke_sign_changes", spokeSignChanges(ringStats, poleK));
     w.key("rings").beginArray();
     for (const RingCurvature& r : ringStats) {
       w.beginObject().field("m", r.m).field("valence", r.valence);
@@ -546,7 +549,7 @@ std::vector<RingCurvature> writePoleJson(JsonWriter& w, const CommonOptions& o, 
       w.field("K_min", r.minK).field("K_max", r.maxK);
       if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
       else w.key("max_abs_dH").null();
-      w.field("H_min", r.minH).field("H_max", r.maxH).endObject();
+      w.field("H_min", r.minH).field("H_max", r.maxH).field("dK_dr_sign_changes", r.spokeSignChanges).endObject();
     }
     w.endArray();
   }
@@ -1258,7 +1261,7 @@ int runSpectrum(SpectrumOptions& o) {
 // The shapes `shape` makes (makeShape), and the height functions of shapes::paperHeight
 // (core/mesh/shapes.h) a cap can follow.
 constexpr const char* kShapes[] = {"globe", "cap", "mushroom", "cube", "torus", "valence20", "fingertips"};
-constexpr const char* kHeights[] = {"paraboloid", "saddle", "monkey", "flat4", "saddle4", "convex"};
+constexpr const char* kHeights[] = {"paraboloid", "saddle", "monkey", "flat4", "saddle4", "convex", "cone"};
 
 template <size_t N>
 std::string joinNames(const char* const (&names)[N], const char* separator) {

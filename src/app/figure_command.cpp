@@ -19,7 +19,7 @@
 #include "core/subdiv/refiner.h"
 #include "core/subdiv/spectrum.h"
 #include "pipeline/eigen_nets.h"
-#include "pipeline/indexed_png.h"
+#include "pipeline/image.h"
 
 namespace polarview {
 namespace {
@@ -32,7 +32,8 @@ using Map = ShadingParams::ColorMap;
 // What a panel draws: the limit surface, the input net, the net refined uniformly `level` times
 // (the viewer's net of a level is the feature-adaptive one, refined only near poles), the surface
 // with its patch boundaries coloured by spline ring (Fig. 11c), or the surface with the input net
-// over it (Fig. 1).
+// over it (Fig. 1). Nets are drawn over their lit limit surface (kNetSurfaceLevel), which hides
+// the lines behind it: a bare wireframe of a closed model reads as a tangle at figure size.
 enum class Draw { Surface, Net, RefinedNet, Rings, SurfaceNet };
 // Fig. 14: the model's extraordinary vertices turned into poles in memory (core/mesh/ev_to_polar.h).
 enum class Conversion { None, Polar, Pentagons };
@@ -55,6 +56,7 @@ struct Row {
   std::optional<float> range{};  // a typed colour range (else the figure's shared or automatic one)
   double zoom = 1.0;             // > 1: that much closer than the framing (a close-up of the pole)
   int eigenValence = 0;          // > 0: the panels show RTS eigenvectors of this valence (Fig. 1)
+  bool atPole = false;           // look at vertex 0 (the pole of every cap in assets/), not the framing's centre
 };
 
 struct Figure {
@@ -67,7 +69,13 @@ struct Figure {
   bool sharedRange = true;  // rows after the first curvature row keep its colour range
   double yaw = -60.0, pitch = 40.0;  // camera direction (OrbitCamera), framed on each row's net
   int panelHeight = 250;             // above the colour bar / legend strip
+  int width = 800;                   // the image's (`--width` overrides it)
+  // Highlight lines (ShadingParams): > 0, this spacing and dark fraction instead of the viewer's.
+  float highlightSpacing = 0.0f, highlightWidth = 0.0f;
 };
+
+// The level at which a net panel's surface is drawn under its net.
+constexpr int kNetSurfaceLevel = 3;
 
 constexpr SchemeChoice kCC = SchemeChoice::CatmullClark, kC2PS = SchemeChoice::C2PS,
                        kC2PSU = SchemeChoice::C2PSUniformFirstStep, kRTS = SchemeChoice::RTS,
@@ -107,13 +115,14 @@ Figure eigenvectorFigure() {
          {eigenPanel("(d) T^3 v3, n = 48", kC2PS, 3, 3), eigenPanel("(e) T^3 v4, n = 48", kC2PS, 4, 3),
           eigenPanel("(f) T^3 v5, n = 48", kC2PS, 5, 3)},
          Conversion::None, std::nullopt, 0.9, 6}},
-       Map::Paper, false, -60.0, 20.0};
+       Map::Paper, false, -60.0, 20.0, 280, 900};
 }
 
 Figure polarConfigurationsFigure() {
   return {2, "Polar configurations",
        "(a) globe, (b) mushroom, (c) finger tips on a Catmull-Clark body: the polar configurations, "
-       "C2PS's level-2 mesh and the C2PS limit surface (lit)",
+       "C2PS's level-2 mesh (both drawn over the lit limit surface, which hides the lines behind it) "
+       "and the C2PS limit surface (lit)",
        "one row per model (the paper has one column per model); our own models: a UV globe of valence "
        "16, the default mushroom of valence 12, a box hand with five valence-8 finger tips",
        {{"globe.obj",
@@ -128,14 +137,15 @@ Figure polarConfigurationsFigure() {
          {{"(c) finger tips", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"subdivided", kC2PS, 2, Mode::Shaded, Draw::RefinedNet},
           {"limit", kC2PS, 4, Mode::Shaded}}}},
-       Map::Paper, false, -70.0, 25.0};
+       Map::Paper, false, -70.0, 25.0, 280, 900};
 }
 
 Figure ripplesFigure() {
   return {4, "Avoiding ripples",
-       "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4 in "
-       "Gaussian curvature and highlight lines: Catmull-Clark's curvature oscillates around the "
-       "16-valent vertex, C2PS's does not",
+       "(a) a convex valence-16 polar configuration, (b) Catmull-Clark and (c) C2PS at level 4: top, "
+       "Gaussian curvature (Catmull-Clark's oscillates in a 16-pointed star around the 16-valent "
+       "vertex, C2PS's does not); bottom, a close-up of the pole in dense highlight lines (spacing 0.08 "
+       "of the model's radius): Catmull-Clark's lines wiggle around the pole, C2PS's run straight through it",
        "the caption names no shading: the ripples show here in K (paper map) and highlight lines; our "
        "own convex input (a dome steep at its rim)",
        {{"convex16.obj",
@@ -143,33 +153,32 @@ Figure ripplesFigure() {
           {"(b)", kCC, 4, Mode::Gaussian},
           {"(c)", kC2PS, 4, Mode::Gaussian}}},
         {"convex16.obj",
-         {{"(a) input", kC2PS, 0, Mode::Shaded, Draw::Net},
+         {{"(a) close-up", kC2PS, 0, Mode::Shaded, Draw::Net},
           {"(b)", kCC, 4, Mode::Highlight},
-          {"(c)", kC2PS, 4, Mode::Highlight}}}},
-       Map::Paper, true, -60.0, 35.0};
+          {"(c)", kC2PS, 4, Mode::Highlight}},
+         Conversion::None, std::nullopt, 2.2, 0, true}},
+       Map::Paper, true, -60.0, 35.0, 330, 1050, 0.08f, 0.2f};
 }
 
 Figure rtsAndC2psFigure() {
   return {11, "Comparison of RTS and C2PS",
-       "a valence-8 cap of the paraboloid (x^2+y^2)/2 (K falls off monotonically from the pole): top, "
-       "(a, b) C2PS applied directly, Gauss curvature (magnitude map: dark blue is zero) and lit; (c) "
-       "spline rings of C2PS with the uniform first step, (d) that surface lit; bottom, close to the "
-       "pole on a range of +-2.5: (a) C2PS's first rings overshoot in a ring around the pole, (e) less "
-       "so with the uniform first step, (f) RTS with and without it shows the 8-sidedness (a star)",
+       "a valence-6 cone (the net of z = -0.7 r: a sharp tip, K rising from 0 on the flank to 70.6 at "
+       "the pole; `pole --rings` measures it): top, Gauss curvature (magnitude map on +-5: dark blue is "
+       "zero), bottom, lit and the spline rings. (a, b) C2PS applied directly: K waves along every "
+       "spoke in the first ring (K from -16.6 to +3.6 there, a bright band with a dark zero circle "
+       "inside it) and the silhouette kinks there; (c) spline rings and (d, e) surface and K with the "
+       "uniform first step: K falls monotonically from 0 to -4.8 across the first ring, then rises to "
+       "the pole (dK/dr changes sign 96 times along 12 spokes for C2PS, 12 with the uniform first step); "
+       "(f) RTS with the uniform first step shows the 6-sidedness",
        "without Jet subdivision (Karciauskas et al. 2006), which polarview does not implement; our own "
-       "input (the paper's is not printed)",
-       {{"cap8_paraboloid.obj",
-         {{"(a)", kC2PS, 5, Mode::Gaussian},
-          {"(b)", kC2PS, 5, Mode::Shaded},
-          {"(c) rings", kC2PSU, 5, Mode::Shaded, Draw::Rings},
-          {"(d)", kC2PSU, 5, Mode::Shaded}}},
-        {"cap8_paraboloid.obj",
-         {{"(a)", kC2PS, 5, Mode::Gaussian},
-          {"(e)", kC2PSU, 5, Mode::Gaussian},
-          {"(f)", kRTSU, 5, Mode::Gaussian},
-          {"(f)", kRTS, 5, Mode::Gaussian}},
-         Conversion::None, 2.5f, 2.5}},
-       Map::Magnitude, false, -60.0, 70.0};
+       "input (the paper's is not printed); (f) is on the top row",
+       {{"cap6_cone.obj",
+         {{"(a)", kC2PS, 5, Mode::Gaussian}, {"(e)", kC2PSU, 5, Mode::Gaussian}, {"(f)", kRTSU, 5, Mode::Gaussian}},
+         Conversion::None, 5.0f, 3.5, 0, true},
+        {"cap6_cone.obj",
+         {{"(b)", kC2PS, 5, Mode::Shaded}, {"(d)", kC2PSU, 5, Mode::Shaded}, {"(c) rings", kC2PSU, 5, Mode::Shaded, Draw::Rings}},
+         Conversion::None, std::nullopt, 3.5, 0, true}},
+       Map::Magnitude, false, -60.0, 35.0, 330, 1050};
 }
 
 Figure valence20Figure() {
@@ -182,7 +191,7 @@ Figure valence20Figure() {
           {"", kRTS, 4, Mode::Gaussian},
           {"", kC2PS, 4, Mode::Shaded},
           {"", kC2PS, 4, Mode::Gaussian}}}},
-       Map::Magnitude, true, -60.0, 25.0, 220};
+       Map::Magnitude, true, -60.0, 25.0, 260, 1040};
 }
 
 Figure shapeGalleryFigure() {
@@ -193,11 +202,11 @@ Figure shapeGalleryFigure() {
                            {"cap12_saddle4.obj", "4th-order saddle"}};
   Figure gallery{13, "Shape gallery",
                  "valence-12 caps of a paraboloid, saddle, monkey saddle, flat point (r^4) and 4th-order saddle: "
-                 "(a) input, (b) twice subdivided mesh, (c) Gaussian curvature of the C2PS limit surface "
+                 "(a) input and (b) twice subdivided mesh, each over the lit limit surface, (c) Gaussian curvature of the C2PS limit surface "
                  "(paper map: green straddles zero, blue negative, red positive; each row its own range), "
                  "(d) highlight lines",
                  "our own height-function inputs of one valence (the paper's are not printed); level 4 surfaces",
-                 {}, Map::Paper, false, -60.0, 40.0, 200};
+                 {}, Map::Paper, false, -60.0, 40.0, 290, 1200};
   for (const auto& cap : caps)
     gallery.rows.push_back({cap[0],
                             {{std::string("(a) ") + cap[1], kC2PS, 0, Mode::Shaded, Draw::Net},
@@ -212,7 +221,9 @@ Figure conversionFigure() {
        "the corners (valence-3 extraordinary vertices) of a twice refined cube: (b) as they are, under "
        "Catmull-Clark; (a) converted into 6-valent polar configurations with three 5-valent extraordinary "
        "vertices each, and (c) into 3-valent polar configurations with three pentagons each, under C2PS "
-       "(`convert --ev-to-polar [--pentagons]`); nets and Gaussian curvature at level 3",
+       "(`convert --ev-to-polar [--pentagons]`); nets over the lit limit surface (lines behind it hidden) "
+       "and Gaussian curvature at level 3: the converted corners carry the extra extraordinary vertices' "
+       "curvature blemishes (green and blue around each corner), the paper's open question of shape",
        "the paper shows the connectivity only; valence 3 (a cube's corner) rather than a general n",
        {{"cube_cc2.obj",
          {{"(b) n-valent", kCC, 0, Mode::Shaded, Draw::Net}, {"(b)", kCC, 3, Mode::Gaussian}}},
@@ -222,7 +233,7 @@ Figure conversionFigure() {
         {"cube_cc2.obj",
          {{"(c) pentagons", kC2PS, 0, Mode::Shaded, Draw::Net}, {"(c)", kC2PS, 3, Mode::Gaussian}},
          Conversion::Pentagons}},
-       Map::Paper, true, 45.0, 30.0, 230};
+       Map::Paper, true, 45.0, 30.0, 330, 800};
 }
 
 // The figures in the paper's order.
@@ -232,8 +243,6 @@ std::vector<Figure> paperFigures() {
 }
 
 // [SECTION] Rendering
-
-constexpr int kDefaultWidth = 800;
 
 std::string assetPath(const std::string& name) { return std::string(POLARVIEW_ASSET_DIR) + "/" + name; }
 
@@ -282,7 +291,8 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     View& view = state.views[v];
     const bool net = panel.draw == Draw::Net || panel.draw == Draw::RefinedNet;
     view.scheme = panel.scheme;
-    view.level = net ? 0 : panel.level;  // a refined net is the level-0 net of the refined mesh
+    // A refined net is the level-0 net of the refined mesh, drawn in the second pass below.
+    view.level = panel.draw == Draw::RefinedNet ? 0 : net ? kNetSurfaceLevel : panel.level;
     view.shade = panel.shade;
     view.caption = panel.caption;
     if (panel.draw != Draw::Net) {
@@ -290,7 +300,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
       view.caption += (view.caption.empty() ? "" : " ") + drawn;
     }
     DisplayFlags display;
-    display.surface = !net;
+    display.surface = panel.draw != Draw::RefinedNet;  // the refined net's surface comes in the second pass
     display.controlNet = net || panel.draw == Draw::SurfaceNet;
     display.patchBoundaries = panel.draw == Draw::Rings;
     display.boundaryColor = DisplayFlags::BoundaryColor::Ring;
@@ -298,6 +308,9 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     view.display = display;
   }
   state.shading.colormap = figure.colormap;
+  const ShadingParams viewerDefaults;
+  state.shading.highlightSpacing = figure.highlightSpacing > 0 ? figure.highlightSpacing : viewerDefaults.highlightSpacing;
+  state.shading.highlightWidth = figure.highlightWidth > 0 ? figure.highlightWidth : viewerDefaults.highlightWidth;
   const std::optional<float> typed = row.range ? row.range : *range;
   state.colour.automatic = !typed;
   if (typed) state.colour.typedRange = *typed;
@@ -310,6 +323,7 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
   state.sharedCamera.pitchDeg = figure.pitch;
   app.frameModel(&rects.front());
   state.sharedCamera.distance /= row.zoom;
+  if (row.atPole) state.sharedCamera.target = glm::dvec3(model.points.front());
   const OrbitCamera camera = state.sharedCamera;
   if (row.eigenValence > 0) {
     showModel(app, model, name);
@@ -325,7 +339,9 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     if (panel.draw == Draw::RefinedNet) {
       const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
       showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
-      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only the net is needed
+      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only this panel is kept
+      state.views[v].level = kNetSurfaceLevel;
+      state.views[v].display->surface = true;
     } else if (panel.eigenvector >= 0 && v > 0) {
       showModel(app, eigenNet(row.eigenValence, panel.eigenvector, panel.c2psSteps), name);
     } else {
@@ -363,7 +379,7 @@ std::string galleryLine(const Figure& figure, const std::string& directory) {
 struct FigureRequest {
   std::vector<int> numbers;  // empty: all
   std::string directory;
-  int width = kDefaultWidth, supersample = 2;
+  int width = 0, supersample = 2;  // width 0: each figure's own
 };
 
 // The figures' numbers as usage lists them: "1|2|4|11|12|13|14".
@@ -387,7 +403,7 @@ OptionTable figureTable(FigureRequest& r) {
   return {required(OptionRow{{}, figureNumbers("|") + "|all", "the figure, or all of them and the gallery DIR/README.md",
                              false, [&r](const std::string& word) { chooseFigure(word, r); }}),
           required(textOption({"-o", "--output"}, "DIR", "writes DIR/figNN.png from the models in assets/", &r.directory)),
-          intOption({"--width"}, "W", "the image's width (320..4096, default " + std::to_string(kDefaultWidth) + ")", &r.width,
+          intOption({"--width"}, "W", "the image's width (320..4096; default each figure's own, 800..1200)", &r.width,
                     320, 4096),
           supersampleOption(&r.supersample)};
 }
@@ -409,15 +425,16 @@ int renderFigures(FigureRequest& r) {
   std::ostringstream gallery;
   gallery << "# Gallery\n\nThe paper's figures as polarview draws them, written by `polarview figure all -o "
              "docs/gallery` from the models in `assets/` (assets/README.md says which command made each). "
-             "One line per figure: what it shows, and where it differs from the paper. The PNGs hold 256 "
-             "colours (median cut) to stay small, so smooth shading shows steps.\n\n";
+             "One line per figure: what it shows, and where it differs from the paper. The PNGs are full-colour "
+             "RGB.\n\n";
   for (const Figure& figure : paperFigures()) {
     if (!r.numbers.empty() && std::find(r.numbers.begin(), r.numbers.end(), figure.number) == r.numbers.end()) continue;
     std::optional<float> range;
     std::vector<RgbaImage> rows;
-    for (const Row& row : figure.rows) rows.push_back(renderRow(app, figure, row, r.width, r.supersample, &range));
+    const int width = r.width > 0 ? r.width : figure.width;
+    for (const Row& row : figure.rows) rows.push_back(renderRow(app, figure, row, width, r.supersample, &range));
     const std::string path = (std::filesystem::path(r.directory) / figureFile(figure.number)).string();
-    writeIndexedPngAtomic(path, stackRows(rows));
+    writeOpaquePngAtomic(path, stackRows(rows));
     std::cout << path << "\n";
     gallery << galleryLine(figure, "") << "\n";
   }

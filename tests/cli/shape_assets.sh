@@ -31,6 +31,7 @@ check convex16.obj cap --height convex --valence 16 --links 5
 check cap6_paraboloid.obj cap --height paraboloid --valence 6
 check cap6_saddle.obj cap --height saddle --valence 6
 check cap8_paraboloid.obj cap --height paraboloid --valence 8
+check cap6_cone.obj cap --height cone --valence 6
 for height in paraboloid saddle monkey flat4 saddle4; do
   check "cap12_$height.obj" cap --height "$height" --valence 12
 done

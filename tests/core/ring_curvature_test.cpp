@@ -99,3 +99,40 @@ TEST_CASE("ring curvature: K along the middle circle of ring m flattens for C2PS
     else CHECK(late > 0.3 * early);                          // levels off: not C2 for finite n
   }
 }
+
+TEST_CASE("ring curvature: spoke sign changes count the turns of K(r) along spokes, rings joined, ended by the pole") {
+  RingCurvature outer, inner;
+  outer.m = 1;
+  inner.m = 2;
+  // Two spokes, outside in: one monotone to the pole's K = 4, one that rises, falls back and rises.
+  outer.kAlongSpokes = {{0.0, 1.0, 2.0}, {0.0, 1.0, 0.5}};
+  inner.kAlongSpokes = {{2.0, 3.0, 3.5}, {0.5, 2.0, 3.5}};
+  outer.maxK = inner.maxK = 3.5;
+  CHECK(spokeSignChanges({outer, inner}, 4.0) == 2);  // the second spoke turns at 1.0 and at 0.5
+  CHECK(spokeSignChanges({outer, inner}, 3.0) == 4);  // the rings overshoot a pole K of 3: one more turn a spoke
+  CHECK(spokeSignChanges({outer, inner}, std::nan("")) == 2);  // the rings alone
+  CHECK(spokeSignChanges({}, 4.0) == 0);
+}
+
+TEST_CASE("ring curvature: a cone's K rises monotonically to the pole with the uniform first step, waves without it") {
+  // The net of z = -0.7 r over links 0..5, valence 6: Fig. 11's input (assets/cap6_cone.obj, scaled).
+  PolarGrid grid(6, 5);
+  grid.pole = Point(0.0);
+  for (int i = 1; i <= 5; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const double t = 2.0 * 3.14159265358979323846 * j / 6;
+      grid.q(i, j) = Point(i * std::cos(t), i * std::sin(t), -0.7 * i);
+    }
+  const PoleDifferential d = analyzePole(poleTaylorCoefficients(grid, Scheme::C2PS));
+  REQUIRE(d.curvatureDefined);
+  const auto direct = ringCurvatures(grid, Scheme::C2PS, false, 8, d.gaussian, d.mean, d.normal, 5, 0, 12);
+  const auto uniform = ringCurvatures(grid, Scheme::C2PS, true, 8, d.gaussian, d.mean, d.normal, 5, 0, 12);
+  // One minimum a spoke (K dips below 0 off the flank, then rises to the pole) with the uniform
+  // first step; C2PS applied directly also waves in ring 1 and near the pole.
+  CHECK(spokeSignChanges(uniform, d.gaussian) == 12);
+  CHECK(spokeSignChanges(direct, d.gaussian) >= 4 * 12);
+  CHECK(uniform.front().spokeSignChanges == 0);
+  CHECK(direct.front().spokeSignChanges == 12);
+  CHECK(uniform.front().maxK <= 1e-9 * d.gaussian);
+  CHECK(direct.front().maxK > 0.04 * d.gaussian);
+}

@@ -73,6 +73,9 @@ std::function<double(double, double)> paperHeight(const std::string& name) {
   if (name == "monkey") return [](double x, double y) { return x * x * x - 3.0 * x * y * y; };
   if (name == "flat4") return [](double x, double y) { return (x * x + y * y) * (x * x + y * y); };
   if (name == "saddle4") return [](double x, double y) { return x * x * x * x - 6.0 * x * x * y * y + y * y * y * y; };
+  // Fig. 11's cone: a sharp tip whose first ring is far from C2PS's limit (K rises steeply to the
+  // pole), where C2PS applied directly makes K wave along the spokes and the uniform first step does not.
+  if (name == "cone") return [](double x, double y) { return -0.7 * std::sqrt(x * x + y * y); };
   // Fig. 4's convex configuration: a dome steep at its rim, where Catmull-Clark ripples.
   if (name == "convex") return [](double x, double y) { return 0.5 * std::sqrt(std::max(0.0, 1.0 - 0.95 * (x * x + y * y))); };
   return nullptr;

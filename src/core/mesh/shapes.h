@@ -24,7 +24,8 @@ PolyMesh polarCap(int n, int links, double radius = 1.0, double curvature = 1.0)
 PolyMesh heightCap(int n, int links, const std::function<double(double, double)>& height, double radius = 1.0);
 // The height functions of the paper's test configurations (Figs. 4, 11, 13), by name: "paraboloid"
 // (x^2 + y^2) / 2, "saddle" (x^2 - y^2) / 2, "monkey" x^3 - 3 x y^2, "flat4" (x^2 + y^2)^2 (a flat
-// point), "saddle4" Re (x + i y)^4 (a 4th-order saddle), "convex" a dome steep at the rim (Fig. 4);
+// point), "saddle4" Re (x + i y)^4 (a 4th-order saddle), "convex" a dome steep at the rim (Fig. 4),
+// "cone" -0.7 r, a sharp tip (Fig. 11);
 // null for another name.
 std::function<double(double, double)> paperHeight(const std::string& name);
 

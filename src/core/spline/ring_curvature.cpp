@@ -26,10 +26,57 @@ PolarGrid innerLinks(const PolarGrid& grid) {
   return inner;
 }
 
+constexpr int kSpokeSamples = 8;  // intervals per patch row along a spoke
+
+// K along one spoke at `turn` (a fraction of a full turn) over a ring's patches: row 1 (links 4 to
+// 3), then row 0 (links 3 to 2), outside in.
+std::vector<double> kAlongSpoke(const std::vector<Patch>& patches, int n, double turn) {
+  const double at = turn * n;
+  const int j = std::min(int(at), n - 1);
+  std::vector<double> k;
+  for (int row = 1; row >= 0; --row)
+    for (int a = kSpokeSamples; a >= (row == 1 ? 1 : 0); --a)
+      k.push_back(evaluatePatch(patches[size_t(row * n + j)], double(a) / kSpokeSamples, at - j).gaussian);
+  return k;
+}
+
+// Sign changes of the successive differences of `k`, steps under `flat` skipped.
+int signChanges(const std::vector<double>& k, double flat) {
+  int changes = 0, last = 0;
+  for (size_t i = 1; i < k.size(); ++i) {
+    const double step = k[i] - k[i - 1];
+    if (std::abs(step) <= flat) continue;
+    const int sign = step > 0 ? 1 : -1;
+    changes += last != 0 && sign != last;
+    last = sign;
+  }
+  return changes;
+}
+
+double largestAbsK(const std::vector<RingCurvature>& rings) {
+  double largest = 0.0;
+  for (const RingCurvature& r : rings) largest = std::max({largest, std::abs(r.minK), std::abs(r.maxK)});
+  return largest;
+}
+
 }  // namespace
 
+int spokeSignChanges(const std::vector<RingCurvature>& rings, double poleK) {
+  if (rings.empty() || rings.front().kAlongSpokes.empty()) return 0;
+  const double flat = 1e-9 * largestAbsK(rings);
+  int changes = 0;
+  for (size_t s = 0; s < rings.front().kAlongSpokes.size(); ++s) {
+    std::vector<double> spoke;
+    for (const RingCurvature& r : rings) spoke.insert(spoke.end(), r.kAlongSpokes[s].begin(), r.kAlongSpokes[s].end());
+    if (!std::isnan(poleK)) spoke.push_back(poleK);
+    changes += signChanges(spoke, flat);
+  }
+  return changes;
+}
+
 std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool uniformFirstStep, int rings, double poleK,
-                                          double poleH, const Point& poleNormal, int samples, int angleSamples) {
+                                          double poleH, const Point& poleNormal, int samples, int angleSamples,
+                                          int spokes) {
   if (grid.links < 2) throw std::invalid_argument("ringCurvatures: a pole needs links 0..2");
   samples = std::max(samples, 2);
   std::vector<RingCurvature> out;
@@ -73,10 +120,14 @@ std::vector<RingCurvature> ringCurvatures(PolarGrid grid, Scheme scheme, bool un
       const int j = std::min(int(at), grid.n - 1);
       rc.kAlongAngle.push_back(evaluatePatch(patches[size_t(j)], 1.0, at - j).gaussian);
     }
+    for (int s = 0; s < spokes; ++s) rc.kAlongSpokes.push_back(kAlongSpoke(patches, grid.n, double(s) / spokes));
     rc.maxAbsDeltaK = std::max(std::abs(rc.maxK - poleK), std::abs(rc.minK - poleK));
     rc.maxAbsDeltaH = std::max(std::abs(rc.maxH - poleH), std::abs(rc.minH - poleH));
     out.push_back(rc);
   }
+  const double flat = 1e-9 * largestAbsK(out);
+  for (RingCurvature& rc : out)
+    for (const std::vector<double>& spoke : rc.kAlongSpokes) rc.spokeSignChanges += signChanges(spoke, flat);
   return out;
 }
 
