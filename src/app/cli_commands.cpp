@@ -344,10 +344,11 @@ void runEvToPolar(const CommonOptions& o, const PolyMesh& mesh) {
 void runNgonToFan(const CommonOptions& o, const PolyMesh& mesh) {
   const FanConversion conversion = convertNgonsToFans(mesh);
   saveObj(o.output, conversion.mesh, o.input);
-  std::printf("%s: %zu faces with %d or more sides turned into triangle fans around new centre vertices", o.output.c_str(),
-              conversion.faces.size(), kMinFanSides);
-  if (!conversion.centres.empty())
-    std::printf(" (%d..%d)", conversion.centres.front(), conversion.centres.back());
+  const size_t count = conversion.faces.size();
+  std::printf("%s: %zu face%s with %d or more sides turned into triangle fans around new centre vertices", o.output.c_str(),
+              count, count == 1 ? "" : "s", kMinFanSides);
+  if (count == 1) std::printf(" (vertex %d)", conversion.centres.front());
+  if (count > 1) std::printf(" (vertices %d..%d)", conversion.centres.front(), conversion.centres.back());
   std::printf("\n");
 }
 

@@ -40,7 +40,7 @@ open('$tmp/cylinder.obj', 'w').write('\n'.join(v + f) + '\n')"
 grep -qx "poles: 0" "$tmp/info.txt" || fail "cylinder: $(grep poles "$tmp/info.txt")"
 grep -q "^  2 faces of 5 or more sides: convert --ngon-to-fan" "$tmp/info.txt" || fail "cylinder: info does not point at --ngon-to-fan"
 "$exe" convert "$tmp/cylinder.obj" --ngon-to-fan -o "$tmp/fans.obj" > "$tmp/out.txt"
-grep -qx "$tmp/fans.obj: 2 faces with 5 or more sides turned into triangle fans around new centre vertices (48..49)" "$tmp/out.txt" ||
+grep -qx "$tmp/fans.obj: 2 faces with 5 or more sides turned into triangle fans around new centre vertices (vertices 48..49)" "$tmp/out.txt" ||
   fail "ngon-to-fan: $(cat "$tmp/out.txt")"
 "$exe" info "$tmp/fans.obj" --json | python3 -c "
 import json, sys; d = json.load(sys.stdin)

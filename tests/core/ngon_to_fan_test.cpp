@@ -112,3 +112,40 @@ TEST_CASE("ngon to fan: quads and triangles stay, pentagons and up convert, hole
   CHECK(std::vector<Index>(fans.mesh.face(6), fans.mesh.face(6) + 3) == std::vector<Index>{8, 3, 12});
   CHECK(convertNgonsToFans(mesh, 4).faces == std::vector<Index>{0, 2});
 }
+
+TEST_CASE("rejected pole candidates: grouped by kind, the highest valence first, then the later check failed") {
+  auto candidate = [](Index pole, int valence, PolarRejection rejection) {
+    PolarConfig config;
+    config.pole = pole, config.valence = valence, config.rejection = rejection;
+    config.refinable = rejection == PolarRejection::None;
+    return config;
+  };
+  const std::vector<PolarConfig> configs{
+      candidate(0, 6, PolarRejection::Link1NotFourValent), candidate(1, 5, PolarRejection::Link1NotFourValent),
+      candidate(2, 8, PolarRejection::None),  // a pole: left out
+      candidate(3, 6, PolarRejection::NoLink2), candidate(4, 32, PolarRejection::Link1OnBoundary),
+      candidate(5, 7, PolarRejection::Link1NotFourValent)};
+  CHECK(nearerPolarCandidate(configs[3], configs[0]));  // same valence: NoLink2 passed more checks
+  CHECK_FALSE(nearerPolarCandidate(configs[0], configs[3]));
+  const std::vector<RejectedGroup> groups = groupRejectedCandidates(configs);
+  REQUIRE(groups.size() == 3);
+  CHECK(groups[0].rejection == PolarRejection::Link1OnBoundary);
+  CHECK(groups[0].members == std::vector<size_t>{4});
+  CHECK(groups[1].rejection == PolarRejection::Link1NotFourValent);
+  CHECK(groups[1].members == std::vector<size_t>{5, 0, 1});
+  CHECK(groups[2].rejection == PolarRejection::NoLink2);
+  // The cone after the conversion: its tip and base centre (12-valent, their rims among triangles
+  // only) come before the rim's 4-valent vertices (ids 0..11), rejected at the first rim vertex
+  // that fails (a 12-valent one, or a 4-valent one among triangles).
+  const PolyMesh cone = convertNgonsToFans(ngonCone(12)).mesh;
+  const std::vector<PolarConfig> coneConfigs = findPolarConfigs(cone, buildTopology(cone));
+  const std::vector<RejectedGroup> coneGroups = groupRejectedCandidates(coneConfigs);
+  REQUIRE(coneGroups.size() == 2);
+  CHECK(coneGroups[0].rejection == PolarRejection::Link1NotTwoQuads);
+  REQUIRE(coneGroups[0].members.size() >= 2);
+  CHECK(coneConfigs[coneGroups[0].members[0]].pole == 12);
+  CHECK(coneConfigs[coneGroups[0].members[1]].pole == 13);
+  CHECK(coneGroups[1].rejection == PolarRejection::Link1NotFourValent);
+  CHECK(coneGroups[0].members.size() + coneGroups[1].members.size() == 14);
+  for (size_t k : coneGroups[1].members) CHECK(coneConfigs[k].valence == 4);
+}
