@@ -82,11 +82,14 @@ std::string formatTick(double value, double scale) {
 
 // [SECTION] Panels
 
-// A button that queues command `id`, labelled from the command table ("Frame model (F)").
+}  // namespace
+
 void commandButton(ViewerState& state, const char* id) {
   const Command* command = viewerCommands().find(id);
   if (command && ImGui::Button(CommandTable::buttonLabel(*command).c_str())) queueCommand(state, id);
 }
+
+namespace {
 
 void drawFilePanel(ViewerState& state) {
   FileSettings& file = state.file;
