@@ -190,6 +190,10 @@ void drawEditPanel(ViewerState& state) {
   ImGui::SameLine();
   commandButton(state, "model.ev-to-polar-pentagons");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
+  commandButton(state, "model.ngon-to-fan");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each face of 5 or more sides becomes a fan of triangles around its centroid: n-gon caps ringed by "
+                      "quads (a cylinder's) become poles");
 
   if (!state.display.controlNet) {
     ImGui::TextDisabled("Show the control net (N) to pick and drag its vertices.");
