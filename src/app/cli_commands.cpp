@@ -20,6 +20,7 @@
 #include "pipeline/patch_export.h"
 #include "app/json_writer.h"
 #include "core/mesh/ev_to_polar.h"
+#include "core/mesh/ngon_to_fan.h"
 #include "core/mesh/input_error.h"
 #include "core/mesh/manifold_split.h"
 #include "core/mesh/obj_io.h"
@@ -42,8 +43,8 @@ namespace polarview::cli {
 
 namespace {
 
-// How many rejected pole candidates `info` lists in text (the JSON lists all).
-constexpr size_t kRejectedListed = 10;
+// How many rejected pole candidates `info` lists in text per reason (the JSON lists all).
+constexpr size_t kRejectedListedPerReason = 5;
 
 // Options shared by the subcommands: the storage their option tables write into.
 struct CommonOptions {
@@ -62,6 +63,7 @@ struct CommonOptions {
   bool vsOpenSubdiv = false;             // bench --vs-opensubdiv
   bool uniform = false;                  // export --uniform
   bool evToPolar = false, pentagons = false;  // convert --ev-to-polar [--pentagons]
+  bool ngonToFan = false;                     // convert --ngon-to-fan
 };
 
 // "2G", "500M", "64k", "123456" (bytes; binary units, case-insensitive, optional trailing B).
@@ -319,15 +321,16 @@ int runExport(CommonOptions& o) {
   return 0;
 }
 
-OptionTable convertTable(CommonOptions& o) {
-  return {inputRow(o), outputRow(&o.output, "OUT.obj", "the converted mesh (OBJ)"),
-          required(flagOption({"--ev-to-polar"}, "extraordinary vertices into polar configurations (paper Fig. 14)",
-                              &o.evToPolar)),
-          flagOption({"--pentagons"}, "n-valent poles ringed by pentagons (Fig. 14c; default 2n-valent, 14a)", &o.pentagons)};
-}
+// The conversions `convert` makes, one flag each and exactly one a call: what the flag means and
+// what the conversion prints once the mesh is written.
+struct MeshConversion {
+  const char* flag;
+  const char* help;
+  bool CommonOptions::*chosen;
+  void (*run)(const CommonOptions& o, const PolyMesh& mesh);
+};
 
-int runConvert(CommonOptions& o) {
-  PolyMesh mesh = loadInput(o.input);
+void runEvToPolar(const CommonOptions& o, const PolyMesh& mesh) {
   const PolarConversion conversion = convertExtraordinaryToPolar(mesh, o.pentagons, o.input);
   saveObj(o.output, conversion.mesh, o.input);
   std::printf("%s: %zu extraordinary vertices turned into %s polar configurations (Fig. 14(%s))", o.output.c_str(),
@@ -336,6 +339,49 @@ int runConvert(CommonOptions& o) {
     std::printf("; %zu skipped: their regions touch a converted one (first: vertex %d)", conversion.skipped.size(),
                 conversion.skipped.front());
   std::printf("\n");
+}
+
+void runNgonToFan(const CommonOptions& o, const PolyMesh& mesh) {
+  const FanConversion conversion = convertNgonsToFans(mesh);
+  saveObj(o.output, conversion.mesh, o.input);
+  const size_t count = conversion.faces.size();
+  std::printf("%s: %zu face%s with %d or more sides turned into triangle fans around new centre vertices", o.output.c_str(),
+              count, count == 1 ? "" : "s", kMinFanSides);
+  if (count == 1) std::printf(" (vertex %d)", conversion.centres.front());
+  if (count > 1) std::printf(" (vertices %d..%d)", conversion.centres.front(), conversion.centres.back());
+  std::printf("\n");
+}
+
+const MeshConversion kMeshConversions[] = {
+    {"--ev-to-polar", "extraordinary vertices into polar configurations (paper Fig. 14)", &CommonOptions::evToPolar,
+     runEvToPolar},
+    {"--ngon-to-fan", "faces of 5 or more sides into triangle fans around their centroids (Blender's cap fill; "
+                      "a cylinder's caps become poles)",
+     &CommonOptions::ngonToFan, runNgonToFan},
+};
+
+OptionTable convertTable(CommonOptions& o) {
+  OptionTable table{inputRow(o), outputRow(&o.output, "OUT.obj", "the converted mesh (OBJ)")};
+  for (const MeshConversion& conversion : kMeshConversions)
+    table.push_back(flagOption({conversion.flag}, conversion.help, &(o.*conversion.chosen)));
+  table.push_back(flagOption({"--pentagons"}, "with --ev-to-polar: n-valent poles ringed by pentagons (Fig. 14c; default "
+                                              "2n-valent, 14a)",
+                             &o.pentagons));
+  return table;
+}
+
+int runConvert(CommonOptions& o) {
+  const MeshConversion* chosen = nullptr;
+  std::string flags;
+  for (const MeshConversion& conversion : kMeshConversions) {
+    flags += std::string(flags.empty() ? "" : " or ") + conversion.flag;
+    if (!(o.*conversion.chosen)) continue;
+    if (chosen) throw UsageError{std::string("give one conversion a call: ") + chosen->flag + " or " + conversion.flag};
+    chosen = &conversion;
+  }
+  if (!chosen) throw UsageError{"needs a conversion: " + flags};
+  if (o.pentagons && !o.evToPolar) throw UsageError{"--pentagons applies to --ev-to-polar"};
+  chosen->run(o, loadInput(o.input));
   return 0;
 }
 
@@ -357,6 +403,7 @@ struct MeshReport {
   std::map<PolarRejection, int> rejectedPerReason;
   bool radialMesh = false;  // RTS/BPS refine the whole mesh radially (caps and globes)
   int used = 0, copies = 0, triangles = 0, quads = 0, polygons = 0, holeFaces = 0, loops = 0;
+  int fanFaces = 0;  // faces convert --ngon-to-fan would make triangle fans
   std::vector<Extraordinary> extraordinary;
 };
 
@@ -397,6 +444,7 @@ MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTop
     if ((!boundary && k != 4) || (boundary && k > 3)) r.extraordinary.push_back({v, k, boundary, bool(isPole[v])});
   }
   r.loops = countBoundaryLoops(topo);
+  r.fanFaces = countFanFaces(input);
   return r;
 }
 
@@ -430,6 +478,15 @@ void writeInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopo
   w.key("rejected_reasons").beginObject();
   for (const auto& [rejection, count] : r.rejectedPerReason) w.field(polarRejectionKey(rejection), count);
   w.endObject();
+  // The text's grouping: per reason, the nearest candidates first (vertex ids).
+  w.key("rejected_groups").beginArray();
+  for (const RejectedGroup& group : groupRejectedCandidates(r.rejected)) {
+    w.beginObject().field("reason", polarRejectionKey(group.rejection)).field("words", polarRejectionWords(group.rejection));
+    w.field("max_valence", r.rejected[group.members.front()].valence).key("vertices").beginArray();
+    for (size_t k : group.members) w.value(r.rejected[k].pole);
+    w.endArray().endObject();
+  }
+  w.endArray();
   w.key("extraordinary_vertices").beginArray();
   for (const Extraordinary& x : r.extraordinary) {
     w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
@@ -444,6 +501,10 @@ void writeInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopo
 // The text report's poles and rejected candidates.
 void printInfoPoles(const MeshReport& r) {
   std::printf("poles: %zu\n", r.poles.size());
+  if (r.poles.empty() && r.fanFaces > 0)
+    std::printf("  %d faces of %d or more sides: convert --ngon-to-fan makes each a triangle fan, a pole where quads "
+                "ring it (a cylinder's caps)\n",
+                r.fanFaces, kMinFanSides);
   for (const PolarConfig& c : r.poles) {
     std::printf("  vertex %d: valence %d, %d link%s (%d regular), ends at %s", c.pole, c.valence, c.linkCount,
                 c.linkCount == 1 ? "" : "s", c.regularLinks, outerName(c.outer));
@@ -461,11 +522,23 @@ void printInfoPoles(const MeshReport& r) {
     separator = "; ";
   }
   std::printf("); refined by Catmull-Clark in every scheme\n");
-  // A triangle mesh has a candidate at nearly every vertex: list a few, --json lists them all.
-  const size_t shown = std::min<size_t>(r.rejected.size(), kRejectedListed);
-  for (size_t k = 0; k < shown; ++k)
-    std::printf("  vertex %d (valence %d): %s\n", r.rejected[k].pole, r.rejected[k].valence, r.rejected[k].reason.c_str());
-  if (r.rejected.size() > shown) std::printf("  ... %zu more (info --json lists every one)\n", r.rejected.size() - shown);
+  // Grouped by reason, the nearest candidates first (a cap's fan centre before the vertices of a
+  // triangulated surface); a triangle mesh has a candidate at nearly every vertex: --json lists all.
+  for (const RejectedGroup& group : groupRejectedCandidates(r.rejected)) {
+    const PolarConfig& nearest = r.rejected[group.members.front()];
+    const PolarConfig& farthest = r.rejected[group.members.back()];
+    std::printf("  %s: %zu candidate%s, valence %d", polarRejectionWords(group.rejection), group.members.size(),
+                group.members.size() == 1 ? "" : "s", nearest.valence);
+    if (farthest.valence != nearest.valence) std::printf(" down to %d", farthest.valence);
+    std::printf("\n");
+    const size_t shown = std::min(group.members.size(), kRejectedListedPerReason);
+    for (size_t k = 0; k < shown; ++k) {
+      const PolarConfig& c = r.rejected[group.members[k]];
+      std::printf("    vertex %d (valence %d): %s\n", c.pole, c.valence, c.reason.c_str());
+    }
+    if (group.members.size() > shown)
+      std::printf("    ... %zu more (info --json lists every one)\n", group.members.size() - shown);
+  }
 }
 
 void printInfoText(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,

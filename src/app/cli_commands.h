@@ -16,8 +16,9 @@ CommandParser refineCommand();
 // export IN.obj: the limit surface in BezierView's .bv format, feature-adaptive (or uniform),
 // written atomically.
 CommandParser exportCommand();
-// convert IN.obj --ev-to-polar: Fig. 14's conversion of Catmull-Clark extraordinary vertices into
-// polar configurations (core/mesh/ev_to_polar.h).
+// convert IN.obj --ev-to-polar | --ngon-to-fan: Fig. 14's conversion of Catmull-Clark extraordinary
+// vertices into polar configurations (core/mesh/ev_to_polar.h), or n-gons into triangle fans
+// (core/mesh/ngon_to_fan.h).
 CommandParser convertCommand();
 // info IN.obj: poles apart from rejected pole candidates (with reasons), extraordinary vertices.
 CommandParser infoCommand();

@@ -41,7 +41,7 @@ const CliCommand kCommands[] = {
      FailureSubject::FirstArgument},
     {"export", "the limit surface as Bezier patches (BezierView .bv)", cli::exportCommand, false,
      FailureSubject::FirstArgument},
-    {"convert", "extraordinary vertices into polar configurations (paper Fig. 14)", cli::convertCommand, false,
+    {"convert", "extraordinary vertices into poles (paper Fig. 14), n-gons into triangle fans", cli::convertCommand, false,
      FailureSubject::FirstArgument},
     {"info", "faces, boundaries, poles and extraordinary vertices of a mesh", cli::infoCommand, false,
      FailureSubject::FirstArgument},

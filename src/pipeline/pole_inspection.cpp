@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/mesh/manifold_split.h"
+#include "core/mesh/ngon_to_fan.h"
 #include "core/mesh/constants.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
@@ -104,14 +105,27 @@ void catmullClarkRings(const PolyMesh& mesh, Index vertex, int rings, PoleInspec
 
 }  // namespace
 
-std::vector<Index> modelPoles(const PolyMesh& input) {
-  std::vector<Index> poles;
+std::vector<Index> modelPoles(const PolyMesh& input) { return surveyPoles(input, 0).poles; }
+
+PoleSurvey surveyPoles(const PolyMesh& input, size_t listed) {
+  PoleSurvey survey;
   ManifoldSplit split;
   MeshTopology topo;
   const PolyMesh& mesh = refinableMesh(input, split, topo);
-  for (const PolarConfig& config : findPolarConfigs(mesh, topo))
-    if (config.refinable) poles.push_back(config.pole);
-  return poles;
+  const std::vector<PolarConfig> configs = findPolarConfigs(mesh, topo);
+  for (const PolarConfig& config : configs)
+    if (config.refinable) survey.poles.push_back(config.pole);
+  for (const RejectedGroup& group : groupRejectedCandidates(configs)) {
+    RejectedPoleGroup out{polarRejectionWords(group.rejection), int(group.members.size()), {}};
+    for (size_t k = 0; k < group.members.size() && k < listed; ++k) {
+      const PolarConfig& config = configs[group.members[k]];
+      out.nearest.push_back({config.pole, config.valence, config.reason});
+    }
+    survey.rejectedCount += out.count;
+    survey.rejected.push_back(std::move(out));
+  }
+  survey.fanFaces = countFanFaces(input);
+  return survey;
 }
 
 PoleInspection inspectPole(const PolyMesh& mesh, Index vertex, SchemeChoice scheme, int rings) {

@@ -40,8 +40,32 @@ struct PoleInspection {
 
 constexpr int kInspectorAngles = 180;
 
+// A vertex that looks polar (a fan of triangles around it) but is not a pole, and why.
+struct RejectedPole {
+  Index vertex = -1;
+  int valence = 0;
+  std::string reason;  // the sentence, with vertex ids (PolarConfig::reason)
+};
+
+// Rejected candidates of one kind (core/subdiv/polar_config.h groupRejectedCandidates).
+struct RejectedPoleGroup {
+  std::string words;                // polarRejectionWords: "a 1-link vertex is on a boundary"
+  int count = 0;                    // candidates of this kind
+  std::vector<RejectedPole> nearest;  // the nearest of them, nearest first (at most `listed`)
+};
+
+// What the Poles panel says about a model: its poles, and why the vertices that look polar are not.
+struct PoleSurvey {
+  std::vector<Index> poles;               // refinable polar configurations (any scheme), by vertex id
+  std::vector<RejectedPoleGroup> rejected;  // the group with the nearest candidate first
+  int rejectedCount = 0;
+  int fanFaces = 0;  // faces the n-gon conversion would make triangle fans (core/mesh/ngon_to_fan.h)
+};
+
 // The polar vertices of the model (refinable polar configurations, any scheme), by vertex id. [O(mesh)]
 std::vector<Index> modelPoles(const PolyMesh& mesh);
+// The poles, the rejected candidates (the nearest `listed` of each kind) and the n-gons. [O(mesh)]
+PoleSurvey surveyPoles(const PolyMesh& mesh, size_t listed);
 // The inspection of pole `vertex` of `mesh` under `scheme`, rings 1..rings (C2PS at most the rings
 // that keep its doubled valence within 2^16). Polar schemes: from the pole's own links (pole-
 // relative, any depth); Catmull-Clark: from its feature-adaptive patches around the vertex.

@@ -75,6 +75,8 @@ void addEditCommands(std::vector<Command>& rows) {
                              [](CommandHost& host) { host.convertToPolar(false); }));
   rows.push_back(hostCommand("model.ev-to-polar-pentagons", "with pentagons (14c)", {}, "",
                              [](CommandHost& host) { host.convertToPolar(true); }));
+  rows.push_back(hostCommand("model.ngon-to-fan", "N-gons to triangle fans", {}, "",
+                             [](CommandHost& host) { host.convertToFans(); }));
   rows.push_back(hostCommand("model.eigenvector", "Show v_k as the model", {}, "",
                              [](CommandHost& host) { host.showEigenvector(); }));
 }

@@ -30,6 +30,7 @@ class CommandHost {
   virtual void exportSurface(bool bezierView) = 0;  // .bv, or the refined control mesh as OBJ
   virtual void openPlaylistEntry(int index) = 0;    // wraps around
   virtual void convertToPolar(bool pentagons) = 0;  // paper Fig. 14 a / c
+  virtual void convertToFans() = 0;                 // n-gons into triangle fans (core/mesh/ngon_to_fan.h)
   virtual void showEigenvector() = 0;               // the Spectrum panel's v_k as the model
   virtual void frameModel() = 0;
   virtual void setClipboard(const std::string& text) = 0;

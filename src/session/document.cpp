@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/mesh/ev_to_polar.h"
+#include "core/mesh/ngon_to_fan.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/subdiv/refiner.h"
@@ -259,6 +260,18 @@ void Document::convertToPolar(bool pentagons) {
   } catch (const std::exception& e) {
     state_.notice = std::string("conversion failed: ") + e.what();
   }
+}
+
+void Document::convertToFans() {
+  if (!model_.mesh) return;
+  FanConversion conversion = convertNgonsToFans(*model_.mesh);
+  if (conversion.faces.empty()) {
+    state_.notice = "no face with " + std::to_string(kMinFanSides) + " or more sides to make a triangle fan";
+    return;
+  }
+  const size_t count = conversion.faces.size();
+  if (loadMesh(std::move(conversion.mesh), "triangle fans: " + model_.name, ""))
+    state_.notice = std::to_string(count) + (count == 1 ? " face" : " faces") + " made triangle fans (Ctrl+Z returns)";
 }
 
 void Document::commitEditedPoints() {

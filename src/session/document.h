@@ -72,6 +72,9 @@ class Document {
   void commitEditedPoints();
   // Paper Fig. 14: the extraordinary vertices made polar configurations (a new model; Ctrl+Z returns).
   void convertToPolar(bool pentagons);
+  // Faces of 5 or more sides made triangle fans around their centroids, so that n-gon caps (a
+  // cylinder's) become poles (a new model; Ctrl+Z returns).
+  void convertToFans();
   // The Spectrum panel's eigenvector net as the model.
   void showEigenvector();
   void loadRecent();

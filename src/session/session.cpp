@@ -9,6 +9,9 @@
 namespace polarview {
 namespace {
 
+// How many rejected pole candidates of each kind the Poles panel lists (the nearest).
+constexpr size_t kRejectedPolesListed = 3;
+
 // Mixes a value into a running hash (to notice when the colour range inputs changed).
 void hashMix(uint64_t& h, uint64_t value) { h = (h ^ value) * 1099511628211ull; }
 
@@ -129,10 +132,11 @@ void Session::updatePoleInspector() {
   if (inspectPolesOf_ != document_.model().generation) {
     inspectPolesOf_ = document_.model().generation;
     try {
-      inspector.poles = modelPoles(*document_.model().mesh);
+      inspector.survey = surveyPoles(*document_.model().mesh, kRejectedPolesListed);
     } catch (const std::exception&) {
-      inspector.poles.clear();
+      inspector.survey = {};
     }
+    inspector.poles = inspector.survey.poles;
     inspector.inspections.clear();
     inspectShown_.clear();
   }

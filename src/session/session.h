@@ -75,6 +75,7 @@ class Session : public CommandHost {
   void exportSurface(bool bezierView) override { document_.startExport(bezierView, activeSurface()); }
   void openPlaylistEntry(int index) override { document_.openPlaylistEntry(index); }
   void convertToPolar(bool pentagons) override { document_.convertToPolar(pentagons); }
+  void convertToFans() override { document_.convertToFans(); }
   void showEigenvector() override { document_.showEigenvector(); }
   void frameModel() override { window_.frameModel(); }
   void setClipboard(const std::string& text) override { window_.setClipboard(text); }

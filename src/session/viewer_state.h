@@ -174,6 +174,7 @@ struct PoleInspectorSettings {
   int zoomRing = -1;
   // Set by the app.
   std::vector<Index> poles;                 // the model's pole vertices
+  PoleSurvey survey;                        // and why the vertices that look polar are not (no poles: the panel says)
   std::vector<PoleInspection> inspections;  // one per distinct scheme of the visible views
   bool computing = false;
   std::string error;

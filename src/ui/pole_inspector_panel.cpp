@@ -75,13 +75,48 @@ std::string pointText(const Point& p) {
   return text;
 }
 
+// Why the vertices that look polar are not poles: per kind, the nearest few with their reasons.
+void drawRejectedCandidates(const PoleSurvey& survey) {
+  for (const RejectedPoleGroup& group : survey.rejected) {
+    ImGui::TextWrapped("%d: %s", group.count, group.words.c_str());
+    ImGui::Indent();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    for (const RejectedPole& candidate : group.nearest)
+      ImGui::TextWrapped("vertex %d (valence %d): %s", candidate.vertex, candidate.valence, candidate.reason.c_str());
+    if (group.count > int(group.nearest.size())) ImGui::TextWrapped("... %d more", group.count - int(group.nearest.size()));
+    ImGui::PopStyleColor();
+    ImGui::Unindent();
+  }
+}
+
+// No pole: why not, and the conversion that makes poles of n-gon caps (a Blender cylinder's).
+void drawNoPoles(ViewerState& state) {
+  const PoleSurvey& survey = state.poleInspector.survey;
+  ImGui::TextWrapped("The model has no polar configuration.");
+  if (survey.rejectedCount > 0) {
+    ImGui::TextWrapped("%d %s like a pole (a fan of triangles) but %s not; the nearest first:", survey.rejectedCount,
+                       survey.rejectedCount == 1 ? "vertex looks" : "vertices look", survey.rejectedCount == 1 ? "is" : "are");
+    drawRejectedCandidates(survey);
+  } else {
+    ImGui::TextWrapped("No vertex is the centre of a fan of triangles (a pole: an interior vertex whose faces are all "
+                       "triangles, its rim 4-valent vertices between quads).");
+  }
+  if (survey.fanFaces == 0) return;
+  ImGui::Separator();
+  ImGui::TextWrapped("%d %s 5 or more sides: as triangle fans around their centres (Blender's triangle fan cap fill), "
+                     "caps ringed by quads become poles.",
+                     survey.fanFaces, survey.fanFaces == 1 ? "face has" : "faces have");
+  commandButton(state, "model.ngon-to-fan");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a new vertex at each such face's centroid, the face a fan of triangles around it (Ctrl+Z returns)");
+}
+
 }  // namespace
 
 void drawPoleInspectorPanel(ViewerState& state) {
   PoleInspectorSettings& s = state.poleInspector;
   s.open = true;  // the app computes while the section is open
   if (s.poles.empty()) {
-    ImGui::TextWrapped("The model has no polar configuration.");
+    drawNoPoles(state);
     return;
   }
   s.pole = std::clamp(s.pole, 0, int(s.poles.size()) - 1);

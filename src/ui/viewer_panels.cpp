@@ -82,11 +82,14 @@ std::string formatTick(double value, double scale) {
 
 // [SECTION] Panels
 
-// A button that queues command `id`, labelled from the command table ("Frame model (F)").
+}  // namespace
+
 void commandButton(ViewerState& state, const char* id) {
   const Command* command = viewerCommands().find(id);
   if (command && ImGui::Button(CommandTable::buttonLabel(*command).c_str())) queueCommand(state, id);
 }
+
+namespace {
 
 void drawFilePanel(ViewerState& state) {
   FileSettings& file = state.file;
@@ -187,6 +190,10 @@ void drawEditPanel(ViewerState& state) {
   ImGui::SameLine();
   commandButton(state, "model.ev-to-polar-pentagons");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
+  commandButton(state, "model.ngon-to-fan");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each face of 5 or more sides becomes a fan of triangles around its centroid: n-gon caps ringed by "
+                      "quads (a cylinder's) become poles");
 
   if (!state.display.controlNet) {
     ImGui::TextDisabled("Show the control net (N) to pick and drag its vertices.");

@@ -43,7 +43,11 @@ globe = ([tuple(map(float, l.split()[1:])) for l in lines if l.startswith('v ')]
 shift = lambda pts, x: [(p[0] + x, p[1], p[2]) for p in pts]
 write('$tmp/ico.obj', [(ico, hull(ico))])
 write('$tmp/octa.obj', [(octa, hull(octa))])
-write('$tmp/all.obj', [globe, (shift(ico, 5), hull(ico)), (shift(octa, 10), hull(octa))])"
+write('$tmp/all.obj', [globe, (shift(ico, 5), hull(ico)), (shift(octa, 10), hull(octa))])
+# A cone without a base (Blender's cone, cap fill none): a 32-valent fan whose rim is a boundary,
+# its tip the last vertex, after the icosahedron and the octahedron.
+cone = [(math.cos(2 * math.pi * i / 32), math.sin(2 * math.pi * i / 32), 0.0) for i in range(32)] + [(0.0, 0.0, 2.0)]
+write('$tmp/cone.obj', [(ico, hull(ico)), (shift(octa, 5), hull(octa)), (shift(cone, 10), [(i, (i + 1) % 32, 32) for i in range(32)])])"
 
 # The icosahedron: no pole, 12 rejected candidates whose 1-link is not 4-valent.
 "$exe" info "$tmp/ico.obj" > "$tmp/ico.txt"
@@ -75,6 +79,31 @@ assert len(r)==18 and poles.isdisjoint(x['vertex'] for x in r)
 assert d['rejected_reasons']=={'link1_not_4_valent':12,'link1_not_2_triangles_2_quads':6}, d['rejected_reasons']
 assert all(x['valence']==4 for x in r if x['reason']=='link1_not_2_triangles_2_quads')
 assert {x['vertex'] for x in d['extraordinary_vertices'] if x['pole']}==poles"
+
+# Grouped by reason, the nearest candidates first: the cone's 32-valent tip (vertex 50) heads the
+# list though its id is the last; then the icosahedron's 5-valent, then the octahedron's 4-valent
+# fans, at most 5 listed a reason.
+"$exe" info "$tmp/cone.obj" > "$tmp/cone.txt"
+grep -q "^rejected pole candidates: 19 (reasons: 1 a 1-link vertex is on a boundary; 12 a 1-link vertex is not 4-valent; 6 a 1-link vertex is not between 2 triangles and 2 quads)" "$tmp/cone.txt" ||
+  fail "cone: $(grep rejected "$tmp/cone.txt")"
+sed -n '/^rejected/,/^extraordinary/p' "$tmp/cone.txt" | sed '1d;$d' > "$tmp/groups.txt"
+cat > "$tmp/expected.txt" <<'END'
+  a 1-link vertex is on a boundary: 1 candidate, valence 32
+    vertex 50 (valence 32): its 1-link vertex 18 is on a boundary
+  a 1-link vertex is not 4-valent: 12 candidates, valence 5
+    vertex 0 (valence 5): its 1-link has a 5-valent vertex (vertex 1)
+END
+head -4 "$tmp/groups.txt" | diff "$tmp/expected.txt" - || fail "cone: the groups' heads differ (above)"
+grep -q "^    ... 7 more (info --json lists every one)" "$tmp/groups.txt" || fail "cone: the icosahedron's 12 not cut at 5"
+grep -q "^  a 1-link vertex is not between 2 triangles and 2 quads: 6 candidates, valence 4$" "$tmp/groups.txt" || fail "cone: no octahedron group"
+[ "$(grep -c "^    vertex" "$tmp/groups.txt")" -eq $((1 + 5 + 5)) ] || fail "cone: $(grep -c "^    vertex" "$tmp/groups.txt") candidates listed"
+"$exe" info "$tmp/cone.obj" --json | py "
+import json,sys; d=json.load(sys.stdin)
+assert [x['vertex'] for x in d['rejected_candidates']]==list(range(18))+[50]  # the old field: all, by id
+g=d['rejected_groups']
+assert [(x['reason'],x['max_valence'],len(x['vertices'])) for x in g]==[('link1_on_boundary',32,1),('link1_not_4_valent',5,12),('link1_not_2_triangles_2_quads',4,6)], g
+assert g[0]['vertices']==[50] and g[0]['words']=='a 1-link vertex is on a boundary'
+assert g[1]['vertices']==list(range(12)) and g[2]['vertices']==list(range(12,18))"
 
 # Real poles stay listed, with nothing rejected: the default globe and the built-in model.
 "$exe" shape globe -o "$tmp/g.obj"

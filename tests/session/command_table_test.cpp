@@ -30,6 +30,7 @@ struct RecordingHost : CommandHost {
   void exportSurface(bool bezierView) override { calls.push_back(bezierView ? "export bv" : "export obj"); }
   void openPlaylistEntry(int index) override { calls.push_back("playlist " + std::to_string(index)); }
   void convertToPolar(bool pentagons) override { calls.push_back(pentagons ? "polar 14c" : "polar 14a"); }
+  void convertToFans() override { calls.push_back("fans"); }
   void showEigenvector() override { calls.push_back("eigenvector"); }
   void frameModel() override { calls.push_back("frame"); }
   void setClipboard(const std::string& text) override { clipboardText = text; }

@@ -144,6 +144,18 @@ PolyMesh cube() {
   return mesh;
 }
 
+PolyMesh ngonCylinder(int n) {
+  PolyMesh mesh;
+  for (double z : {-1.0, 1.0})
+    for (int i = 0; i < n; ++i) mesh.points.push_back({std::cos(kTwoPi * i / n), std::sin(kTwoPi * i / n), z});
+  for (int i = 0; i < n; ++i) mesh.addFace({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  std::vector<Index> top, bottom;  // counter-clockwise seen from outside: the bottom runs backwards
+  for (int i = 0; i < n; ++i) top.push_back(n + i), bottom.push_back(n - 1 - i);
+  mesh.addFace(top.data(), top.size());
+  mesh.addFace(bottom.data(), bottom.size());
+  return mesh;
+}
+
 PolyMesh torus(int nu, int nv, double majorRadius, double minorRadius) {
   PolyMesh mesh;
   for (int i = 0; i < nu; ++i)

@@ -36,6 +36,11 @@ PolyMesh mushroom(int n = 12);
 // Closed unit cube of 6 quads (eight valence-3 extraordinary vertices).
 PolyMesh cube();
 
+// Blender's cylinder: an n-gon cap at each end (z = -1 and 1, radius 1), one ring of n quads between
+// (bottom ring vertices 0..n-1, top n..2n-1). No polar configuration until the caps are triangle
+// fans (core/mesh/ngon_to_fan.h).
+PolyMesh ngonCylinder(int n);
+
 // Torus as an nu x nv regular quad grid (every vertex 4-valent).
 PolyMesh torus(int nu, int nv, double majorRadius = 1.0, double minorRadius = 0.35);
 

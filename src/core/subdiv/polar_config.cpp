@@ -296,6 +296,28 @@ std::vector<PolarConfig> findPolarConfigs(const PolyMesh& mesh, const MeshTopolo
   return configs;
 }
 
+bool nearerPolarCandidate(const PolarConfig& a, const PolarConfig& b) {
+  if (a.valence != b.valence) return a.valence > b.valence;
+  if (a.rejection != b.rejection) return a.rejection > b.rejection;
+  return a.pole < b.pole;
+}
+
+std::vector<RejectedGroup> groupRejectedCandidates(const std::vector<PolarConfig>& configs) {
+  std::vector<size_t> order;
+  for (size_t k = 0; k < configs.size(); ++k)
+    if (!configs[k].refinable) order.push_back(k);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return nearerPolarCandidate(configs[a], configs[b]); });
+  // Walking nearest first, a kind's group is made where its nearest candidate comes.
+  std::vector<RejectedGroup> groups;
+  for (size_t k : order) {
+    auto group = std::find_if(groups.begin(), groups.end(),
+                              [&](const RejectedGroup& g) { return g.rejection == configs[k].rejection; });
+    if (group == groups.end()) group = groups.insert(groups.end(), RejectedGroup{configs[k].rejection, {}});
+    group->members.push_back(k);
+  }
+  return groups;
+}
+
 const char* polarRejectionKey(PolarRejection rejection) {
   switch (rejection) {
     case PolarRejection::None: return "none";

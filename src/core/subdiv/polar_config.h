@@ -13,7 +13,8 @@
 namespace polarview {
 
 // Why a vertex that looks polar is not a polar configuration, by kind (PolarConfig::reason holds
-// the sentence with the vertex ids).
+// the sentence with the vertex ids). In the order detection checks them: a later kind passed more
+// checks, so its candidate is nearer a polar configuration (nearerPolarCandidate).
 enum class PolarRejection {
   None,                // refinable
   FanNotCycle,         // the triangles around it do not form one closed fan
@@ -47,6 +48,21 @@ struct PolarConfig {
 // vertex is not 4-valent"). [O(1)]
 const char* polarRejectionKey(PolarRejection rejection);
 const char* polarRejectionWords(PolarRejection rejection);
+
+// Whether rejected candidate `a` is nearer a polar configuration than `b`, the order `info` and the
+// viewer list them in: the higher valence first (a cap's fan centre before the vertices of a
+// triangulated surface), then the later check it failed, then the lower vertex id. [O(1)]
+bool nearerPolarCandidate(const PolarConfig& a, const PolarConfig& b);
+
+// Rejected candidates of one kind, nearest first (indices into the list grouped).
+struct RejectedGroup {
+  PolarRejection rejection = PolarRejection::None;
+  std::vector<size_t> members;
+};
+
+// The rejected configurations of `configs` (refinable ones are left out) grouped by kind, the group
+// with the nearest candidate first, each group nearest first (nearerPolarCandidate). [O(k log k)]
+std::vector<RejectedGroup> groupRejectedCandidates(const std::vector<PolarConfig>& configs);
 
 // Finds every vertex that looks polar (interior, all incident faces triangles, valence >= 3) and
 // decides whether it can be refined as a pole: candidates that are not come back with refinable
