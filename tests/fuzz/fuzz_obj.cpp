@@ -7,7 +7,10 @@
 //    coordinate finite and at most kMaxObjCoordinate (checkParsedMesh in fuzz_common.h);
 //  * its tags are sorted and merged, ids in range, crease edges edges of a face, sharpness finite
 //    and > 0 (checkTags);
-//  * saveObj writes what loadObj reads back to the bit (points, faces, tags).
+//  * saveObj writes what loadObj reads back to the bit (points, faces, tags);
+//  * saveObjEdited writes the text itself, byte for byte, when no vertex moved, and with every
+//    other vertex moved writes what loadObj reads back as the moved mesh (its statements walked as
+//    the reader walks them).
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -72,6 +75,37 @@ void checkRoundTrip(const PolyMesh& mesh) {
     fail("tags differ after saveObj -> loadObj");
 }
 
+// The bytes at `path`, removed.
+std::string takeFile(const std::string& path) {
+  std::string text;
+  if (FILE* file = std::fopen(path.c_str(), "rb")) {
+    char buffer[4096];
+    for (size_t got; (got = std::fread(buffer, 1, sizeof buffer, file)) > 0;) text.append(buffer, got);
+    std::fclose(file);
+  }
+  std::remove(path.c_str());
+  return text;
+}
+
+void checkEditedSave(const std::string& text, PolyMesh mesh) {
+  gStage = "saveObjEdited, nothing moved";
+  const std::string& path = roundTripPath();
+  if (!saveObjEdited(path, mesh, text, kSource)) fail("saveObjEdited did not take the mesh read from the text");
+  if (takeFile(path) != text) fail("saveObjEdited with nothing moved changed the text");
+  gStage = "saveObjEdited, every other vertex moved";
+  for (size_t v = 0; v < mesh.points.size(); v += 2) mesh.points[v] = mesh.points[v] * 0.5 + Point(0.25, -0.0, 1e-300);
+  if (!saveObjEdited(path, mesh, text, kSource)) fail("saveObjEdited did not take the moved mesh");
+  PolyMesh back;
+  try {
+    back = loadObj(path);
+  } catch (const InputError& e) {
+    fail(std::string("saveObjEdited's file does not read back: ") + e.what());
+  }
+  std::remove(path.c_str());
+  if (back.points != mesh.points) fail("points differ after saveObjEdited -> loadObj");
+  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after saveObjEdited -> loadObj");
+}
+
 void run(const uint8_t* data, size_t size) {
   if (size > kMaxInputBytes) return;
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -89,6 +123,7 @@ void run(const uint8_t* data, size_t size) {
   }
   checkParsedMesh(mesh);
   checkRoundTrip(mesh);
+  checkEditedSave(text, std::move(mesh));
 }
 
 }  // namespace
