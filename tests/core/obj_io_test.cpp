@@ -720,18 +720,19 @@ TEST_CASE("obj: an edited file keeps every line but the moved vertices' coordina
 
 TEST_CASE("obj: an edited save keeps CR-only line ends and a byte-order mark; other faces write a plain file") {
   TempDir dir;
-  const std::string text = std::string("\xEF\xBB\xBF") + "# cr only\rv 0 0 0\rv 1 0 0\rv 1 1 0 # moved\rvt 0 0\rf 1/1 2/1 3/1";
+  const std::string text = std::string("\xEF\xBB\xBF") + "v 0 0 0\r# cr only\rv 1 0 0\rv 1 1 0 # moved\rvt 0 0\rf 1/1 2/1 3/1";
   PolyMesh mesh = parseObjText(text, "cr.obj");
+  mesh.points[0].z = 1e-300;  // the first statement, right after the byte-order mark
   mesh.points[2].x = -0.75;
   const std::string out = (dir.path / "cr_edited.obj").string();
   CHECK(saveObjEdited(out, mesh, text, "cr.obj"));
-  CHECK(readText(out) == replaced(text, "v 1 1 0 # moved", "v -0.75 1 0 # moved"));
+  CHECK(readText(out) == replaced(replaced(text, "v 1 1 0 # moved", "v -0.75 1 0 # moved"), "v 0 0 0\r", "v 0 0 1e-300\r"));
 
   // A mesh with other faces (a conversion's) is not the source's: plain v/f lines, shortest numbers.
   PolyMesh other = mesh;
   other.faceVerts = {0, 2, 1};
   CHECK_FALSE(saveObjEdited(out, other, text, "cr.obj"));
-  CHECK(readText(out) == "v 0 0 0\nv 1 0 0\nv -0.75 1 0\nf 1 3 2\n");
+  CHECK(readText(out) == "v 0 0 1e-300\nv 1 0 0\nv -0.75 1 0\nf 1 3 2\n");
   // A non-finite coordinate is refused before anything is written.
   mesh.points[0].y = std::numeric_limits<double>::infinity();
   const std::string bad = (dir.path / "bad.obj").string();

@@ -657,12 +657,9 @@ bool sameTags(const SubdivTags& a, const SubdivTags& b) {
          a.creaseMethod == b.creaseMethod && a.triangles == b.triangles;
 }
 
-// Whether two points are the same doubles, bit for bit (-0 is not 0: it reads back as -0).
-bool sameBits(const Point& a, const Point& b) {
-  for (int i = 0; i < 3; ++i)
-    if (std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
-  return true;
-}
+// Whether two doubles are the same bit for bit (-0 is not 0: it reads back as -0).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+bool sameBits(const Point& a, const Point& b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
 
 // A non-finite number would be written as "nan"/"inf", which no reader takes back: refused before
 // anything is created.
@@ -711,24 +708,21 @@ struct SourceStatement {
 
 // Walks an OBJ text statement by statement with the reader's own rules (ObjParser::splitLines and
 // handleLine: LF, CRLF and a lone CR end lines, a trailing backslash continues the statement), so
-// its n-th `v` statement is the mesh's vertex n. A leading byte-order mark belongs to the first
-// statement's bytes.
+// its n-th `v` statement is the mesh's vertex n. A leading byte-order mark comes as a piece of its
+// own (no statement), so it stays when the first statement is rewritten.
 class SourceStatements {
  public:
-  explicit SourceStatements(std::string_view text) : text_(text) {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF") bom_ = 3;
-  }
+  explicit SourceStatements(std::string_view text) : text_(text) {}
 
   SourceStatement next() {
     SourceStatement s;
     const size_t begin = pos_;
-    pos_ += bom_;
-    bom_ = 0;
-    if (pos_ >= text_.size()) {
-      s.bytes = text_.substr(begin, pos_ - begin);  // a lone byte-order mark
-      pos_ = text_.size();
+    if (pos_ == 0 && text_.substr(0, 3) == "\xEF\xBB\xBF") {
+      pos_ = 3;
+      s.bytes = text_.substr(0, 3);
       return s;
     }
+    if (pos_ >= text_.size()) return s;
     joined_.clear();
     for (;;) {
       const size_t lineBegin = pos_;
@@ -760,7 +754,6 @@ class SourceStatements {
  private:
   std::string_view text_;
   size_t pos_ = 0;
-  size_t bom_ = 0;
   std::string joined_;
 };
 
@@ -772,7 +765,7 @@ void appendMovedVertex(std::string& out, std::string_view statement, const Point
   const char* copied = statement.data();
   for (int i = 0; i < 3; ++i) {
     const std::string_view token = tokens.next();
-    if (std::memcmp(&before[i], &after[i], sizeof(double)) == 0) continue;
+    if (sameBits(before[i], after[i])) continue;
     out.append(copied, token.data());
     appendNumber(out, after[i]);
     copied = token.data() + token.size();
