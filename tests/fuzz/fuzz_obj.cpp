@@ -54,25 +54,30 @@ const std::string& roundTripPath() {
   return path;
 }
 
+// The file `writer` wrote at `path` reads back (then removed) as `mesh`: points, faces and tags.
+void checkReadsBack(const std::string& path, const PolyMesh& mesh, const std::string& writer) {
+  gStage = "loadObj of " + writer + "'s file";
+  PolyMesh back;
+  try {
+    back = loadObj(path);
+  } catch (const InputError& e) {
+    fail(writer + "'s file does not read back: " + e.what());
+  }
+  std::remove(path.c_str());
+  if (back.points != mesh.points) fail("points differ after " + writer + " -> loadObj");
+  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after " + writer + " -> loadObj");
+  const SubdivTags &a = mesh.tags, &b = back.tags;
+  if (a.creases != b.creases || a.corners != b.corners || a.holes != b.holes || a.boundary != b.boundary ||
+      a.creaseMethod != b.creaseMethod || a.triangles != b.triangles)
+    fail("tags differ after " + writer + " -> loadObj");
+}
+
 void checkRoundTrip(const PolyMesh& mesh) {
   gStage = "saveObj";
   const std::string& path = roundTripPath();
   std::remove(path.c_str());
   saveObj(path, mesh, kSource);
-  gStage = "loadObj of saveObj's file";
-  PolyMesh back;
-  try {
-    back = loadObj(path);
-  } catch (const InputError& e) {
-    fail(std::string("saveObj's file does not read back: ") + e.what());
-  }
-  std::remove(path.c_str());
-  if (back.points != mesh.points) fail("points differ after saveObj -> loadObj");
-  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after saveObj -> loadObj");
-  const SubdivTags &a = mesh.tags, &b = back.tags;
-  if (a.creases != b.creases || a.corners != b.corners || a.holes != b.holes || a.boundary != b.boundary ||
-      a.creaseMethod != b.creaseMethod || a.triangles != b.triangles)
-    fail("tags differ after saveObj -> loadObj");
+  checkReadsBack(path, mesh, "saveObj");
 }
 
 // The bytes at `path`, removed.
@@ -95,15 +100,7 @@ void checkEditedSave(const std::string& text, PolyMesh mesh) {
   gStage = "saveObjEdited, every other vertex moved";
   for (size_t v = 0; v < mesh.points.size(); v += 2) mesh.points[v] = mesh.points[v] * 0.5 + Point(0.25, -0.0, 1e-300);
   if (!saveObjEdited(path, mesh, text, kSource)) fail("saveObjEdited did not take the moved mesh");
-  PolyMesh back;
-  try {
-    back = loadObj(path);
-  } catch (const InputError& e) {
-    fail(std::string("saveObjEdited's file does not read back: ") + e.what());
-  }
-  std::remove(path.c_str());
-  if (back.points != mesh.points) fail("points differ after saveObjEdited -> loadObj");
-  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after saveObjEdited -> loadObj");
+  checkReadsBack(path, mesh, "saveObjEdited");
 }
 
 void run(const uint8_t* data, size_t size) {

@@ -115,6 +115,15 @@ std::string blenderSphere(int segments, int rings) {
   return text;
 }
 
+// Writes `text` as folder/name and opens it as the viewer does (File > Open); returns the path.
+std::string openWritten(Session& session, const std::filesystem::path& folder, const std::string& name, const std::string& text) {
+  const std::string path = (folder / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  REQUIRE(session.document().loadFile(path));
+  settle(session);
+  return path;
+}
+
 // Drags control vertex `vertex` (0-based) `dx` pixels to the right in a 400 x 400 view looking down
 // -z at the unit sphere, as the viewer's mouse does (editor drag, points committed, one undo step).
 void dragVertex(Document& document, int vertex, float dx) {
@@ -225,11 +234,8 @@ TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it bu
   Session session(quiet(), window);
   ViewerState& state = session.state();
   const std::filesystem::path folder = freshDirectory();
-  const std::string input = (folder / "sphere.obj").string();
   const std::string original = blenderSphere(8, 6);
-  std::ofstream(input, std::ios::binary) << original;
-  REQUIRE(session.document().loadFile(input));
-  settle(session);
+  const std::string input = openWritten(session, folder, "sphere.obj", original);
   // The file changes on disk after the load: the save still writes the text that was loaded.
   std::ofstream(input, std::ios::binary) << "v 0 0 0\n";
 
@@ -248,12 +254,9 @@ TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it bu
 
   // A conversion's model (Fig. 14a on a cube file) has other faces: no file text to keep, plain
   // v/f lines of the model shown.
-  const std::string cube = (folder / "cube.obj").string();
-  std::ofstream(cube, std::ios::binary) << "o Cube\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
-                                           "v 1 1 1\nv -1 1 1\nvt 0 0\nf 4/1 3/1 2/1 1/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\n"
-                                           "f 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n";
-  REQUIRE(session.document().loadFile(cube));
-  settle(session);
+  openWritten(session, folder, "cube.obj",
+              "o Cube\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0 0\n"
+              "f 4/1 3/1 2/1 1/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\nf 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n");
   queueCommand(state, "model.ev-to-polar");
   settle(session);
   REQUIRE(session.model().mesh->faceCount() != 6);
@@ -274,14 +277,11 @@ TEST_CASE("session: Save OBJ of an edited non-manifold file writes it in the fil
   Session session(quiet(), window);
   ViewerState& state = session.state();
   const std::filesystem::path folder = freshDirectory();
-  const std::string input = (folder / "fin.obj").string();
   // Three quads on one edge (vertices 2 and 3): refined split along it (manifold_split.h).
   const std::string original =
       "g fins\nv 0 0 0\nv 0.5 0 0\nv 0.5 0.5 0\nv 0 0.5 0\nv 0.5 0 0.5\nv 0.5 0.5 0.5\nv 0.5 0 -0.5\nv 0.5 0.5 -0.5\n"
       "vt 0 0\nf 1/1 2/1 3/1 4/1\nf 2/1 5/1 6/1 3/1\nf 2/1 7/1 8/1 3/1\n";
-  std::ofstream(input, std::ios::binary) << original;
-  REQUIRE(session.document().loadFile(input));
-  settle(session);
+  openWritten(session, folder, "fin.obj", original);
   REQUIRE(session.model().mesh->vertexCount() == 8);
   dragVertex(session.document(), 4, -16.0f);
   state.edit.savePath = (folder / "fin_edited.obj").string();
