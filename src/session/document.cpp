@@ -311,6 +311,8 @@ void Document::resetEdits() {
 
 void Document::saveEditedMesh() {
   if (!model_.mesh) return;
+  // A save before the panels' first update (view --do edit.save) still has its default path.
+  if (state_.edit.defaultSavePath.empty()) updateEditState(nullptr);
   const std::string path = state_.edit.savePath.empty() ? state_.edit.defaultSavePath : state_.edit.savePath;
   bool keptSource = false;
   try {
