@@ -187,8 +187,10 @@ LoadedModel readModelFile(const std::string& path) {
   LoadedModel loaded;
   loaded.path = path;
   try {
-    loaded.mesh = loadObj(path, &loaded.warnings);
+    std::string text;
+    loaded.mesh = loadObj(path, &loaded.warnings, &text);
     loaded.error = checkModelMesh(loaded.mesh, path);
+    if (loaded.error.empty()) loaded.sourceText = std::make_shared<const std::string>(std::move(text));
   } catch (const std::exception& e) {
     // InputError (FILE:LINE: ...), a missing file, bad_alloc on a huge one: the model stays.
     loaded.error = e.what();

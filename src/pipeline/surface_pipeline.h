@@ -169,6 +169,9 @@ struct Model {
   // Tables, poles and face estimates, made once for the faces and shared by copies and edits of
   // this model (a view of a Model without one throws std::invalid_argument).
   std::shared_ptr<const ModelAnalysis> analysis;
+  // The OBJ text the mesh was read from, as read at load time (null for generated models and
+  // conversions): Save OBJ writes the edited points into it (obj_io.h saveObjEdited).
+  std::shared_ptr<const std::string> sourceText;
 };
 
 // The Model of a mesh (read and checked: checkModelMesh) with its analysis: the one way to make a
@@ -180,6 +183,7 @@ struct LoadedModel {
   std::string path;
   PolyMesh mesh;
   std::vector<std::string> warnings;  // non-fatal findings of the OBJ reader
+  std::shared_ptr<const std::string> sourceText;  // the file's bytes as read (Model::sourceText)
   std::string error;                  // empty when the mesh is usable
 };
 

@@ -71,7 +71,7 @@ bool Document::loadFile(const std::string& path, const std::string& name) {
     loadFailed(path, loaded.error);
     return false;
   }
-  adoptMesh(std::move(loaded.mesh), name.empty() ? path : name, path);
+  adoptMesh(std::move(loaded.mesh), name.empty() ? path : name, path, std::move(loaded.sourceText));
   state_.file.warnings = std::move(loaded.warnings);
   return true;
 }
@@ -103,7 +103,7 @@ void Document::pollLoad() {
     loadFailed(loaded.path, loaded.error);
     return;
   }
-  adoptMesh(std::move(loaded.mesh), loaded.path, loaded.path);
+  adoptMesh(std::move(loaded.mesh), loaded.path, loaded.path, std::move(loaded.sourceText));
   state_.file.warnings = std::move(loaded.warnings);
   state_.notice = "opened " + loaded.path;
 }
@@ -157,8 +157,11 @@ bool Document::loadMesh(PolyMesh mesh, const std::string& name, const std::strin
   return true;
 }
 
-void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
-  adoptModel(makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0), path);
+void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path,
+                         std::shared_ptr<const std::string> sourceText) {
+  Model model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0);
+  model.sourceText = std::move(sourceText);
+  adoptModel(std::move(model), path);
 }
 
 void Document::adoptModel(Model model, const std::string& path) {
@@ -320,9 +323,14 @@ void Document::resetEdits() {
 
 void Document::saveEditedMesh() {
   if (!model_.mesh) return;
+  // A save before the panels' first update (view --do edit.save) still has its default path.
+  if (state_.edit.defaultSavePath.empty()) updateEditState(nullptr);
   const std::string path = state_.edit.savePath.empty() ? state_.edit.defaultSavePath : state_.edit.savePath;
+  bool keptSource = false;
   try {
-    saveObj(path, *model_.mesh, model_.name);  // atomic: a failure leaves no file
+    // Atomic: a failure leaves no file. A conversion's model has no source text (other faces).
+    if (model_.sourceText) keptSource = saveObjEdited(path, *model_.mesh, *model_.sourceText, model_.name);
+    else saveObj(path, *model_.mesh, model_.name);
   } catch (const std::exception& e) {
     state_.edit.error = oneLine(std::string("could not save: ") + e.what());
     state_.notice = state_.edit.error;
@@ -330,7 +338,8 @@ void Document::saveEditedMesh() {
   }
   state_.edit.error.clear();
   state_.notice = "saved the edited mesh to " + absolutePath(path) + " (" + std::to_string(movedVertices_) +
-                  (movedVertices_ == 1 ? " vertex" : " vertices") + " moved)";
+                  (movedVertices_ == 1 ? " vertex" : " vertices") + " moved" +
+                  (keptSource ? "; every other line as in the file" : "") + ")";
 }
 
 void Document::startExport(bool bezierView, const BuiltSurface* shown) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,7 +80,9 @@ class Document {
   void showEigenvector();
   void loadRecent();
 
-  // Ctrl+S: the edited mesh as OBJ (atomic; a failure leaves no file and shows one line).
+  // Ctrl+S: the edited mesh as OBJ (atomic; a failure leaves no file and shows one line): a model
+  // read from a file is written into the file's text as loaded, only moved vertices' coordinates
+  // replaced (obj_io.h saveObjEdited); a generated one as plain v/f lines.
   void saveEditedMesh();
   // What `shown` (the active view's surface) is, as .bv or its refined control mesh, written on a
   // worker thread (pollExport takes the result).
@@ -94,7 +97,9 @@ class Document {
   void recordEditCost(const EditCost& cost);
 
  private:
-  void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path);
+  // `sourceText`: the file's text as read (Model::sourceText), null for a generated mesh.
+  void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path,
+                 std::shared_ptr<const std::string> sourceText = nullptr);
   // Shows `model` as the next model generation (what Ctrl+Z returns to is the one shown now).
   void adoptModel(Model model, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);

@@ -18,7 +18,7 @@ verts=$(grep -c '^v ' "$tmp/g2.obj")
 # level 0: 32 quads + 16 triangles. Level 1: 32*4 + 16*3 quads, 2*8 of them (at the poles) split in
 # two: 160 quads + 32 triangles. Level 2: 160*4 + 32*3, plus 2*16 splits.
 [ "$faces" -eq $((160*4 + 32*3 + 2*16)) ] || fail "c2ps level-2 globe has $faces faces"
-# coordinates round-trip doubles: 17 significant digits somewhere
+# coordinates round-trip doubles (the shortest decimal of each): refined points need 15+ digits somewhere
 grep -qE '^v -?[0-9]\.[0-9]{15,}' "$tmp/g2.obj" || fail "coordinates are not written with full precision"
 # the refined mesh is itself a valid mesh whose poles have valence 32
 "$exe" info "$tmp/g2.obj" --json > "$tmp/info.json"

@@ -21,6 +21,13 @@ assert d["views"] == 2 and d["shade"] == "gaussian" and d["level"] == 2, d
 assert d["schemes"] == ["c2ps-u", "rts"], d["schemes"]
 PY
 
+# edit.save in the first frame, nothing moved: the model file again, byte for byte (vt, vn, o, s,
+# mtllib, usemtl, f v/vt/vn and the 6-decimal numbers kept), as <model>_edited.obj beside it.
+printf '# Blender 3.6.5\nmtllib box.mtl\no Box\nv 1.000000 1.000000 -1.000000\nv 1.000000 -1.000000 -1.000000\nv 1.000000 1.000000 1.000000\nv 1.000000 -1.000000 1.000000\nv -1.000000 1.000000 -1.000000\nv -1.000000 -1.000000 -1.000000\nv -1.000000 1.000000 1.000000\nv -1.000000 -1.000000 1.000000\nvn -0.0000 1.0000 -0.0000\nvt 0.625000 0.500000\ns 0\nusemtl Material\nf 1/1/1 5/1/1 7/1/1 3/1/1\nf 4/1/1 3/1/1 7/1/1 8/1/1\nf 8/1/1 7/1/1 5/1/1 6/1/1\nf 6/1/1 2/1/1 4/1/1 8/1/1\nf 2/1/1 1/1/1 3/1/1 4/1/1\nf 6/1/1 5/1/1 1/1/1 2/1/1\n' > "$work/box.obj"
+"$exe" view "$work/box.obj" --do edit.save --frames 1 --hidden --size 800x500 > /dev/null 2> "$work/err.txt" ||
+  fail "view --do edit.save exited with $?: $(cat "$work/err.txt")"
+cmp -s "$work/box.obj" "$work/box_edited.obj" || fail "edit.save of an unedited file changed it: $(diff "$work/box.obj" "$work/box_edited.obj" | head -5)"
+
 "$exe" view --do shade.gaussian,no.such.command --frames 1 --hidden > /dev/null 2> "$work/usage.txt"
 [ $? -eq 2 ] || fail "an unknown --do command is not a usage error"
 grep -q "unknown viewer command 'no.such.command'" "$work/usage.txt" || fail "no message: $(cat "$work/usage.txt")"

@@ -609,3 +609,133 @@ TEST_CASE("obj: line numbers are 64-bit, past 2^31 lines") {
   CHECK(e.line() == int64_t(6442450944));
   CHECK(std::string(e.what()) == "huge.obj:6442450944: malformed number 'x'");
 }
+
+// [SECTION] Saving: shortest numbers, and an edited file written into its own text
+
+namespace {
+
+// A cube as Blender's OBJ exporter writes one (mtllib, o, 6-decimal v, vt, vn, s, usemtl, f v/vt/vn),
+// with what other writers add: a CRLF line, a vertex with w, one with a colour and a comment, a
+// statement continued over two lines, a group and a `t` tag. Vertex 8 (1-based) is on line 12.
+const char* kBlenderCube =
+    "# Blender 3.6.5\r\n"
+    "# www.blender.org\n"
+    "mtllib cube.mtl\n"
+    "o Cube\n"
+    "v 1.000000 1.000000 -1.000000\n"
+    "v 1.000000 -1.000000 -1.000000 1.0\n"
+    "v 1.000000 1.000000 1.000000 0.8 0.2 0.2 # red\n"
+    "v 1.000000 -1.000000 1.000000\n"
+    "v -1.000000 1.000000 -1.000000\n"
+    "v -1.000000 \\\n  -1.000000 -1.000000\n"
+    "v -1.000000 1.000000 1.000000\n"
+    "v  -1.000000\t-1.000000 1.000000\n"
+    "vn -0.0000 1.0000 -0.0000\nvn -0.0000 -0.0000 1.0000\nvn -1.0000 -0.0000 -0.0000\n"
+    "vn -0.0000 -1.0000 -0.0000\nvn 1.0000 -0.0000 -0.0000\nvn -0.0000 -0.0000 -1.0000\n"
+    "vt 0.625000 0.500000\nvt 0.875000 0.500000\nvt 0.875000 0.750000\nvt 0.625000 0.750000\n"
+    "s 0\n"
+    "usemtl Material\n"
+    "g body\n"
+    "f 1/1/1 5/2/1 7/3/1 3/4/1\n"
+    "f 4/4/2 3/3/2 7/2/2 8/1/2\n"
+    "f 8/1/3 7/2/3 5/3/3 6/4/3\n"
+    "f 6/1/4 2/2/4 4/3/4 8/4/4\n"
+    "f 2/1/5 1/2/5 3/3/5 4/4/5\n"
+    "f 6/1/6 5/2/6 1/3/6 2/4/6\n"
+    "t crease 2/1/0 0 4 2.5\n";
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// `text` with its first occurrence of `from` replaced by `to` (which must be there).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("obj: numbers are written as the shortest decimal that reads back to the same double") {
+  TempDir dir;
+  PolyMesh mesh;
+  mesh.points = {{0.19509, -0.980785, 1.0}, {0.1 + 0.2, 1e-300, -0.0}, {1.0 / 3.0, 123456789.0, 5e-324}};
+  mesh.addFace({0, 1, 2});
+  mesh.tags.corners = {{2, 0.1}};
+  const std::string path = (dir.path / "short.obj").string();
+  saveObj(path, mesh);
+  // 17 significant digits would write 0.19509000000000001 and 0.30000000000000004 alike.
+  CHECK(readText(path) ==
+        "v 0.19509 -0.980785 1\n"
+        "v 0.30000000000000004 1e-300 -0\n"
+        "v 0.3333333333333333 123456789 5e-324\n"
+        "f 1 2 3\n"
+        "t corner 1/1/0 2 0.1\n");
+  const PolyMesh back = loadObj(path);
+  CHECK(back.points == mesh.points);
+  CHECK(std::signbit(back.points[1].z));
+  CHECK(back.tags.corners == mesh.tags.corners);
+}
+
+TEST_CASE("obj: an edited file keeps every line but the moved vertices' coordinates, byte for byte") {
+  TempDir dir;
+  const std::string in = (dir.path / "cube.obj").string(), out = (dir.path / "cube_edited.obj").string();
+  writeText(in, kBlenderCube);
+  std::string text;
+  PolyMesh mesh = loadObj(in, nullptr, &text);
+  CHECK(text == kBlenderCube);
+  writeText(in, "v 0 0 0\n");  // the file changes on disk after the load: the text read is kept
+
+  // Nothing moved: the file as it was, every byte.
+  CHECK(saveObjEdited(out, mesh, text, in));
+  CHECK(readText(out) == kBlenderCube);
+
+  // Vertex 8 moves in x and z; y keeps its text ("-1.000000"), the tab and double blank stay.
+  mesh.points[7].x = 0.19509;
+  mesh.points[7].z = 0.1 + 0.2;
+  CHECK(saveObjEdited(out, mesh, text, in));
+  std::string expected =
+      replaced(kBlenderCube, "v  -1.000000\t-1.000000 1.000000\n", "v  0.19509\t-1.000000 0.30000000000000004\n");
+  CHECK(readText(out) == expected);
+  CHECK(loadObj(out).points == mesh.points);
+
+  // w and colour fields and the comment stay; a continued statement becomes one line.
+  mesh.points[1].y = 2.0;
+  mesh.points[2].z = -0.5;
+  mesh.points[5].x = 0.25;
+  CHECK(saveObjEdited(out, mesh, text, in));
+  expected = replaced(expected, "v 1.000000 -1.000000 -1.000000 1.0\n", "v 1.000000 2 -1.000000 1.0\n");
+  expected = replaced(expected, "v 1.000000 1.000000 1.000000 0.8 0.2 0.2 # red\n", "v 1.000000 1.000000 -0.5 0.8 0.2 0.2 # red\n");
+  expected = replaced(expected, "v -1.000000 \\\n  -1.000000 -1.000000\n", "v 0.25    -1.000000 -1.000000\n");
+  CHECK(readText(out) == expected);
+  const PolyMesh back = loadObj(out);
+  CHECK(back.points == mesh.points);
+  CHECK(back.faceVerts == mesh.faceVerts);
+  CHECK(back.tags.creases == mesh.tags.creases);
+}
+
+TEST_CASE("obj: an edited save keeps CR-only line ends and a byte-order mark; other faces write a plain file") {
+  TempDir dir;
+  const std::string text = std::string("\xEF\xBB\xBF") + "v 0 0 0\r# cr only\rv 1 0 0\rv 1 1 0 # moved\rvt 0 0\rf 1/1 2/1 3/1";
+  PolyMesh mesh = parseObjText(text, "cr.obj");
+  mesh.points[0].z = 1e-300;  // the first statement, right after the byte-order mark
+  mesh.points[2].x = -0.75;
+  const std::string out = (dir.path / "cr_edited.obj").string();
+  CHECK(saveObjEdited(out, mesh, text, "cr.obj"));
+  CHECK(readText(out) == replaced(replaced(text, "v 1 1 0 # moved", "v -0.75 1 0 # moved"), "v 0 0 0\r", "v 0 0 1e-300\r"));
+
+  // A mesh with other faces (a conversion's) is not the source's: plain v/f lines, shortest numbers.
+  PolyMesh other = mesh;
+  other.faceVerts = {0, 2, 1};
+  CHECK_FALSE(saveObjEdited(out, other, text, "cr.obj"));
+  CHECK(readText(out) == "v 0 0 1e-300\nv 1 0 0\nv -0.75 1 0\nf 1 3 2\n");
+  // A non-finite coordinate is refused before anything is written.
+  mesh.points[0].y = std::numeric_limits<double>::infinity();
+  const std::string bad = (dir.path / "bad.obj").string();
+  CHECK_THROWS_AS(saveObjEdited(bad, mesh, text, "cr.obj"), InputError);
+  CHECK_FALSE(fs::exists(bad));
+}

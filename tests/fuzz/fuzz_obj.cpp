@@ -7,7 +7,10 @@
 //    coordinate finite and at most kMaxObjCoordinate (checkParsedMesh in fuzz_common.h);
 //  * its tags are sorted and merged, ids in range, crease edges edges of a face, sharpness finite
 //    and > 0 (checkTags);
-//  * saveObj writes what loadObj reads back to the bit (points, faces, tags).
+//  * saveObj writes what loadObj reads back to the bit (points, faces, tags);
+//  * saveObjEdited writes the text itself, byte for byte, when no vertex moved, and with every
+//    other vertex moved writes what loadObj reads back as the moved mesh (its statements walked as
+//    the reader walks them).
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -51,25 +54,53 @@ const std::string& roundTripPath() {
   return path;
 }
 
+// The file `writer` wrote at `path` reads back (then removed) as `mesh`: points, faces and tags.
+void checkReadsBack(const std::string& path, const PolyMesh& mesh, const std::string& writer) {
+  gStage = "loadObj of " + writer + "'s file";
+  PolyMesh back;
+  try {
+    back = loadObj(path);
+  } catch (const InputError& e) {
+    fail(writer + "'s file does not read back: " + e.what());
+  }
+  std::remove(path.c_str());
+  if (back.points != mesh.points) fail("points differ after " + writer + " -> loadObj");
+  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after " + writer + " -> loadObj");
+  const SubdivTags &a = mesh.tags, &b = back.tags;
+  if (a.creases != b.creases || a.corners != b.corners || a.holes != b.holes || a.boundary != b.boundary ||
+      a.creaseMethod != b.creaseMethod || a.triangles != b.triangles)
+    fail("tags differ after " + writer + " -> loadObj");
+}
+
 void checkRoundTrip(const PolyMesh& mesh) {
   gStage = "saveObj";
   const std::string& path = roundTripPath();
   std::remove(path.c_str());
   saveObj(path, mesh, kSource);
-  gStage = "loadObj of saveObj's file";
-  PolyMesh back;
-  try {
-    back = loadObj(path);
-  } catch (const InputError& e) {
-    fail(std::string("saveObj's file does not read back: ") + e.what());
+  checkReadsBack(path, mesh, "saveObj");
+}
+
+// The bytes at `path`, removed.
+std::string takeFile(const std::string& path) {
+  std::string text;
+  if (FILE* file = std::fopen(path.c_str(), "rb")) {
+    char buffer[4096];
+    for (size_t got; (got = std::fread(buffer, 1, sizeof buffer, file)) > 0;) text.append(buffer, got);
+    std::fclose(file);
   }
   std::remove(path.c_str());
-  if (back.points != mesh.points) fail("points differ after saveObj -> loadObj");
-  if (back.faceStart != mesh.faceStart || back.faceVerts != mesh.faceVerts) fail("faces differ after saveObj -> loadObj");
-  const SubdivTags &a = mesh.tags, &b = back.tags;
-  if (a.creases != b.creases || a.corners != b.corners || a.holes != b.holes || a.boundary != b.boundary ||
-      a.creaseMethod != b.creaseMethod || a.triangles != b.triangles)
-    fail("tags differ after saveObj -> loadObj");
+  return text;
+}
+
+void checkEditedSave(const std::string& text, PolyMesh mesh) {
+  gStage = "saveObjEdited, nothing moved";
+  const std::string& path = roundTripPath();
+  if (!saveObjEdited(path, mesh, text, kSource)) fail("saveObjEdited did not take the mesh read from the text");
+  if (takeFile(path) != text) fail("saveObjEdited with nothing moved changed the text");
+  gStage = "saveObjEdited, every other vertex moved";
+  for (size_t v = 0; v < mesh.points.size(); v += 2) mesh.points[v] = mesh.points[v] * 0.5 + Point(0.25, -0.0, 1e-300);
+  if (!saveObjEdited(path, mesh, text, kSource)) fail("saveObjEdited did not take the moved mesh");
+  checkReadsBack(path, mesh, "saveObjEdited");
 }
 
 void run(const uint8_t* data, size_t size) {
@@ -89,6 +120,7 @@ void run(const uint8_t* data, size_t size) {
   }
   checkParsedMesh(mesh);
   checkRoundTrip(mesh);
+  checkEditedSave(text, std::move(mesh));
 }
 
 }  // namespace

@@ -1,12 +1,16 @@
 // A whole viewer session without a window: commands load models, the surfaces follow, a failed
-// load keeps the model, Ctrl+Z returns to the previous model, and saves and exports write files.
+// load keeps the model, Ctrl+Z returns to the previous model, and saves and exports write files
+// (Save OBJ of an edited file: the file's own text with the moved vertex's coordinates replaced).
 #include <doctest/doctest.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <thread>
 
 #include "core/mesh/constants.h"
@@ -52,6 +56,116 @@ SessionOptions quiet() {
   return options;
 }
 
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A UV sphere as Blender's OBJ exporter writes it: mtllib, o, v with 6 decimals, vn, vt, s,
+// usemtl, quads and pole triangles as f v/vt/vn. `segments` around, `rings` from pole to pole.
+std::string blenderSphere(int segments, int rings) {
+  std::string text = "# Blender 3.6.5\n# www.blender.org\nmtllib sphere.mtl\no Sphere\n";
+  char line[160];
+  const double pi = std::acos(-1.0);
+  std::vector<std::array<double, 3>> points = {{0, 0, 1}};
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double polar = pi * r / rings, azimuth = 2 * pi * s / segments;
+      points.push_back({std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar)});
+    }
+  points.push_back({0, 0, -1});
+  for (const auto& p : points) {
+    std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", p[0], p[1], p[2]);
+    text += line;
+  }
+  for (const auto& p : points) {
+    std::snprintf(line, sizeof line, "vn %.4f %.4f %.4f\n", p[0], p[1], p[2]);
+    text += line;
+  }
+  for (int s = 0; s <= segments; ++s) {
+    std::snprintf(line, sizeof line, "vt %.6f 0.500000\n", double(s) / segments);
+    text += line;
+  }
+  text += "s 1\nusemtl Material\n";
+  const int last = int(points.size());  // 1-based south pole
+  auto ringVertex = [&](int r, int s) { return 2 + (r - 1) * segments + s % segments; };
+  for (int s = 0; s < segments; ++s) {
+    const int a = ringVertex(1, s), b = ringVertex(1, s + 1);
+    std::snprintf(line, sizeof line, "f 1/%d/1 %d/%d/%d %d/%d/%d\n", s + 1, a, s + 1, a, b, s + 2, b);
+    text += line;
+  }
+  for (int r = 1; r + 1 < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const int a = ringVertex(r, s), b = ringVertex(r + 1, s), c = ringVertex(r + 1, s + 1), d = ringVertex(r, s + 1);
+      std::snprintf(line, sizeof line, "f %d/%d/%d %d/%d/%d %d/%d/%d %d/%d/%d\n", a, s + 1, a, b, s + 1, b, c, s + 2, c, d, s + 2, d);
+      text += line;
+    }
+  for (int s = 0; s < segments; ++s) {
+    const int a = ringVertex(rings - 1, s), b = ringVertex(rings - 1, s + 1);
+    std::snprintf(line, sizeof line, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", b, s + 2, b, a, s + 1, a, last, s + 1, last);
+    text += line;
+  }
+  return text;
+}
+
+// Writes `text` as folder/name and opens it as the viewer does (File > Open); returns the path.
+std::string openWritten(Session& session, const std::filesystem::path& folder, const std::string& name, const std::string& text) {
+  const std::string path = (folder / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  REQUIRE(session.document().loadFile(path));
+  settle(session);
+  return path;
+}
+
+// Drags control vertex `vertex` (0-based) `dx` pixels to the right in a 400 x 400 view looking down
+// -z at the unit sphere, as the viewer's mouse does (editor drag, points committed, one undo step).
+void dragVertex(Document& document, int vertex, float dx) {
+  ViewTransform view;
+  view.rect = ScreenRect{0, 0, 400, 400};
+  view.viewProjection = glm::dmat4(0.5);
+  view.viewProjection[3][3] = 1.0;
+  const std::optional<glm::dvec3> at = view.project(document.editor().points()[size_t(vertex)]);
+  REQUIRE(at);
+  REQUIRE(document.editor().beginDrag(vertex, view, glm::dvec3(0, 0, -1), float(at->x), float(at->y)));
+  REQUIRE(document.editor().dragTo(view, float(at->x) + dx, float(at->y)));
+  document.commitEditedPoints();
+  document.editor().endDrag();
+}
+
+// The shortest decimal that reads back to `value` (what the writer must write for a moved coordinate).
+std::string shortest(double value) {
+  char text[64];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+// `saved` is `original` but for line `changed` (0-based), a `v` line whose numbers are `point`:
+// each one the original's text when unchanged, else the shortest decimal of the new value.
+void checkOnlyVertexLineChanged(const std::string& original, const std::string& saved, size_t changed, const Point& point) {
+  std::vector<std::string> before = linesOf(original), after = linesOf(saved);
+  REQUIRE(before.size() == after.size());
+  for (size_t i = 0; i < before.size(); ++i)
+    if (i != changed) CHECK(after[i] == before[i]);
+  CHECK(after[changed] != before[changed]);
+  std::istringstream was(before[changed]), now(after[changed]);
+  std::string keyword, oldToken, newToken;
+  was >> keyword;
+  now >> keyword;
+  CHECK(keyword == "v");
+  for (int c = 0; c < 3; ++c) {
+    was >> oldToken;
+    now >> newToken;
+    CHECK(std::stod(newToken) == point[c]);
+    CHECK((newToken == oldToken || newToken == shortest(point[c])));
+  }
+}
 }  // namespace
 
 TEST_CASE("session: the default model through a command, its surface, and a failed load that keeps it") {
@@ -215,4 +329,67 @@ TEST_CASE("session: after an eigenvector net and Ctrl+Z, the outputs are named a
   CHECK(state.file.modelName.rfind("default: ", 0) == 0);
   CHECK(state.edit.defaultSavePath == "default_edited.obj");
   CHECK(state.edit.defaultBvPath.rfind("default_c2ps_", 0) == 0);
+}
+
+TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it but the moved vertex's") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  const std::filesystem::path folder = freshDirectory();
+  const std::string original = blenderSphere(8, 6);
+  const std::string input = openWritten(session, folder, "sphere.obj", original);
+  // The file changes on disk after the load: the save still writes the text that was loaded.
+  std::ofstream(input, std::ios::binary) << "v 0 0 0\n";
+
+  const int vertex = 5;  // on the first ring; its `v` line is line 10 (0-based 9)
+  dragVertex(session.document(), vertex, 20.0f);
+  const Point moved = session.model().mesh->points[vertex];
+  CHECK(moved != session.document().editor().loadedPoints()[vertex]);
+  state.edit.savePath = (folder / "sphere_edited.obj").string();
+  queueCommand(state, "edit.save");
+  settle(session);
+  CHECK(state.edit.error.empty());
+  CHECK(state.notice.find("1 vertex moved; every other line as in the file") != std::string::npos);
+  const std::string saved = readText(state.edit.savePath);
+  checkOnlyVertexLineChanged(original, saved, 4 + size_t(vertex), moved);
+  CHECK(loadObj(state.edit.savePath).points == session.model().mesh->points);
+
+  // A conversion's model (Fig. 14a on a cube file) has other faces: no file text to keep, plain
+  // v/f lines of the model shown.
+  openWritten(session, folder, "cube.obj",
+              "o Cube\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0 0\n"
+              "f 4/1 3/1 2/1 1/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\nf 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n");
+  queueCommand(state, "model.ev-to-polar");
+  settle(session);
+  REQUIRE(session.model().mesh->faceCount() != 6);
+  queueCommand(state, "edit.save");
+  settle(session);
+  CHECK(state.edit.error.empty());
+  CHECK(state.notice.find("every other line as in the file") == std::string::npos);
+  const std::string converted = readText(state.edit.savePath);
+  CHECK(converted.find("vt ") == std::string::npos);
+  const PolyMesh back = loadObj(state.edit.savePath);
+  CHECK(back.faceVerts == session.model().mesh->faceVerts);
+  CHECK(back.points == session.model().mesh->points);
+  std::filesystem::remove_all(folder);
+}
+
+TEST_CASE("session: Save OBJ of an edited non-manifold file writes it in the file's numbering") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  const std::filesystem::path folder = freshDirectory();
+  // Three quads on one edge (vertices 2 and 3): refined split along it (manifold_split.h).
+  const std::string original =
+      "g fins\nv 0 0 0\nv 0.5 0 0\nv 0.5 0.5 0\nv 0 0.5 0\nv 0.5 0 0.5\nv 0.5 0.5 0.5\nv 0.5 0 -0.5\nv 0.5 0.5 -0.5\n"
+      "vt 0 0\nf 1/1 2/1 3/1 4/1\nf 2/1 5/1 6/1 3/1\nf 2/1 7/1 8/1 3/1\n";
+  openWritten(session, folder, "fin.obj", original);
+  REQUIRE(session.model().mesh->vertexCount() == 8);
+  dragVertex(session.document(), 4, -16.0f);
+  state.edit.savePath = (folder / "fin_edited.obj").string();
+  queueCommand(state, "edit.save");
+  settle(session);
+  CHECK(state.edit.error.empty());
+  checkOnlyVertexLineChanged(original, readText(state.edit.savePath), 5, session.model().mesh->points[4]);
+  std::filesystem::remove_all(folder);
 }

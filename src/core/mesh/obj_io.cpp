@@ -606,10 +606,11 @@ class ObjParser {
 
 // [SECTION] Writing
 
-// Appends `value` as the shortest text that reads back to the same double (17 significant digits).
+// Appends `value` as the shortest text that reads back to the same double (to_chars without a
+// format or precision: the fewest characters, fixed or scientific, that round-trip).
 void appendNumber(std::string& out, double value) {
   char number[64];
-  auto result = std::to_chars(number, number + sizeof number, value, std::chars_format::general, 17);
+  auto result = std::to_chars(number, number + sizeof number, value);
   out.append(number, result.ptr);
 }
 
@@ -650,6 +651,128 @@ std::string tagLines(const SubdivTags& tags) {
   return out;
 }
 
+// Whether two tag sets are the same (saveObjEdited keeps the source's `t` lines only for its own tags).
+bool sameTags(const SubdivTags& a, const SubdivTags& b) {
+  return a.creases == b.creases && a.corners == b.corners && a.holes == b.holes && a.boundary == b.boundary &&
+         a.creaseMethod == b.creaseMethod && a.triangles == b.triangles;
+}
+
+// Whether two doubles are the same bit for bit (-0 is not 0: it reads back as -0).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+bool sameBits(const Point& a, const Point& b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
+
+// A non-finite number would be written as "nan"/"inf", which no reader takes back: refused before
+// anything is created.
+void refuseNonFinite(const std::string& path, const PolyMesh& mesh, const std::string& sourceName) {
+  const std::string& source = sourceName.empty() ? path : sourceName;
+  for (size_t v = 0; v < mesh.points.size(); ++v) {
+    const Point& p = mesh.points[v];
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+    throw InputError(source, 0,
+                     "the result has a non-finite coordinate (vertex " + std::to_string(v + 1) +
+                         "): the input's coordinates are too large, too small or degenerate; " + path + " not written");
+  }
+  const auto badSharpness = [](double s) { return !std::isfinite(s) || s < 0; };
+  if (std::any_of(mesh.tags.creases.begin(), mesh.tags.creases.end(), [&](const CreaseEdge& c) { return badSharpness(c.sharpness); }) ||
+      std::any_of(mesh.tags.corners.begin(), mesh.tags.corners.end(), [&](const CornerVertex& c) { return badSharpness(c.sharpness); }))
+    throw InputError(source, 0, "a crease or corner sharpness is negative or not finite; " + path + " not written");
+}
+
+// An atomic output filled through a buffer written in large blocks.
+struct BufferedObjFile {
+  static constexpr size_t kFlushAt = size_t(1) << 20;
+  AtomicFileWriter file;
+  std::string out;
+
+  explicit BufferedObjFile(const std::string& path) : file(path) { out.reserve(kFlushAt + 256); }
+  void flushIfFull() {
+    if (out.size() < kFlushAt) return;
+    file.write(out);
+    out.clear();
+  }
+  void commit() {
+    file.write(out);
+    file.commit();
+  }
+};
+
+// One statement of a source text as the reader cut it (one line, or lines joined by continuation
+// backslashes): all its bytes with the line end, the statement the reader parsed (continuations
+// joined as it joins them) and that line end.
+struct SourceStatement {
+  std::string_view bytes;      // empty at the end of the text
+  std::string_view statement;  // points into the text, or into SourceStatements' joined copy
+  std::string_view lineEnd;    // LF, CRLF, CR or nothing (the last line)
+  bool isVertex = false;       // a `v` statement
+};
+
+// Walks an OBJ text statement by statement with the reader's own rules (ObjParser::splitLines and
+// handleLine: LF, CRLF and a lone CR end lines, a trailing backslash continues the statement), so
+// its n-th `v` statement is the mesh's vertex n. A leading byte-order mark comes as a piece of its
+// own (no statement), so it stays when the first statement is rewritten.
+class SourceStatements {
+ public:
+  explicit SourceStatements(std::string_view text) : text_(text) {}
+
+  SourceStatement next() {
+    SourceStatement s;
+    const size_t begin = pos_;
+    if (pos_ == 0 && text_.substr(0, 3) == "\xEF\xBB\xBF") {
+      pos_ = 3;
+      s.bytes = text_.substr(0, 3);
+      return s;
+    }
+    if (pos_ >= text_.size()) return s;
+    joined_.clear();
+    for (;;) {
+      const size_t lineBegin = pos_;
+      size_t end = lineBegin;
+      while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') ++end;
+      pos_ = end;
+      if (pos_ < text_.size()) pos_ += (text_[pos_] == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') ? 2 : 1;
+      const std::string_view line = text_.substr(lineBegin, end - lineBegin);
+      s.lineEnd = text_.substr(end, pos_ - end);
+      const bool continuesHere = continues(line);
+      if (!continuesHere && joined_.empty()) {
+        s.statement = line;
+        break;
+      }
+      // Joined as handleLine joins; a continuation on the last line continues into nothing.
+      if (continuesHere) joined_.append(withoutContinuation(line)).push_back(' ');
+      else joined_.append(line);
+      if (!continuesHere || pos_ == text_.size()) {
+        s.statement = joined_;
+        break;
+      }
+    }
+    s.bytes = text_.substr(begin, pos_ - begin);
+    Tokens tokens(withoutComment(s.statement));
+    s.isVertex = tokens.next() == "v";
+    return s;
+  }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  std::string joined_;
+};
+
+// Appends the `v` statement `statement` with the coordinates that differ from `before` replaced by
+// `after`'s, shortest; everything else of it (spacing, w or colour fields, a comment) as it is.
+void appendMovedVertex(std::string& out, std::string_view statement, const Point& before, const Point& after) {
+  Tokens tokens(withoutComment(statement));
+  tokens.next();  // "v"
+  const char* copied = statement.data();
+  for (int i = 0; i < 3; ++i) {
+    const std::string_view token = tokens.next();
+    if (sameBits(before[i], after[i])) continue;
+    out.append(copied, token.data());
+    appendNumber(out, after[i]);
+    copied = token.data() + token.size();
+  }
+  out.append(copied, statement.data() + statement.size());
+}
+
 }  // namespace
 
 PolyMesh parseObjText(const std::string& text, const std::string& sourceName, std::vector<std::string>* warnings) {
@@ -671,64 +794,72 @@ PolyMesh parseObj(std::istream& in, const std::string& sourceName, std::vector<s
   return parser.finish();
 }
 
-PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings) {
+PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings, std::string* text) {
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) throw InputError(path, 0, std::string("cannot open: ") + std::strerror(errno));
   ObjParser parser(path, warnings);
   std::unique_ptr<char[]> buffer(new char[kReadChunk]);
   size_t got = 0;
-  while ((got = std::fread(buffer.get(), 1, kReadChunk, file.get())) > 0) parser.feed(std::string_view(buffer.get(), got));
+  if (text) text->clear();
+  while ((got = std::fread(buffer.get(), 1, kReadChunk, file.get())) > 0) {
+    if (text) text->append(buffer.get(), got);
+    parser.feed(std::string_view(buffer.get(), got));
+  }
   if (std::ferror(file.get())) throw InputError(path, 0, "cannot read the file (is it a directory?)");
   return parser.finish();
 }
 
 void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName) {
-  // A non-finite number would be written as "nan"/"inf", which no reader takes back: refuse
-  // before anything is created.
-  const std::string& source = sourceName.empty() ? path : sourceName;
-  for (size_t v = 0; v < mesh.points.size(); ++v) {
-    const Point& p = mesh.points[v];
-    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
-    throw InputError(source, 0,
-                     "the result has a non-finite coordinate (vertex " + std::to_string(v + 1) +
-                         "): the input's coordinates are too large, too small or degenerate; " + path + " not written");
-  }
-  const auto badSharpness = [](double s) { return !std::isfinite(s) || s < 0; };
-  if (std::any_of(mesh.tags.creases.begin(), mesh.tags.creases.end(), [&](const CreaseEdge& c) { return badSharpness(c.sharpness); }) ||
-      std::any_of(mesh.tags.corners.begin(), mesh.tags.corners.end(), [&](const CornerVertex& c) { return badSharpness(c.sharpness); }))
-    throw InputError(source, 0, "a crease or corner sharpness is negative or not finite; " + path + " not written");
-  AtomicFileWriter file(path);
-
-  // Format into a buffer with to_chars (%.17g equivalent) and write it in large blocks.
-  std::string out;
-  constexpr size_t kFlushAt = 1 << 20;
-  out.reserve(kFlushAt + 256);
-  auto flushIfFull = [&] {
-    if (out.size() < kFlushAt) return;
-    file.write(out);
-    out.clear();
-  };
+  refuseNonFinite(path, mesh, sourceName);
+  BufferedObjFile file(path);
   for (const Point& p : mesh.points) {
-    out += 'v';
+    file.out += 'v';
     for (int i = 0; i < 3; ++i) {
-      out += ' ';
-      appendNumber(out, p[i]);
+      file.out += ' ';
+      appendNumber(file.out, p[i]);
     }
-    out += '\n';
-    flushIfFull();
+    file.out += '\n';
+    file.flushIfFull();
   }
   for (Index f = 0; f < mesh.faceCount(); ++f) {
-    out += 'f';
+    file.out += 'f';
     for (Index c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; ++c) {
-      out += ' ';
-      appendInteger(out, int64_t(mesh.faceVerts[c]) + 1);
+      file.out += ' ';
+      appendInteger(file.out, int64_t(mesh.faceVerts[c]) + 1);
     }
-    out += '\n';
-    flushIfFull();
+    file.out += '\n';
+    file.flushIfFull();
   }
-  out += tagLines(mesh.tags);
-  file.write(out);
+  file.out += tagLines(mesh.tags);
   file.commit();
+}
+
+bool saveObjEdited(const std::string& path, const PolyMesh& mesh, const std::string& sourceText, const std::string& sourceName) {
+  // The source read again (it parsed when loaded): its points say which vertices moved, its faces
+  // and tags whether `mesh` is still its mesh.
+  const PolyMesh source = parseObjText(sourceText, sourceName.empty() ? path : sourceName);
+  if (source.vertexCount() != mesh.vertexCount() || source.faceStart != mesh.faceStart || source.faceVerts != mesh.faceVerts ||
+      !sameTags(source.tags, mesh.tags)) {
+    saveObj(path, mesh, sourceName);
+    return false;
+  }
+  refuseNonFinite(path, mesh, sourceName);
+  BufferedObjFile file(path);
+  SourceStatements statements(sourceText);
+  Index vertex = 0;
+  for (SourceStatement s = statements.next(); !s.bytes.empty(); s = statements.next()) {
+    const bool moved = s.isVertex && !sameBits(mesh.points[size_t(vertex)], source.points[size_t(vertex)]);
+    if (moved) {
+      appendMovedVertex(file.out, s.statement, source.points[size_t(vertex)], mesh.points[size_t(vertex)]);
+      file.out += s.lineEnd;
+    } else {
+      file.out += s.bytes;
+    }
+    if (s.isVertex) ++vertex;
+    file.flushIfFull();
+  }
+  file.commit();
+  return true;
 }
 
 }  // namespace polarview

@@ -84,7 +84,7 @@ double pieceParameter(int piece, int split, double t) {
   return (1.0 - t) * va + t * vb;
 }
 
-// Appends x with 17 significant digits (round-trips), as obj_io writes coordinates.
+// Appends x with 17 significant digits (round-trips; obj_io writes the shortest such text instead).
 void appendNumber(std::string& out, double x) {
   char number[64];
   const auto result = std::to_chars(number, number + sizeof number, x, std::chars_format::general, 17);
