@@ -2,6 +2,7 @@
 #include "session/session.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/subdiv/spectrum.h"
@@ -62,11 +63,10 @@ void Session::updateColourRange() {
     collectColourSamples();
   }
   // The histogram follows the range the bar shows (typed or automatic).
-  const std::pair<double, double> shownRange{state_.colourRangeBelow(), state_.colourRange()};
+  const ColourInterval shownRange = state_.colourInterval();
   if (shownRange != histogramRange_ || state_.colour.histogram.empty()) {
     histogramRange_ = shownRange;
-    state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange.first, shownRange.second,
-                                                kHistogramBins);
+    state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange, kHistogramBins);
   }
 }
 
@@ -89,14 +89,21 @@ void Session::collectColourSamples() {
     for (double a : s.areas) weights.push_back(a / area);
   }
   if (values.empty()) return;
-  state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
-  // Each side apart, for the asymmetric range; a side without values keeps a sliver of the other.
-  const double low = weightedPercentile(values, weights, 1.0 - state_.colour.quantile);
-  const double high = weightedPercentile(values, weights, state_.colour.quantile);
-  const double floor = 1e-3 * state_.colour.autoRange;
-  state_.colour.autoBelow = std::max(-low, floor);
-  state_.colour.autoAbove = std::max(high, floor);
-  state_.colour.histogram.clear();  // recomputed for the new samples
+  ColourRangeSettings& colour = state_.colour;
+  colour.autoRange = weightedSymmetricRange(values, weights, colour.quantile);
+  colour.autoPercentiles = {weightedPercentile(values, weights, 1.0 - colour.quantile),
+                            weightedPercentile(values, weights, colour.quantile)};
+  colour.sampleMin = *std::min_element(values.begin(), values.end());
+  colour.sampleMax = *std::max_element(values.begin(), values.end());
+  // A one-sided range needs a width: a sphere's K can be one value to all digits.
+  ColourInterval& p = colour.autoPercentiles;
+  const double narrowest = 1e-6 * std::max(std::abs(p.low), std::abs(p.high));
+  if (colour.oneSign() != 0 && !(p.high - p.low >= narrowest)) {
+    const double middle = 0.5 * (p.low + p.high);
+    p = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
+    if (colour.oneSign() > 0 ? p.low < 0.0 : p.high > 0.0) p = colour.oneSign() > 0 ? ColourInterval{0.0, narrowest} : ColourInterval{-narrowest, 0.0};
+  }
+  colour.histogram.clear();  // recomputed for the new samples
 }
 
 void Session::updateSpectrum() {

@@ -340,12 +340,12 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
   state.shading.mode = ShadingParams::Mode::Gaussian;
   app->runFrame();
   REQUIRE(state.colour.automatic);
-  const double range = state.colourRange();
-  CHECK(range != 1.0f);
+  const ColourInterval range = state.colourInterval();
+  CHECK(range.high != 1.0f);
   tap(GLFW_KEY_A);
   app->runFrame();
   CHECK(!state.colour.automatic);
-  CHECK(state.colourRange() == range);
+  CHECK(state.colourInterval() == range);
   // A press during a slow frame (no frame in between) still sets the level.
   tap(GLFW_KEY_2);
   app->runFrame();

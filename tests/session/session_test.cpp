@@ -2,11 +2,14 @@
 // load keeps the model, Ctrl+Z returns to the previous model, and saves and exports write files.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <thread>
+
+#include <glm/geometric.hpp>
 
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
@@ -112,4 +115,38 @@ TEST_CASE("session: Save OBJ and Export .bv write what the model and the active 
   REQUIRE(bv.good());
   CHECK(state.notice.find(std::to_string(session.surfaces().shown(0)->patches.size()) + " Bezier patches") != std::string::npos);
   std::filesystem::remove_all(folder);
+}
+
+TEST_CASE("session: a sphere's K (all > 0) gets a one-sided automatic range over its own values, not +-max") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  REQUIRE(session.document().loadMesh(shapes::globe(16, 7), "globe"));
+  state.views[0].level = 3;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  settle(session);
+  REQUIRE(session.surfaces().shown(0) != nullptr);
+  const std::vector<double>& k = session.surfaces().shown(0)->samples->gaussian;
+  const double lowest = *std::min_element(k.begin(), k.end()), highest = *std::max_element(k.begin(), k.end());
+  REQUIRE(lowest > 0.0);
+  const ColourInterval range = state.colourInterval();
+  CAPTURE(range.low);
+  CAPTURE(range.high);
+  // [P10, P90] of K: inside [min, max] (the old +-P90 reached down to -P90, all of K on the red end).
+  CHECK(range.oneSided());
+  CHECK(range.low >= lowest);
+  CHECK(range.high <= highest);
+  CHECK(range.low < range.high);
+  // The map still varies over the sphere: its lowest and highest K differ in colour, and both are
+  // on the positive half of the paper's map (not blue).
+  const glm::vec3 low = colorMapCpu(state.shading.colormap, lowest, range), high = colorMapCpu(state.shading.colormap, highest, range);
+  CHECK(glm::length(low - high) > 0.5f);
+  CHECK(low.z == 0.0f);
+  CHECK(colourRangeNote(state).find("all K > 0: range") == 0);
+  // Mixed signs keep the paper's map centred on zero: the mushroom's neck is negative.
+  REQUIRE(session.document().loadMesh(shapes::mushroom(6), "mushroom"));
+  settle(session);
+  CHECK_FALSE(state.colourInterval().oneSided());
+  CHECK(state.colourInterval().low == -state.colourInterval().high);
+  CHECK(colourRangeNote(state).empty());
 }
