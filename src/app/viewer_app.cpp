@@ -314,6 +314,16 @@ std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>
   return markers;
 }
 
+std::vector<PointMarker> ViewerApp::pointMarkers(const std::vector<ScreenRect>& rects) const {
+  // The Point panel's surface point where its view shows it now (the camera may have moved since).
+  const ReadoutSettings& readout = state_.readout;
+  if (!readout.valid || readout.view >= int(rects.size()) || state_.poleInspector.zoomRing >= 0) return {};
+  const ScreenRect& rect = rects[size_t(readout.view)];
+  const std::optional<glm::dvec3> at = viewTransform(readout.view, rect).project(readout.readout.point.position);
+  if (!at || !rect.contains(float(at->x), float(at->y))) return {};
+  return {PointMarker{float(at->x), float(at->y)}};
+}
+
 // [SECTION] Drawing
 
 
@@ -394,6 +404,13 @@ void ViewerApp::runFrame() {
   std::optional<PivotPick> pick = input.pivot;
   if (!pick && pendingPivot_) pick = pendingPivot_;
   pendingPivot_.reset();
+  // This frame's keys and commands reach the surfaces before the panels are drawn, so the Stats
+  // panel shows the status the views' titles show (it lagged them by a frame); what a panel
+  // changes is taken up next frame.
+  session_.runCommands();
+  session_.expireNotice();
+  updateSurfaces();
+  session_.updatePanels();
   drawViewerPanels(state_);
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
@@ -403,10 +420,6 @@ void ViewerApp::runFrame() {
   if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_ ||
                       std::pair{area.w, area.h} != framedAreaSize_))
     frameModel();
-  session_.runCommands();
-  session_.expireNotice();
-  updateSurfaces();
-  session_.updatePanels();
 
   // Draw the views, then the overlay and the UI over them.
   clearFramebuffer(fbWidth, fbHeight, kBackground);
@@ -416,7 +429,7 @@ void ViewerApp::runFrame() {
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
   drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles,
-                  vertexMarkers(rects));
+                  vertexMarkers(rects), pointMarkers(rects));
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   finishGpuWork();  // frame time includes the GPU work (not the swap's wait for vsync)

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
+#include <utility>
 
 #ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
@@ -374,13 +376,59 @@ void drawScreenshotPanel(ViewerState& state) {
   if (!state.screenshot.lastPath.empty()) ImGui::TextWrapped("Last: %s", state.screenshot.lastPath.c_str());
 }
 
+// Numbers under their names, one column each, so a number is never cut at the panel's edge nor
+// wrapped in the middle (a text line of four timings was, with two views and a scroll bar).
+void numberTable(const char* id, std::initializer_list<std::pair<const char*, double>> columns, const char* format) {
+  if (!ImGui::BeginTable(id, int(columns.size()), ImGuiTableFlags_SizingStretchSame)) return;
+  for (const auto& column : columns) ImGui::TableSetupColumn(column.first);
+  ImGui::TableHeadersRow();
+  ImGui::TableNextRow();
+  for (const auto& column : columns) {
+    ImGui::TableNextColumn();
+    ImGui::Text(format, column.second);
+  }
+  ImGui::EndTable();
+}
+
+// One number a row under its name (a line of three was cut at the panel's edge, and ImGui wraps at
+// a '.' too, inside a number).
+void drawPointPanel(const ReadoutSettings& readout) {
+  const PointReadout& r = readout.readout;
+  ImGui::Text("view %d (marked with a cross)", readout.view + 1);
+  if (!ImGui::BeginTable("##point", 2, ImGuiTableFlags_SizingFixedFit)) return;
+  auto row = [](const char* name, const char* format, auto... values) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(name);
+    ImGui::TableNextColumn();
+    ImGui::Text(format, values...);
+  };
+  const SurfacePoint& p = r.point;
+  row("x", "%.12g", p.position.x);
+  row("y", "%.12g", p.position.y);
+  row("z", "%.12g", p.position.z);
+  row("normal", "(%.4f, %.4f, %.4f)", p.normal.x, p.normal.y, p.normal.z);
+  row("K", "%.9g", p.gaussian);
+  row("H", "%.9g", p.mean);
+  row("k1", "%.9g", r.k1);
+  row("k2", "%.9g", r.k2);
+  row("patch", "%s %zu", patchKindName(r.kind), r.patchIndex);
+  if (r.ring >= 0) row("level, ring", "%d, %d", r.level, r.ring);
+  else row("level", "%d", r.level);
+  row("u", "%.6f", r.u);
+  row("v", "%.6f", r.v);
+  ImGui::EndTable();
+}
+
 void drawStatsPanel(const ViewerState& state) {
   ImGui::Text("Frame: %.1f ms", state.frameMs);
   const EditSettings& edit = state.edit;
-  if (edit.updatedViews > 0) {
-    ImGui::TextWrapped("Last edit: %.1f ms for %d view%s (positions %.1f, patches %.1f, upload %.1f)", edit.totalMs,
-                       edit.updatedViews, edit.updatedViews == 1 ? "" : "s", edit.positionsMs, edit.patchesMs,
-                       edit.uploadMs);
+  // The cost of the last positions-only update, while the model holds an edit (an undo back to the
+  // file's points leaves nothing it describes).
+  if (edit.updatedViews > 0 && (edit.undoSteps > 0 || edit.movedVertices > 0)) {
+    ImGui::Text("Last edit, %d view%s (ms):", edit.updatedViews, edit.updatedViews == 1 ? "" : "s");
+    numberTable("##edit", {{"positions", edit.positionsMs}, {"patches", edit.patchesMs}, {"upload", edit.uploadMs},
+                           {"all", edit.totalMs}}, "%.1f");
   }
   for (int v = 0; v < state.viewCount; ++v) {
     const ViewStatus& s = state.views[v].status;
@@ -388,12 +436,12 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
     }
-    ImGui::Text("View %d: %s level %d, built in %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
-                s.refineMs + s.uploadMs);
+    ImGui::Text("View %d: %s level %d (ms)", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel);
     ImGui::Indent();
-    // Two lines: one was cut at the panel's edge.
-    ImGui::Text("refine %.1f, patches %.1f,", s.refineOnlyMs, s.patchesMs);
-    ImGui::Text("samples %.1f, upload %.1f ms", s.samplesMs, s.uploadMs);
+    ImGui::PushID(v);
+    numberTable("##timing", {{"built", s.refineMs + s.uploadMs}, {"refine", s.refineOnlyMs}, {"patches", s.patchesMs},
+                             {"samples", s.samplesMs}, {"upload", s.uploadMs}}, "%.1f");
+    ImGui::PopID();
     if (s.unparked)
       ImGui::TextWrapped("(a scheme toggle back: the surface stayed on the GPU, nothing was built)");
     else if (s.reshown)
@@ -404,7 +452,7 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::TextWrapped("Poles closed at level %d: %s is not C2 there, so its cap at level %d would show a curvature "
                          "of its own; the rings between are the limit surface.",
                          s.patchLevel, schemeChoiceLabel(s.shownScheme), s.shownLevel);
-    ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
+    ImGui::TextWrapped("%d patches, %d control faces", s.patchCount, s.controlFaces);
     // The level of detail (pipeline/level_of_detail.h): refined to patchLevel, drawn at drawnLevel.
     if (s.drawnLevel < s.patchLevel)
       ImGui::TextWrapped("Drawn at level %d (%d patches): the deeper rings and caps are below a pixel here; "
@@ -540,6 +588,22 @@ void drawPoleRings(const OverlayPen& pen, const std::vector<PoleMarker>& poles, 
     if (underLabel) continue;
     list->AddCircle(centre, 7.0f * scale, IM_COL32(0, 0, 0, 200), 24, 3.0f * scale);
     list->AddCircle(centre, 7.0f * scale, IM_COL32(255, 255, 255, 230), 24, 1.3f * scale);
+  }
+}
+
+void drawPointMarkers(const OverlayPen& pen, const std::vector<PointMarker>& points) {
+  // The Point panel's surface point: a cross in a ring (white on a dark rim), unlike the round
+  // control-vertex and pole marks.
+  const float scale = pen.scale, r = 7.0f * scale;
+  for (const PointMarker& point : points) {
+    const ImVec2 c(point.x, point.y);
+    for (const auto& [colour, width] : {std::pair{IM_COL32(0, 0, 0, 220), 3.5f}, std::pair{IM_COL32(255, 255, 255, 255), 1.5f}}) {
+      pen.list->AddCircle(c, r, colour, 20, width * scale);
+      pen.list->AddLine(ImVec2(c.x - 1.8f * r, c.y), ImVec2(c.x - 0.5f * r, c.y), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x + 0.5f * r, c.y), ImVec2(c.x + 1.8f * r, c.y), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x, c.y - 1.8f * r), ImVec2(c.x, c.y - 0.5f * r), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x, c.y + 0.5f * r), ImVec2(c.x, c.y + 1.8f * r), colour, width * scale);
+    }
   }
 }
 
@@ -753,8 +817,7 @@ void drawViewerPanels(ViewerState& state) {
     }
     if (ImGui::CollapsingHeader("Spectrum (Fig. 1)")) drawSpectrumPanel(state);
     if (state.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
-      ImGui::Text("view %d", state.readout.view + 1);
-      ImGui::TextUnformatted(state.readout.text.c_str());
+      drawPointPanel(state.readout);
       if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(state.readout.text.c_str());
     }
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
@@ -765,12 +828,13 @@ void drawViewerPanels(ViewerState& state) {
 
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles,
-                     const std::vector<VertexMarker>& vertices) {
+                     const std::vector<VertexMarker>& vertices, const std::vector<PointMarker>& points) {
   const OverlayPen pen{list, font, 15.0f * scale, scale};
   // The pole rings leave the labels alone.
   const std::vector<ImVec4> labelBoxes = drawViewLabels(pen, state, views, frame);
   drawPoleRings(pen, poles, labelBoxes);
   drawVertexMarkers(pen, vertices);
+  drawPointMarkers(pen, points);
   drawLineLegend(pen, state, frame);
   if (state.showsColourBar()) drawColourBar(pen, state, frame);
 }
