@@ -150,3 +150,31 @@ TEST_CASE("session: a sphere's K (all > 0) gets a one-sided automatic range over
   CHECK(state.colourInterval().low == -state.colourInterval().high);
   CHECK(colourRangeNote(state).empty());
 }
+
+TEST_CASE("session: a pole zoom to rings m..m+2 raises the views to level m+2, or is refused, and a lower level ends it") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  REQUIRE(session.document().loadMesh(shapes::globe(8, 5), "globe"));
+  state.views[0].level = 3;
+  settle(session);
+  // Rings 4..6 at level 3 did not exist: the view went blank. Now the level goes to 6.
+  state.poleInspector.zoomRing = 4;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == 4);
+  CHECK(state.views[0].level == 6);
+  CHECK(state.views[0].status.shownLevel == 6);
+  CHECK(state.notice.find("level 6 for the pole zoom") == 0);
+  // A level under the zoom's rings ends it, saying why.
+  state.views[0].level = 5;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == -1);
+  CHECK(state.notice.find("pole zoom off: rings 4-6 need level 6") == 0);
+  // Deeper than the scheme goes on this model: refused, the level stays.
+  const int deepest = state.views[0].status.deepestLevel;
+  state.poleInspector.zoomRing = deepest;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == -1);
+  CHECK(state.views[0].level == 5);
+  CHECK(state.notice.find("stops at level " + std::to_string(deepest)) != std::string::npos);
+}
