@@ -23,8 +23,8 @@ out vec4 o_color;
 #endif
 
 uniform int u_colormap;
-uniform float u_range;       // positive side of the colour range
-uniform float u_rangeBelow;  // negative side (equal to u_range when symmetric)
+uniform float u_rangeLow;    // the colour range [low, high] (ColourInterval)
+uniform float u_rangeHigh;
 uniform float u_curvatureLighting;
 uniform vec3 u_eye;             // relative to the model centre (highlight lines are placed there)
 uniform vec3 u_keyLight;        // unit, world axes
@@ -75,7 +75,7 @@ void main() {
 
 #if SHADING_MODE == 1 || SHADING_MODE == 2
   float value = SHADING_MODE == 1 ? FRAG_IN.curvature.x : FRAG_IN.curvature.y;
-  vec3 base = curvatureColor(u_colormap, value, u_range, u_rangeBelow);
+  vec3 base = curvatureColor(u_colormap, value, u_rangeLow, u_rangeHigh);
   vec3 color = mix(base, base * light.x + vec3(light.y), u_curvatureLighting);
 #elif SHADING_MODE == 3
   vec3 color = mix(u_surfaceColor * light.x + vec3(light.y), vec3(0.05), highlightStripe(P + u_eye, N));

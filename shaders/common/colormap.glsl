@@ -1,6 +1,8 @@
-// Curvature colour maps. Mirror of polarview::colorMapCpu (src/render/patch_renderer.cpp); the
-// render tests compare the two. Values map to t in [-1, 1] with two slopes, zero in the middle:
-// t = value / range above zero and value / rangeBelow below (equal for a symmetric range).
+// Curvature colour maps. Mirror of polarview::colorMapCpu (src/pipeline/shading.cpp); the render
+// tests compare the two. The range is [low, high] (ColourInterval in src/pipeline/shading.h). With
+// zero inside it values map to t in [-1, 1] with two slopes, zero in the middle: t = value / high
+// above zero and value / -low below. A one-sided range (all values of one sign) spans the half of
+// the map of its sign linearly: t = (value - low) / (high - low) in [0, 1], or that minus 1.
 
 const int kColorMapPaper = 0;
 const int kColorMapCoolWarm = 1;
@@ -50,8 +52,14 @@ vec3 magnitudeColorMap(float t) {
                           vec3(1.0, 0.9, 0.0), vec3(0.85, 0.0, 0.0));
 }
 
-vec3 curvatureColor(int colormap, float value, float range, float rangeBelow) {
-  float t = clamp(value / max(value >= 0.0 ? range : rangeBelow, 1e-30), -1.0, 1.0);
+float curvatureMapT(float value, float low, float high) {
+  if (low < 0.0 && high > 0.0) return clamp(value / max(value >= 0.0 ? high : -low, 1e-30), -1.0, 1.0);
+  float p = clamp((value - low) / max(high - low, 1e-30), 0.0, 1.0);
+  return high > 0.0 ? p : p - 1.0;
+}
+
+vec3 curvatureColor(int colormap, float value, float low, float high) {
+  float t = curvatureMapT(value, low, high);
   if (colormap == kColorMapMagnitude) return magnitudeColorMap(t);
   if (colormap == kColorMapCoolWarm) return coolWarmColorMap(t);
   if (colormap == kColorMapViridis) return viridisColorMap(t);

@@ -330,7 +330,8 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     state.sharedCamera = camera;
   }
   RgbaImage image = renderViews(app, width, height, supersample);
-  if (figure.sharedRange && !*range && state.showsColourBar()) *range = state.colourRange();
+  if (figure.sharedRange && !*range && state.showsColourBar())
+    *range = float(std::max(-state.colourInterval().low, state.colourInterval().high));
 
   // Panels with a model of their own, drawn through the same camera into their place: refined nets
   // (the model refined uniformly, core Refinement) and Fig. 1's eigenvector nets after the first.

@@ -165,8 +165,6 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
   const glm::dvec3 centre = 0.5 * (document.modelMin() + document.modelMax());
   const double radius = 0.5 * glm::length(document.modelMax() - document.modelMin());
   ShadingParams shading = state.shading;
-  shading.range = state.colourRange();
-  shading.rangeBelow = state.colourRangeBelow();
   std::vector<PoleMarker> markers;
   for (size_t v = 0; v < rects.size(); ++v) {
     const GpuSlot& gpu = views_[v].shown;
@@ -174,13 +172,11 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
     shading.mode = state.viewShade(int(v));
     // A pole zoom by s = 2^m scales K by 1 / s^2 and H by 1 / s: the range alike, so colours keep values.
-    shading.range = state.colourRange();
-    shading.rangeBelow = state.colourRangeBelow();
+    shading.range = state.colourInterval();
     if (gpu.zoom >= 0) {
       const float s = std::ldexp(1.0f, gpu.zoom);
       const float scale = shading.mode == ShadingParams::Mode::Gaussian ? 1.0f / (s * s) : 1.0f / s;
-      shading.range *= scale;
-      shading.rangeBelow *= scale;
+      shading.range = {shading.range.low * scale, shading.range.high * scale};
     }
     // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read
     // like a curvature feature right at the pole).

@@ -200,14 +200,36 @@ ScreenRect ViewerApp::viewArea() const {
   return ScreenRect{panel, 0, std::max(float(width) - panel, 1.0f), std::max(float(height), 1.0f)};
 }
 
+std::vector<glm::dvec3> ViewerApp::zoomedRingPoints() const {
+  // The control points of the zoomed rings (their hull holds the surface) of the first view that
+  // has them, as GpuMirror::upload zooms them; empty without a pole zoom.
+  const PoleInspectorSettings& inspector = state_.poleInspector;
+  std::vector<glm::dvec3> points;
+  if (inspector.zoomRing < 0) return points;
+  for (int v = 0; v < state_.viewCount && points.empty(); ++v) {
+    const BuiltSurface* shown = session_.surfaces().shown(v).get();
+    if (!shown || shown->poles.empty()) continue;
+    const int pole = std::clamp(inspector.pole, 0, int(shown->poles.size()) - 1);
+    for (const Patch& patch : zoomAboutPole(shown->patches, pole, inspector.zoomRing, 3, shown->poles[size_t(pole)])) {
+      if (patch.kind == PatchKind::PoleCap) points.push_back(patch.origin + patch.cp[0]);  // the pole
+      else
+        for (const glm::dvec3& p : patch.cp) points.push_back(patch.origin + p);
+    }
+  }
+  return points;
+}
+
 void ViewerApp::frameModel(const ScreenRect* viewRect) {
   const ScreenRect view =
       viewRect ? *viewRect : layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f)).front();
   const double aspect = double(view.w) / std::max(double(view.h), 1.0);
   // Keep the model out from under the view's title (a strip at the top; symmetric, so centred).
   const double heightFraction = std::max(0.5, 1.0 - 2.0 * double(viewTitleHeight(1.0f)) / std::max(double(view.h), 1.0));
+  // A pole zoom shows rings m..m+2 scaled about the pole: those are what F frames.
+  const std::vector<glm::dvec3> zoomed = zoomedRingPoints();
   auto frameCamera = [&](OrbitCamera& camera) {
-    if (model().mesh) camera.framePoints(model().mesh->points.data(), model().mesh->points.size(), aspect, heightFraction);
+    if (!zoomed.empty()) camera.framePoints(zoomed.data(), zoomed.size(), aspect, heightFraction);
+    else if (model().mesh) camera.framePoints(model().mesh->points.data(), model().mesh->points.size(), aspect, heightFraction);
     else camera.frame(modelMin(), modelMax(), aspect);
   };
   if (state_.linkCameras) {
@@ -314,6 +336,16 @@ std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>
   return markers;
 }
 
+std::vector<PointMarker> ViewerApp::pointMarkers(const std::vector<ScreenRect>& rects) const {
+  // The Point panel's surface point where its view shows it now (the camera may have moved since).
+  const ReadoutSettings& readout = state_.readout;
+  if (!readout.valid || readout.view >= int(rects.size()) || state_.poleInspector.zoomRing >= 0) return {};
+  const ScreenRect& rect = rects[size_t(readout.view)];
+  const std::optional<glm::dvec3> at = viewTransform(readout.view, rect).project(readout.readout.point.position);
+  if (!at || !rect.contains(float(at->x), float(at->y))) return {};
+  return {PointMarker{float(at->x), float(at->y)}};
+}
+
 // [SECTION] Drawing
 
 
@@ -394,6 +426,13 @@ void ViewerApp::runFrame() {
   std::optional<PivotPick> pick = input.pivot;
   if (!pick && pendingPivot_) pick = pendingPivot_;
   pendingPivot_.reset();
+  // This frame's keys and commands reach the surfaces before the panels are drawn, so the Stats
+  // panel shows the status the views' titles show (it lagged them by a frame); what a panel
+  // changes is taken up next frame.
+  session_.runCommands();
+  session_.expireNotice();
+  updateSurfaces();
+  session_.updatePanels();
   drawViewerPanels(state_);
   frame = viewArea();
   rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
@@ -403,10 +442,6 @@ void ViewerApp::runFrame() {
   if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_ ||
                       std::pair{area.w, area.h} != framedAreaSize_))
     frameModel();
-  session_.runCommands();
-  session_.expireNotice();
-  updateSurfaces();
-  session_.updatePanels();
 
   // Draw the views, then the overlay and the UI over them.
   clearFramebuffer(fbWidth, fbHeight, kBackground);
@@ -416,7 +451,7 @@ void ViewerApp::runFrame() {
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
   drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles,
-                  vertexMarkers(rects));
+                  vertexMarkers(rects), pointMarkers(rects));
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   finishGpuWork();  // frame time includes the GPU work (not the swap's wait for vsync)

@@ -157,6 +157,8 @@ class ViewerApp : public WindowServices {
   void applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects);
   // The control vertices to mark in the overlay (selected, under the cursor), per view.
   std::vector<VertexMarker> vertexMarkers(const std::vector<ScreenRect>& rects) const;
+  std::vector<PointMarker> pointMarkers(const std::vector<ScreenRect>& rects) const;
+  std::vector<glm::dvec3> zoomedRingPoints() const;
   ViewTransform viewTransform(int v, const ScreenRect& rect) const;
   void resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight);
 

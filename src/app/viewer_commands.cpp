@@ -163,18 +163,19 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   perView("deepest_levels", &ViewStatus::deepestLevel);
   json << ",\"titles\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.views[size_t(v)].status) << '"';
-  const double range = state.colourRange(), rangeBelow = state.colourRangeBelow();
+  const ColourInterval range = state.colourInterval();
   const double medianMs = median(frameMs);
   const double minMs = frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end());
   const double maxMs = frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end());
   // JSON has no inf or NaN: refuse rather than print them (or null for a number that overflowed).
-  for (double number : {range, rangeBelow, medianMs, minMs, maxMs})
+  for (double number : {range.low, range.high, medianMs, minMs, maxMs})
     if (!std::isfinite(number))
       throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large, too small or degenerate");
   json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"shades\":[";
   for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << shadeModeName(state.viewShade(v)) << '"';
-  json << "],\"range\":" << range
-       << ",\"range_min\":" << -rangeBelow << ",\"range_max\":" << range;
+  // "range": the symmetric R (the larger side); "one_sided": the range does not hold zero.
+  json << "],\"range\":" << std::max(-range.low, range.high) << ",\"range_min\":" << range.low
+       << ",\"range_max\":" << range.high << ",\"one_sided\":" << (range.oneSided() ? "true" : "false");
   char numbers[160];
   std::snprintf(numbers, sizeof numbers, ",\"median_ms\":%.2f,\"min_ms\":%.2f,\"max_ms\":%.2f", medianMs, minMs, maxMs);
   json << numbers;
@@ -196,8 +197,8 @@ struct RenderRequest {
   std::vector<ShadingParams::Mode> shades{ShadingParams::Mode::Gaussian};  // one, or one per view
   std::optional<ShadingParams::ColorMap> colormap;
   int width = 1200, height = 800, supersample = 1;
-  std::optional<double> range;  // double: K of a model of 1e-80 is 1e160
-  std::optional<double> rangeBelow;  // --range MIN:MAX: -MIN
+  std::optional<double> range;  // --range R; double: K of a model of 1e-80 is 1e160
+  std::optional<ColourInterval> rangeApart;  // --range MIN:MAX
   bool asymmetric = false;          // automatic range with each side apart
   std::optional<float> percentile;  // automatic range: +-max(-P(100 - p), P(p)) of K or H by area
   std::string cameraJson;
@@ -206,22 +207,24 @@ struct RenderRequest {
   int timeFrames = 0;
 };
 
-// --range R (the map spans -R..R) or MIN:MAX with MIN < 0 < MAX (two slopes, zero in the middle).
+// --range R (the map spans -R..R) or MIN:MAX with MIN < MAX: two slopes with zero in the middle
+// when MIN < 0 < MAX, else one-sided (ColourInterval).
 void parseRange(const std::string& text, RenderRequest& r) {
+  const std::string expected = "--range expects R > 0 or MIN:MAX with MIN < MAX, got '" + text + "'";
   auto number = [&](const std::string& part) {
     char* end = nullptr;
     const double value = std::strtod(part.c_str(), &end);
-    if (part.empty() || *end != '\0' || !std::isfinite(value))
-      throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
+    if (part.empty() || *end != '\0' || !std::isfinite(value)) throw UsageError(expected);
     return value;
   };
   const size_t colon = text.find(':');
-  const double low = colon == std::string::npos ? 0.0 : number(text.substr(0, colon));
-  const double high = number(colon == std::string::npos ? text : text.substr(colon + 1));
-  if (!(high > 0.0) || (colon != std::string::npos && !(low < 0.0)))
-    throw UsageError("--range expects R > 0 or MIN:MAX with MIN < 0 < MAX, got '" + text + "'");
-  r.range = high;
-  if (colon != std::string::npos) r.rangeBelow = -low;
+  if (colon == std::string::npos) {
+    r.range = number(text);
+    if (!(*r.range > 0.0)) throw UsageError(expected);
+    return;
+  }
+  r.rangeApart = ColourInterval{number(text.substr(0, colon)), number(text.substr(colon + 1))};
+  if (!(r.rangeApart->low < r.rangeApart->high)) throw UsageError(expected);
 }
 
 constexpr ViewPreset kPresets[] = {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso};
@@ -257,7 +260,7 @@ OptionTable renderTable(RenderRequest& r) {
       actionOption({"--shade"}, "MODE[,MODE...]", "one shading for every view, or one per view (" + shadeModeNames("|") + ")",
                    [&r](const std::string& v) { r.shades = parseShadeList(v); }),
       sizeRow(&r.width, &r.height, "the image's size (default 1200x800)"),
-      actionOption({"--range"}, "R|MIN:MAX", "the colour map spans -R..R, or MIN..MAX with MIN < 0 < MAX (default: automatic)",
+      actionOption({"--range"}, "R|MIN:MAX", "the colour map spans -R..R, or MIN..MAX (one-sided when MIN, MAX have one sign; default: automatic)",
                    [&r](const std::string& v) { parseRange(v, r); }),
       actionOption({"--percentile"}, "P", "automatic range at the P-th percentile of |K| or |H| by area (50..100)",
                    [&r](const std::string& v) { r.percentile = float(parseIntArgument("--percentile", v, 50, 100)); }),
@@ -348,14 +351,10 @@ void setRenderStyle(ViewerState& state, const RenderRequest& r) {
     for (size_t v = 0; v < r.shades.size(); ++v) state.views[v].shade = r.shades[v];
   if (r.colormap) state.shading.colormap = *r.colormap;
   if (r.percentile) state.colour.quantile = *r.percentile / 100.0f;
-  if (r.range) {
-    state.colour.automatic = false;
-    state.colour.typedRange = *r.range;
-  }
-  if (r.rangeBelow || r.asymmetric) {
-    state.colour.symmetric = false;
-    state.colour.typedBelow = r.rangeBelow.value_or(0.0);
-  }
+  if (r.range || r.rangeApart) state.colour.automatic = false;
+  if (r.range) state.colour.typedRange = *r.range;
+  if (r.rangeApart) state.colour.typedApart = *r.rangeApart;
+  if (r.rangeApart || r.asymmetric) state.colour.symmetric = false;
   state.display.surface = r.surface;
   // Net only: --no-surface shows the control net unless wireframe or boundaries stand in for it.
   state.display.controlNet = r.controlNet || (!r.surface && !r.wireframe && !r.boundaries);

@@ -82,5 +82,8 @@ namespace polarview {
 // as large as ring 0 at any depth: positions c + s (p - c), the cap's vector slots (p1..p5, e) times
 // s. K scales by 1 / s^2 and H by 1 / s (the viewer scales its colour range alike). [O(patches)]
 std::vector<Patch> zoomAboutPole(const std::vector<Patch>& patches, int pole, int firstRing, int rings, const Point& centre);
+// The patch level a surface needs for rings m .. m + 2 of the pole zoom: ring m is made at level m
+// and closed by the cap at the last level, so level m + 2 holds all three (below m nothing shows).
+constexpr int poleZoomLevel(int firstRing) { return firstRing + 2; }
 
 }  // namespace polarview

@@ -57,10 +57,27 @@ glm::vec3 ringColor(int ring) {
   return palette[ring % 8];
 }
 
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double range, double rangeBelow) {
-  const double side = value >= 0.0 || !(rangeBelow > 0.0) ? range : rangeBelow;
-  // The shaders' floor is 1e-30 in their units (~1); here values are the world's (1e-300 .. 1e300).
-  const float t = float(std::clamp(side > 0.0 ? value / side : 0.0, -1.0, 1.0));
+double colourBarPosition(double value, const ColourInterval& range) {
+  const auto& [low, high] = range;
+  if (!range.oneSided()) {  // zero in the middle, two slopes
+    const double side = value >= 0.0 ? high : -low;
+    return 0.5 + 0.5 * std::clamp(value / side, -1.0, 1.0);
+  }
+  // One-sided. Here values are the world's (1e-300 .. 1e300): no floor on the width.
+  return high > low ? std::clamp((value - low) / (high - low), 0.0, 1.0) : 0.5;
+}
+
+double colourBarValue(double position, const ColourInterval& range) {
+  const auto& [low, high] = range;
+  if (!range.oneSided()) return position < 0.5 ? (1.0 - 2.0 * position) * low : (2.0 * position - 1.0) * high;
+  return low + position * (high - low);
+}
+
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, const ColourInterval& range) {
+  // The map's t in [-1, 1]: the whole map when zero is inside the range, else the half of the
+  // range's sign (positive: t in [0, 1], negative: [-1, 0]); see the shaders' curvatureColor.
+  const double p = colourBarPosition(value, range);
+  const float t = float(!range.oneSided() ? 2.0 * p - 1.0 : range.high > 0.0 ? p : p - 1.0);
   switch (map) {
     case ShadingParams::ColorMap::CoolWarm: {
       static const glm::vec3 stops[5] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f},

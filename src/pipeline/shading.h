@@ -13,16 +13,30 @@
 
 namespace polarview {
 
+// The values a curvature colour map spans, [low, high], saturating beyond. With zero inside
+// (low < 0 < high) zero is the map's middle with two slopes (matplotlib's TwoSlopeNorm), so zero
+// keeps its colour: the paper's Fig. 13. Otherwise the range is one-sided: [low, high] spans the
+// half of the map of its sign, linearly (all K > 0 in green .. red), so one-signed values still
+// show their variation (docs/shading.md#colour-maps).
+struct ColourInterval {
+  double low = -1.0, high = 1.0;
+  bool oneSided() const { return !(low < 0.0 && high > 0.0); }
+  static ColourInterval symmetric(double range) { return {-range, range}; }
+  bool operator==(const ColourInterval& o) const { return low == o.low && high == o.high; }
+  bool operator!=(const ColourInterval& o) const { return !(*this == o); }
+};
+// Where `value` lies along the colour bar, in [0, 1] (clamped). [O(1)]
+double colourBarPosition(double value, const ColourInterval& range);
+// The value at bar position p in [0, 1] (the inverse of colourBarPosition). [O(1)]
+double colourBarValue(double position, const ColourInterval& range);
+
 // How the surface is coloured.
 struct ShadingParams {
   enum class Mode { Shaded, Gaussian, Mean, Highlight, Reflection };
   enum class ColorMap { Paper, CoolWarm, Viridis, Magnitude };  // Magnitude: Figs 11-12, dark blue at 0
   Mode mode = Mode::Shaded;
   ColorMap colormap = ColorMap::Paper;
-  double range = 1.0;            // curvature maps [-range, range]; saturates beyond (paper Fig. 13)
-  // > 0: the negative side's range instead, [-rangeBelow, range] with zero still the map's middle
-  // (two slopes, as matplotlib's TwoSlopeNorm), so zero curvature keeps its colour.
-  double rangeBelow = 0.0;
+  ColourInterval range;          // what the curvature maps span; saturates beyond (paper Fig. 13)
   float curvatureLighting = 0.35f;  // 0: flat curvature colour (exact map colour), 1: fully lit
   // Highlight lines (Beier & Chen 1994, docs/shading.md): parallel light lines with direction
   // highlightDir, lying in a plane of normal highlightPlaneNormal (orthogonalised against the
@@ -87,7 +101,11 @@ glm::vec3 patchKindColor(PatchKind kind);
 // Colour for a ring index (cycles through a qualitative palette; -1 = grey).
 glm::vec3 ringColor(int ring);
 // The curvature colour map on the CPU, identical to shaders/common/colormap.glsl: value in
-// [-range, range] -> RGB in [0,1]. For legends and tests.
-glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double range, double rangeBelow = 0.0);
+// `range` -> RGB in [0,1]. For legends and tests.
+glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, const ColourInterval& range);
+// The same for the symmetric range [-range, range].
+inline glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double range) {
+  return colorMapCpu(map, value, ColourInterval::symmetric(range));
+}
 
 }  // namespace polarview

@@ -137,15 +137,14 @@ double weightedPercentile(const std::vector<double>& values, const std::vector<d
   return sorted.back().first;
 }
 
-std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights, double below,
-                                     double above, int bins) {
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights,
+                                     const ColourInterval& range, int bins) {
   std::vector<float> histogram(size_t(std::max(bins, 1)), 0.0f);
-  if (!(below > 0.0) || !(above > 0.0)) return histogram;
+  if (!(range.high > range.low)) return histogram;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
     if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
-    // The colour bar's two slopes: t = value / above or value / below, in [-1, 1].
-    const double t = std::clamp(values[i] / (values[i] >= 0.0 ? above : below), -1.0, 1.0);
-    const int bin = std::min(int((t + 1.0) * 0.5 * double(histogram.size())), int(histogram.size()) - 1);
+    const double p = colourBarPosition(values[i], range);  // as the bar: two slopes or one-sided
+    const int bin = std::min(int(p * double(histogram.size())), int(histogram.size()) - 1);
     histogram[size_t(bin)] += float(weights[i]);
   }
   const float largest = *std::max_element(histogram.begin(), histogram.end());

@@ -22,6 +22,7 @@
 #include "pipeline/control_net.h"
 #include "pipeline/level_of_detail.h"
 #include "pipeline/scheme_choice.h"
+#include "pipeline/shading.h"
 
 namespace polarview {
 
@@ -246,10 +247,10 @@ std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, siz
 // The weighted percentile: the first value (in order) where the running weight reaches `fraction` of
 // the total; 0 when there is no weight. [O(n log n)]
 double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction);
-// Area-weighted histogram over the colour bar's [-below, above] (two slopes, as the map; values
-// beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
-std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights, double below,
-                                     double above, int bins);
+// Area-weighted histogram over the colour bar of `range` (two slopes or one-sided, as the map:
+// colourBarPosition; values beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights,
+                                     const ColourInterval& range, int bins);
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
 

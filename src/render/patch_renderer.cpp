@@ -787,8 +787,8 @@ void PatchRenderer::setShadingUniforms(unsigned program, const ViewParams& view,
   setUniform(program, "u_colormap", static_cast<int>(shading.colormap));
   // The GPU's K and H are in its units: K unit^2, H unit.
   const double curvatureUnit = shading.mode == ShadingParams::Mode::Gaussian ? unit_ * unit_ : unit_;
-  setUniform(program, "u_range", floatInRange(shading.range * curvatureUnit));
-  setUniform(program, "u_rangeBelow", floatInRange((shading.rangeBelow > 0.0 ? shading.rangeBelow : shading.range) * curvatureUnit));
+  setUniform(program, "u_rangeLow", floatInRange(shading.range.low * curvatureUnit));
+  setUniform(program, "u_rangeHigh", floatInRange(shading.range.high * curvatureUnit));
   setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
   setUniform(program, "u_eye", eye);
   setUniform(program, "u_keyLight", keyWorld);

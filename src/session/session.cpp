@@ -2,6 +2,7 @@
 #include "session/session.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/subdiv/spectrum.h"
@@ -38,6 +39,7 @@ std::optional<EditCost> Session::updateModelAndSurfaces() {
 }
 
 void Session::updatePanels() {
+  updatePoleZoom();
   updatePoleInspector();
   updateSpectrum();
   updateColourRange();
@@ -65,11 +67,10 @@ void Session::updateColourRange() {
     collectColourSamples();
   }
   // The histogram follows the range the bar shows (typed or automatic).
-  const std::pair<double, double> shownRange{state_.colourRangeBelow(), state_.colourRange()};
+  const ColourInterval shownRange = state_.colourInterval();
   if (shownRange != histogramRange_ || state_.colour.histogram.empty()) {
     histogramRange_ = shownRange;
-    state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange.first, shownRange.second,
-                                                kHistogramBins);
+    state_.colour.histogram = weightedHistogram(colourValues_, colourWeights_, shownRange, kHistogramBins);
   }
 }
 
@@ -92,14 +93,60 @@ void Session::collectColourSamples() {
     for (double a : s.areas) weights.push_back(a / area);
   }
   if (values.empty()) return;
-  state_.colour.autoRange = weightedSymmetricRange(values, weights, state_.colour.quantile);
-  // Each side apart, for the asymmetric range; a side without values keeps a sliver of the other.
-  const double low = weightedPercentile(values, weights, 1.0 - state_.colour.quantile);
-  const double high = weightedPercentile(values, weights, state_.colour.quantile);
-  const double floor = 1e-3 * state_.colour.autoRange;
-  state_.colour.autoBelow = std::max(-low, floor);
-  state_.colour.autoAbove = std::max(high, floor);
-  state_.colour.histogram.clear();  // recomputed for the new samples
+  ColourRangeSettings& colour = state_.colour;
+  colour.autoRange = weightedSymmetricRange(values, weights, colour.quantile);
+  colour.autoPercentiles = {weightedPercentile(values, weights, 1.0 - colour.quantile),
+                            weightedPercentile(values, weights, colour.quantile)};
+  colour.sampleMin = *std::min_element(values.begin(), values.end());
+  colour.sampleMax = *std::max_element(values.begin(), values.end());
+  // A one-sided range needs a width: a sphere's K can be one value to all digits.
+  ColourInterval& p = colour.autoPercentiles;
+  const double narrowest = 1e-6 * std::max(std::abs(p.low), std::abs(p.high));
+  if (colour.oneSign() != 0 && !(p.high - p.low >= narrowest)) {
+    const double middle = 0.5 * (p.low + p.high);
+    p = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
+    if (colour.oneSign() > 0 ? p.low < 0.0 : p.high > 0.0) p = colour.oneSign() > 0 ? ColourInterval{0.0, narrowest} : ColourInterval{-narrowest, 0.0};
+  }
+  colour.histogram.clear();  // recomputed for the new samples
+}
+
+void Session::updatePoleZoom() {
+  // Rings m .. m + 2 need a surface of patch level m + 2 (poleZoomLevel): at level 3 the rings 4..6
+  // a zoom asked for did not exist and the views went blank. A new zoom (or ring) raises the views
+  // that fall short, or is refused when a view cannot go that deep; a level lowered under a zoom
+  // ends the zoom. Views of Catmull-Clark (no polar rings) count only while levels are linked.
+  PoleInspectorSettings& inspector = state_.poleInspector;
+  const int m = inspector.zoomRing;
+  const bool newZoom = m != poleZoomChecked_;
+  poleZoomChecked_ = m;
+  if (m < 0) return;
+  const int needed = poleZoomLevel(m);
+  const std::string rings = "rings " + std::to_string(m) + "-" + std::to_string(m + 2);
+  std::vector<int> short_;  // views whose level lacks the rings
+  for (int v = 0; v < state_.viewCount; ++v) {
+    const View& view = state_.views[size_t(v)];
+    const ViewStatus& status = view.status;
+    const bool drawnDeeper = status.hasSurface && status.shownLevel == view.level && status.patchLevel >= needed;
+    const bool counts = state_.linkLevels || view.scheme != SchemeChoice::CatmullClark;
+    if (!counts || view.level >= needed || drawnDeeper) continue;
+    if (!newZoom || needed > status.deepestLevel) {
+      inspector.zoomRing = poleZoomChecked_ = -1;
+      state_.notice = "pole zoom off: " + rings + " need level " + std::to_string(needed) + "; " +
+                      (newZoom ? std::string(schemeChoiceLabel(view.scheme)) + " stops at level " +
+                                     std::to_string(status.deepestLevel) + " on this model"
+                               : "view " + std::to_string(v + 1) + " shows level " + std::to_string(view.level));
+      return;
+    }
+    short_.push_back(v);
+  }
+  if (short_.empty()) return;
+  if (state_.linkLevels) {
+    for (View& view : state_.views) view.level = std::max(view.level, needed);
+  } else {
+    for (int v : short_) state_.views[size_t(v)].level = needed;
+  }
+  state_.notice = "level " + std::to_string(needed) + " for the pole zoom: " + rings + " are made from level " +
+                  std::to_string(m) + " to " + std::to_string(needed);
 }
 
 void Session::updateSpectrum() {

@@ -87,6 +87,7 @@ class Session : public CommandHost {
   void collectColourSamples();
   void updateSpectrum();
   void updatePoleInspector();
+  void updatePoleZoom();
 
   WindowServices& window_;
   ViewerState state_;
@@ -95,7 +96,8 @@ class Session : public CommandHost {
   // Colour statistics: the samples of the shown views by area, and what they were taken of.
   uint64_t colourRangeSignature_ = 0;
   std::vector<double> colourValues_, colourWeights_;
-  std::pair<double, double> histogramRange_{0.0, 0.0};
+  ColourInterval histogramRange_{0.0, 0.0};
+  int poleZoomChecked_ = -1;  // the zoom ring the views' levels were last checked for
   // The pole inspector's job: what it computes, what the panel shows, the model its pole list is of.
   BackgroundJob<std::vector<PoleInspection>> inspectJob_;
   std::string inspectRunning_, inspectShown_;

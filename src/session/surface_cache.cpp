@@ -86,6 +86,13 @@ std::optional<EditCost> SurfaceCache::update(ViewerState& state, const Model& mo
     const bool dirty = v < state.viewCount && (!view.shown || view.shown->key != wanted) && !refreshable &&
                        !(view.failed && *view.failed == wanted);
     if (dirty && !view.job.running()) satisfy(v, state, model, wanted);
+    const bool waiting = view.job.running() && (!view.shown || view.shown->key != wanted);
+    if (!waiting) {
+      view.waitingFor.reset();
+    } else if (view.waitingFor != wanted) {
+      view.waitingFor = wanted;
+      view.waitingSince = std::chrono::steady_clock::now();
+    }
     state.views[size_t(v)].status.deepestLevel = deepestLevel(model, state.views[size_t(v)].scheme, faceBudget_);
     prepareNextLevel(v, state, model, wanted, dragging);
     report(v, state, model);
@@ -302,7 +309,11 @@ void SurfaceCache::report(int v, ViewerState& state, const Model& model) const {
   ViewStatus& status = state.views[size_t(v)].status;
   status.levelLimit = levelRefusal(model, state.views[size_t(v)].scheme, status.deepestLevel + 1, faceBudget_);
   status.refining = view.job.running();
-  status.refiningSeconds = status.refining ? view.job.runningSeconds() : 0.0;
+  // Since the view asked for what it waits for (not since the running job, maybe an older one, began).
+  status.refiningSeconds =
+      !status.refining ? 0.0
+      : view.waitingFor ? std::chrono::duration<double>(std::chrono::steady_clock::now() - view.waitingSince).count()
+                        : view.job.runningSeconds();
   status.hasSurface = view.shown != nullptr;
   const BuiltSurface* shown = view.shown.get();
   if (!shown) return;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -62,6 +63,10 @@ class SurfaceCache {
   // update (no patch stayed on the GPU: other points).
   bool unparked(int v) const { return views_[size_t(v)].unparked; }
   bool reshown(int v) const { return views_[size_t(v)].reshown; }
+  // The key view v's running job builds (nullopt when none runs).
+  std::optional<SurfaceKey> refiningKey(int v) const {
+    return views_[size_t(v)].job.running() ? std::optional<SurfaceKey>(views_[size_t(v)].job.runningKey()) : std::nullopt;
+  }
   bool refreshed(int v) const { return views_[size_t(v)].refreshed; }
   // GPU room for the level made ahead of view v, once, when its job has finished.
   std::optional<GpuReservation> takeReservation(int v);
@@ -83,6 +88,10 @@ class SurfaceCache {
     SurfaceKey preparing;                     // the key of the running (or last) prepare
     std::optional<GpuReservation> reservation;
     bool unparked = false, reshown = false, refreshed = false;
+    // What the view waits for while a job runs, and since when: the job may be an older request's
+    // (keys 9 then 10: 10 starts when 9 is done), so its own running time undercounts the wait.
+    std::optional<SurfaceKey> waitingFor;
+    std::chrono::steady_clock::time_point waitingSince;
   };
 
   size_t levelFaces(const Model& model, SchemeChoice scheme, int level) const;

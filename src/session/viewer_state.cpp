@@ -1,13 +1,40 @@
 // The state operations commands and panels share (viewer_state.h).
 #include "session/viewer_state.h"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace polarview {
+
+ColourInterval ColourRangeSettings::automaticInterval() const {
+  if (oneSign() != 0) return autoPercentiles;
+  if (symmetric) return ColourInterval::symmetric(autoRange);
+  const double floor = 1e-3 * autoRange;
+  return {std::min(autoPercentiles.low, -floor), std::max(autoPercentiles.high, floor)};
+}
+
+std::string colourRangeNote(const ViewerState& state) {
+  const ColourInterval range = state.colourInterval();
+  if (!range.oneSided()) return {};
+  const char* quantity = state.curvatureShade() == ShadingParams::Mode::Mean ? "H" : "K";
+  char text[160];
+  if (state.colour.automatic) {
+    const int sign = state.colour.oneSign();
+    const bool strict = sign > 0 ? state.colour.sampleMin > 0.0 : state.colour.sampleMax < 0.0;
+    std::snprintf(text, sizeof text, "all %s %s 0: range %.3g .. %.3g, one-sided", quantity,
+                  sign > 0 ? (strict ? ">" : ">=") : (strict ? "<" : "<="), range.low, range.high);
+  } else {
+    std::snprintf(text, sizeof text, "range %.3g .. %.3g, one-sided (zero not in it)", range.low, range.high);
+  }
+  return text;
+}
 
 void setAutomaticRange(ViewerState& state, bool automatic) {
   // Turning it off keeps the colours on screen: the typed range starts at the automatic value.
   if (state.colour.automatic && !automatic) {
-    state.colour.typedRange = state.colourRange();
-    state.colour.typedBelow = state.colourRangeBelow();
+    const ColourInterval shown = state.colourInterval();
+    state.colour.typedRange = std::max(-shown.low, shown.high);
+    state.colour.typedApart = shown;
   }
   state.colour.automatic = automatic;
 }

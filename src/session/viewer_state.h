@@ -81,17 +81,27 @@ struct ColourRangeSettings {
   // former 98th percentile of |K| (6.6 there) put the whole cap in the one green of "about zero".
   // With P10/P90 (2.5) the cap reads green to yellow and such tails saturate red or blue, as in
   // the paper's Fig. 13 ("larger blue or red areas result from saturation in normalization").
+  // When all values have one sign (a sphere: K > 0 everywhere) the automatic range is one-sided,
+  // [P10, P90] over the half of the map of that sign: +-P90 painted a sphere one red.
   bool automatic = true;
   float quantile = 0.90f;    // upper percentile P (the lower one is 1 - P)
-  double typedRange = 1.0;   // used when not automatic (the positive side when not symmetric)
-  double autoRange = 1.0;    // last automatic value (written by the app)
-  // Not symmetric: the negative and positive sides have ranges of their own, [-below, above], zero
-  // staying the map's middle (two slopes). Automatic: below = -P(1 - P), above = P(P).
+  // Not symmetric: min and max apart; zero stays the map's middle (two slopes) when it lies between.
   bool symmetric = true;
-  double typedBelow = 1.0;   // negative side when typed
-  double autoBelow = 1.0, autoAbove = 1.0;  // written by the app
-  // Area-weighted distribution of K (or H) of the shown views over the colour bar: kHistogramBins
-  // bins spanning [-below, above] as the bar does (values beyond in the end bins), the largest 1.
+  double typedRange = 1.0;   // typed and symmetric: [-typedRange, typedRange]
+  ColourInterval typedApart; // typed, min and max apart (min < max)
+  // Written by the session from the shown samples: the symmetric range, [P(1 - P), P(P)], and the
+  // samples' extremes (which decide whether all have one sign).
+  double autoRange = 1.0;
+  ColourInterval autoPercentiles;
+  double sampleMin = -1.0, sampleMax = 1.0;
+  // All shown values >= 0 (1) or <= 0 (-1), not all zero; 0 when mixed. Then the automatic range is
+  // one-sided.
+  int oneSign() const { return sampleMin >= 0.0 && sampleMax > 0.0 ? 1 : sampleMax <= 0.0 && sampleMin < 0.0 ? -1 : 0; }
+  // The automatic range: one-sided [P(1 - P), P(P)] for one-signed values, else symmetric or each
+  // side apart (a side without values keeps a sliver, 1e-3, of the other).
+  ColourInterval automaticInterval() const;
+  // Area-weighted distribution of K (or H) of the shown views' surfaces over the colour bar:
+  // kHistogramBins bins spanning the bar (values beyond in the end bins), the largest 1.
   std::vector<float> histogram;
 };
 constexpr int kHistogramBins = 48;
@@ -213,14 +223,10 @@ struct ViewerState {
   // The camera view `v` draws with.
   OrbitCamera& camera(int v) { return linkCameras ? sharedCamera : views[v].camera; }
   const OrbitCamera& camera(int v) const { return linkCameras ? sharedCamera : views[v].camera; }
-  // The colour range every view uses now: its positive side, and its negative side.
-  double colourRange() const {
-    if (colour.automatic) return colour.symmetric ? colour.autoRange : colour.autoAbove;
-    return colour.typedRange;
-  }
-  double colourRangeBelow() const {
-    if (colour.symmetric) return colourRange();
-    return colour.automatic ? colour.autoBelow : colour.typedBelow;
+  // The colour range every view uses now (automatic or typed).
+  ColourInterval colourInterval() const {
+    if (colour.automatic) return colour.automaticInterval();
+    return colour.symmetric ? ColourInterval::symmetric(colour.typedRange) : colour.typedApart;
   }
   // View v's shading mode and what it draws (its own style, or the shared one).
   ShadingParams::Mode viewShade(int v) const { return views[size_t(v)].shade.value_or(shading.mode); }
@@ -248,6 +254,9 @@ struct ViewerState {
   }
 };
 
+// What the colour range does when it is not the paper's zero-centred map, e.g. "all K > 0: range
+// 0.8 .. 1.2, one-sided"; empty otherwise.
+std::string colourRangeNote(const ViewerState& state);
 // Automatic colour range on or off; switching it off keeps the current range (typed = automatic).
 void setAutomaticRange(ViewerState& state, bool automatic);
 // Sets the level of the active view (or every view when levels are linked); levels above the

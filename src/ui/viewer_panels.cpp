@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
+#include <utility>
 
 #ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
@@ -308,10 +310,14 @@ void drawColourPanel(ViewerState& state) {
     if (ImGui::SliderFloat("Percentile", &percent, 50.0f, 100.0f, "%.1f")) {
       state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
     }
-    if (state.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", state.colour.autoRange);
-    else ImGui::Text("Range: -%.4g .. +%.4g (shared by all views)", state.colour.autoBelow, state.colour.autoAbove);
+    const ColourInterval range = state.colourInterval();
+    if (!range.oneSided() && state.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", range.high);
+    else ImGui::Text("Range: %.4g .. %.4g (shared by all views)", range.low, range.high);
     ImGui::PushTextWrapPos(0.0f);
-    if (state.colour.symmetric)
+    if (state.colour.oneSign() != 0)
+      ImGui::TextDisabled("P%.0f .. P%.0f over the half of the map of their sign; end caps at extraordinary vertices "
+                          "are not counted.", 100.0f - percent, percent);
+    else if (state.colour.symmetric)
       ImGui::TextDisabled("+-max(-P%.0f, P%.0f); end caps at extraordinary vertices are not counted.",
                           100.0f - percent, percent);
     else
@@ -323,20 +329,26 @@ void drawColourPanel(ViewerState& state) {
     }
     if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.autoRange;
   } else {
-    double low = -state.colour.typedBelow;
-    if (ImGui::InputDouble("Min (< 0)", &low, 0.0, 0.0, "%.6g")) state.colour.typedBelow = std::max(std::abs(low), kSmallestRange);
-    if (ImGui::InputDouble("Max (> 0)", &state.colour.typedRange, 0.0, 0.0, "%.6g"))
-      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), kSmallestRange);
-    if (ImGui::Button("Use automatic values")) {
-      state.colour.typedRange = state.colour.autoAbove;
-      state.colour.typedBelow = state.colour.autoBelow;
-    }
+    ColourInterval& typed = state.colour.typedApart;
+    // Min below max; zero between them keeps the map's middle, else the range is one-sided.
+    if (ImGui::InputDouble("Min", &typed.low, 0.0, 0.0, "%.6g")) typed.low = std::min(typed.low, typed.high - kSmallestRange);
+    if (ImGui::InputDouble("Max", &typed.high, 0.0, 0.0, "%.6g")) typed.high = std::max(typed.high, typed.low + kSmallestRange);
+    if (ImGui::Button("Use automatic values")) typed = state.colour.automaticInterval();
+  }
+  if (const std::string note = colourRangeNote(state); !note.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.4f, 1.0f), "%s", note.c_str());
+    ImGui::PopTextWrapPos();
   }
   bool symmetric = state.colour.symmetric;
   if (ImGui::Checkbox("Symmetric (+-R); off: min and max apart", &symmetric)) {
-    if (!state.colour.automatic && !symmetric) state.colour.typedBelow = state.colour.typedRange;
+    if (!state.colour.automatic && !symmetric) state.colour.typedApart = ColourInterval::symmetric(state.colour.typedRange);
     state.colour.symmetric = symmetric;
   }
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("The histogram over the colour bar counts the area of the shown views' surfaces (what is on "
+                      "screen at their levels, end caps left out), not the whole model.");
+  ImGui::PopTextWrapPos();
 }
 
 void drawCameraPanel(ViewerState& state) {
@@ -371,13 +383,59 @@ void drawScreenshotPanel(ViewerState& state) {
   if (!state.screenshot.lastPath.empty()) ImGui::TextWrapped("Last: %s", state.screenshot.lastPath.c_str());
 }
 
+// Numbers under their names, one column each, so a number is never cut at the panel's edge nor
+// wrapped in the middle (a text line of four timings was, with two views and a scroll bar).
+void numberTable(const char* id, std::initializer_list<std::pair<const char*, double>> columns, const char* format) {
+  if (!ImGui::BeginTable(id, int(columns.size()), ImGuiTableFlags_SizingStretchSame)) return;
+  for (const auto& column : columns) ImGui::TableSetupColumn(column.first);
+  ImGui::TableHeadersRow();
+  ImGui::TableNextRow();
+  for (const auto& column : columns) {
+    ImGui::TableNextColumn();
+    ImGui::Text(format, column.second);
+  }
+  ImGui::EndTable();
+}
+
+// One number a row under its name (a line of three was cut at the panel's edge, and ImGui wraps at
+// a '.' too, inside a number).
+void drawPointPanel(const ReadoutSettings& readout) {
+  const PointReadout& r = readout.readout;
+  ImGui::Text("view %d (marked with a cross)", readout.view + 1);
+  if (!ImGui::BeginTable("##point", 2, ImGuiTableFlags_SizingFixedFit)) return;
+  auto row = [](const char* name, const char* format, auto... values) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(name);
+    ImGui::TableNextColumn();
+    ImGui::Text(format, values...);
+  };
+  const SurfacePoint& p = r.point;
+  row("x", "%.12g", p.position.x);
+  row("y", "%.12g", p.position.y);
+  row("z", "%.12g", p.position.z);
+  row("normal", "(%.4f, %.4f, %.4f)", p.normal.x, p.normal.y, p.normal.z);
+  row("K", "%.9g", p.gaussian);
+  row("H", "%.9g", p.mean);
+  row("k1", "%.9g", r.k1);
+  row("k2", "%.9g", r.k2);
+  row("patch", "%s %zu", patchKindName(r.kind), r.patchIndex);
+  if (r.ring >= 0) row("level, ring", "%d, %d", r.level, r.ring);
+  else row("level", "%d", r.level);
+  row("u", "%.6f", r.u);
+  row("v", "%.6f", r.v);
+  ImGui::EndTable();
+}
+
 void drawStatsPanel(const ViewerState& state) {
   ImGui::Text("Frame: %.1f ms", state.frameMs);
   const EditSettings& edit = state.edit;
-  if (edit.updatedViews > 0) {
-    ImGui::TextWrapped("Last edit: %.1f ms for %d view%s (positions %.1f, patches %.1f, upload %.1f)", edit.totalMs,
-                       edit.updatedViews, edit.updatedViews == 1 ? "" : "s", edit.positionsMs, edit.patchesMs,
-                       edit.uploadMs);
+  // The cost of the last positions-only update, while the model holds an edit (an undo back to the
+  // file's points leaves nothing it describes).
+  if (edit.updatedViews > 0 && (edit.undoSteps > 0 || edit.movedVertices > 0)) {
+    ImGui::Text("Last edit, %d view%s (ms):", edit.updatedViews, edit.updatedViews == 1 ? "" : "s");
+    numberTable("##edit", {{"positions", edit.positionsMs}, {"patches", edit.patchesMs}, {"upload", edit.uploadMs},
+                           {"all", edit.totalMs}}, "%.1f");
   }
   for (int v = 0; v < state.viewCount; ++v) {
     const ViewStatus& s = state.views[v].status;
@@ -385,12 +443,12 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
     }
-    ImGui::Text("View %d: %s level %d, built in %.1f ms", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel,
-                s.refineMs + s.uploadMs);
+    ImGui::Text("View %d: %s level %d (ms)", v + 1, schemeChoiceLabel(s.shownScheme), s.shownLevel);
     ImGui::Indent();
-    // Two lines: one was cut at the panel's edge.
-    ImGui::Text("refine %.1f, patches %.1f,", s.refineOnlyMs, s.patchesMs);
-    ImGui::Text("samples %.1f, upload %.1f ms", s.samplesMs, s.uploadMs);
+    ImGui::PushID(v);
+    numberTable("##timing", {{"built", s.refineMs + s.uploadMs}, {"refine", s.refineOnlyMs}, {"patches", s.patchesMs},
+                             {"samples", s.samplesMs}, {"upload", s.uploadMs}}, "%.1f");
+    ImGui::PopID();
     if (s.unparked)
       ImGui::TextWrapped("(a scheme toggle back: the surface stayed on the GPU, nothing was built)");
     else if (s.reshown)
@@ -401,7 +459,7 @@ void drawStatsPanel(const ViewerState& state) {
       ImGui::TextWrapped("Poles closed at level %d: %s is not C2 there, so its cap at level %d would show a curvature "
                          "of its own; the rings between are the limit surface.",
                          s.patchLevel, schemeChoiceLabel(s.shownScheme), s.shownLevel);
-    ImGui::Text("%d patches, %d control faces", s.patchCount, s.controlFaces);
+    ImGui::TextWrapped("%d patches, %d control faces", s.patchCount, s.controlFaces);
     // The level of detail (pipeline/level_of_detail.h): refined to patchLevel, drawn at drawnLevel.
     if (s.drawnLevel < s.patchLevel)
       ImGui::TextWrapped("Drawn at level %d (%d patches): the deeper rings and caps are below a pixel here; "
@@ -467,11 +525,15 @@ void drawHelpWindow(ViewerState& state) {
   ImGui::End();
 }
 
-// The strip under the views: a line legend (if a view shows light lines) above the colour bar (if
-// one shows a curvature map).
-float lineLegendReserve(const ViewerState& state, float scale) { return state.lineShade() ? 30.0f * scale : 0.0f; }
+// The strip under the views: the colour bar's height whenever a view shows a curvature map or light
+// lines, so switching between them keeps the views' size and the model does not move; a line
+// legend alone sits in its middle, and above the colour bar when views show both.
+constexpr float kColourBarStrip = 64.0f + kHistogramHeight + 4.0f;
+float lineLegendReserve(const ViewerState& state, float scale) {
+  return state.lineShade() && state.showsColourBar() ? 30.0f * scale : 0.0f;
+}
 float colourBarOnlyReserve(const ViewerState& state, float scale) {
-  return state.showsColourBar() ? (64.0f + kHistogramHeight + 4.0f) * scale : 0.0f;
+  return state.showsColourBar() || state.lineShade() ? kColourBarStrip * scale : 0.0f;
 }
 
 // What the overlay draws with: the list, the font, its size and the scale (supersampled screenshots).
@@ -536,6 +598,22 @@ void drawPoleRings(const OverlayPen& pen, const std::vector<PoleMarker>& poles, 
   }
 }
 
+void drawPointMarkers(const OverlayPen& pen, const std::vector<PointMarker>& points) {
+  // The Point panel's surface point: a cross in a ring (white on a dark rim), unlike the round
+  // control-vertex and pole marks.
+  const float scale = pen.scale, r = 7.0f * scale;
+  for (const PointMarker& point : points) {
+    const ImVec2 c(point.x, point.y);
+    for (const auto& [colour, width] : {std::pair{IM_COL32(0, 0, 0, 220), 3.5f}, std::pair{IM_COL32(255, 255, 255, 255), 1.5f}}) {
+      pen.list->AddCircle(c, r, colour, 20, width * scale);
+      pen.list->AddLine(ImVec2(c.x - 1.8f * r, c.y), ImVec2(c.x - 0.5f * r, c.y), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x + 0.5f * r, c.y), ImVec2(c.x + 1.8f * r, c.y), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x, c.y - 1.8f * r), ImVec2(c.x, c.y - 0.5f * r), colour, width * scale);
+      pen.list->AddLine(ImVec2(c.x, c.y + 0.5f * r), ImVec2(c.x, c.y + 1.8f * r), colour, width * scale);
+    }
+  }
+}
+
 void drawVertexMarkers(const OverlayPen& pen, const std::vector<VertexMarker>& vertices) {
   ImDrawList* list = pen.list;
   const float scale = pen.scale;
@@ -566,8 +644,9 @@ void drawLineLegend(const OverlayPen& pen, const ViewerState& state, const Scree
     const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
     ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, wrap, legend.c_str());
     const float oneLine = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, "M").y;
-    ImVec2 at(frame.x + 0.5f * (frame.w - size.x),
-              frame.y + frame.h - colourBarReserve(state, scale) + 7.0f * scale - (size.y - oneLine));
+    const float strip = colourBarReserve(state, scale);
+    const float below = state.showsColourBar() ? 7.0f * scale : 0.5f * (strip - oneLine);  // from the strip's top
+    ImVec2 at(frame.x + 0.5f * (frame.w - size.x), frame.y + frame.h - strip + below - (size.y - oneLine));
     list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
                         kOverlayBox, 4.0f * scale);
     list->AddText(font, legendSize, at, IM_COL32(225, 225, 225, 255), legend.c_str(), nullptr, wrap);
@@ -578,8 +657,9 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
   ImDrawList* list = pen.list;
   ImFont* font = pen.font;
   const float fontSize = pen.fontSize, scale = pen.scale;
-  // Colour bar: one range for all views, ticks at -R, -R/2, 0, R/2, R.
-  const double range = state.colourRange(), below = state.colourRangeBelow();
+  // Colour bar: one range for all views, ticks at its ends, middle and quarters (with zero inside
+  // the range: -below, 0, above and halfway; one-sided: evenly from low to high).
+  const ColourInterval range = state.colourInterval();
   const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
   const float barHeight = 14.0f * scale;
   const float reserve = colourBarOnlyReserve(state, scale);
@@ -587,20 +667,22 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
   const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
   const bool gaussian = state.curvatureShade() == ShadingParams::Mode::Gaussian;
   std::string title = gaussian ? "Gaussian curvature K" : "mean curvature H";
-  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", saturates beyond the ends)";
+  const std::string note = colourRangeNote(state);  // "all K > 0: range 0.8 .. 1.2, one-sided"
+  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", " +
+                                (note.empty() ? std::string("saturates beyond the ends") : note) + ")";
   ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
   if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
     title = fullTitle;
   } else {  // a narrow window: the short form fits on the one line the strip has
-    title = std::string(gaussian ? "K" : "H") + " (" +
-            colourMapName(state.shading.colormap) + ")";
+    title = std::string(gaussian ? "K" : "H") + " (" + colourMapName(state.shading.colormap) +
+            (range.oneSided() ? ", one-sided)" : ")");
     titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
   }
   const float histogramHeight = kHistogramHeight * scale;
   list->AddRectFilled(ImVec2(left - 40 * scale, top - histogramHeight - 6 * scale),
                       ImVec2(left + barWidth + 40 * scale, frame.y + frame.h - 2 * scale), kOverlayBox, 4.0f * scale);
-  // The bar's position t in [-1, 1] -> value, two slopes (below zero / above zero).
-  auto valueAt = [&](double t) { return t < 0.0 ? t * below : t * range; };
+  // The bar's position t in [-1, 1] -> value (two slopes around zero, or one-sided).
+  auto valueAt = [&](double t) { return colourBarValue(0.5 * (t + 1.0), range); };
   // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
   const std::vector<float>& bins = state.colour.histogram;
   for (size_t b = 0; b < bins.size(); ++b) {
@@ -612,8 +694,8 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
   const int segments = 96;
   for (int i = 0; i < segments; ++i) {
     const double v0 = valueAt(-1.0 + 2.0 * i / segments), v1 = valueAt(-1.0 + 2.0 * (i + 1) / segments);
-    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range, below));
-    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range, below));
+    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range));
+    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range));
     float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
     list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
   }
@@ -622,7 +704,7 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
     float x = left + barWidth * float(t) / 4.0f;
     const double value = valueAt(-1.0 + 2.0 * t / 4.0);
     list->AddLine(ImVec2(x, top + barHeight), ImVec2(x, top + barHeight + 4 * scale), kOverlayText, scale);
-    std::string tick = formatTick(value, std::max(range, below));
+    std::string tick = formatTick(value, std::max(-range.low, range.high));
     ImVec2 tickSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, tick.c_str());
     list->AddText(font, fontSize, ImVec2(x - 0.5f * tickSize.x, top + barHeight + 5 * scale), kOverlayText, tick.c_str());
   }
@@ -742,8 +824,7 @@ void drawViewerPanels(ViewerState& state) {
     }
     if (ImGui::CollapsingHeader("Spectrum (Fig. 1)")) drawSpectrumPanel(state);
     if (state.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
-      ImGui::Text("view %d", state.readout.view + 1);
-      ImGui::TextUnformatted(state.readout.text.c_str());
+      drawPointPanel(state.readout);
       if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(state.readout.text.c_str());
     }
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
@@ -754,12 +835,13 @@ void drawViewerPanels(ViewerState& state) {
 
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles,
-                     const std::vector<VertexMarker>& vertices) {
+                     const std::vector<VertexMarker>& vertices, const std::vector<PointMarker>& points) {
   const OverlayPen pen{list, font, 15.0f * scale, scale};
   // The pole rings leave the labels alone.
   const std::vector<ImVec4> labelBoxes = drawViewLabels(pen, state, views, frame);
   drawPoleRings(pen, poles, labelBoxes);
   drawVertexMarkers(pen, vertices);
+  drawPointMarkers(pen, points);
   drawLineLegend(pen, state, frame);
   if (state.showsColourBar()) drawColourBar(pen, state, frame);
 }

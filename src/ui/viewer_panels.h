@@ -60,13 +60,19 @@ struct VertexMarker {
   bool selected = false;
 };
 
-// View labels ("C2PS · 3"), refining / loading indicators, pole rings, marked control vertices, and
+// The surface point the Point panel reads (Alt+click), in the overlay's coordinates.
+struct PointMarker {
+  float x = 0, y = 0;
+};
+
+// View labels ("C2PS · 3"), refining / loading indicators, pole rings, marked control vertices, the
+// picked surface point, and
 // the colour bar with numeric ticks (curvature modes) or a legend of the light lines (highlight /
 // reflection modes), drawn into `list` (the background list on screen, a private list for
 // screenshots). `scale` multiplies sizes (supersampled screenshots).
 void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles = {},
-                     const std::vector<VertexMarker>& vertices = {});
+                     const std::vector<VertexMarker>& vertices = {}, const std::vector<PointMarker>& points = {});
 
 // The one-line legend of highlight / reflection lines: light direction, spacing and width, e.g.
 // "highlight lines: light (1, 0, 0), spacing 0.25 x model radius, dark 30%"; empty in other modes.

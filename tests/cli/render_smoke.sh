@@ -108,12 +108,13 @@ write_globe 4 5 "$work/globe4.obj"
 grep -q '"poles_by_cc":\[2,0\]' "$work/out.txt" || fail "valence 4: RTS poles not reported as CC: $(cat "$work/out.txt")"
 grep -q '"RTS · 2 · poles by CC (valence < 5)"' "$work/out.txt" || fail "valence 4 title: $(cat "$work/out.txt")"
 
-# 10. An asymmetric range MIN:MAX (two slopes, zero in the middle); MIN must be negative.
+# 10. An asymmetric range MIN:MAX (two slopes, zero in the middle); MIN must be below MAX (one sign:
+# one-sided, tests/cli/render_range.sh).
 "$exe" render "$work/globe.obj" --range -1:3 --level 1 --time 1 > "$work/out.txt" 2> "$work/err.txt" ||
   fail "--range -1:3: $(cat "$work/err.txt")"
 grep -q '"range_min":-1,"range_max":3' "$work/out.txt" || fail "--range -1:3: $(cat "$work/out.txt")"
-"$exe" render "$work/globe.obj" -o "$work/r.png" --range 1:3 > /dev/null 2>&1
-[ $? -eq 2 ] || fail "--range 1:3 is not a usage error"
+"$exe" render "$work/globe.obj" -o "$work/r.png" --range 3:1 > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--range 3:1 is not a usage error"
 
 # The reader's warnings reach stderr as with the other commands (an unreferenced vertex), and the
 # image is still written.

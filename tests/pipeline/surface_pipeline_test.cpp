@@ -74,7 +74,7 @@ TEST_CASE("automatic colour range: each tail saturates on at most 1 - P of the w
 TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, values beyond in the end bins") {
   // below 2, above 1: -1 -> t = -0.5 (bin 1 of 4), 0.5 -> t = 0.5 (bin 3), 3 -> saturates into bin 3.
   const std::vector<double> values{-1.0, 0.5, 3.0, -8.0}, weights{1.0, 2.0, 1.0, 0.5};
-  const std::vector<float> bins = weightedHistogram(values, weights, 2.0f, 1.0f, 4);
+  const std::vector<float> bins = weightedHistogram(values, weights, ColourInterval{-2.0, 1.0}, 4);
   REQUIRE(bins.size() == 4);
   CHECK(bins[0] == doctest::Approx(0.5f / 3.0f));  // -8 saturates into the first bin
   CHECK(bins[1] == doctest::Approx(1.0f / 3.0f));
@@ -238,6 +238,35 @@ TEST_CASE("viewer surface: the next level made ahead while idle is handed out as
   const auto back = buildSurface(model, other, kDefaultFaceBudget, surface->hierarchy);
   CHECK(back->key == other);
   CHECK(back->patchLevel == 2);
+}
+
+}  // namespace polarview
+
+namespace polarview {
+
+TEST_CASE("colour range one-sided: values of one sign span the bar; zero stays the middle when it is inside") {
+  // All positive, [0.8, 1.2]: linear over the bar, the histogram spreads over its bins.
+  const ColourInterval positive{0.8, 1.2};
+  CHECK(positive.oneSided());
+  CHECK(colourBarPosition(0.8, positive) == 0.0);
+  CHECK(colourBarPosition(1.0, positive) == doctest::Approx(0.5));
+  CHECK(colourBarPosition(5.0, positive) == 1.0);
+  CHECK(colourBarValue(0.25, positive) == doctest::Approx(0.9));
+  const std::vector<double> values{0.85, 0.95, 1.05, 1.15}, weights{1.0, 1.0, 1.0, 1.0};
+  const std::vector<float> bins = weightedHistogram(values, weights, positive, 4);
+  CHECK(bins == std::vector<float>{1.0f, 1.0f, 1.0f, 1.0f});
+  // The positive half of the map: green (zero's colour) to red, never blue; the negative half mirrors.
+  using Map = ShadingParams::ColorMap;
+  CHECK(colorMapCpu(Map::Paper, 0.8, positive) == colorMapCpu(Map::Paper, 0.0, 1.0));
+  CHECK(colorMapCpu(Map::Paper, 1.2, positive) == colorMapCpu(Map::Paper, 1.0, 1.0));
+  CHECK(colorMapCpu(Map::Paper, -1.2, ColourInterval{-1.2, -0.8}) == colorMapCpu(Map::Paper, -1.0, 1.0));
+  // Mixed: two slopes with zero at the middle (the paper's Fig. 13), as before.
+  const ColourInterval mixed{-2.0, 1.0};
+  CHECK_FALSE(mixed.oneSided());
+  CHECK(colourBarPosition(0.0, mixed) == 0.5);
+  CHECK(colourBarPosition(-1.0, mixed) == 0.25);
+  CHECK(colourBarValue(0.75, mixed) == 0.5);
+  CHECK(colorMapCpu(Map::Paper, 0.0, mixed) == colorMapCpu(Map::Paper, 0.0, 1.0));
 }
 
 }  // namespace polarview

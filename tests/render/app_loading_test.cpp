@@ -214,7 +214,7 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
   app->waitUntilIdle();
   app->runFrame();
   // The mushroom's K is mostly positive (cap) with a negative neck: two different sides.
-  const double below = state.colourRangeBelow(), above = state.colourRange();
+  const double below = -state.colourInterval().low, above = state.colourInterval().high;
   CHECK(below > 0.0);
   CHECK(above > 0.0);
   CHECK(std::abs(below - above) > 0.1 * above);
@@ -222,8 +222,7 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
   CHECK(state.colour.histogram.size() == size_t(kHistogramBins));
   CHECK(*std::max_element(state.colour.histogram.begin(), state.colour.histogram.end()) == 1.0f);
   setAutomaticRange(state, false);
-  CHECK(state.colourRangeBelow() == below);
-  CHECK(state.colourRange() == above);
+  CHECK(state.colourInterval() == ColourInterval{-below, above});
 }
 
 TEST_CASE("pole rings: drawn around a visible pole without covering its colour, not drawn when the surface hides it") {

@@ -340,12 +340,12 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
   state.shading.mode = ShadingParams::Mode::Gaussian;
   app->runFrame();
   REQUIRE(state.colour.automatic);
-  const double range = state.colourRange();
-  CHECK(range != 1.0f);
+  const ColourInterval range = state.colourInterval();
+  CHECK(range.high != 1.0f);
   tap(GLFW_KEY_A);
   app->runFrame();
   CHECK(!state.colour.automatic);
-  CHECK(state.colourRange() == range);
+  CHECK(state.colourInterval() == range);
   // A press during a slow frame (no frame in between) still sets the level.
   tap(GLFW_KEY_2);
   app->runFrame();
@@ -406,6 +406,36 @@ TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a 
   runFrames(*app, 1);
   CHECK(state.sharedCamera.pitchDeg > 80.0);
   CHECK(state.sharedCamera.distance > 0.5 * framed);
+}
+
+TEST_CASE("viewer app: F during a pole zoom frames the zoomed rings, and they are drawn") {
+  auto app = makeHiddenApp(800, 600);
+  REQUIRE(app->loadMesh(shapes::globe(8, 5), "globe"));
+  ViewerState& state = app->state();
+  state.views[0].level = 3;
+  app->waitUntilIdle();
+  runFrames(*app, 1);
+  const double whole = state.sharedCamera.distance;
+  const glm::dvec3 wholeTarget = state.sharedCamera.target;
+  // Ring 4 at level 3: the level goes to 6 (the rings 4..6 were missing: a blank view).
+  state.poleInspector.zoomRing = 4;
+  runFrames(*app, 1);
+  app->waitUntilIdle();
+  runFrames(*app, 2);
+  REQUIRE(state.views[0].status.shownLevel == 6);
+  CHECK(state.views[0].status.zoomRing == 4);
+  queueCommand(state, "camera.frame");
+  runFrames(*app, 1);
+  // Rings 4..6 scaled by 2^4 about one pole reach out as far as rings 0..2: larger than the model
+  // (they filled the view), framed about the pole.
+  CHECK(state.sharedCamera.distance > 1.2 * whole);
+  CHECK(glm::length(state.sharedCamera.target - wholeTarget) > 0.3);
+  // Off again: F frames the model.
+  state.poleInspector.zoomRing = -1;
+  runFrames(*app, 1);
+  queueCommand(state, "camera.frame");
+  runFrames(*app, 1);
+  CHECK(state.sharedCamera.distance == doctest::Approx(whole));
 }
 
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {

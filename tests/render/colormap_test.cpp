@@ -38,8 +38,8 @@ TEST_CASE("paper colour map: one green on a band around zero, blue below it, red
   CHECK(colorMapCpu(Map::Paper, range, range) == glm::vec3(0.95f, 0.0f, 0.0f));
   CHECK(colorMapCpu(Map::Paper, 3.0f * range, range) == colorMapCpu(Map::Paper, range, range));
   // The band follows each side's own range (--range MIN:MAX).
-  CHECK(colorMapCpu(Map::Paper, -0.09f, 4.0f, 1.0f) == zero);
-  CHECK(colorMapCpu(Map::Paper, -0.2f, 4.0f, 1.0f) != zero);
+  CHECK(colorMapCpu(Map::Paper, -0.09f, ColourInterval{-1.0, 4.0}) == zero);
+  CHECK(colorMapCpu(Map::Paper, -0.2f, ColourInterval{-1.0, 4.0}) != zero);
 }
 
 TEST_CASE("paper colour map: the shader draws the green band as the CPU mirror does") {

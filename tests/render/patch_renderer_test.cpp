@@ -85,6 +85,31 @@ TEST_CASE("renderer: the pole of a paraboloid cap shows the colour of K = 4 and 
   }
 }
 
+TEST_CASE("renderer: one-sided ranges (all K of one sign) colour as the CPU mirror, over the half of the map of their sign") {
+  test::glContext();
+  auto renderer = test::makeRenderer();
+  renderer->setPatches(test::paraboloidCap(8, 1.0, 1.1));
+  const int size = 65;
+  const ViewParams view = test::topView(glm::dvec3(0.0), 1.2, {0, 0, size, size});
+  // K = 4 at the pole: inside, below and above one-sided ranges; and a negative range it is above.
+  for (const ColourInterval range : {ColourInterval{3.0, 5.0}, ColourInterval{3.9, 4.3}, ColourInterval{4.5, 6.0},
+                                     ColourInterval{1.0, 3.0}, ColourInterval{-2.0, -1.0}})
+    for (ShadingParams::ColorMap map : kAllMaps) {
+      CAPTURE(range.low);
+      CAPTURE(range.high);
+      CAPTURE(int(map));
+      auto shading = test::flatCurvature(ShadingParams::Mode::Gaussian, map, 1.0f);
+      shading.range = range;
+      shading.fixedTessLevel = 16;
+      const RgbaImage image = renderOffscreen(*renderer, view, shading, test::surfaceOnly(), size, size);
+      CHECK(colorDistance(image.at(size / 2, size / 2), colorMapCpu(map, 4.0, range)) <= 2);
+    }
+  // K = 4 in [3, 5] is the middle of the positive half: the paper map's yellow-green, not blue.
+  const glm::vec3 middle = colorMapCpu(ShadingParams::ColorMap::Paper, 4.0, ColourInterval{3.0, 5.0});
+  CHECK(middle.z == 0.0f);
+  CHECK(middle.y > 0.5f);
+}
+
 TEST_CASE("renderer: the same K renders to the same colour in two side-by-side viewports") {
   test::glContext();
   // Two renderers (as for two schemes) sharing one shader library, zoomed differently.

@@ -126,7 +126,7 @@ inline ShadingParams flatCurvature(ShadingParams::Mode mode, ShadingParams::Colo
   ShadingParams shading;
   shading.mode = mode;
   shading.colormap = map;
-  shading.range = range;
+  shading.range = ColourInterval::symmetric(range);
   shading.curvatureLighting = 0.0f;
   return shading;
 }

@@ -3,6 +3,7 @@
 // (Save OBJ of an edited file: the file's own text with the moved vertex's coordinates replaced).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -12,6 +13,8 @@
 #include <random>
 #include <sstream>
 #include <thread>
+
+#include <glm/geometric.hpp>
 
 #include "core/mesh/constants.h"
 #include "core/mesh/obj_io.h"
@@ -392,4 +395,66 @@ TEST_CASE("session: Save OBJ of an edited non-manifold file writes it in the fil
   CHECK(state.edit.error.empty());
   checkOnlyVertexLineChanged(original, readText(state.edit.savePath), 5, session.model().mesh->points[4]);
   std::filesystem::remove_all(folder);
+}
+
+TEST_CASE("session: a sphere's K (all > 0) gets a one-sided automatic range over its own values, not +-max") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  REQUIRE(session.document().loadMesh(shapes::globe(16, 7), "globe"));
+  state.views[0].level = 3;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  settle(session);
+  REQUIRE(session.surfaces().shown(0) != nullptr);
+  const std::vector<double>& k = session.surfaces().shown(0)->samples->gaussian;
+  const double lowest = *std::min_element(k.begin(), k.end()), highest = *std::max_element(k.begin(), k.end());
+  REQUIRE(lowest > 0.0);
+  const ColourInterval range = state.colourInterval();
+  CAPTURE(range.low);
+  CAPTURE(range.high);
+  // [P10, P90] of K: inside [min, max] (the old +-P90 reached down to -P90, all of K on the red end).
+  CHECK(range.oneSided());
+  CHECK(range.low >= lowest);
+  CHECK(range.high <= highest);
+  CHECK(range.low < range.high);
+  // The map still varies over the sphere: its lowest and highest K differ in colour, and both are
+  // on the positive half of the paper's map (not blue).
+  const glm::vec3 low = colorMapCpu(state.shading.colormap, lowest, range), high = colorMapCpu(state.shading.colormap, highest, range);
+  CHECK(glm::length(low - high) > 0.5f);
+  CHECK(low.z == 0.0f);
+  CHECK(colourRangeNote(state).find("all K > 0: range") == 0);
+  // Mixed signs keep the paper's map centred on zero: the mushroom's neck is negative.
+  REQUIRE(session.document().loadMesh(shapes::mushroom(6), "mushroom"));
+  settle(session);
+  CHECK_FALSE(state.colourInterval().oneSided());
+  CHECK(state.colourInterval().low == -state.colourInterval().high);
+  CHECK(colourRangeNote(state).empty());
+}
+
+TEST_CASE("session: a pole zoom to rings m..m+2 raises the views to level m+2, or is refused, and a lower level ends it") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  REQUIRE(session.document().loadMesh(shapes::globe(8, 5), "globe"));
+  state.views[0].level = 3;
+  settle(session);
+  // Rings 4..6 at level 3 did not exist: the view went blank. Now the level goes to 6.
+  state.poleInspector.zoomRing = 4;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == 4);
+  CHECK(state.views[0].level == 6);
+  CHECK(state.views[0].status.shownLevel == 6);
+  CHECK(state.notice.find("level 6 for the pole zoom") == 0);
+  // A level under the zoom's rings ends it, saying why.
+  state.views[0].level = 5;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == -1);
+  CHECK(state.notice.find("pole zoom off: rings 4-6 need level 6") == 0);
+  // Deeper than the scheme goes on this model: refused, the level stays.
+  const int deepest = state.views[0].status.deepestLevel;
+  state.poleInspector.zoomRing = deepest;
+  settle(session);
+  CHECK(state.poleInspector.zoomRing == -1);
+  CHECK(state.views[0].level == 5);
+  CHECK(state.notice.find("stops at level " + std::to_string(deepest)) != std::string::npos);
 }

@@ -2,7 +2,9 @@
 // level, twins), what it drops for the face budget, refusals, and positions-only updates.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <memory>
+#include <thread>
 
 #include "core/mesh/shapes.h"
 #include "session/surface_cache.h"
@@ -166,4 +168,35 @@ TEST_CASE("surface cache: a new model drops what was kept of the old one") {
   settle(cache, state, second);
   CHECK(cache.parked(0).get() == nullptr);
   CHECK(cache.shown(0)->key.model == 2);
+}
+
+TEST_CASE("surface cache: the refining time counts from the request, also while an older request's job runs first") {
+  const Model model = testModel();
+  SurfaceCache cache(kDefaultFaceBudget, false);
+  ViewerState state = oneView(SchemeChoice::C2PS, 2);
+  settle(cache, state, model);
+  // Level 7 starts building; level 8 is asked for while it runs and starts only when 7 is done.
+  state.views[0].level = 7;
+  cache.update(state, model, false);
+  REQUIRE(state.views[0].status.refining);
+  state.views[0].level = 8;
+  const auto asked = std::chrono::steady_clock::now();
+  cache.update(state, model, false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  cache.update(state, model, false);
+  CHECK(state.views[0].status.refiningSeconds >= 0.03);
+  // Level 7's job ends (its surface is dropped: 8 is wanted) and level 8's job begins.
+  while (!cache.refiningKey(0) || cache.refiningKey(0)->level != 8) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    cache.update(state, model, false);
+  }
+  // Level 8's job has just begun: the wait for it began when it was asked for.
+  INFO(state.views[0].status.message);
+  REQUIRE(state.views[0].status.refining);
+  const double sinceAsked = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+  CHECK(state.views[0].status.refiningSeconds >= 0.9 * sinceAsked - 0.002);
+  CHECK(state.views[0].status.refiningSeconds > 0.03);
+  settle(cache, state, model);
+  CHECK(state.views[0].status.refiningSeconds == 0.0);
+  CHECK(cache.shown(0)->key.level == 8);
 }

@@ -32,3 +32,20 @@ TEST_CASE("new views start on different schemes: C2PS, RTS, BPS, Catmull-Clark (
   CHECK(state.views[3].scheme == SchemeChoice::CatmullClark);
   for (const View& view : state.views) CHECK(view.level == 3);
 }
+
+TEST_CASE("the strip under the views is as high for light lines as for a curvature map (the model does not move)") {
+  ViewerState state;
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  const float curvature = colourBarReserve(state, 1.0f);
+  CHECK(curvature > 0.0f);
+  for (ShadingParams::Mode lines : {ShadingParams::Mode::Highlight, ShadingParams::Mode::Reflection}) {
+    state.shading.mode = lines;
+    CHECK(colourBarReserve(state, 1.0f) == curvature);
+  }
+  const ScreenRect frame{0.0f, 0.0f, 1200.0f, 800.0f};
+  state.shading.mode = ShadingParams::Mode::Gaussian;
+  const ScreenRect withBar = layoutViews(1, frame, colourBarReserve(state, 1.0f)).front();
+  state.shading.mode = ShadingParams::Mode::Reflection;
+  const ScreenRect withLegend = layoutViews(1, frame, colourBarReserve(state, 1.0f)).front();
+  CHECK(withBar.h == withLegend.h);
+}
