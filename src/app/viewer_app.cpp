@@ -10,20 +10,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "pipeline/patch_export.h"
-#include "core/mesh/ev_to_polar.h"
-#include "core/subdiv/spectrum.h"
-#include "core/subdiv/table_pool.h"
-#include "pipeline/eigen_nets.h"
-#include "core/mesh/obj_io.h"
-#include "core/mesh/shapes.h"
-#include "core/subdiv/refiner.h"
 #include "render/gl_context.h"
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
@@ -34,18 +24,6 @@ namespace {
 // [SECTION] Constants and helpers
 
 constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-
-
-
-
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-
-
-
 
 }  // namespace
 
@@ -255,10 +233,6 @@ std::string ViewerApp::clipboard() {
 
 // [SECTION] Rebuilding what is dirty
 
-
-
-
-
 void ViewerApp::updateSurfaces() {
   std::optional<EditCost> cost = session_.updateModelAndSurfaces();
   for (int v = 0; v < kMaxViews; ++v) {
@@ -347,7 +321,6 @@ std::vector<PointMarker> ViewerApp::pointMarkers(const std::vector<ScreenRect>& 
 }
 
 // [SECTION] Drawing
-
 
 void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect>& rects, float pixelScale,
                              int framebufferHeight) {

@@ -40,15 +40,6 @@ struct PointerState {
   bool left = false, right = false, middle = false;
 };
 
-// `polarview` / `polarview view FILE.obj`: opens the viewer (empty path: the default model).
-int runViewer(const std::string& objPathOrEmpty);
-// `polarview view [FILE.obj] [--frames N --stats] [--scheme a,b] [--level L] [--size WxH]`:
-// the arguments after "view". With --frames it runs N frames and prints frame times as JSON.
-int runViewerCommand(const std::vector<std::string>& args);
-// `polarview render ...`: the arguments after "render"; 0 ok, 1 bad input ("polarview: FILE:LINE:
-// msg" on stderr, no output file), 2 usage.
-int runRenderCommand(const std::vector<std::string>& args);
-
 struct ViewerOptions {
   int width = 1600, height = 900;
   bool hidden = false;         // invisible window: batch rendering and tests
@@ -79,7 +70,6 @@ class ViewerApp : public WindowServices {
   bool init(std::string* error);
 
   // The session and its parts (what the window shows; tests and commands drive it).
-  Session& session() { return session_; }
   ViewerState& state() { return session_.state(); }
   const ViewerState& state() const { return session_.state(); }
   Document& document() { return session_.document(); }
@@ -87,7 +77,6 @@ class ViewerApp : public WindowServices {
   // The document's operations, as the command line and tests use them (document.h).
   bool loadFile(const std::string& path) { return document().loadFile(path); }
   void requestLoad(const std::string& path) { document().requestLoad(path); }
-  void dropFiles(int count, const char* const* paths) { document().dropFiles(count, paths); }
   bool loading() const { return document().loading(); }
   bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "") {
     return document().loadMesh(std::move(mesh), name, path);
@@ -95,7 +84,6 @@ class ViewerApp : public WindowServices {
   void loadDefaultModel() { document().loadDefaultModel(); }
   const ControlMeshEditor& editor() const { return document().editor(); }
   const std::vector<EditCost>& editCosts() const { return document().editCosts(); }
-  bool exporting() const { return document().exporting(); }
   const Model& model() const { return session_.model(); }
   uint64_t modelGeneration() const { return model().generation; }
   glm::dvec3 modelMin() const { return document().modelMin(); }

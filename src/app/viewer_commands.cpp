@@ -630,18 +630,4 @@ GlfwSession::~GlfwSession() { glfwTerminate(); }
 CommandParser viewCommand() { return makeCommandParser(viewTable, viewWithApp); }
 CommandParser renderCommand() { return makeCommandParser(renderTable, renderWithApp); }
 
-int runViewerCommand(const std::vector<std::string>& args) {
-  return runGuarded("view", viewCommand(), args, FailureSubject::None);
-}
-
-int runRenderCommand(const std::vector<std::string>& args) {
-  return runGuarded("render", renderCommand(), args, FailureSubject::None);
-}
-
-int runViewer(const std::string& objPathOrEmpty) {
-  std::vector<std::string> args;
-  if (!objPathOrEmpty.empty()) args.push_back(objPathOrEmpty);
-  return runViewerCommand(args);
-}
-
 }  // namespace polarview
