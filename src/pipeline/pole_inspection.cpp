@@ -108,11 +108,14 @@ void catmullClarkRings(const PolyMesh& mesh, Index vertex, int rings, PoleInspec
 std::vector<Index> modelPoles(const PolyMesh& input) { return surveyPoles(input, 0).poles; }
 
 PoleSurvey surveyPoles(const PolyMesh& input, size_t listed) {
-  PoleSurvey survey;
   ManifoldSplit split;
   MeshTopology topo;
   const PolyMesh& mesh = refinableMesh(input, split, topo);
-  const std::vector<PolarConfig> configs = findPolarConfigs(mesh, topo);
+  return surveyPoles(input, findPolarConfigs(mesh, topo), listed);
+}
+
+PoleSurvey surveyPoles(const PolyMesh& input, const std::vector<PolarConfig>& configs, size_t listed) {
+  PoleSurvey survey;
   for (const PolarConfig& config : configs)
     if (config.refinable) survey.poles.push_back(config.pole);
   for (const RejectedGroup& group : groupRejectedCandidates(configs)) {

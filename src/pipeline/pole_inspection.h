@@ -4,6 +4,8 @@
 // Catmull-Clark oscillates n-fold around its extraordinary vertex. Plain data, no GL.
 #pragma once
 
+#include "core/subdiv/polar_config.h"
+
 #include <array>
 #include <string>
 #include <vector>
@@ -66,6 +68,8 @@ struct PoleSurvey {
 std::vector<Index> modelPoles(const PolyMesh& mesh);
 // The poles, the rejected candidates (the nearest `listed` of each kind) and the n-gons. [O(mesh)]
 PoleSurvey surveyPoles(const PolyMesh& mesh, size_t listed);
+// The same with `mesh`'s polar configurations found already (its analysis: ModelAnalysis::polarConfigs).
+PoleSurvey surveyPoles(const PolyMesh& mesh, const std::vector<PolarConfig>& configs, size_t listed);
 // The inspection of pole `vertex` of `mesh` under `scheme`, rings 1..rings (C2PS at most the rings
 // that keep its doubled valence within 2^16). Polar schemes: from the pole's own links (pole-
 // relative, any depth); Catmull-Clark: from its feature-adaptive patches around the vertex.

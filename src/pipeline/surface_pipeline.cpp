@@ -159,14 +159,9 @@ double weightedSymmetricRange(const std::vector<double>& values, const std::vect
   return range > 0.0 && std::isfinite(range) ? range : 1.0;  // also when there is no weight
 }
 
-std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
-  try {
-    ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)
-    MeshTopology topology;
-    refinableMesh(mesh, split, topology, name);  // throws InputError for meshes even that cannot refine
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+namespace {
+// The checks beyond the tables: faces, and an extent whose curvature double can hold.
+std::string checkMeshShape(const PolyMesh& mesh, const std::string& name) {
   if (mesh.points.empty() || mesh.faceCount() == 0) return name + ": no faces";
   // Curvature goes as 1 / size^2: below 1e-150 it leaves double's range (1.8e308) and nothing can be
   // shaded; the reader's 1e150 bounds the other end.
@@ -181,15 +176,34 @@ std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
   }
   return {};
 }
+}  // namespace
+
+std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
+  try {
+    ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)
+    MeshTopology topology;
+    refinableMesh(mesh, split, topology, name);  // throws InputError for meshes even that cannot refine
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return checkMeshShape(mesh, name);
+}
+
+std::string checkModel(const Model& model) {
+  if (!model.analysis->error().empty()) return model.analysis->error();  // refinableMesh's message
+  return checkMeshShape(*model.mesh, model.name);
+}
 
 LoadedModel readModelFile(const std::string& path) {
   LoadedModel loaded;
   loaded.path = path;
   try {
     std::string text;
-    loaded.mesh = loadObj(path, &loaded.warnings, &text);
-    loaded.error = checkModelMesh(loaded.mesh, path);
-    if (loaded.error.empty()) loaded.sourceText = std::make_shared<const std::string>(std::move(text));
+    PolyMesh mesh = loadObj(path, &loaded.warnings, &text);
+    // The analysis (tables, poles, the refinability check) here, off the window's thread.
+    loaded.model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), path, 0);
+    loaded.error = checkModel(loaded.model);
+    if (loaded.error.empty()) loaded.model.sourceText = std::make_shared<const std::string>(std::move(text));
   } catch (const std::exception& e) {
     // InputError (FILE:LINE: ...), a missing file, bad_alloc on a huge one: the model stays.
     loaded.error = e.what();

@@ -182,9 +182,10 @@ Model makeModel(std::shared_ptr<const PolyMesh> mesh, std::string name, uint64_t
 // A model file read and checked off the UI thread: the mesh, or the error of the first problem.
 struct LoadedModel {
   std::string path;
-  PolyMesh mesh;
+  // The mesh with its analysis and the file's bytes as read (Model::sourceText), made on the worker
+  // thread: the window only adopts it (its generation is the adopter's to set).
+  Model model;
   std::vector<std::string> warnings;  // non-fatal findings of the OBJ reader
-  std::shared_ptr<const std::string> sourceText;  // the file's bytes as read (Model::sourceText)
   std::string error;                  // empty when the mesh is usable
 };
 
@@ -196,6 +197,8 @@ constexpr double kSmallestModelExtent = 1e-150;
 // Checks a mesh for the viewer (the topology the refiners need, at least one face, an extent of at
 // least kSmallestModelExtent); returns the error message, empty when usable. [O(mesh)]
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
+// The same for a model made with makeModel: its analysis has built the tables already. [O(points)]
+std::string checkModel(const Model& model);
 
 // Refines and extracts (worker-thread safe: touches no shared state but `reuse`, under its mutex).
 // With `reuse` of the same model and scheme, the surface comes from it: extended to a deeper level,

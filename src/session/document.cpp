@@ -71,7 +71,8 @@ bool Document::loadFile(const std::string& path, const std::string& name) {
     loadFailed(path, loaded.error);
     return false;
   }
-  adoptMesh(std::move(loaded.mesh), name.empty() ? path : name, path, std::move(loaded.sourceText));
+  if (!name.empty()) loaded.model.name = name;
+  adoptModel(std::move(loaded.model), path);
   state_.file.warnings = std::move(loaded.warnings);
   return true;
 }
@@ -103,7 +104,7 @@ void Document::pollLoad() {
     loadFailed(loaded.path, loaded.error);
     return;
   }
-  adoptMesh(std::move(loaded.mesh), loaded.path, loaded.path, std::move(loaded.sourceText));
+  adoptModel(std::move(loaded.model), loaded.path);
   state_.file.warnings = std::move(loaded.warnings);
   state_.notice = "opened " + loaded.path;
 }
@@ -149,19 +150,13 @@ void Document::undoModelReplacement() {
 }
 
 bool Document::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
-  if (std::string error = checkModelMesh(mesh, name); !error.empty()) {
+  Model model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0);  // checked by its analysis
+  if (std::string error = checkModel(model); !error.empty()) {
     state_.file.error = error;
     return false;
   }
-  adoptMesh(std::move(mesh), name, path);
-  return true;
-}
-
-void Document::adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path,
-                         std::shared_ptr<const std::string> sourceText) {
-  Model model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0);
-  model.sourceText = std::move(sourceText);
   adoptModel(std::move(model), path);
+  return true;
 }
 
 void Document::adoptModel(Model model, const std::string& path) {

@@ -97,9 +97,6 @@ class Document {
   void recordEditCost(const EditCost& cost);
 
  private:
-  // `sourceText`: the file's text as read (Model::sourceText), null for a generated mesh.
-  void adoptMesh(PolyMesh mesh, const std::string& name, const std::string& path,
-                 std::shared_ptr<const std::string> sourceText = nullptr);
   // Shows `model` as the next model generation (what Ctrl+Z returns to is the one shown now).
   void adoptModel(Model model, const std::string& path);
   void loadFailed(const std::string& path, const std::string& error);

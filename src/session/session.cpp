@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/subdiv/spectrum.h"
+#include "pipeline/model_analysis.h"
 
 namespace polarview {
 namespace {
@@ -179,7 +180,8 @@ void Session::updatePoleInspector() {
   if (inspectPolesOf_ != document_.model().generation) {
     inspectPolesOf_ = document_.model().generation;
     try {
-      inspector.survey = surveyPoles(*document_.model().mesh, kRejectedPolesListed);
+      inspector.survey = surveyPoles(*document_.model().mesh, document_.model().analysis->polarConfigs(),
+                                     kRejectedPolesListed);
     } catch (const std::exception&) {
       inspector.survey = {};
     }
