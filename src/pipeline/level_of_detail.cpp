@@ -87,9 +87,11 @@ int levelToDraw(const DetailSizes& sizes, int level, const OrbitCamera& camera, 
   if (!std::isfinite(pixelsPerUnit)) return level;
   const int deepest = std::min(level, int(sizes.levelSize.size()) - 1);
   // The part of level m's set that differs from level L's, the cap or end caps closing it at a
-  // feature, spans about two of its patches (a cap's diameter is twice its ring's width).
+  // feature, spans about two of its patches (a cap's diameter is twice its ring's width). A level
+  // without patches in the set (every face of it refined further, e.g. level 0 of a mesh whose
+  // n-gons make every vertex extraordinary) has no size to tell: its set is end caps throughout.
   for (int m = 0; m < deepest; ++m)
-    if (2.0 * sizes.levelSize[size_t(m)] * pixelsPerUnit < pixels) return m;
+    if (sizes.levelSize[size_t(m)] > 0.0 && 2.0 * sizes.levelSize[size_t(m)] * pixelsPerUnit < pixels) return m;
   return level;
 }
 

@@ -59,3 +59,24 @@ TEST_CASE("level of detail: patch sizes halve a level; the drawn level follows t
   camera.pitchDeg = -89.0;  // the eye 15 below it, looking up at it: it counts again
   CHECK(levelToDraw(sizes, 8, camera, 600.0) > 0);
 }
+
+TEST_CASE("level of detail: a level without patches of its own (all end caps) is never drawn in place of a deeper one") {
+  // A Blender-style cylinder: its 24-gon caps make every vertex extraordinary at level 0, so the
+  // level-3 set has no level-0 patch; drawing level 0 instead showed its end caps, visibly another
+  // surface (a scalloped cap, K off by its whole range).
+  const AdaptiveRefinement refinement(shapes::ngonCylinder(24), {Scheme::CatmullClark, 3, false});
+  const DetailSizes sizes = detailSizes(extractPatches(refinement).patches);
+  REQUIRE(sizes.levelSize.size() == 4);
+  REQUIRE(sizes.levelSize[0] == 0.0);
+  OrbitCamera camera;
+  for (double distance : {1e6, 30.0, 3.0}) {
+    camera.distance = distance;
+    CHECK(levelToDraw(sizes, 3, camera, 600.0) > 0);
+  }
+  // Any difference allowed: the first level with patches (level 2: the rim's valence-3 vertices keep
+  // every face of levels 0 and 1 irregular).
+  int first = 0;
+  while (sizes.levelSize[size_t(first)] == 0.0) ++first;
+  CHECK(first == 2);
+  CHECK(levelToDraw(sizes, 3, camera, 600.0, 1e300) == first);
+}
