@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "app/bench_peer.h"
+#include "pipeline/stopwatch.h"
 #include "pipeline/patch_export.h"
 #include "app/json_writer.h"
 #include "core/mesh/ev_to_polar.h"
@@ -223,10 +224,6 @@ PolyMesh loadInput(const std::string& path) {
   PolyMesh mesh = loadObj(path, &warnings);
   for (const std::string& w : warnings) std::cerr << "polarview: warning: " << path << ": " << w << "\n";
   return mesh;
-}
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 const char* outerName(PolarConfig::Outer outer) {

@@ -1,6 +1,8 @@
 // The window's GPU copy of the session's surfaces (gpu_mirror.h).
 #include "app/gpu_mirror.h"
 
+#include "pipeline/stopwatch.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,10 +31,6 @@ glm::dvec3 worldOf(const glm::dvec3& window, const glm::dvec3& eye, const glm::d
 glm::dmat4 rotationOf(const glm::mat4& view) { return glm::dmat4(glm::dmat3(glm::dmat4(view))); }
 
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Appends the poles the surface does not hide to `out`: each is projected into `view`, and kept when
 // the depth buffer there (the surface just drawn) is not nearer the eye than the pole by more than

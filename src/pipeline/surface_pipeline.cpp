@@ -1,5 +1,7 @@
 #include "pipeline/surface_pipeline.h"
 
+#include "pipeline/stopwatch.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -110,10 +112,6 @@ std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch
     }
   }
   return samples;
-}
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -497,33 +495,19 @@ void dropAhead(SurfaceHierarchy& hierarchy) {
   hierarchy.aheadLevel = -1;
 }
 
-SurfaceJob::~SurfaceJob() {
-  if (future_.valid()) future_.wait();
-}
-
-double SurfaceJob::runningSeconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-}
-
 void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse) {
-  if (running()) return;
-  key_ = key;
-  started_ = std::chrono::steady_clock::now();
-  future_ = std::async(std::launch::async,
-                       [model, key, faceBudget, reuse] { return buildSurface(model, key, faceBudget, reuse); });
+  if (job_.start([model, key, faceBudget, reuse] { return buildSurface(model, key, faceBudget, reuse); })) key_ = key;
 }
 
-std::optional<SurfaceJob::Outcome> SurfaceJob::poll() {
-  if (!future_.valid() || future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
-  return wait();
-}
+std::optional<SurfaceJob::Outcome> SurfaceJob::poll() { return outcome(false); }
+std::optional<SurfaceJob::Outcome> SurfaceJob::wait() { return outcome(true); }
 
-std::optional<SurfaceJob::Outcome> SurfaceJob::wait() {
-  if (!future_.valid()) return std::nullopt;
+std::optional<SurfaceJob::Outcome> SurfaceJob::outcome(bool block) {
+  if (!(block ? job_.running() : job_.finished())) return std::nullopt;
   Outcome outcome;
   outcome.key = key_;
   try {
-    outcome.surface = future_.get();
+    outcome.surface = *job_.wait();
   } catch (const std::exception& e) {
     // InputError (budget, unsupported mesh) and bad_alloc alike: the view keeps what it shows.
     outcome.error = e.what();

@@ -19,6 +19,7 @@
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
 #include "core/spline/patch_extraction.h"
+#include "pipeline/background_job.h"
 #include "pipeline/control_net.h"
 #include "pipeline/level_of_detail.h"
 #include "pipeline/scheme_choice.h"
@@ -257,14 +258,13 @@ std::vector<float> weightedHistogram(const std::vector<double>& values, const st
 // Returns the refusal message when `key` would exceed the budget, empty when it fits. [O(mesh)]
 std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget);
 
-// One view's background job: at most one in flight; a newer request waits for it (a std::future
-// from std::async blocks on destruction, so jobs are never dropped, only their results).
+// One view's background job (a BackgroundJob with its key): at most one in flight; a newer
+// request waits for it (jobs are never dropped, only their results).
 class SurfaceJob {
  public:
-  ~SurfaceJob();
-  bool running() const { return future_.valid(); }
+  bool running() const { return job_.running(); }
   const SurfaceKey& runningKey() const { return key_; }
-  double runningSeconds() const;
+  double runningSeconds() const { return job_.runningSeconds(); }
   // Starts building `key` (only when nothing is running), from `reuse` where it fits (buildSurface).
   void start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse = nullptr);
   // The finished result, or nullopt while running / idle. On failure: the error message.
@@ -278,9 +278,9 @@ class SurfaceJob {
   std::optional<Outcome> wait();
 
  private:
-  std::future<std::shared_ptr<const BuiltSurface>> future_;
+  std::optional<Outcome> outcome(bool block);
+  BackgroundJob<std::shared_ptr<const BuiltSurface>> job_;
   SurfaceKey key_;
-  std::chrono::steady_clock::time_point started_;
 };
 
 }  // namespace polarview

@@ -16,7 +16,7 @@
 
 #include "pipeline/surface_pipeline.h"
 #include "pipeline/vertex_edit.h"
-#include "session/background_job.h"
+#include "pipeline/background_job.h"
 #include "session/surface_cache.h"
 #include "session/viewer_state.h"
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "session/background_job.h"
+#include "pipeline/background_job.h"
 #include "session/command_table.h"
 #include "session/document.h"
 #include "session/surface_cache.h"

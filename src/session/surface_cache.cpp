@@ -1,6 +1,8 @@
 // The viewer's surface cache (surface_cache.h).
 #include "session/surface_cache.h"
 
+#include "pipeline/stopwatch.h"
+
 #include <algorithm>
 #include <chrono>
 #include <thread>
@@ -8,10 +10,6 @@
 
 namespace polarview {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 bool sameModelAndPoints(const SurfaceKey& a, const SurfaceKey& b) { return a.model == b.model && a.points == b.points; }
 

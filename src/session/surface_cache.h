@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "pipeline/surface_pipeline.h"
-#include "session/background_job.h"
+#include "pipeline/background_job.h"
 #include "session/viewer_state.h"
 
 namespace polarview {

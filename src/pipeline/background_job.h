@@ -1,4 +1,4 @@
-// One background job type for the viewer's worker threads (reading a model, exports, pole
+// One background job type for the viewer's worker threads (refinements, reading a model, exports, pole
 // inspections, levels made ahead): at most one run at a time, polled once a frame by its owner.
 // A std::future from std::async blocks on destruction, so a job still running when its owner goes
 // is waited for, never abandoned with references into freed memory.
