@@ -19,6 +19,7 @@
 #include "app/bench_peer.h"
 #include "pipeline/stopwatch.h"
 #include "pipeline/patch_export.h"
+#include "pipeline/surface_export.h"
 #include "app/json_writer.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/ngon_to_fan.h"
@@ -63,6 +64,8 @@ struct CommonOptions {
   bool adaptive = false, edit = false;  // bench --adaptive [--edit]
   bool vsOpenSubdiv = false;             // bench --vs-opensubdiv
   bool uniform = false;                  // export --uniform
+  std::string format, units = "mm";      // export --format NAME --units UNIT
+  int samples = 8;                       // export --samples N
   bool evToPolar = false, pentagons = false;  // convert --ev-to-polar [--pentagons]
   bool ngonToFan = false;                     // convert --ngon-to-fan
 };
@@ -290,31 +293,56 @@ int runRefine(CommonOptions& o) {
 
 OptionTable exportTable(CommonOptions& o) {
   return {inputRow(o),
-          outputRow(&o.output, "OUT.bv", "the limit surface as Bezier patches (BezierView .bv)"),
+          outputRow(&o.output, "OUT.bv",
+                    "the limit surface; the format from the extension (" + exportFormatExtensions() + ")"),
+          textOption({"--format"}, "NAME", "write this format whatever the extension (" + exportFormatNames() + ")",
+                     &o.format),
           required(schemeRow(o, "the scheme")),
           levelsRow(o, {"--level", "--levels"}),
+          textOption({"--units"}, "UNIT", "the length unit STEP and IGES name (mm, m, inch; default mm); coordinates are "
+                                          "not scaled",
+                     &o.units),
+          intOption({"--samples"}, "N", "tessellations (ply, glb): segments along each patch edge (default 8)",
+                    &o.samples, 1, 64),
           flagOption({"--uniform"}, "refine every face (default: feature-adaptive, as view and render)", &o.uniform),
           uniformFirstStepRow(o),
           memoryBudgetRow(o)};
 }
 
+// The row of surface_export.h's table that writes o.output: --format, else the extension.
+const ExportFormat& chosenExportFormat(const CommonOptions& o) {
+  if (!o.format.empty()) {
+    if (const ExportFormat* format = exportFormatNamed(o.format)) return *format;
+    throw UsageError{"--format expects one of " + exportFormatNames() + ", got '" + o.format + "'"};
+  }
+  if (const ExportFormat* format = exportFormatForPath(o.output)) return *format;
+  throw UsageError{"cannot tell the format of '" + o.output + "': name it " + exportFormatExtensions() +
+                   " or give --format"};
+}
+
+LengthUnit chosenLengthUnit(const CommonOptions& o) {
+  for (const LengthUnitInfo& unit : lengthUnits())
+    if (o.units == unit.name) return unit.unit;
+  std::string names;
+  for (const LengthUnitInfo& unit : lengthUnits()) names += std::string(names.empty() ? "" : ", ") + unit.name;
+  throw UsageError{"--units expects one of " + names + ", got '" + o.units + "'"};
+}
+
 int runExport(CommonOptions& o) {
   checkFirstStep(o);
+  const ExportFormat& format = chosenExportFormat(o);
+  ExportSettings settings;
+  settings.source = o.input;
+  settings.units = chosenLengthUnit(o);
+  settings.samples = o.samples;
+  settings.level = o.levels;
+  settings.schemeLabel = schemeName(o.scheme);
   PolyMesh mesh = loadInput(o.input);
   // The adaptive path's hard face limit leaves room over its estimate (an extrapolation past level 6).
   const size_t maxFaces = checkMemoryBudget(mesh, o, !o.uniform) * (o.uniform ? 1 : 2);
   const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, o.uniform, maxFaces);
-  const BezierViewStats stats = writeBezierViewFile(o.output, set, o.input);
-  std::printf("%s: %zu Bezier patches in %zu groups (regular %zu, boundary %zu, polar-ring %zu, pole-cap %zu for %zu "
-              "cap sectors, end-cap %zu; %s refinement)",
-              o.output.c_str(), stats.total(), stats.groups, stats.written[size_t(PatchKind::Regular)],
-              stats.written[size_t(PatchKind::Boundary)], stats.written[size_t(PatchKind::PolarRing)],
-              stats.written[size_t(PatchKind::PoleCap)], stats.capSectors, stats.written[size_t(PatchKind::EndCap)],
-              o.uniform ? "uniform" : "feature-adaptive");
-  if (stats.capSectors > 0)
-    std::printf("; caps within %.2g of the bounding box (at most %d piece%s a cap sector)", stats.capRelativeDeviation(),
-                stats.maxCapSplit, stats.maxCapSplit == 1 ? "" : "s");
-  std::printf("\n");
+  const std::string summary = format.write(o.output, set, settings);
+  std::printf("%s: %s; %s refinement\n", o.output.c_str(), summary.c_str(), o.uniform ? "uniform" : "feature-adaptive");
   return 0;
 }
 

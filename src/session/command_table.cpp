@@ -68,7 +68,7 @@ void addEditCommands(std::vector<Command>& rows) {
   rows.push_back(hostCommand("edit.save", "Save OBJ", {key('S', kControl)},
                              "save the edited control mesh as OBJ (path in the Edit panel)",
                              [](CommandHost& host) { host.saveEditedMesh(); }));
-  rows.push_back(hostCommand("export.bv", "Export .bv", {}, "", [](CommandHost& host) { host.exportSurface(true); }));
+  rows.push_back(hostCommand("export.surface", "Export surface", {}, "", [](CommandHost& host) { host.exportSurface(true); }));
   rows.push_back(hostCommand("export.refined-obj", "Export refined OBJ", {}, "",
                              [](CommandHost& host) { host.exportSurface(false); }));
   rows.push_back(hostCommand("model.ev-to-polar", "EVs to poles (Fig. 14a)", {}, "",

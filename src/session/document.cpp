@@ -15,6 +15,7 @@
 #include "core/subdiv/table_pool.h"
 #include "pipeline/eigen_nets.h"
 #include "pipeline/patch_export.h"
+#include "pipeline/surface_export.h"
 
 namespace polarview {
 namespace {
@@ -356,14 +357,25 @@ void Document::startExport(bool bezierView, const BuiltSurface* shown) {
   const Model model = model_;  // the mesh is immutable: the worker keeps this version
   std::string path;
   if (bezierView) {
-    path = state_.edit.bvPath.empty() ? state_.edit.defaultBvPath : state_.edit.bvPath;
+    path = state_.edit.surfacePath.empty() ? state_.edit.defaultSurfacePath : state_.edit.surfacePath;
+    // The format from the file's extension, as `polarview export` chooses it.
+    const ExportFormat* format = exportFormatForPath(path);
+    if (!format) {
+      state_.edit.error = "cannot tell the format of " + path + ": name it " + exportFormatExtensions();
+      state_.notice = state_.edit.error;
+      return;
+    }
+    ExportSettings settings;
+    settings.source = model.name;
+    settings.schemeLabel = schemeChoiceLabel(scheme);
+    settings.level = level;
     // The view's own refinement path and limit (the shown level is within it).
     const size_t maxFaces = 2 * faceBudget_;
-    exportJob_.start([model, options, path, maxFaces, scheme, level] {
+    exportJob_.start([model, options, path, maxFaces, scheme, level, format, settings] {
       const PatchSet set = exportPatchSet(*model.mesh, options, model.name, false, maxFaces);
-      const BezierViewStats stats = writeBezierViewFile(path, set, model.name);
-      return "wrote " + absolutePath(path) + ": " + std::to_string(stats.total()) + " Bezier patches (" +
-             schemeChoiceLabel(scheme) + " level " + std::to_string(level) + ", feature-adaptive)";
+      const std::string summary = format->write(path, set, settings);
+      return "wrote " + absolutePath(path) + ": " + summary + " (" + schemeChoiceLabel(scheme) + " level " +
+             std::to_string(level) + ", feature-adaptive)";
     });
   } else {
     path = state_.edit.refinedObjPath.empty() ? state_.edit.defaultRefinedObjPath : state_.edit.refinedObjPath;
@@ -440,7 +452,7 @@ void Document::updateEditState(const BuiltSurface* shown) {
   const SchemeChoice scheme = shown ? shown->key.scheme : state_.views[size_t(v)].scheme;
   const int level = shown ? shown->key.level : state_.views[size_t(v)].level;
   const std::string tag = std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
-  edit.defaultBvPath = (folder / (stem + tag + ".bv")).string();
+  edit.defaultSurfacePath = (folder / (stem + tag + "." + edit.surfaceFormat)).string();
   edit.defaultRefinedObjPath = (folder / (stem + tag + "_refined.obj")).string();
 }
 

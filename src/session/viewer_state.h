@@ -138,10 +138,11 @@ struct EditSettings {
   std::string undoLabel, redoLabel; // "move vertex 12", "reset"
   int movedVertices = 0;            // vertices away from their loaded position
   // Output paths; empty means the default beside it (written by the app): <model>_edited.obj,
-  // <model>_<scheme>_<level>.bv and <model>_<scheme>_<level>_refined.obj next to the model file,
+  // <model>_<scheme>_<level>.<surfaceFormat> and <model>_<scheme>_<level>_refined.obj next to the model file,
   // or in the current directory for the built-in model.
   std::string savePath, defaultSavePath;
-  std::string bvPath, defaultBvPath;
+  std::string surfacePath, defaultSurfacePath;  // Export surface: the format from the extension
+  std::string surfaceFormat = "bv";             // the default path's extension (the panel's format choice)
   std::string refinedObjPath, defaultRefinedObjPath;
   std::string error;                // the last failed save or export, one line
   std::string exporting;            // what a background export is writing ("" when none)

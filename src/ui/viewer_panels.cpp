@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <utility>
+#include <filesystem>
 
 #ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
@@ -13,6 +14,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <imgui.h>
 #include <imgui_stdlib.h>
+
+#include "pipeline/surface_export.h"
 
 namespace polarview {
 namespace {
@@ -159,6 +162,24 @@ bool pathFieldAndButton(const char* id, std::string& path, const std::string& fa
   return pressed;
 }
 
+// The format Export surface writes: the extension of the default name, and of a typed one.
+void drawSurfaceFormatChoice(EditSettings& edit) {
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);
+  if (!ImGui::BeginCombo("##surfaceFormat", edit.surfaceFormat.c_str())) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the format of Export surface");
+    return;
+  }
+  for (const ExportFormat& format : exportFormats()) {
+    if (ImGui::Selectable(format.name, edit.surfaceFormat == format.name)) {
+      edit.surfaceFormat = format.name;
+      if (!edit.surfacePath.empty())
+        edit.surfacePath = std::filesystem::path(edit.surfacePath).replace_extension(format.extensions.front()).string();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", format.description);
+  }
+  ImGui::EndCombo();
+}
+
 void drawEditPanel(ViewerState& state) {
   EditSettings& edit = state.edit;
   // Buttons first, at fixed places; text that changes length below them.
@@ -179,9 +200,13 @@ void drawEditPanel(ViewerState& state) {
   if (!edited) ImGui::EndDisabled();
   if (edited && ImGui::IsItemHovered()) ImGui::SetTooltip("every control vertex back where the file had it (Ctrl+Z undoes it)");
   if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, "edit.save")) queueCommand(state, "edit.save");
-  if (pathFieldAndButton("##bvPath", edit.bvPath, edit.defaultBvPath, "export.bv")) queueCommand(state, "export.bv");
+  drawSurfaceFormatChoice(edit);
+  ImGui::SameLine();
+  if (pathFieldAndButton("##surfacePath", edit.surfacePath, edit.defaultSurfacePath, "export.surface"))
+    queueCommand(state, "export.surface");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive) for BezierView");
+    ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive); the format from the "
+                      "extension: %s", exportFormatExtensions().c_str());
   if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "export.refined-obj"))
     queueCommand(state, "export.refined-obj");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");

@@ -375,9 +375,9 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   fs::create_directories(dir);
 
   // .bv: the same bytes as exportPatchSet + writeBezierViewFile of the edited mesh.
-  CHECK(state.edit.defaultBvPath == "default_c2ps_2.bv");
-  state.edit.bvPath = (dir / "view.bv").string();
-  queueCommand(state, "export.bv");
+  CHECK(state.edit.defaultSurfacePath == "default_c2ps_2.bv");
+  state.edit.surfacePath = (dir / "view.bv").string();
+  queueCommand(state, "export.surface");
   app->runFrame();
   app->waitUntilIdle();
   CAPTURE(state.notice);
@@ -407,8 +407,8 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   CHECK(refined.points == refinement.finest().mesh.points);
 
   // An unwritable path: one line of error and no file.
-  state.edit.bvPath = (dir / "missing" / "view.bv").string();
-  queueCommand(state, "export.bv");
+  state.edit.surfacePath = (dir / "missing" / "view.bv").string();
+  queueCommand(state, "export.surface");
   app->runFrame();
   app->waitUntilIdle();
   CHECK_FALSE(state.edit.error.empty());

@@ -118,7 +118,7 @@ TEST_CASE("command table: commands change the state as the keys always did, and 
   CHECK(state.camera(0).eye().x == doctest::Approx(copied.eye().x));
 
   state.file.pathField = "model.obj";
-  for (const char* id : {"file.open", "edit.undo", "export.bv", "model.ev-to-polar-pentagons", "camera.iso", "screenshot"})
+  for (const char* id : {"file.open", "edit.undo", "export.surface", "model.ev-to-polar-pentagons", "camera.iso", "screenshot"})
     table.run(id, state, host);
   CHECK(host.calls == std::vector<std::string>{"open model.obj", "undo", "export bv", "polar 14c", "frame", "screenshot"});
   // Disabled: stepping dropped files without a list.

@@ -302,16 +302,16 @@ TEST_CASE("session: Save OBJ and Export .bv write what the model and the active 
   settle(session);
   const std::filesystem::path folder = freshDirectory();
   state.edit.savePath = (folder / "saved.obj").string();
-  state.edit.bvPath = (folder / "surface.bv").string();
+  state.edit.surfacePath = (folder / "surface.bv").string();
   queueCommand(state, "edit.save");
-  queueCommand(state, "export.bv");
+  queueCommand(state, "export.surface");
   settle(session);
   CHECK(state.edit.error.empty());
   const PolyMesh saved = loadObj(state.edit.savePath);
   CHECK(saved.faceCount() == session.model().mesh->faceCount());
   CHECK(saved.points == session.model().mesh->points);
   // BezierView's file: one record a patch, as many as the view's patches.
-  std::ifstream bv(state.edit.bvPath);
+  std::ifstream bv(state.edit.surfacePath);
   REQUIRE(bv.good());
   CHECK(state.notice.find(std::to_string(session.surfaces().shown(0)->patches.size()) + " Bezier patches") != std::string::npos);
   std::filesystem::remove_all(folder);
@@ -331,7 +331,7 @@ TEST_CASE("session: after an eigenvector net and Ctrl+Z, the outputs are named a
   settle(session);
   CHECK(state.file.modelName.rfind("default: ", 0) == 0);
   CHECK(state.edit.defaultSavePath == "default_edited.obj");
-  CHECK(state.edit.defaultBvPath.rfind("default_c2ps_", 0) == 0);
+  CHECK(state.edit.defaultSurfacePath.rfind("default_c2ps_", 0) == 0);
 }
 
 TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it but the moved vertex's") {
