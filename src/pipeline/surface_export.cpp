@@ -6,7 +6,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "core/export/tessellation_writers.h"
@@ -47,10 +49,15 @@ constexpr float kColourQuantile = 0.90f;
 // extraordinary vertex says nothing about the shape's scale. Non-finite values are left out (the
 // writers refuse them, naming the vertex).
 void curvatureByArea(const Tessellation& mesh, const PatchSet& set, std::vector<double>& values, std::vector<double>& weights) {
+  // Areas in units of the bounding box (a model of 1e140 has areas past double's range).
+  Point low(std::numeric_limits<double>::max()), high(-std::numeric_limits<double>::max());
+  for (const Point& p : mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
+  const Point size = high - low;
+  const double unit = std::max({size.x, size.y, size.z, std::numeric_limits<double>::min()});
   std::vector<double> area(mesh.positions.size(), 0.0);
   for (const auto& t : mesh.triangles) {
-    const Point& a = mesh.positions[t[0]];
-    const double third = glm::length(glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a)) / 6.0;
+    const Point a = mesh.positions[t[0]] / unit;
+    const double third = glm::length(glm::cross(mesh.positions[t[1]] / unit - a, mesh.positions[t[2]] / unit - a)) / 6.0;
     for (uint32_t v : t) area[v] += third;
   }
   const bool onlyEndCaps = set.count(PatchKind::EndCap) == set.patches.size();
@@ -96,8 +103,9 @@ std::string writeTessellation(const std::string& path, const PatchSet& set, cons
 
   const TessellationEdges edges = countTessellationEdges(mesh);
   std::string closure = edges.watertight() ? "watertight" : std::to_string(edges.boundary) + " boundary edges";
-  if (edges.nonManifold + edges.misoriented > 0)
-    closure += ", " + std::to_string(edges.nonManifold + edges.misoriented) + " edges not shared by two triangles in turn";
+  if (edges.nonManifold + edges.misoriented > 0)  // a degenerate input (a part of it collapsed to a point)
+    closure += ", not a manifold: " + std::to_string(edges.nonManifold + edges.misoriented) +
+               " edges used by three or more triangles or twice the same way";
   const auto [lowest, highest] = std::minmax_element(mesh.gaussian.begin(), mesh.gaussian.end());
   char text[160];
   std::snprintf(text, sizeof text, ", K in [%.6g, %.6g]; colours over [%.6g, %.6g]", mesh.gaussian.empty() ? 0.0 : *lowest,

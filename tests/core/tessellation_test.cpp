@@ -13,6 +13,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/export/tessellation.h"
+#include "core/export/tessellation_writers.h"
+#include "core/mesh/input_error.h"
 #include "core/mesh/obj_io.h"
 #include "core/spline/patch_extraction.h"
 #include "core/subdiv/refiner.h"
@@ -214,4 +216,28 @@ TEST_CASE("tessellation: T-junctions are closed by the level jumps, and without 
   CHECK(repaired.splitEdges > 0);
   CHECK(countTessellationEdges(repaired).watertight());
   CHECK(closed.positions.size() > repaired.positions.size());
+}
+
+TEST_CASE("tessellation writers: a non-finite value or a missing colour is refused, naming the input and the vertex") {
+  const PatchSet set = extractPatches(Refinement(asset("cap6_paraboloid.obj"), {Scheme::C2PS, 1, false}, "cap6"));
+  Tessellation mesh = tessellatePatchSet(set, 2);
+  TessellationFileInfo info;
+  info.source = "cap6.obj";
+  info.colours.assign(mesh.positions.size(), glm::vec3(0.5f));
+  CHECK(plyBytes(mesh, info).size() > mesh.positions.size() * 75);
+  CHECK(glbBytes(mesh, info).size() % 4 == 0);
+
+  Tessellation broken = mesh;
+  broken.mean[7] = std::nan("");
+  for (auto bytes : {plyBytes, glbBytes}) {
+    try {
+      bytes(broken, info);
+      FAIL("accepted a NaN");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).rfind("cap6.obj: the tessellation has a non-finite mean curvature at vertex 7", 0) == 0);
+    }
+  }
+  info.colours.pop_back();
+  CHECK_THROWS_AS(plyBytes(mesh, info), InputError);
+  CHECK_THROWS_AS(glbBytes(mesh, info), InputError);
 }
