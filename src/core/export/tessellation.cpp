@@ -74,7 +74,7 @@ class SeamWelder {
   using Cell = std::array<int64_t, 3>;
   struct CellHash {
     size_t operator()(const Cell& c) const {
-      return size_t(c[0] * 73856093LL) ^ size_t(c[1] * 19349663LL) ^ size_t(c[2] * 83492791LL);
+      return size_t(uint64_t(c[0]) * 73856093u ^ uint64_t(c[1]) * 19349663u ^ uint64_t(c[2]) * 83492791u);
     }
   };
   // Finite and within the range the cells can index (a position far outside the patches' box).
@@ -93,6 +93,13 @@ class SeamWelder {
   std::vector<uint32_t> next_;                          // vertex -> next vertex of its cell
 };
 
+// The welder of a patch set's seams: cells of kWeldTolerance times its box's diagonal.
+SeamWelder seamWelderFor(const PatchSet& set) {
+  Point low;
+  const double diagonal = controlBoxDiagonal(set, low);
+  return SeamWelder(low, kWeldTolerance * diagonal);
+}
+
 // A triangle side on its patch's border, with the parameters of its ends: where a mixed-level
 // T-junction leaves it without a partner, its midpoint is evaluated to look for the missing vertex.
 struct BorderSegment {
@@ -106,10 +113,7 @@ uint64_t directedKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
 
 class TessellationBuilder {
  public:
-  TessellationBuilder(const PatchSet& set, int samples) : set_(set), n_(samples), welder_(Point(0.0), 0.0) {
-    Point low;
-    const double diagonal = controlBoxDiagonal(set, low);
-    welder_ = SeamWelder(low, kWeldTolerance * diagonal);
+  TessellationBuilder(const PatchSet& set, int samples) : set_(set), n_(samples), welder_(seamWelderFor(set)) {
     mesh_.samples = samples;
   }
 
