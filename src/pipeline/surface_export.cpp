@@ -4,8 +4,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "core/export/tessellation_writers.h"
 #include "pipeline/patch_export.h"
+#include "pipeline/shading.h"
+#include "pipeline/surface_pipeline.h"
 
 namespace polarview {
 
@@ -29,6 +38,90 @@ std::string writeBv(const std::string& path, const PatchSet& set, const ExportSe
   return text;
 }
 
+// [SECTION] tessellations (PLY, glb): the core writes, the colours come from here
+
+// The viewer's default automatic range takes the 10th and 90th percentiles of K by area
+// (ColourRangeSettings::quantile, session/viewer_state.h).
+constexpr float kColourQuantile = 0.90f;
+
+// K per vertex with the area it stands for (a third of its triangles'), end caps left out where
+// other patches exist, as the viewer's samples (sampleCurvatures): their K at a Catmull-Clark
+// extraordinary vertex says nothing about the shape's scale. Non-finite values are left out (the
+// writers refuse them, naming the vertex).
+void curvatureByArea(const Tessellation& mesh, const PatchSet& set, std::vector<double>& values, std::vector<double>& weights) {
+  // Areas in units of the bounding box (a model of 1e140 has areas past double's range).
+  Point low(std::numeric_limits<double>::max()), high(-std::numeric_limits<double>::max());
+  for (const Point& p : mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
+  const Point size = high - low;
+  const double unit = std::max({size.x, size.y, size.z, std::numeric_limits<double>::min()});
+  std::vector<double> area(mesh.positions.size(), 0.0);
+  for (const auto& t : mesh.triangles) {
+    const Point a = mesh.positions[t[0]] / unit;
+    const double third = glm::length(glm::cross(mesh.positions[t[1]] / unit - a, mesh.positions[t[2]] / unit - a)) / 6.0;
+    for (uint32_t v : t) area[v] += third;
+  }
+  const bool onlyEndCaps = set.count(PatchKind::EndCap) == set.patches.size();
+  for (size_t v = 0; v < area.size(); ++v) {
+    if (!onlyEndCaps && set.patches[mesh.sources[v].patch].kind == PatchKind::EndCap) continue;
+    if (!std::isfinite(mesh.gaussian[v]) || !std::isfinite(area[v])) continue;  // the writer refuses them
+    values.push_back(mesh.gaussian[v]);
+    weights.push_back(area[v]);
+  }
+}
+
+// The viewer's automatic colour range of K: symmetric +-max(-P10, P90) where K has both signs,
+// one-sided [P10, P90] (at least 1e-6 of its size wide) where it has one.
+ColourInterval automaticCurvatureRange(const std::vector<double>& values, const std::vector<double>& weights) {
+  if (values.empty()) return ColourInterval{};
+  const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
+  if (*lowest < 0.0 && *highest > 0.0) return ColourInterval::symmetric(weightedSymmetricRange(values, weights, kColourQuantile));
+  ColourInterval range{weightedPercentile(values, weights, 1.0 - kColourQuantile), weightedPercentile(values, weights, kColourQuantile)};
+  const double narrowest = 1e-6 * std::max({std::abs(range.low), std::abs(range.high), 1e-300});
+  if (!(range.high - range.low >= narrowest)) {
+    const double middle = 0.5 * (range.low + range.high);
+    range = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
+  }
+  return range;
+}
+
+// Tessellates `set`, colours K as the viewer's default Gaussian view does, writes it with `write`
+// and says what it wrote: "12345 vertices, 24680 triangles, watertight, K in [a, b]; ...".
+std::string writeTessellation(const std::string& path, const PatchSet& set, const ExportSettings& settings,
+                              void (*write)(const std::string&, const Tessellation&, const TessellationFileInfo&)) {
+  const Tessellation mesh = tessellatePatchSet(set, settings.samples);
+  std::vector<double> values, weights;
+  curvatureByArea(mesh, set, values, weights);
+  const ColourInterval range = automaticCurvatureRange(values, weights);
+  const ShadingParams::ColorMap map = ShadingParams{}.colormap;
+  TessellationFileInfo info{settings.source, settings.schemeLabel, settings.level, {}, {}};
+  info.colours.reserve(mesh.positions.size());
+  for (double k : mesh.gaussian) info.colours.push_back(colorMapCpu(map, k, range));
+  char colouring[96];
+  std::snprintf(colouring, sizeof colouring, "K through the paper colour map over [%.6g, %.6g]", range.low, range.high);
+  info.colouring = colouring;
+  write(path, mesh, info);
+
+  const TessellationEdges edges = countTessellationEdges(mesh);
+  std::string closure = edges.watertight() ? "watertight" : std::to_string(edges.boundary) + " boundary edges";
+  if (edges.nonManifold + edges.misoriented > 0)  // a degenerate input (a part of it collapsed to a point)
+    closure += ", not a manifold: " + std::to_string(edges.nonManifold + edges.misoriented) +
+               " edges used by three or more triangles or twice the same way";
+  const auto [lowest, highest] = std::minmax_element(mesh.gaussian.begin(), mesh.gaussian.end());
+  char text[160];
+  std::snprintf(text, sizeof text, ", K in [%.6g, %.6g]; colours over [%.6g, %.6g]", mesh.gaussian.empty() ? 0.0 : *lowest,
+                mesh.gaussian.empty() ? 0.0 : *highest, range.low, range.high);
+  return std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) + " triangles, " +
+         closure + text;
+}
+
+std::string writePly(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
+  return writeTessellation(path, set, settings, writePlyFile);
+}
+
+std::string writeGlb(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
+  return writeTessellation(path, set, settings, writeGlbFile);
+}
+
 std::string lowered(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return text;
@@ -45,6 +138,8 @@ const std::vector<LengthUnitInfo>& lengthUnits() {
 const std::vector<ExportFormat>& exportFormats() {
   static const std::vector<ExportFormat> formats = {
       {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", writeBv},
+      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", writePly},
+      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", writeGlb},
   };
   return formats;
 }
