@@ -49,7 +49,7 @@ py::array fieldView(py::object self, py::dtype dtype, size_t offset, std::vector
   return readOnlyView(std::move(dtype), shape, strides, p.absolute.empty() ? nullptr : base + offset, self);
 }
 
-// (P, 4, 4, 3) Bezier points by bicubicBezier; PoleCaps (not bicubic) NaN.
+// (P, 4, 4, 3) Bezier points by bicubicBezier, [p, j, i] as control_points; PoleCaps (not bicubic) NaN.
 py::array_t<double> bezierPoints(const Patches& p) {
   py::array_t<double> out({py::ssize_t(p.absolute.size()), py::ssize_t(4), py::ssize_t(4), py::ssize_t(3)});
   double* x = out.mutable_data();
@@ -57,9 +57,11 @@ py::array_t<double> bezierPoints(const Patches& p) {
     if (patch.kind == PatchKind::PoleCap) {
       std::fill(x, x + 48, std::nan(""));
     } else {
+      // BezierPatch lists cp[4 i + j] (i along u); the array is [j, i] as control_points.
       const BezierPatch bezier = bicubicBezier(patch);
-      for (size_t k = 0; k < 16; ++k)
-        for (int c = 0; c < 3; ++c) x[3 * k + size_t(c)] = bezier.cp[k][c];
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j)
+          for (int c = 0; c < 3; ++c) x[3 * (4 * j + i) + size_t(c)] = bezier.cp[4 * i + j][c];
     }
     x += 48;
   }
@@ -147,7 +149,7 @@ void bindPatches(py::module_& m) {
             for (int k = 0; k <= int(PatchKind::EndCap); ++k) d[patchKindName(PatchKind(k))] = p.set.count(PatchKind(k));
             return d;
           }, "patches per kind")
-      .def("bezier", &bezierPoints, "(P, 4, 4, 3) float64: the exact bicubic Bezier points; NaN for PoleCaps");
+      .def("bezier", &bezierPoints, "(P, 4, 4, 3) float64: the exact bicubic Bezier points, [p, j, i] as control_points; NaN for PoleCaps");
   m.def("limit_patches", &limitPatches, py::arg("mesh"), py::arg("scheme") = "c2ps", py::arg("level") = 3,
         py::arg("uniform") = false, py::arg("memory_budget") = 0,
         "the limit surface's patches after `level` levels, as `polarview export` makes them");
