@@ -26,8 +26,7 @@
 #include "core/mesh/input_error.h"
 #include "core/mesh/manifold_split.h"
 #include "core/mesh/obj_io.h"
-#include "core/mesh/figure_shapes.h"
-#include "core/mesh/shapes.h"
+#include "core/mesh/shape_catalog.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch_extraction.h"
 #include "core/spline/pole_taylor.h"
@@ -36,6 +35,9 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "pipeline/scheme_choice.h"
 #include "pipeline/surface_pipeline.h"
+#include "pipeline/memory_budget.h"
+#include "pipeline/mesh_report.h"
+#include "pipeline/pole_report.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/refiner.h"
@@ -92,62 +94,12 @@ size_t parseByteSize(const std::string& flag, const std::string& text) {
   return size_t(value * scale);
 }
 
-// A face of a uniform refinement's finest level costs kBytesPerUniformFace, of the feature-adaptive
-// path kBytesPerAdaptiveFace (both measured, surface_pipeline.h).
+// The memory a refinement may take: --memory-budget, else memory_budget.h's default.
+size_t memoryBudgetBytes(const CommonOptions& o) { return polarview::memoryBudgetBytes(o.memoryBudget); }
 
-// The memory a refinement may take: --memory-budget, else 80% of what the machine has available
-// now (MemAvailable), else 4 GiB where that cannot be read.
-size_t memoryBudgetBytes(const CommonOptions& o) {
-  if (o.memoryBudget > 0) return o.memoryBudget;
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  size_t kilobytes = 0;
-  while (meminfo >> key >> kilobytes) {
-    if (key == "MemAvailable:") return size_t(0.8 * double(kilobytes) * 1024.0);
-    meminfo.ignore(1 << 10, '\n');
-  }
-  return size_t(4) << 30;
-}
-
-std::string gigabytes(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
-  return text;
-}
-
-// The refusal of a level over the memory budget: what it would need, the budget, where the budget
-// comes from, and the deepest level that fits.
-InputError budgetRefusal(const CommonOptions& o, size_t budget, const std::string& needed, int fits) {
-  return InputError(o.input, 0,
-                    "level " + std::to_string(o.levels) + " would need " + needed + ", over the memory budget of " +
-                        gigabytes(double(budget)) +
-                        (o.memoryBudget > 0 ? " (--memory-budget)" : " (80% of the available memory; --memory-budget SIZE to change)") +
-                        ": level " + std::to_string(fits) + " fits");
-}
-
-// Refuses at once, before any allocation, a level whose estimated memory exceeds the budget, and
-// names the deepest level that fits. Returns the budget as a face count for the refiner.
+// memory_budget.h's refusal of o.levels, or the budget as a face count.
 size_t checkMemoryBudget(const PolyMesh& mesh, const CommonOptions& o, bool adaptive = false) {
-  const size_t budget = memoryBudgetBytes(o);
-  const RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  const bool radial = refinesRadially(mesh, o.scheme);  // (checks the mesh for either path)
-  if (!adaptive) {
-    const UniformLevelEstimate e = estimateUniformLevel(mesh, options, radial, budget / kBytesPerUniformFace);
-    if (!e.fits) throw budgetRefusal(o, budget, "about " + gigabytes(double(e.faces) * kBytesPerUniformFace), e.deepestFitting);
-    return size_t(double(budget) / double(kBytesPerUniformFace));
-  }
-  // The feature-adaptive estimate stops past the budget: "more than" the budget there.
-  const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
-  const std::vector<size_t> faces = estimateAdaptiveFaceCounts(mesh, options, budgetFaces);
-  auto bytesAt = [&](int level) { return double(faces[size_t(level)]) * kBytesPerAdaptiveFace; };
-  if (bytesAt(o.levels) > double(budget)) {
-    int fits = o.levels;
-    while (fits > 0 && bytesAt(fits) > double(budget)) --fits;
-    const bool beyondEstimate = faces[size_t(o.levels)] == budgetFaces + 1;
-    throw budgetRefusal(o, budget, beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(o.levels)),
-                        fits);
-  }
-  return size_t(double(budget) / double(kBytesPerAdaptiveFace));
+  return polarview::checkMemoryBudget(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, o.memoryBudget, adaptive);
 }
 
 // The name a scheme prints as: "c2ps-u" for C2PS with the uniform first step.
@@ -227,48 +179,6 @@ PolyMesh loadInput(const std::string& path) {
   PolyMesh mesh = loadObj(path, &warnings);
   for (const std::string& w : warnings) std::cerr << "polarview: warning: " << path << ": " << w << "\n";
   return mesh;
-}
-
-const char* outerName(PolarConfig::Outer outer) {
-  switch (outer) {
-    case PolarConfig::Outer::Pole: return "pole";
-    case PolarConfig::Outer::Boundary: return "boundary";
-    case PolarConfig::Outer::Mesh: return "mesh";
-  }
-  return "?";
-}
-
-// What `scheme` does at a polar configuration, in words.
-std::string schemeAction(Scheme scheme, const PolarConfig& c, bool radialMesh) {
-  std::string why;
-  if (!schemeRefinesPole(scheme, c, &why))
-    return "Catmull-Clark (valence " + std::to_string(c.valence) + " stays; extraordinary vertex)" +
-           (!schemeTraits(scheme).polar() || !c.refinable ? "" : ": " + why);
-  const SchemeTraits& traits = schemeTraits(scheme);
-  if (!traits.keepsValence) return std::string(traits.label) + " rules (1)-(5): valence doubles each level";
-  return std::string(traits.label) + (radialMesh ? " radial refinement of the whole mesh (valence fixed)"
-                            : " radial refinement of links 0.." + std::to_string(c.linkCount) +
-                                  ", refined periodically to meet Catmull-Clark");
-}
-
-// Number of boundary loops: connected components of the boundary edges.
-int countBoundaryLoops(const MeshTopology& topo) {
-  std::vector<Index> parent(topo.vertexCount);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<uint8_t> onBoundary(topo.vertexCount, 0);
-  for (Index e = 0; e < topo.edgeCount; ++e)
-    if (topo.edgeOnBoundary(e)) {
-      Index a = topo.edgeVerts[2 * e], b = topo.edgeVerts[2 * e + 1];
-      onBoundary[a] = onBoundary[b] = 1;
-      parent[find(a)] = find(b);
-    }
-  int loops = 0;
-  for (Index v = 0; v < topo.vertexCount; ++v) loops += onBoundary[v] && find(v) == v;
-  return loops;
 }
 
 // [SECTION] refine, export, convert
@@ -414,115 +324,6 @@ int runConvert(CommonOptions& o) {
 
 OptionTable infoTable(CommonOptions& o) { return {inputRow(o), jsonRow(&o.json)}; }
 
-// Catmull-Clark extraordinary vertices: interior valence != 4, boundary valence > 3.
-struct Extraordinary {
-  Index vertex;
-  int valence;
-  bool boundary;
-  bool pole;
-};
-
-// What `info` reports on a mesh (the split mesh's counts where the input is non-manifold).
-struct MeshReport {
-  std::vector<PolarConfig> poles, rejected;  // poles a polar scheme refines; vertices that only look polar
-  std::map<PolarRejection, int> rejectedPerReason;
-  bool radialMesh = false;  // RTS/BPS refine the whole mesh radially (caps and globes)
-  int used = 0, copies = 0, triangles = 0, quads = 0, polygons = 0, holeFaces = 0, loops = 0;
-  int fanFaces = 0;  // faces convert --ngon-to-fan would make triangle fans
-  std::vector<Extraordinary> extraordinary;
-};
-
-// The poles apart from rejected candidates: on a triangle mesh nearly every vertex is such a
-// candidate, and Catmull-Clark refines it.
-void findPoles(const PolyMesh& mesh, const MeshTopology& topo, MeshReport& r) {
-  for (PolarConfig& c : findPolarConfigs(mesh, topo)) (c.refinable ? r.poles : r.rejected).push_back(std::move(c));
-  for (const PolarConfig& c : r.rejected) ++r.rejectedPerReason[c.rejection];
-  if (!r.poles.empty()) {
-    try {
-      r.radialMesh = refinesRadially(mesh, Scheme::RTS);
-    } catch (const std::exception&) {
-    }
-  }
-}
-
-MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTopology& topo) {
-  MeshReport r;
-  findPoles(mesh, topo, r);
-  std::vector<uint8_t> isPole(topo.vertexCount, 0);
-  for (const PolarConfig& c : r.poles) isPole[c.pole] = 1;
-  for (Index v = 0; v < topo.vertexCount; ++v) r.used += topo.vertexUsed[v];
-  r.copies = mesh.vertexCount() - input.vertexCount();  // the split's extra vertices
-  r.used -= r.copies;
-  // Hole faces (`t hole`, and the boundary faces of `t interpolateboundary 0`): no surface there.
-  const std::vector<uint8_t> holes = baseHoles(mesh, topo);
-  r.holeFaces = int(std::count(holes.begin(), holes.end(), uint8_t(1)));
-  for (Index f = 0; f < mesh.faceCount(); ++f) {
-    int k = mesh.faceSize(f);
-    r.triangles += k == 3;
-    r.quads += k == 4;
-    r.polygons += k > 4;
-  }
-  for (Index v = 0; v < topo.vertexCount; ++v) {
-    if (!topo.vertexUsed[v]) continue;
-    int k = topo.valence(v);
-    bool boundary = topo.vertexOnBoundary[v];
-    if ((!boundary && k != 4) || (boundary && k > 3)) r.extraordinary.push_back({v, k, boundary, bool(isPole[v])});
-  }
-  r.loops = countBoundaryLoops(topo);
-  r.fanFaces = countFanFaces(input);
-  return r;
-}
-
-void writeInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
-                   const MeshReport& r) {
-  JsonWriter w(file);
-  w.beginObject();
-  w.field("file", file).field("vertices", r.used).field("unreferenced_vertices", topo.vertexCount - r.used);
-  w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", r.triangles);
-  w.field("quads", r.quads).field("polygons", r.polygons).field("boundary_loops", r.loops);
-  w.field("closed", r.loops == 0).field("radial_mesh", r.radialMesh);
-  w.field("non_manifold_edges", split.nonManifoldEdges).field("non_manifold_vertices", split.nonManifoldVertices);
-  w.field("hole_faces", r.holeFaces);
-  w.key("poles").beginArray();
-  for (const PolarConfig& c : r.poles) {
-    w.beginObject().field("vertex", c.pole).field("valence", c.valence).field("links", c.linkCount);
-    w.field("regular_links", c.regularLinks).field("outer", outerName(c.outer));
-    if (c.oppositePole >= 0) w.field("opposite_pole", c.oppositePole);
-    w.field("refinable", true);
-    w.key("schemes").beginObject();
-    for (const SchemeTraits& s : schemeTable()) w.field(s.name, schemeAction(s.scheme, c, r.radialMesh));
-    w.endObject().endObject();
-  }
-  w.endArray();
-  w.key("rejected_candidates").beginArray();
-  for (const PolarConfig& c : r.rejected) {
-    w.beginObject().field("vertex", c.pole).field("valence", c.valence);
-    w.field("reason", polarRejectionKey(c.rejection)).field("detail", c.reason).endObject();
-  }
-  w.endArray();
-  w.key("rejected_reasons").beginObject();
-  for (const auto& [rejection, count] : r.rejectedPerReason) w.field(polarRejectionKey(rejection), count);
-  w.endObject();
-  // The text's grouping: per reason, the nearest candidates first (vertex ids).
-  w.key("rejected_groups").beginArray();
-  for (const RejectedGroup& group : groupRejectedCandidates(r.rejected)) {
-    w.beginObject().field("reason", polarRejectionKey(group.rejection)).field("words", polarRejectionWords(group.rejection));
-    w.field("max_valence", r.rejected[group.members.front()].valence).key("vertices").beginArray();
-    for (size_t k : group.members) w.value(r.rejected[k].pole);
-    w.endArray().endObject();
-  }
-  w.endArray();
-  w.key("extraordinary_vertices").beginArray();
-  for (const Extraordinary& x : r.extraordinary) {
-    w.beginObject().field("vertex", x.vertex).field("valence", x.valence).field("boundary", x.boundary);
-    w.field("pole", x.pole);
-    w.field("treatment", x.pole ? "polar scheme (c2ps/rts/bps); Catmull-Clark under cc" : "Catmull-Clark in every scheme");
-    w.endObject();
-  }
-  w.endArray().endObject();
-  std::cout << w.str() << "\n";
-}
-
 // The text report's poles and rejected candidates.
 void printInfoPoles(const MeshReport& r) {
   std::printf("poles: %zu\n", r.poles.size());
@@ -594,7 +395,7 @@ int runInfo(CommonOptions& o) {
   MeshTopology topo;
   const PolyMesh& mesh = refinableMesh(input, split, topo, o.input);
   const MeshReport report = reportMesh(input, mesh, topo);
-  if (o.json) writeInfoJson(o.input, mesh, topo, split, report);
+  if (o.json) std::cout << meshInfoJson(o.input, mesh, topo, split, report) << "\n";
   else printInfoText(o.input, mesh, topo, split, report);
   return 0;
 }
@@ -606,53 +407,6 @@ OptionTable poleTable(CommonOptions& o) {
   return {inputRow(o), schemeRow(o, "the polar scheme, default c2ps", polarScheme),
           uniformFirstStepRow(o),
           intOption({"--rings"}, "M", "curvature over spline rings 1..M (1..20)", &o.rings, 1, 20), jsonRow(&o.json)};
-}
-
-// C2PS doubles the valence each level: the last ring's columns stay within 2^18. A limit that
-// depends on the input is bad input (exit 1), checked before anything is printed.
-void checkC2psRings(const std::string& file, const RefinedLevel& level, int rings) {
-  for (size_t k = 0; k < level.poles.size(); ++k)
-    if (double(level.poleGrids[k].n) * std::pow(2.0, rings) > double(1 << 18))
-      throw InputError(file, 0, "--rings " + std::to_string(rings) + " would give C2PS a valence over 2^18 at pole vertex " +
-                                    std::to_string(level.poles[k].pole) + " (valence " + std::to_string(level.poleGrids[k].n) +
-                                    "); at most --rings " +
-                                    std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
-}
-
-// One pole's JSON object: limit, normal, K and H (null where undefined), p0..p5, and rings 1..M
-// (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
-std::vector<RingCurvature> writePoleJson(JsonWriter& w, const CommonOptions& o, const RefinedLevel& level, size_t k,
-                                         const PoleDifferential& d, int rings) {
-  const TaylorCoefficients& t = level.poleTaylor[k];
-  w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
-  w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep)).field("limit", d.limit).field("normal", d.normal);
-  if (d.curvatureDefined) w.field("gaussian_curvature", d.gaussian).field("mean_curvature", d.mean);
-  else w.key("gaussian_curvature").null().key("mean_curvature").null();
-  w.key("p").beginArray();
-  for (const Point& p : t.p) w.value(p);
-  w.endArray();
-  std::vector<RingCurvature> ringStats;
-  if (rings > 0) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    // Spokes along the input's column edges and middles: 2n of them.
-    const double poleK = d.curvatureDefined ? d.gaussian : nan;
-    ringStats = ringCurvatures(level.poleGrids[k], o.scheme, o.uniformFirstStep, rings, poleK,
-                               d.curvatureDefined ? d.mean : nan, d.normal, 5, 0, 2 * level.poles[k].valence);
-    w.field("spoke_sign_changes", spokeSignChanges(ringStats, poleK));
-    w.key("rings").beginArray();
-    for (const RingCurvature& r : ringStats) {
-      w.beginObject().field("m", r.m).field("valence", r.valence);
-      if (d.curvatureDefined) w.field("max_abs_dK", r.maxAbsDeltaK);
-      else w.key("max_abs_dK").null();
-      w.field("K_min", r.minK).field("K_max", r.maxK);
-      if (d.curvatureDefined) w.field("max_abs_dH", r.maxAbsDeltaH);
-      else w.key("max_abs_dH").null();
-      w.field("H_min", r.minH).field("H_max", r.maxH).field("dK_dr_sign_changes", r.spokeSignChanges).endObject();
-    }
-    w.endArray();
-  }
-  w.endObject();
-  return ringStats;
 }
 
 // One pole's text line (and with --rings its ring table). Why K and H are missing: no tangent
@@ -698,23 +452,14 @@ int runPole(CommonOptions& o) {
   const SchemeTraits& traits = schemeTraits(o.scheme);
   const bool directional = traits.taylorOrder == 2 && !traits.curvatureContinuous;
   const int rings = directional && !o.json ? std::max(o.rings, 8) : o.rings;
-  PolyMesh mesh = loadInput(o.input);
-  // Level 0 only: the expansion is that of the input's own configuration (the Section-6 variant
-  // leaves links 0 and 1, hence p0..p5, unchanged).
-  Refinement refinement(mesh, {o.scheme, 0, o.uniformFirstStep}, o.input);
-  const RefinedLevel& level = refinement.level(0);
-  if (rings > 0 && !traits.keepsValence) checkC2psRings(o.input, level, rings);
-  JsonWriter w(o.input);
-  w.beginObject().key("poles").beginArray();
-  for (size_t k = 0; k < level.poles.size(); ++k) {
-    const PoleDifferential d = analyzePole(level.poleTaylor[k]);
-    // The JSON first, text or not: it refuses a non-finite number before anything is printed.
-    const std::vector<RingCurvature> ringStats = writePoleJson(w, o, level, k, d, rings);
-    if (!o.json) printPole(o, level, k, d, ringStats, directional);
-  }
-  w.endArray().endObject();
-  if (o.json) std::cout << w.str() << "\n";
+  // The JSON is made first, text or not: it refuses a non-finite number before anything is printed.
+  const PoleReport report = makePoleReport(loadInput(o.input), o.input, {o.scheme, o.uniformFirstStep}, rings);
+  const RefinedLevel& level = report.refinement.level(0);
+  if (o.json) std::cout << report.json << "\n";
   else if (level.poles.empty()) std::printf("no refinable poles\n");
+  else
+    for (size_t k = 0; k < level.poles.size(); ++k)
+      printPole(o, level, k, report.poles[k].differential, report.poles[k].rings, directional);
   return 0;
 }
 
@@ -1356,60 +1101,31 @@ int runSpectrum(SpectrumOptions& o) {
 
 // [SECTION] shape
 
-// The shapes `shape` makes (makeShape), and the height functions of shapes::paperHeight
-// (core/mesh/shapes.h) a cap can follow.
-constexpr const char* kShapes[] = {"globe", "cap", "mushroom", "cube", "torus", "valence20", "fingertips"};
-constexpr const char* kHeights[] = {"paraboloid", "saddle", "monkey", "flat4", "saddle4", "convex", "cone"};
-
-template <size_t N>
-std::string joinNames(const char* const (&names)[N], const char* separator) {
-  std::string text;
-  for (const char* name : names) text += (text.empty() ? "" : separator) + std::string(name);
-  return text;
-}
-
 struct ShapeOptions {
-  std::string name, output, height;
-  int valence = 12, links = 6;
-  bool sized = false;  // --valence or --links given
+  std::string output;
+  shapes::ShapeRequest shape;  // name, height, valence, links (core/mesh/shape_catalog.h)
 };
 
 OptionTable shapeTable(ShapeOptions& o) {
-  return {required(positionalOption("NAME", joinNames(kShapes, "|") + " (valence20, fingertips: the paper's Figs. 12 "
-                                    "and 2c, fixed)", &o.name)),
+  shapes::ShapeRequest& s = o.shape;
+  return {required(positionalOption("NAME", shapes::joinNames(shapes::shapeNames(), "|") +
+                                    " (valence20, fingertips: the paper's Figs. 12 and 2c, fixed)", &s.name)),
           actionOption({"--valence"}, "N", "the pole's valence (default 12)",
-                       [&o](const std::string& v) { o.valence = parseIntArgument("--valence", v, 3, 1 << 20), o.sized = true; }),
+                       [&s](const std::string& v) { s.valence = parseIntArgument("--valence", v, 3, 1 << 20), s.sized = true; }),
           actionOption({"--links"}, "K", "links around the pole (default 6)",
-                       [&o](const std::string& v) { o.links = parseIntArgument("--links", v, 1, 1 << 16), o.sized = true; }),
-          textOption({"--height"}, "NAME", "the cap over a height function: " + joinNames(kHeights, "|"), &o.height),
+                       [&s](const std::string& v) { s.links = parseIntArgument("--links", v, 1, 1 << 16), s.sized = true; }),
+          textOption({"--height"}, "NAME", "the cap over a height function: " + shapes::joinNames(shapes::heightNames(), "|"),
+                     &s.height),
           outputRow(&o.output, "OUT.obj", "the mesh (OBJ)")};
 }
 
-PolyMesh makeShape(const ShapeOptions& o) {
-  const std::string& name = o.name;
-  if (name == "globe") return shapes::globe(o.valence, o.links);
-  if (name == "cap" && !o.height.empty()) {
-    const auto function = shapes::paperHeight(o.height);
-    if (!function) throw UsageError{"unknown height '" + o.height + "' (" + joinNames(kHeights, ", ") + ")"};
-    return shapes::heightCap(o.valence, o.links, function);
-  }
-  if (name == "cap") return shapes::polarCap(o.valence, o.links);
-  if (name == "mushroom") {
-    if (o.valence % 4) throw UsageError{"the mushroom needs a valence divisible by 4"};
-    return shapes::mushroom(o.valence);
-  }
-  if (name == "cube") return shapes::cube();
-  if (name == "torus") return shapes::torus(o.valence, o.links);
-  // The paper's Figs. 12 and 2c: fixed configurations (core/mesh/figure_shapes.h).
-  if (o.sized) throw UsageError{"--valence and --links do not apply to " + name};
-  return name == "valence20" ? shapes::valence20Bump() : shapes::fingertips();
-}
-
 int runShape(ShapeOptions& o) {
-  const bool known = std::any_of(std::begin(kShapes), std::end(kShapes), [&](const char* name) { return o.name == name; });
-  if (!known) throw UsageError{"unknown shape '" + o.name + "' (" + joinNames(kShapes, ", ") + ")"};
-  const PolyMesh mesh = makeShape(o);
-  if (!o.height.empty() && o.name != "cap") throw UsageError{"--height applies to the cap"};
+  PolyMesh mesh;
+  try {
+    mesh = shapes::makeNamedShape(o.shape);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError{e.what()};
+  }
   saveObj(o.output, mesh);
   return 0;
 }

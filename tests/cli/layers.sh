@@ -7,7 +7,8 @@
 #             no GL, ImGui or GLFW, so its tests need no display either;
 #   render    the only layer with GL headers (glad, GL/); includes core, pipeline, render;
 #   ui        ImGui and GLFW key codes, no GL; includes core, pipeline, session, ui;
-#   app       everything (window, frame loop, commands), but GL only through render.
+#   app       everything (window, frame loop, commands), but GL only through render;
+#   python    the Python module: core, pipeline, python; no GL, ImGui or GLFW.
 # A violation prints FILE:LINE and the rule. Usage: bash layers.sh <polarview-exe> <repo>
 set -u
 repo="$2"
@@ -25,7 +26,7 @@ check() {  # layer, allowed project dirs (regex), whether GL / ImGui / GLFW head
         [ "$imgui" = yes ] || { echo "FAIL: src/$file:$line: $layer includes ImGui ($header)"; failures=$((failures + 1)); } ;;
       GLFW/*)
         [ "$glfw" = yes ] || { echo "FAIL: src/$file:$line: $layer includes GLFW ($header)"; failures=$((failures + 1)); } ;;
-      core/*|pipeline/*|session/*|render/*|ui/*|app/*)
+      core/*|pipeline/*|session/*|render/*|ui/*|app/*|python/*)
         grep -Eq "^($allowed)/" <<<"$header" ||
           { echo "FAIL: src/$file:$line: $layer includes $header (allowed: $allowed)"; failures=$((failures + 1)); } ;;
     esac
@@ -37,6 +38,7 @@ check session "core|pipeline|session" no no no
 check render "core|pipeline|render" yes no yes
 check ui "core|pipeline|session|ui" no yes yes
 check app "core|pipeline|session|render|ui|app" no yes yes
+check python "core|pipeline|python" no no no
 # GLFW's header pulls in the system GL header unless GLFW_INCLUDE_NONE: defined for the whole build.
 grep -q 'add_compile_definitions(GLFW_INCLUDE_NONE)' "$repo/CMakeLists.txt" ||
   { echo "FAIL: CMakeLists.txt does not define GLFW_INCLUDE_NONE"; failures=$((failures + 1)); }

@@ -1,4 +1,4 @@
-// The CLI's JSON writer (src/app/json_writer.h, header-only and GL-free, so it is tested here):
+// The CLI's JSON writer (src/pipeline/json_writer.h, header-only and GL-free, so it is tested here):
 // numbers round-trip, and a non-finite number is refused with an error naming the input, never
 // printed as null or nan.
 #include <doctest/doctest.h>
@@ -7,10 +7,10 @@
 #include <limits>
 #include <string>
 
-#include "app/json_writer.h"
+#include "pipeline/json_writer.h"
 
 using namespace polarview;
-using polarview::cli::JsonWriter;
+using polarview::JsonWriter;
 
 TEST_CASE("json writer: doubles round-trip and nesting is well formed") {
   JsonWriter w("in.obj");

@@ -1,0 +1,33 @@
+// The commands' memory budget (docs/precision.md): a level whose estimate needs more than the
+// budget is refused before any allocation, naming the deepest level that fits. `refine`, `export`
+// and `bench` (CLI) and refine() / limit_patches() (Python module) read it.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "core/mesh/input_error.h"
+#include "core/mesh/poly_mesh.h"
+#include "core/subdiv/scheme.h"
+
+namespace polarview {
+
+// A refusal by the memory budget: bad input like any InputError, told apart where the caller maps
+// it to its own out-of-memory error (the Python module's MemoryError).
+class BudgetRefusal : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// The memory a refinement may take: `requested` bytes when > 0, else 80% of what the machine has
+// available now (MemAvailable), else 4 GiB where that cannot be read. [O(1)]
+size_t memoryBudgetBytes(size_t requested);
+
+// Refuses at once (BudgetRefusal naming `source`), before any allocation, a level whose estimated
+// memory exceeds the budget (`requested` as memoryBudgetBytes takes it), and names the deepest level
+// that fits. Returns the budget as a face count for the refiner: uniform (Refinement) or
+// feature-adaptive (`adaptive`, AdaptiveRefinement). [O(levels x mesh)]
+size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
+                         bool adaptive = false);
+
+}  // namespace polarview
