@@ -245,6 +245,7 @@ int runExport(CommonOptions& o) {
   settings.source = o.input;
   settings.units = chosenLengthUnit(o);
   settings.samples = o.samples;
+  settings.memoryBudget = o.memoryBudget;
   settings.level = o.levels;
   settings.schemeLabel = schemeName(o.scheme);
   PolyMesh mesh = loadInput(o.input);

@@ -26,6 +26,7 @@ struct ExportSettings {
   int level = 0;                     // the refinement level the patches come from (file headers)
   LengthUnit units = LengthUnit::Millimetre;
   int samples = 8;                   // tessellations (PLY, glb): segments along each patch edge
+  size_t memoryBudget = 0;           // bytes a tessellation may take (0: memory_budget.h's default)
 };
 
 struct ExportFormat {

@@ -78,4 +78,19 @@ rm "$tmp/huge.glb"
 "$exe" export "$tmp/huge.obj" -o "$tmp/huge.glb" --scheme c2ps --level 2 2>/dev/null && fail "huge.glb written"
 [ -z "$(ls "$tmp" | grep -E '^huge\.glb')" ] || fail "a file was left: $(ls "$tmp")"
 "$exe" export "$tmp/huge.obj" -o "$tmp/huge.ply" --scheme c2ps --level 2 >/dev/null || fail "huge.ply refused"
+# A tessellation over the memory budget: refused before anything is allocated, naming the densest
+# --samples that fits; that one is written.
+set +e
+"$exe" export "$root/assets/default.obj" -o "$tmp/dense.ply" --scheme c2ps --level 3 --samples 64 --memory-budget 20M \
+  >"$tmp/out.txt" 2>"$tmp/err.txt"
+rc=$?
+set -e
+[ $rc -eq 1 ] || fail "dense.ply: exit $rc, expected 1"
+grep -q "default.obj: a tessellation of [0-9]* patches with --samples 64 needs about .* GB, over the memory budget" \
+  "$tmp/err.txt" || fail "dense.ply: $(cat "$tmp/err.txt")"
+[ ! -e "$tmp/dense.ply" ] || fail "dense.ply written"
+fits=$(sed -n 's/.*(--samples \([0-9]*\) fits).*/\1/p' "$tmp/err.txt")
+[ -n "$fits" ] && [ "$fits" -lt 64 ] || fail "dense.ply: no fitting --samples named: $(cat "$tmp/err.txt")"
+"$exe" export "$root/assets/default.obj" -o "$tmp/dense.ply" --scheme c2ps --level 3 --samples "$fits" --memory-budget 20M \
+  >/dev/null || fail "dense.ply: --samples $fits refused"
 echo "export_tessellation: ok"
