@@ -61,14 +61,27 @@ CurvePoint sideCurve(const Patch& patch, int s, double t) {
 struct Side {
   uint32_t patch = 0;
   int s = 0;
-  std::array<Point, kDenseSamples> dense{};
-  Point boxMin{0.0}, boxMax{0.0};
+  std::array<Point, kDenseSamples> dense{};  // at t = k / (kDenseSamples - 1)
   double length = 0.0;  // of the polyline through the dense points
+  double slack = 0.0;   // how far the curve may stray from that polyline (with the match tolerance)
 };
 
+// The tolerance within which a sample of a side of this length meets another side.
+double matchTolerance(double sideLength, double diagonal) {
+  return std::max(kMatchRelativeToSide * sideLength, kMatchRelativeToDiagonal * diagonal);
+}
+
+double distanceToSegment(const Point& p, const Point& a, const Point& b) {
+  const Point ab = b - a;
+  const double squared = glm::dot(ab, ab);
+  const double t = squared > 0.0 ? std::clamp(glm::dot(p - a, ab) / squared, 0.0, 1.0) : 0.0;
+  return glm::distance(p, a + t * ab);
+}
+
 // The sides that can meet another: all four of a face-based patch, sides 0-2 of a PoleCap (side 3
-// is the pole point), each with its dense points, a box inflated to hold the curve between them.
-std::vector<Side> collectSides(const PatchSet& set) {
+// is the pole point), each with its dense points; the slack is twice the largest distance of a
+// segment's parameter midpoint from the segment (a cubic strays from its chord about that much).
+std::vector<Side> collectSides(const PatchSet& set, double diagonal) {
   std::vector<Side> sides;
   sides.reserve(set.patches.size() * 4);
   for (uint32_t i = 0; i < set.patches.size(); ++i) {
@@ -76,55 +89,75 @@ std::vector<Side> collectSides(const PatchSet& set) {
     for (int s = 0; s < 4; ++s) {
       if (patch.kind == PatchKind::PoleCap && s == 3) continue;
       Side side{i, s};
-      side.boxMin = Point(std::numeric_limits<double>::max());
-      side.boxMax = Point(-std::numeric_limits<double>::max());
+      constexpr double kStep = 1.0 / (kDenseSamples - 1);
+      double stray = 0.0;
       for (int k = 0; k < kDenseSamples; ++k) {
-        side.dense[k] = sideCurve(patch, s, double(k) / (kDenseSamples - 1)).position;
-        side.boxMin = glm::min(side.boxMin, side.dense[k]);
-        side.boxMax = glm::max(side.boxMax, side.dense[k]);
-        if (k > 0) side.length += glm::distance(side.dense[k], side.dense[k - 1]);
+        side.dense[k] = sideCurve(patch, s, k * kStep).position;
+        if (k == 0) continue;
+        side.length += glm::distance(side.dense[k], side.dense[k - 1]);
+        const Point middle = sideCurve(patch, s, (k - 0.5) * kStep).position;
+        stray = std::max(stray, distanceToSegment(middle, side.dense[k - 1], side.dense[k]));
       }
-      const double slack = 0.25 * side.length;  // a cubic's bulge between dense points is far less
-      side.boxMin -= Point(slack);
-      side.boxMax += Point(slack);
+      side.slack = 2.0 * stray + matchTolerance(side.length, diagonal);
       sides.push_back(side);
     }
   }
   return sides;
 }
 
-// A uniform grid of cells, each listing the sides whose (inflated) boxes overlap it.
-class SideHash {
+// A hierarchical grid of the sides' segments: each segment (with its side's slack) is listed in the
+// cells of the one level whose cell size (a power of two) exceeds its extent, so it sits in at most
+// 8 cells, and a cell lists only segments of about its size. Caps' radial sides all meet at the
+// pole: a uniform grid would list thousands of them in the pole's cell.
+class SegmentHash {
  public:
-  SideHash(const std::vector<Side>& sides, Point lo, Point hi) : lo_(lo) {
-    double meanLength = 0.0;
-    for (const Side& side : sides) meanLength += side.length;
-    meanLength /= double(std::max<size_t>(sides.size(), 1));
-    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
-    cell_ = std::max(meanLength, extent / double(1 << 20));
-    for (uint32_t i = 0; i < sides.size(); ++i) {
-      const glm::i64vec3 a = cellOf(sides[i].boxMin), b = cellOf(sides[i].boxMax);
-      for (int64_t x = a.x; x <= b.x; ++x)
-        for (int64_t y = a.y; y <= b.y; ++y)
-          for (int64_t z = a.z; z <= b.z; ++z) cells_[key({x, y, z})].push_back(i);
-    }
+  SegmentHash(const std::vector<Side>& sides, double coordinateScale) {
+    // Cells no finer than the coordinates' resolution, so cell indices stay within 2^53.
+    const int finest = std::ilogb(std::max(coordinateScale, std::numeric_limits<double>::min())) - 50;
+    for (uint32_t i = 0; i < sides.size(); ++i)
+      for (uint32_t k = 0; k + 1 < kDenseSamples; ++k) {
+        const Point lo = glm::min(sides[i].dense[k], sides[i].dense[k + 1]) - Point(sides[i].slack);
+        const Point hi = glm::max(sides[i].dense[k], sides[i].dense[k + 1]) + Point(sides[i].slack);
+        const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, std::numeric_limits<double>::min()});
+        const int level = std::max(std::ilogb(extent) + 1, finest);
+        levels_.push_back(level);
+        const glm::i64vec3 a = cellOf(lo, level), b = cellOf(hi, level);
+        for (int64_t x = a.x; x <= b.x; ++x)
+          for (int64_t y = a.y; y <= b.y; ++y)
+            for (int64_t z = a.z; z <= b.z; ++z) cells_[{level, {x, y, z}}].push_back(i * kDenseSamples + k);
+      }
+    std::sort(levels_.begin(), levels_.end());
+    levels_.erase(std::unique(levels_.begin(), levels_.end()), levels_.end());
   }
-  // The sides listed in the cell of p. [O(1)]
-  const std::vector<uint32_t>& near(const Point& p) const {
-    static const std::vector<uint32_t> kNone;
-    const auto it = cells_.find(key(cellOf(p)));
-    return it == cells_.end() ? kNone : it->second;
+  // Calls visit(side, segment) for every segment listed in a cell holding p. [O(levels + hits)]
+  template <class Visit>
+  void forEachNear(const Point& p, Visit&& visit) const {
+    for (int level : levels_) {
+      const auto it = cells_.find({level, cellOf(p, level)});
+      if (it == cells_.end()) continue;
+      for (uint32_t entry : it->second) visit(entry / kDenseSamples, entry % kDenseSamples);
+    }
   }
 
  private:
-  glm::i64vec3 cellOf(const Point& p) const {
-    const Point c = glm::floor((p - lo_) / cell_);
-    return glm::clamp(glm::i64vec3(c), glm::i64vec3(0), glm::i64vec3((1 << 21) - 1));
+  struct Cell {
+    int level;
+    glm::i64vec3 index;
+    bool operator==(const Cell& o) const { return level == o.level && index == o.index; }
+  };
+  struct CellHash {
+    size_t operator()(const Cell& c) const {
+      uint64_t h = uint64_t(c.level) * 0x9E3779B97F4A7C15ull;
+      for (int64_t v : {c.index.x, c.index.y, c.index.z}) h = (h ^ uint64_t(v)) * 0xBF58476D1CE4E5B9ull;
+      return size_t(h ^ (h >> 31));
+    }
+  };
+  static glm::i64vec3 cellOf(const Point& p, int level) {
+    return glm::i64vec3(std::floor(std::ldexp(p.x, -level)), std::floor(std::ldexp(p.y, -level)),
+                        std::floor(std::ldexp(p.z, -level)));
   }
-  static uint64_t key(const glm::i64vec3& c) { return uint64_t(c.x) | uint64_t(c.y) << 21 | uint64_t(c.z) << 42; }
-  Point lo_;
-  double cell_ = 1.0;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+  std::vector<int> levels_;
+  std::unordered_map<Cell, std::vector<uint32_t>, CellHash> cells_;
 };
 
 // The parameter t of the point of side's curve nearest to p: the best dense point, then
@@ -185,28 +218,36 @@ struct SeamSearch {
   std::vector<std::vector<uint32_t>> partners;  // per side, the distinct sides it meets
 };
 
-SeamSearch findSeams(const PatchSet& set, const std::vector<Side>& sides, const SideHash& hash, double diagonal,
+SeamSearch findSeams(const PatchSet& set, const std::vector<Side>& sides, const SegmentHash& hash, double diagonal,
                      int samplesPerSide) {
   SeamSearch search;
   search.partners.resize(sides.size());
   std::unordered_map<uint64_t, size_t> seamIndex;
+  std::vector<uint32_t> candidates;
   for (uint32_t ia = 0; ia < sides.size(); ++ia) {
     const Side& a = sides[ia];
     const Patch& patchA = set.patches[a.patch];
-    const double tolerance = std::max(kMatchRelativeToSide * a.length, kMatchRelativeToDiagonal * diagonal);
+    const double tolerance = matchTolerance(a.length, diagonal);
     for (int k = 0; k < samplesPerSide; ++k) {
       const double t = (k + 0.5) / samplesPerSide;
       const glm::dvec2 uvA = sideParameter(a.s, t);
       const SurfacePoint pa = evaluatePatch(patchA, uvA.x, uvA.y);
-      // The nearest side of another patch through this point.
+      // The sides of other patches whose polylines pass within their slack of this point ...
+      candidates.clear();
+      hash.forEachNear(pa.position, [&](uint32_t ib, uint32_t segment) {
+        const Side& b = sides[ib];
+        if (b.patch != a.patch &&
+            distanceToSegment(pa.position, b.dense[segment], b.dense[segment + 1]) <= b.slack + tolerance)
+          candidates.push_back(ib);
+      });
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      // ... and of them the nearest whose curve passes within the tolerance.
       uint32_t best = UINT32_MAX;
       double bestDistance = tolerance, bestT = 0.0;
-      for (uint32_t ib : hash.near(pa.position)) {
-        const Side& b = sides[ib];
-        if (b.patch == a.patch) continue;
-        if (glm::any(glm::lessThan(pa.position, b.boxMin)) || glm::any(glm::greaterThan(pa.position, b.boxMax))) continue;
-        const double tb = projectOnSide(set, b, pa.position);
-        const double distance = glm::distance(sideCurve(set.patches[b.patch], b.s, tb).position, pa.position);
+      for (uint32_t ib : candidates) {
+        const double tb = projectOnSide(set, sides[ib], pa.position);
+        const double distance = glm::distance(sideCurve(set.patches[sides[ib].patch], sides[ib].s, tb).position, pa.position);
         if (distance <= bestDistance) best = ib, bestDistance = distance, bestT = tb;
       }
       if (best == UINT32_MAX) continue;
@@ -264,10 +305,9 @@ ContinuityReport measureContinuity(const PatchSet& set, const ContinuityOptions&
   report.boxDiagonal = std::max(glm::distance(lo, hi), std::numeric_limits<double>::min());
 
   // Sides, their hash, and the seams found through it.
-  const std::vector<Side> sides = collectSides(set);
-  Point sideLo(std::numeric_limits<double>::max()), sideHi(-std::numeric_limits<double>::max());
-  for (const Side& side : sides) sideLo = glm::min(sideLo, side.boxMin), sideHi = glm::max(sideHi, side.boxMax);
-  const SideHash hash(sides, sideLo, sideHi);
+  const std::vector<Side> sides = collectSides(set, report.boxDiagonal);
+  const Point far = glm::max(glm::abs(lo), glm::abs(hi));
+  const SegmentHash hash(sides, std::max({far.x, far.y, far.z, report.boxDiagonal}));
   const SeamSearch search = findSeams(set, sides, hash, report.boxDiagonal, std::max(options.samplesPerSide, 1));
 
   // Per kind: a T-junction is a seam one of whose sides meets more than one side.
