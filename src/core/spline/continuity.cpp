@@ -10,7 +10,6 @@
 #include <glm/vec2.hpp>
 #include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
-#include <glm/vector_relational.hpp>
 
 namespace polarview {
 
@@ -30,7 +29,7 @@ constexpr SeamKind kSeamKindTable[5][5] = {
     {SK::EndCap, SK::EndCap, SK::EndCap, SK::EndCap, SK::EndCap},
 };
 
-// Dense points per side for its box and the projection's first guess.
+// Points per side (ends included) for its polyline in the hash and the projection's first guess.
 constexpr int kDenseSamples = 9;
 // A sample meets a side within this fraction of its own side's length ...
 constexpr double kMatchRelativeToSide = 1e-6;

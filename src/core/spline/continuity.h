@@ -5,8 +5,9 @@
 // (patch_extraction.h, EndCap).
 //
 // Seams are found geometrically, not from the refinement's topology: each side is sampled at
-// interior parameters, the side passing through a sample is looked up in a spatial hash of side
-// boxes and the sample is projected onto that side's boundary curve (Gauss-Newton on the cubic).
+// interior parameters, the sides passing near a sample are looked up in a hierarchical spatial hash
+// of the sides' polylines and the sample is projected onto their boundary curves (Gauss-Newton on
+// the cubic); the nearest within the tolerance is the partner.
 // So T-junctions (a coarse side against 2^d finer sides), polar rings against rings of twice the
 // columns, rings against pole caps and caps against caps are all found the same way.
 #pragma once
@@ -58,7 +59,7 @@ struct ContinuityReport {
   size_t boundarySides = 0;      // sides no sample of which met another patch (the mesh boundary)
   double maxAbsGaussian = 0.0;   // over the curvature grid of every patch
   double maxAbsMean = 0.0;
-  double boxDiagonal = 0.0;      // of the sampled surface points
+  double boxDiagonal = 0.0;      // of the points the curvature grid sampled
   // The stats of one kind, or null where no seam of that kind was found. [O(kinds)]
   const SeamStats* find(SeamKind kind) const;
 };
