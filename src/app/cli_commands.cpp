@@ -28,6 +28,7 @@
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shape_catalog.h"
 #include "core/mesh/topology.h"
+#include "core/spline/continuity.h"
 #include "core/spline/patch_extraction.h"
 #include "core/spline/pole_taylor.h"
 #include "core/spline/ring_curvature.h"
@@ -254,6 +255,66 @@ int runExport(CommonOptions& o) {
   const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, o.uniform, maxFaces);
   const std::string summary = format.write(o.output, set, settings);
   std::printf("%s: %s; %s refinement\n", o.output.c_str(), summary.c_str(), o.uniform ? "uniform" : "feature-adaptive");
+  return 0;
+}
+
+// [SECTION] continuity
+
+OptionTable continuityTable(CommonOptions& o) {
+  return {inputRow(o),
+          required(schemeRow(o, "the scheme")),
+          levelsRow(o, {"--level", "--levels"}),
+          intOption({"--samples"}, "K", "points compared along each patch side (default 8)", &o.samples, 1, 64),
+          uniformFirstStepRow(o),
+          memoryBudgetRow(o),
+          jsonRow(&o.json)};
+}
+
+// The report as JSON (docs/commands.md, continuity); it refuses a non-finite number.
+std::string continuityJson(const CommonOptions& o, const ContinuityReport& report) {
+  JsonWriter w(o.input);
+  w.beginObject().key("seams").beginArray();
+  for (const SeamStats& s : report.seams)
+    w.beginObject()
+        .field("kind", seamKindName(s.kind))
+        .field("count", s.count)
+        .field("t_junctions", s.tJunctions)
+        .field("max_position_gap", s.maxPositionGap)
+        .field("max_normal_angle", s.maxNormalAngle)
+        .field("max_curvature_jump", s.maxCurvatureJump())
+        .field("max_gaussian_jump", s.maxGaussianJump)
+        .field("max_mean_jump", s.maxMeanJump)
+        .endObject();
+  w.endArray().field("boundary_sides", report.boundarySides).field("max_abs_gaussian", report.maxAbsGaussian);
+  w.field("max_abs_mean", report.maxAbsMean).field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep));
+  return w.field("level", o.levels).endObject().str();
+}
+
+void printContinuity(const CommonOptions& o, const ContinuityReport& report) {
+  std::printf("%s, %s level %d: continuity across the seams of the limit surface (feature-adaptive patches)\n",
+              o.input.c_str(), cliSchemeName(o.scheme, o.uniformFirstStep).c_str(), o.levels);
+  std::printf("  gap: relative to the box diagonal %.6g; K, H jumps: relative to max|K| %.6g, max|H| %.6g\n",
+              report.boxDiagonal, report.maxAbsGaussian, report.maxAbsMean);
+  std::printf("  %-12s %7s %6s %11s %11s %11s %11s %11s\n", "kind", "seams", "T-jn", "max gap", "normal rad",
+              "normal deg", "max dK", "max dH");
+  for (const SeamStats& s : report.seams)
+    std::printf("  %-12s %7zu %6zu %11.3g %11.3g %11.3g %11.3g %11.3g\n", seamKindName(s.kind), s.count, s.tJunctions,
+                s.maxPositionGap, s.maxNormalAngle, s.maxNormalAngle * 180.0 / M_PI, s.maxGaussianJump, s.maxMeanJump);
+  std::printf("  boundary sides (no partner): %zu\n", report.boundarySides);
+}
+
+int runContinuity(CommonOptions& o) {
+  checkFirstStep(o);
+  PolyMesh mesh = loadInput(o.input);
+  // The patches `export` writes (feature-adaptive), with export's face limit.
+  const size_t maxFaces = checkMemoryBudget(mesh, o, true) * 2;
+  const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, false, maxFaces);
+  ContinuityOptions options;
+  options.samplesPerSide = o.samples;
+  const ContinuityReport report = measureContinuity(set, options);
+  const std::string json = continuityJson(o, report);  // also for text: it refuses a non-finite number
+  if (o.json) std::cout << json << "\n";
+  else printContinuity(o, report);
   return 0;
 }
 
@@ -1135,6 +1196,7 @@ int runShape(ShapeOptions& o) {
 
 CommandParser refineCommand() { return makeCommandParser(refineTable, runRefine); }
 CommandParser exportCommand() { return makeCommandParser(exportTable, runExport); }
+CommandParser continuityCommand() { return makeCommandParser(continuityTable, runContinuity); }
 CommandParser convertCommand() { return makeCommandParser(convertTable, runConvert); }
 CommandParser infoCommand() { return makeCommandParser(infoTable, runInfo); }
 CommandParser poleCommand() { return makeCommandParser(poleTable, runPole); }

@@ -1,4 +1,4 @@
-// The command-line subcommands of `polarview` that need no window: refine, export, convert, info,
+// The command-line subcommands of `polarview` that need no window: refine, export, continuity, convert, info,
 // pole, bench, shape, spectrum. Each is an option table and a body (command_args.h): main.cpp's
 // command table runs them through runGuarded, which gives the exit code: 0 success, 1 bad input
 // (one line "polarview: FILE:LINE: what" on stderr), 2 usage error. What each command does and its
@@ -16,6 +16,9 @@ CommandParser refineCommand();
 // export IN.obj: the limit surface in BezierView's .bv format, feature-adaptive (or uniform),
 // written atomically.
 CommandParser exportCommand();
+// continuity IN.obj: position, normal and curvature differences across every seam of the
+// feature-adaptive patches, per kind of seam (core/spline/continuity.h).
+CommandParser continuityCommand();
 // convert IN.obj --ev-to-polar | --ngon-to-fan: Fig. 14's conversion of Catmull-Clark extraordinary
 // vertices into polar configurations (core/mesh/ev_to_polar.h), or n-gons into triangle fans
 // (core/mesh/ngon_to_fan.h).

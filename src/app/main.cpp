@@ -41,6 +41,8 @@ const CliCommand kCommands[] = {
      FailureSubject::FirstArgument},
     {"export", "the limit surface as Bezier patches (BezierView .bv)", cli::exportCommand, false,
      FailureSubject::FirstArgument},
+    {"continuity", "position, normal and curvature jumps across the limit surface's seams", cli::continuityCommand, false,
+     FailureSubject::FirstArgument},
     {"convert", "extraordinary vertices into poles (paper Fig. 14), n-gons into triangle fans", cli::convertCommand, false,
      FailureSubject::FirstArgument},
     {"info", "faces, boundaries, poles and extraordinary vertices of a mesh", cli::infoCommand, false,
@@ -77,10 +79,10 @@ std::string schemeNote() {
 std::string helpText() {
   std::string text = "usage: polarview [COMMAND [ARGUMENTS]]   (no command: the viewer on the built-in model)\n\ncommands:\n";
   for (const CliCommand& c : kCommands)
-    text += "  " + std::string(c.name) + std::string(10 - std::string(c.name).size(), ' ') + c.summary +
+    text += "  " + std::string(c.name) + std::string(12 - std::string(c.name).size(), ' ') + c.summary +
             (c.parser ? "" : " (not in this build)") + "\n";
-  text += "  help      this text; `polarview help COMMAND` or `polarview COMMAND --help`: one command's;\n"
-          "            `polarview help keys`: the viewer's commands (keys, `view --do` ids)\n";
+  text += "  help        this text; `polarview help COMMAND` or `polarview COMMAND --help`: one command's;\n"
+          "              `polarview help keys`: the viewer's commands (keys, `view --do` ids)\n";
   for (const CliCommand& c : kCommands)
     if (c.parser) text += "\n" + commandHelp(c.name, c.parser().table());
   return text + "\n" + schemeNote();

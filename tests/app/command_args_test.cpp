@@ -109,7 +109,7 @@ TEST_CASE("option table: the generated usage lists every row, required ones bare
 }
 
 TEST_CASE("commands: every windowless command's help names each of its rows, and refuses an unknown option") {
-  for (const CommandParser& command : {cli::refineCommand(), cli::exportCommand(), cli::convertCommand(), cli::infoCommand(),
+  for (const CommandParser& command : {cli::refineCommand(), cli::exportCommand(), cli::continuityCommand(), cli::convertCommand(), cli::infoCommand(),
                                        cli::poleCommand(), cli::benchCommand(), cli::shapeCommand(), cli::spectrumCommand()}) {
     const OptionTable table = command.table();
     const std::string help = commandHelp("c", table);
