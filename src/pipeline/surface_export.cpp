@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <ctime>
 
+#include "core/export/iges_writer.h"
+#include "core/export/step_writer.h"
 #include "pipeline/patch_export.h"
 
 namespace polarview {
@@ -29,6 +32,43 @@ std::string writeBv(const std::string& path, const PatchSet& set, const ExportSe
   return text;
 }
 
+std::string baseName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// What the CAD file says about itself: names, the time it is written (UTC) and its unit.
+CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings) {
+  static const std::pair<LengthUnit, CadUnit> kUnits[] = {
+      {LengthUnit::Millimetre, CadUnit::Millimetre}, {LengthUnit::Metre, CadUnit::Metre}, {LengthUnit::Inch, CadUnit::Inch}};
+  CadFileInfo info;
+  info.fileName = baseName(path);
+  info.productName = baseName(settings.source);
+  info.description = "polarview limit surface: " + settings.schemeLabel + " level " + std::to_string(settings.level) +
+                     " of " + info.productName;
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
+  info.timestamp = stamp;
+  for (const auto& [length, cad] : kUnits)
+    if (length == settings.units) info.unit = cad;
+  return info;
+}
+
+// A CAD row: the surfaces (refused before anything is written when not finite), then the file.
+template <void (*writeFile)(std::ostream&, const CadSurfaceSet&, const CadFileInfo&)>
+std::string writeCad(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
+  const CadSurfaceSet surfaces = cadSurfaces(set, settings.source);
+  const CadFileInfo info = cadFileInfo(path, settings);
+  writeStreamAtomically(path, [&](std::ostream& out) { writeFile(out, surfaces, info); });
+  std::string units;
+  for (const LengthUnitInfo& unit : lengthUnits())
+    if (unit.unit == settings.units) units = unit.name;
+  return describeCadSurfaces(surfaces) + ", units " + units;
+}
+
 std::string lowered(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return text;
@@ -45,6 +85,9 @@ const std::vector<LengthUnitInfo>& lengthUnits() {
 const std::vector<ExportFormat>& exportFormats() {
   static const std::vector<ExportFormat> formats = {
       {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", writeBv},
+      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", writeCad<writeStep>},
+      {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)",
+       writeCad<writeIges>},
   };
   return formats;
 }
