@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """OpenCASCADE's reading of polarview's STEP and IGES files against polarview's own values.
 
-Usage: occt_compare.py PREFIX LABEL [--continuity OUT.json]
+Usage: occt_compare.py PREFIX LABEL [--continuity OUT.json] [--g2 KIND,...] [--not-g1 KIND,...]
+                       [--t-junctions KIND,...]
 Reads PREFIX.step, PREFIX.igs and PREFIX.table (tests/cad/cad_reference.cpp says what the table
 holds), runs occt-draw on both files and checks, for each:
   - the file reads, its face count is the table's surface count and checkshape finds nothing;
@@ -13,9 +14,14 @@ holds), runs occt-draw on both files and checks, for each:
   - the area OpenCASCADE computes (sprops) equals polarview's Gauss-Legendre area to 1e-6 relative;
   - continuity across seams from OpenCASCADE's derivatives: per seam kind the largest position gap
     (of the diagonal), normal angle (radians) and jump of K and H (of the model's largest |K|,
-    |H|), the JSON of `polarview continuity --json` ({"seams": [{"kind", "count", ...}]}).
+    |H|), the JSON of `polarview continuity --json` ({"seams": [{"kind", "count", ...}]}; count:
+    side pairs that meet; t_junctions: of them, pairs of surfaces of different levels). Every seam
+    is watertight (gap <= 1e-12); the --g2 kinds are present and G2 to round-off (angle <= 1e-9,
+    jump <= 1e-9); the --not-g1 kinds are present and have a normal angle over 1e-3 somewhere;
+    the --t-junctions kinds have pairs of different levels.
 Prints one line per file and the continuity table; exits 1 on any failure.
 """
+import argparse
 import json
 import math
 import os
@@ -195,10 +201,12 @@ def measure_seams(table, result):
         va, vb = values[queries[(a[0], a[2], a[3])]], values[queries[(b[0], b[2], b[3])]]
         pairs.setdefault((s["kind"], key), []).append((va, vb))
     stats = {}
-    for (kind, _), samples in pairs.items():
-        st = stats.setdefault(kind, {"kind": kind, "count": 0, "samples": 0, "max_position_gap": 0.0,
-                                     "max_normal_angle": 0.0, "max_curvature_jump": 0.0})
+    for (kind, key), samples in pairs.items():
+        st = stats.setdefault(kind, {"kind": kind, "count": 0, "t_junctions": 0, "samples": 0,
+                                     "max_position_gap": 0.0, "max_normal_angle": 0.0, "max_curvature_jump": 0.0})
         st["count"] += 1
+        levels = {table["surfaces"][surface]["level"] for surface, _ in key}
+        st["t_junctions"] += len(levels) > 1
         geo = [(geometry(va), geometry(vb)) for va, vb in samples]
         sign = 1.0 if sum(dot(ga[0], gb[0]) for ga, gb in geo) >= 0 else -1.0  # orient the pair's normals
         for (va, vb), (ga, gb) in zip(samples, geo):
@@ -257,20 +265,50 @@ def check_file(table, path, reader, label, queries):
     return result
 
 
+def check_seams(seams, args, label):
+    by_kind = {st["kind"]: st for st in seams}
+    for st in seams:
+        if st["max_position_gap"] > 1e-12:
+            fail("%s: %s seams are %.3g of the diagonal apart" % (label, st["kind"], st["max_position_gap"]))
+    for kind in filter(None, args.g2.split(",")):
+        st = by_kind.get(kind)
+        if st is None:
+            fail("%s: no %s seam found" % (label, kind))
+        elif st["max_normal_angle"] > 1e-9 or st["max_curvature_jump"] > 1e-9:
+            fail("%s: %s seams are not G2: angle %.3g, curvature jump %.3g" % (
+                label, kind, st["max_normal_angle"], st["max_curvature_jump"]))
+    for kind in filter(None, args.not_g1.split(",")):
+        st = by_kind.get(kind)
+        if st is None or st["max_normal_angle"] < 1e-3:
+            fail("%s: %s seams should have a visible normal jump, measured %s" % (
+                label, kind, "none" if st is None else "%.3g" % st["max_normal_angle"]))
+    for kind in filter(None, args.t_junctions.split(",")):
+        if by_kind.get(kind, {}).get("t_junctions", 0) == 0:
+            fail("%s: no %s seam between surfaces of different levels" % (label, kind))
+
+
 def main():
-    prefix, label = sys.argv[1], sys.argv[2]
-    continuity_path = sys.argv[4] if len(sys.argv) > 4 and sys.argv[3] == "--continuity" else None
-    table = read_table(prefix + ".table")
+    parser = argparse.ArgumentParser()
+    parser.add_argument("prefix")
+    parser.add_argument("label")
+    parser.add_argument("--continuity")
+    parser.add_argument("--g2", default="")
+    parser.add_argument("--not-g1", default="")
+    parser.add_argument("--t-junctions", default="")
+    args = parser.parse_args()
+    table = read_table(args.prefix + ".table")
     queries = queries_of(table)
-    step = check_file(table, prefix + ".step", "stepread", label + " STEP", queries)
-    check_file(table, prefix + ".igs", "igesread", label + " IGES", queries)
-    if step is not None and not FAILURES:
+    step = check_file(table, args.prefix + ".step", "stepread", args.label + " STEP", queries)
+    check_file(table, args.prefix + ".igs", "igesread", args.label + " IGES", queries)
+    if step is not None:
         seams = measure_seams(table, step)
         for st in seams:
-            print("  %-22s %-12s %5d pairs  gap %.1e  angle %.1e  K/H jump %.1e" % (
-                label, st["kind"], st["count"], st["max_position_gap"], st["max_normal_angle"], st["max_curvature_jump"]))
-        if continuity_path:
-            with open(continuity_path, "w") as f:
+            print("  %-18s %-12s %4d pairs (%4d T)  gap %.1e  angle %.1e  K/H jump %.1e" % (
+                args.label, st["kind"], st["count"], st["t_junctions"], st["max_position_gap"],
+                st["max_normal_angle"], st["max_curvature_jump"]))
+        check_seams(seams, args, args.label)
+        if args.continuity:
+            with open(args.continuity, "w") as f:
                 json.dump({"seams": seams}, f, indent=1)
     return 1 if FAILURES else 0
 
