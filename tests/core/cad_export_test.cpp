@@ -242,7 +242,10 @@ TEST_CASE("cad export: IGES records, sequence numbers, Global section and entity
   const Case c = cases()[3];
   const CadSurfaceSet surfaces = cadSurfaces(patchesOf(c), c.name);
   std::ostringstream out;
-  writeIges(out, surfaces, infoWith(CadUnit::Inch));
+  CadFileInfo info = infoWith(CadUnit::Inch);
+  // A file name longer than a record, with delimiters in it: a Hollerith string across records.
+  info.fileName = "a, long; name " + std::string(90, 'x') + ",.igs";
+  writeIges(out, surfaces, info);
   std::istringstream in(out.str());
   std::map<char, std::vector<std::string>> sections;  // columns 1-72 of each record, by section
   std::string line, order;
@@ -289,7 +292,7 @@ TEST_CASE("cad export: IGES records, sequence numbers, Global section and entity
   CHECK(fields[0] == ",");
   CHECK(fields[1] == ";");
   CHECK(fields[2] == "it's a test");
-  CHECK(fields[3] == "test.step");
+  CHECK(fields[3] == info.fileName);
   CHECK(fields[6] == "32");
   CHECK(fields[12] == "1.");   // model space scale
   CHECK(fields[13] == "1");    // inch
