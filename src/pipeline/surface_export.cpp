@@ -39,8 +39,6 @@ std::string baseName(const std::string& path) {
 
 // What the CAD file says about itself: names, the time it is written (UTC) and its unit.
 CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings) {
-  static const std::pair<LengthUnit, CadUnit> kUnits[] = {
-      {LengthUnit::Millimetre, CadUnit::Millimetre}, {LengthUnit::Metre, CadUnit::Metre}, {LengthUnit::Inch, CadUnit::Inch}};
   CadFileInfo info;
   info.fileName = baseName(path);
   info.productName = baseName(settings.source);
@@ -52,8 +50,7 @@ CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings)
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
   info.timestamp = stamp;
-  for (const auto& [length, cad] : kUnits)
-    if (length == settings.units) info.unit = cad;
+  info.unit = settings.units;
   return info;
 }
 
