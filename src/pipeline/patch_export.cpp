@@ -57,15 +57,20 @@ PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, cons
   return extractPatches(AdaptiveRefinement(mesh, options, source, maxFaces));
 }
 
-BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source) {
+void writeStreamAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   // Through an atomic file: any error (here or in the writer) leaves no output behind.
   AtomicFileWriter file(path);
   AtomicFileBuffer buffer(file);
   std::ostream stream(&buffer);
   stream.exceptions(std::ios::badbit | std::ios::failbit);
-  const BezierViewStats stats = writeBezierView(stream, set, BezierViewOptions{}, source);
+  write(stream);
   stream.flush();
   file.commit();
+}
+
+BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source) {
+  BezierViewStats stats;
+  writeStreamAtomically(path, [&](std::ostream& out) { stats = writeBezierView(out, set, BezierViewOptions{}, source); });
   return stats;
 }
 

@@ -3,6 +3,8 @@
 // (core/spline/bezierview_export.h says what is written and how exact it is).
 #pragma once
 
+#include <functional>
+#include <iosfwd>
 #include <string>
 
 #include "core/spline/bezierview_export.h"
@@ -27,6 +29,10 @@ struct UniformLevelEstimate {
   bool fits = true;
 };
 UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces);
+
+// Runs `write` on a stream into an AtomicFileWriter for `path` and commits it: any exception (from
+// `write` or the file) leaves nothing behind. The stream throws on bad writes. [O(bytes)]
+void writeStreamAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // Writes `set` to `path` atomically (nothing is left on any error) and says what was written.
 BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source);

@@ -6,11 +6,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/export/iges_writer.h"
+#include "core/export/step_writer.h"
 #include "core/export/tessellation_writers.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/patch_export.h"
@@ -146,6 +149,42 @@ std::string writeGlb(const std::string& path, const PatchSet& set, const ExportS
   return writeTessellation(path, set, settings, writeGlbFile);
 }
 
+// [SECTION] CAD files (STEP, IGES): B-spline surfaces, written by the core
+
+std::string baseName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// What the CAD file says about itself: names, the time it is written (UTC) and its unit.
+CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings) {
+  CadFileInfo info;
+  info.fileName = baseName(path);
+  info.productName = baseName(settings.source);
+  info.description = "polarview limit surface: " + settings.schemeLabel + " level " + std::to_string(settings.level) +
+                     " of " + info.productName;
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
+  info.timestamp = stamp;
+  info.unit = settings.units;
+  return info;
+}
+
+// A CAD row: the surfaces (refused before anything is written when not finite), then the file.
+template <void (*writeFile)(std::ostream&, const CadSurfaceSet&, const CadFileInfo&)>
+std::string writeCad(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
+  const CadSurfaceSet surfaces = cadSurfaces(set, settings.source);
+  const CadFileInfo info = cadFileInfo(path, settings);
+  writeStreamAtomically(path, [&](std::ostream& out) { writeFile(out, surfaces, info); });
+  std::string units;
+  for (const LengthUnitInfo& unit : lengthUnits())
+    if (unit.unit == settings.units) units = unit.name;
+  return describeCadSurfaces(surfaces) + ", units " + units;
+}
+
 std::string lowered(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return text;
@@ -164,6 +203,9 @@ const std::vector<ExportFormat>& exportFormats() {
       {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", writeBv},
       {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", writePly},
       {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", writeGlb},
+      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", writeCad<writeStep>},
+      {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)",
+       writeCad<writeIges>},
   };
   return formats;
 }

@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "core/export/cad_file_info.h"
 #include "core/spline/patch_extraction.h"
 
 namespace polarview {
 
-// The length unit a CAD file names (STEP, IGES). Coordinates are written as they are: the unit says
-// what they mean, it does not scale them.
-enum class LengthUnit { Millimetre, Metre, Inch };
+// The length unit a CAD file names (STEP, IGES; core/export/cad_file_info.h): coordinates are
+// written as they are, the unit says what they mean.
+using LengthUnit = CadUnit;
 struct LengthUnitInfo {
   LengthUnit unit;
   const char* name;  // as --units takes it: "mm", "m", "inch"
