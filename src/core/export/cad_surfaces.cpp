@@ -96,13 +96,7 @@ CadSurfaceDerivatives evaluateCadSurface(const CadSurface& surface, double u, do
 }
 
 CadSurfaceSet cadSurfaces(const PatchSet& set, const std::string& sourceName) {
-  // Refuse non-finite input before anything is made.
-  for (size_t k = 0; k < set.patches.size(); ++k)
-    for (const Point& p : set.patches[k].cp)
-      if (!isFinite(p) || !isFinite(set.patches[k].origin))
-        throw InputError(sourceName, 0,
-                         "patch " + std::to_string(k) + " (" + patchKindName(set.patches[k].kind) +
-                             ") has a non-finite control point: the input's coordinates are too large, too small or degenerate");
+  checkFinitePatches(set, sourceName);  // before anything is made
 
   CadSurfaceSet out;
   out.boxDiagonal = patchBoxDiagonal(set);

@@ -239,15 +239,18 @@ double patchBoxDiagonal(const PatchSet& set) {
   return set.patches.empty() ? 0.0 : glm::length(hi - lo);
 }
 
-BezierViewStats writeBezierView(std::ostream& out, const PatchSet& set, const BezierViewOptions& options,
-                                const std::string& sourceName) {
-  // Refuse non-finite input before anything is written.
+void checkFinitePatches(const PatchSet& set, const std::string& sourceName) {
   for (size_t k = 0; k < set.patches.size(); ++k)
     for (const Point& p : set.patches[k].cp)
       if (!isFinite(p) || !isFinite(set.patches[k].origin))
         throw InputError(sourceName, 0,
                          "patch " + std::to_string(k) + " (" + patchKindName(set.patches[k].kind) +
                              ") has a non-finite control point: the input's coordinates are too large, too small or degenerate");
+}
+
+BezierViewStats writeBezierView(std::ostream& out, const PatchSet& set, const BezierViewOptions& options,
+                                const std::string& sourceName) {
+  checkFinitePatches(set, sourceName);  // before anything is written
 
   BezierViewStats stats;
   stats.boxDiagonal = patchBoxDiagonal(set);

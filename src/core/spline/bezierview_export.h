@@ -105,6 +105,10 @@ std::vector<BezierPatch> fitPoleCap(const Patch& cap, const BezierViewOptions& o
 // p0 and the boundary points). [O(patches)]
 double patchBoxDiagonal(const PatchSet& set);
 
+// Throws InputError(sourceName, 0, "patch K (kind) has a non-finite control point: ...") for the first
+// patch with a non-finite control point or origin: the writers refuse before writing anything. [O(patches)]
+void checkFinitePatches(const PatchSet& set, const std::string& sourceName);
+
 // Writes `set` in .bv format (rules above): one Group per (kind, level), named "regular-level-L",
 // "boundary-level-L", "polar-ring-M", "pole-cap-level-L", "end-cap-level-L", ids 1, 2, ... in that
 // order (kind, then level). Throws InputError(sourceName, 0, ...) before writing anything when a
