@@ -444,8 +444,9 @@ void Document::updateEditState(const BuiltSurface* shown) {
   const std::string& loaded = state_.file.loadedPath;
   const bool builtIn = loaded.empty() || loaded == defaultModelAsset();
   const fs::path folder = builtIn ? fs::path() : fs::path(loaded).parent_path();
-  const std::string stem = builtIn ? (state_.file.modelName.rfind("default", 0) == 0 ? "default" : "model")
-                                   : fs::path(loaded).stem().string();
+  // The file's own name (the built-in model opened by its path too: "default"), else a generated one's.
+  const std::string stem = !loaded.empty() ? fs::path(loaded).stem().string()
+                                           : (state_.file.modelName.rfind("default", 0) == 0 ? "default" : "model");
   edit.defaultSavePath = (folder / (stem + "_edited.obj")).string();
   // The exports write what the active view shows (its settings until it shows something).
   const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
