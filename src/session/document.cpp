@@ -453,7 +453,8 @@ void Document::updateEditState(const BuiltSurface* shown) {
   const SchemeChoice scheme = shown ? shown->key.scheme : state_.views[size_t(v)].scheme;
   const int level = shown ? shown->key.level : state_.views[size_t(v)].level;
   const std::string tag = std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
-  edit.defaultSurfacePath = (folder / (stem + tag + "." + edit.surfaceFormat)).string();
+  const ExportFormat* format = exportFormatNamed(edit.surfaceFormat);
+  edit.defaultSurfacePath = (folder / (stem + tag + (format ? format->extensions.front() : ".bv"))).string();
   edit.defaultRefinedObjPath = (folder / (stem + tag + "_refined.obj")).string();
 }
 

@@ -142,7 +142,7 @@ struct EditSettings {
   // or in the current directory for the built-in model.
   std::string savePath, defaultSavePath;
   std::string surfacePath, defaultSurfacePath;  // Export surface: the format from the extension
-  std::string surfaceFormat = "bv";             // the default path's extension (the panel's format choice)
+  std::string surfaceFormat = "bv";             // surface_export.h's format name: the default path's extension
   std::string refinedObjPath, defaultRefinedObjPath;
   std::string error;                // the last failed save or export, one line
   std::string exporting;            // what a background export is writing ("" when none)

@@ -317,6 +317,46 @@ TEST_CASE("session: Save OBJ and Export .bv write what the model and the active 
   std::filesystem::remove_all(folder);
 }
 
+TEST_CASE("session: Export surface writes the format of the path's extension, and refuses an unknown one") {
+  FakeWindow window;
+  Session session(quiet(), window);
+  ViewerState& state = session.state();
+  REQUIRE(session.document().loadMesh(shapes::mushroom(8), "mushroom"));
+  state.views[0].level = 1;
+  settle(session);
+  const std::filesystem::path folder = freshDirectory();
+  const auto firstBytes = [](const std::filesystem::path& path, size_t count) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(count, '\0');
+    in.read(bytes.data(), std::streamsize(count));
+    return bytes;
+  };
+  const size_t patches = session.surfaces().shown(0)->patches.size();
+  state.edit.surfacePath = (folder / "surface.step").string();
+  queueCommand(state, "export.surface");
+  settle(session);
+  CHECK(state.edit.error.empty());
+  CHECK(firstBytes(state.edit.surfacePath, 13) == "ISO-10303-21;");
+  CHECK(state.notice.find(std::to_string(patches) + " B-spline surfaces") != std::string::npos);
+  state.edit.surfacePath = (folder / "surface.glb").string();
+  queueCommand(state, "export.surface");
+  settle(session);
+  CHECK(firstBytes(state.edit.surfacePath, 4) == "glTF");
+  CHECK(state.notice.find("watertight") != std::string::npos);
+  // An extension no format has: nothing written, the formats named.
+  state.edit.surfacePath = (folder / "surface.xyz").string();
+  queueCommand(state, "export.surface");
+  settle(session);
+  CHECK(state.edit.error.find(".step") != std::string::npos);
+  CHECK(!std::filesystem::exists(state.edit.surfacePath));
+  // The format box sets the default name's extension.
+  state.edit.surfaceFormat = "iges";
+  settle(session);
+  CHECK(state.edit.defaultSurfacePath.size() > 4);
+  CHECK(state.edit.defaultSurfacePath.substr(state.edit.defaultSurfacePath.size() - 4) == ".igs");
+  std::filesystem::remove_all(folder);
+}
+
 TEST_CASE("session: after an eigenvector net and Ctrl+Z, the outputs are named after the default model again") {
   FakeWindow window;
   Session session(quiet(), window);
