@@ -38,6 +38,12 @@ judge "$root/assets/default.obj" bps 1 --g2 $smooth --not-g1 end-cap
 judge "$root/assets/globe.obj" c2ps 1 --g2 ring-ring
 judge "$tmp/cap64.obj" c2ps 1 --g2 $smooth
 judge "$root/assets/cube_cc2.obj" cc 1 --g2 regular --not-g1 end-cap
+# Valence 5: each cap sector is written as 2 pieces, sampled at the sector's parameters, their
+# seams counted per sector side (and the seam between a sector's pieces apart, as cap-piece).
+"$exe" shape cap --valence 5 -o "$tmp/cap5.obj" > /dev/null
+judge "$tmp/cap5.obj" c2ps 0 --g2 regular,ring-ring,regular-ring
+[ "$(awk '$1 == "S" && $7 == 2' "$tmp/cap5-c2ps-0.table" | wc -l)" -eq 10 ] || fail "cap5: caps not in 2 pieces"
+grep -q '"cap-piece"' "$tmp/cap5-c2ps-0.continuity.json" || fail "cap5: no seam between a sector's pieces"
 # The agreement can fail: polarview's JSON with an end-cap angle 1e-5 off, a seam count one off, K = 8.
 /usr/bin/python3 - "$tmp/cube_cc2-cc-1.polarview.json" "$tmp/tampered.json" <<'EOF'
 import json, sys
