@@ -286,7 +286,8 @@ std::string continuityJson(const CommonOptions& o, const ContinuityReport& repor
         .field("max_mean_jump", s.maxMeanJump)
         .endObject();
   w.endArray().field("boundary_sides", report.boundarySides).field("max_abs_gaussian", report.maxAbsGaussian);
-  w.field("max_abs_mean", report.maxAbsMean).field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep));
+  w.field("max_abs_mean", report.maxAbsMean).field("box_diagonal", report.boxDiagonal).field("samples", o.samples);
+  w.field("scheme", cliSchemeName(o.scheme, o.uniformFirstStep));
   return w.field("level", o.levels).endObject().str();
 }
 

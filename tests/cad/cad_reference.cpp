@@ -2,21 +2,26 @@
 // beside them, what polarview itself says about the surfaces written, for tests/cli/cad_occt.sh to
 // compare with OpenCASCADE's reading (tests/cad/occt_compare.py).
 //
-//   cad_reference IN.obj SCHEME LEVEL PREFIX   -> PREFIX.step, PREFIX.igs, PREFIX.table
+//   cad_reference IN.obj SCHEME LEVEL PREFIX [K]   -> PREFIX.step, PREFIX.igs, PREFIX.table
 //
 // PREFIX.table, one record a line, numbers with 17 significant digits:
-//   box D  cap_deviation C  area A  max_abs_K K  max_abs_H H  surfaces N
+//   box D  cap_deviation C  area A  max_abs_K K  max_abs_H H  samples K  surfaces N
 //       D: bounding-box diagonal; C: largest cap fit deviation (absolute); A: the surface area by
 //       8 x 8 Gauss-Legendre over evaluatePatch per patch (caps over their whole sector);
-//       K, H: largest |K|, |H| of evaluatePatch on a 4 x 4 interior grid of every patch.
-//   S index kind level ring piece pieces x y z      one per written surface, in file order; x y z:
-//       its point at (u, v) = (1/2, 1/2), by which the faces a reader gives are matched
+//       K, H: largest |K|, |H| of evaluatePatch on a 4 x 4 interior grid of every patch;
+//       samples: K of the seam samples below (default 4).
+//   S index kind level ring piece pieces x y z patch  one per written surface, in file order; x y z:
+//       its point at (u, v) = (1/2, 1/2), by which the faces a reader gives are matched; patch:
+//       its patch's index (a cap sector's pieces share it)
 //   P index u v <written 18> <limit 18> K H         point samples: (u, v) of the written surface;
 //       written: position, du, dv, duu, duv, dvv of the written B-spline (evaluateCadSurface, de Boor);
 //       limit: the same by evaluatePatch (caps: at the sector's v, derivatives by the chain rule);
 //       K, H by evaluatePatch.
 //   M kind a sideA ua va b sideB ub vb              seam samples: (ua, va) on surface a and (ub, vb)
-//       on surface b are one point of the seam of the given kind (continuity.h's kind names).
+//       on surface b are one point of the seam of the given kind (continuity.h's kind names, and
+//       cap-piece: two pieces of one cap sector). Each side is sampled where `polarview continuity
+//       --samples K` samples its patch's side: at (k + 1/2) / K of the patch's parameter (a cap
+//       piece's side along v at the sector's v that fall in the piece).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -93,7 +98,9 @@ std::pair<double, double> project(const std::vector<Point>& cp, const Point& poi
   return {bestT, best};
 }
 
-const char* seamKind(PatchKind a, PatchKind b) {
+const char* seamKind(const CadSurface& surfaceA, const CadSurface& surfaceB) {
+  if (surfaceA.patch == surfaceB.patch) return "cap-piece";  // not a seam of the limit surface
+  const PatchKind a = surfaceA.kind, b = surfaceB.kind;
   auto is = [&](PatchKind x, PatchKind y) { return (a == x && b == y) || (a == y && b == x); };
   const bool regularA = a == PatchKind::Regular || a == PatchKind::Boundary;
   const bool regularB = b == PatchKind::Regular || b == PatchKind::Boundary;
@@ -107,9 +114,22 @@ const char* seamKind(PatchKind a, PatchKind b) {
 
 void printPoint(FILE* out, const Point& p) { std::fprintf(out, " %.17g %.17g %.17g", p.x, p.y, p.z); }
 
-// Seam samples: each side's points t = (k + 1/2) / 4 projected onto the sides of other surfaces
-// whose boxes hold them (a uniform grid of boxes).
-void writeSeams(FILE* out, const CadSurfaceSet& set) {
+// The parameters t at which a side of `surface` is sampled: (k + 1/2) / K of its patch's side
+// (sides 1 and 3 of a cap piece run along v, the sector's v = (piece + t) / pieces).
+std::vector<double> sideSamples(const CadSurface& surface, int side, int samples) {
+  std::vector<double> t;
+  const bool alongSectorV = side % 2 == 1 && surface.pieces > 1;
+  for (int k = 0; k < samples; ++k) {
+    const double patchT = (k + 0.5) / samples;
+    const double local = alongSectorV ? patchT * surface.pieces - surface.piece : patchT;
+    if (local >= 0.0 && local < 1.0) t.push_back(local);
+  }
+  return t;
+}
+
+// Seam samples: each side's points (sideSamples) projected onto the sides of other surfaces whose
+// boxes hold them (a uniform grid of boxes).
+void writeSeams(FILE* out, const CadSurfaceSet& set, int samples) {
   std::vector<Side> sides;
   for (size_t s = 0; s < set.surfaces.size(); ++s)
     for (int side = 0; side < 4; ++side)
@@ -123,8 +143,7 @@ void writeSeams(FILE* out, const CadSurfaceSet& set) {
   for (size_t k = 0; k < sides.size(); ++k) grid[key(0.5 * (sides[k].lo + sides[k].hi))].push_back(k);
 
   for (const Side& side : sides)
-    for (int sample = 0; sample < 4; ++sample) {
-      const double t = (sample + 0.5) / 4;
+    for (double t : sideSamples(set.surfaces[side.surface], side.side, samples)) {
       const Point point = curveAt(side.cp, t).first;
       const auto [cx, cy, cz] = key(point);
       bool found = false;
@@ -141,7 +160,7 @@ void writeSeams(FILE* out, const CadSurfaceSet& set) {
               if (distance > tolerance) continue;
               const Point a = sideParameter(side.side, t), b = sideParameter(other.side, otherT);
               std::fprintf(out, "M %s %zu %d %.17g %.17g %zu %d %.17g %.17g\n",
-                           seamKind(set.surfaces[side.surface].kind, set.surfaces[other.surface].kind), side.surface,
+                           seamKind(set.surfaces[side.surface], set.surfaces[other.surface]), side.surface,
                            side.side, a.x, a.y, other.surface, other.side, b.x, b.y);
               found = true;
               break;
@@ -182,7 +201,9 @@ void surfaceMeasures(const PatchSet& set, double* area, double* maxK, double* ma
 }
 
 int run(int argc, char** argv) {
-  if (argc != 5) throw std::runtime_error("usage: cad_reference IN.obj SCHEME LEVEL PREFIX");
+  if (argc != 5 && argc != 6) throw std::runtime_error("usage: cad_reference IN.obj SCHEME LEVEL PREFIX [K]");
+  const int samples = argc == 6 ? std::stoi(argv[5]) : 4;
+  if (samples < 1) throw std::runtime_error("K must be at least 1");
   const std::string input = argv[1], prefix = argv[4];
   const auto variant = parseSchemeVariant(argv[2]);
   if (!variant) throw std::runtime_error(std::string("unknown scheme ") + argv[2]);
@@ -202,14 +223,14 @@ int run(int argc, char** argv) {
   if (!out) throw std::runtime_error("cannot write " + prefix + ".table");
   double area = 0, maxK = 0, maxH = 0;
   surfaceMeasures(set, &area, &maxK, &maxH);
-  std::fprintf(out, "box %.17g cap_deviation %.17g area %.17g max_abs_K %.17g max_abs_H %.17g surfaces %zu\n",
-               surfaces.boxDiagonal, surfaces.capMaxDeviation, area, maxK, maxH, surfaces.surfaces.size());
+  std::fprintf(out, "box %.17g cap_deviation %.17g area %.17g max_abs_K %.17g max_abs_H %.17g samples %d surfaces %zu\n",
+               surfaces.boxDiagonal, surfaces.capMaxDeviation, area, maxK, maxH, samples, surfaces.surfaces.size());
   for (size_t s = 0; s < surfaces.surfaces.size(); ++s) {
     const CadSurface& surface = surfaces.surfaces[s];
     std::fprintf(out, "S %zu %s %d %d %d %d", s, patchKindName(surface.kind), surface.level, surface.ring, surface.piece,
                  surface.pieces);
     printPoint(out, evaluateCadSurface(surface, 0.5, 0.5).position);
-    std::fprintf(out, "\n");
+    std::fprintf(out, " %zu\n", surface.patch);
   }
   // Two point samples per surface at scattered interior parameters (a cap's u away from the pole).
   for (size_t s = 0; s < surfaces.surfaces.size(); ++s)
@@ -223,7 +244,7 @@ int run(int argc, char** argv) {
       for (const Point& p : {limit.position, limit.du, limit.dv, limit.duu, limit.duv, limit.dvv}) printPoint(out, p);
       std::fprintf(out, " %.17g %.17g\n", limit.gaussian, limit.mean);
     }
-  writeSeams(out, surfaces);
+  writeSeams(out, surfaces, samples);
   if (std::fclose(out) != 0) throw std::runtime_error("cannot write " + prefix + ".table");
   return 0;
 }

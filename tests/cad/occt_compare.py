@@ -2,7 +2,7 @@
 """OpenCASCADE's reading of polarview's STEP and IGES files against polarview's own values.
 
 Usage: occt_compare.py PREFIX LABEL [--continuity OUT.json] [--g2 KIND,...] [--not-g1 KIND,...]
-                       [--t-junctions KIND,...]
+                       [--t-junctions KIND,...] [--polarview CONTINUITY.json]
 Reads PREFIX.step, PREFIX.igs and PREFIX.table (tests/cad/cad_reference.cpp says what the table
 holds), runs occt-draw on both files and checks, for each:
   - the file reads, its face count is the table's surface count and checkshape finds nothing;
@@ -12,13 +12,16 @@ holds), runs occt-draw on both files and checks, for each:
     (bicubic patches: the same 1e-9; caps: position within the cap fit's deviation); K and H from
     OpenCASCADE's derivatives equal evaluatePatch's to 1e-6 relative (bicubic patches);
   - the area OpenCASCADE computes (sprops) equals polarview's Gauss-Legendre area to 1e-6 relative;
-  - continuity across seams from OpenCASCADE's derivatives: per seam kind the largest position gap
-    (of the diagonal), normal angle (radians) and jump of K and H (of the model's largest |K|,
-    |H|), the JSON of `polarview continuity --json` ({"seams": [{"kind", "count", ...}]}; count:
-    side pairs that meet; t_junctions: of them, pairs of surfaces of different levels). Every seam
+  - continuity across seams from OpenCASCADE's derivatives at the table's seam samples (where
+    `polarview continuity --samples K` samples): per seam kind the largest position gap (of the
+    diagonal), normal angle (radians) and jumps of K and H (of the model's largest |K|, |H|), the
+    JSON of `polarview continuity --json` ({"seams": [{"kind", "count", ...}]}, measure_seams says
+    what each means; cap-piece: between pieces of one cap sector, no seam of the limit surface).
+    Given --polarview, the box diagonal and largest |K|, |H| are polarview's, and its seams must
+    agree with OpenCASCADE's (compare_with_polarview: kinds, counts, smooth or not, maxima). Every seam
     is watertight (gap <= 1e-12); the --g2 kinds are present and G2 to round-off (angle <= 1e-9,
     jump <= 1e-9); the --not-g1 kinds are present and have a normal angle over 1e-3 somewhere;
-    the --t-junctions kinds have pairs of different levels.
+    the --t-junctions kinds have T-junctions.
 Prints one line per file and the continuity table; exits 1 on any failure.
 """
 import argparse
@@ -46,7 +49,8 @@ def read_table(path):
             w = line.split()
             if w[0] == "S":
                 table["surfaces"].append({"kind": w[2], "level": int(w[3]), "ring": int(w[4]),
-                                          "centre": [float(x) for x in w[7:10]]})
+                                          "piece": int(w[5]), "pieces": int(w[6]),
+                                          "centre": [float(x) for x in w[7:10]], "patch": int(w[10])})
             elif w[0] == "P":
                 v = [float(x) for x in w[2:]]
                 table["points"].append({"surface": int(w[1]), "u": v[0], "v": v[1], "written": v[2:20],
@@ -191,33 +195,103 @@ def check_points(table, result, label, caps_exact):
     return worst
 
 
-def measure_seams(table, result):
-    """Per seam kind: side pairs, largest gap / angle / curvature jump, from OpenCASCADE's values."""
+def patch_side(table, surface, side):
+    """The patch side a written surface's side lies on, as `polarview continuity` names it: a cap
+    sector's pieces share their patch's u = 1 side, the first piece its v = 0, the last its v = 1
+    (sides between pieces stay their own: they are no seam of the limit surface)."""
+    s = table["surfaces"][surface]
+    outer = side == 1 or (side == 0 and s["piece"] == 0) or (side == 2 and s["piece"] == s["pieces"] - 1)
+    return (s["patch"], side) if outer else ("piece", surface, side)
+
+
+def seam_pairs(table, result):
+    """The samples of each seam: per (kind, pair of patch sides), OpenCASCADE's values on both."""
     queries, values = result["queries"], result["values"]
     pairs = {}
     for s in table["seams"]:
         a, b = s["a"], s["b"]
-        key = tuple(sorted([(a[0], a[1]), (b[0], b[1])]))
+        key = tuple(sorted([patch_side(table, a[0], a[1]), patch_side(table, b[0], b[1])], key=repr))
         va, vb = values[queries[(a[0], a[2], a[3])]], values[queries[(b[0], b[2], b[3])]]
         pairs.setdefault((s["kind"], key), []).append((va, vb))
+    return pairs
+
+
+def measure_seams(table, result, scales):
+    """Per seam kind, as `polarview continuity --json` reports it: seams (pairs of patch sides that
+    meet), T-junctions (of them, those one of whose sides meets more than one side), the largest gap
+    (of scales' box diagonal), normal angle (radians) and jumps of K and H (of scales' largest |K|,
+    |H|), from OpenCASCADE's values."""
+    pairs = seam_pairs(table, result)
+    partners = {}
+    for _, (a, b) in pairs:
+        partners.setdefault(a, set()).add(b)
+        partners.setdefault(b, set()).add(a)
     stats = {}
-    for (kind, key), samples in pairs.items():
-        st = stats.setdefault(kind, {"kind": kind, "count": 0, "t_junctions": 0, "samples": 0,
-                                     "max_position_gap": 0.0, "max_normal_angle": 0.0, "max_curvature_jump": 0.0})
+    for (kind, (a, b)), samples in pairs.items():
+        st = stats.setdefault(kind, {"kind": kind, "count": 0, "t_junctions": 0, "samples": 0, "max_position_gap": 0.0,
+                                     "max_normal_angle": 0.0, "max_curvature_jump": 0.0, "max_gaussian_jump": 0.0,
+                                     "max_mean_jump": 0.0})
         st["count"] += 1
-        levels = {table["surfaces"][surface]["level"] for surface, _ in key}
-        st["t_junctions"] += len(levels) > 1
+        st["t_junctions"] += len(partners[a]) > 1 or len(partners[b]) > 1
         geo = [(geometry(va), geometry(vb)) for va, vb in samples]
         sign = 1.0 if sum(dot(ga[0], gb[0]) for ga, gb in geo) >= 0 else -1.0  # orient the pair's normals
         for (va, vb), (ga, gb) in zip(samples, geo):
             st["samples"] += 1
-            st["max_position_gap"] = max(st["max_position_gap"], norm(sub(vec(va, 0), vec(vb, 0))) / table["box"])
+            st["max_position_gap"] = max(st["max_position_gap"], norm(sub(vec(va, 0), vec(vb, 0))) / scales["box"])
             nb = [sign * x for x in gb[0]]
             st["max_normal_angle"] = max(st["max_normal_angle"], math.atan2(norm(cross(ga[0], nb)), dot(ga[0], nb)))
-            jump = max(abs(ga[1] - gb[1]) / table["max_abs_K"], abs(ga[2] - sign * gb[2]) / table["max_abs_H"])
-            st["max_curvature_jump"] = max(st["max_curvature_jump"], jump)
-    order = ["regular", "ring-ring", "ring-cap", "cap-cap", "end-cap", "regular-ring", "regular-cap"]
+            st["max_gaussian_jump"] = max(st["max_gaussian_jump"], abs(ga[1] - gb[1]) / scales["K"])
+            st["max_mean_jump"] = max(st["max_mean_jump"], abs(ga[2] - sign * gb[2]) / scales["H"])
+        st["max_curvature_jump"] = max(st["max_gaussian_jump"], st["max_mean_jump"])
+    order = ["regular", "ring-ring", "ring-cap", "cap-cap", "end-cap", "regular-ring", "regular-cap", "cap-piece"]
     return sorted(stats.values(), key=lambda st: order.index(st["kind"]) if st["kind"] in order else 99)
+
+
+# Agreement with `polarview continuity --json`: a value is smooth at or below SMOOTH; above it both
+# maxima agree to AGREE relative. Seams touching a cap (ring-cap, cap-cap) compare OpenCASCADE's fitted
+# pieces with polarview's exact cap, and get cap_slack more on both: the fit moves positions by the
+# table's cap deviation d (of the diagonal) and a degree-n polynomial's derivative moves by up to
+# 2 n^2 times its value's change (Markov), so normals and curvatures move by up to about 1e4 d
+# (measured: 1e2..1e3 d, e.g. cap-cap angles 6e-9 at d = 1.3e-11, ring-cap jumps 6e-6 relative at
+# d = 7e-8); and near the pole (u = 1/2K) K and H divide second derivatives of the degree-(4, d)
+# pieces by |du x dv|^2 ~ u^2, which leaves ~1e-9 of round-off (cap-cap jumps of a valence-64 cap
+# whose fit is exact to 1e-16), hence the 1e-8 floor.
+SMOOTH = 1e-9
+AGREE = 1e-6
+METRICS = ["max_position_gap", "max_normal_angle", "max_gaussian_jump", "max_mean_jump"]
+
+
+def cap_slack(table):
+    """The allowance of seams touching a cap, in the units of the normalised values (above)."""
+    return 1e4 * table["cap_deviation"] / table["box"] + 1e-8
+
+
+def compare_with_polarview(seams, polarview, table, label):
+    """Fails where OpenCASCADE's seam measurement and polarview's disagree; prints both side by side."""
+    occt = {st["kind"]: st for st in seams if st["kind"] != "cap-piece"}
+    ours = {st["kind"]: st for st in polarview["seams"]}
+    if set(occt) != set(ours):
+        fail("%s: seam kinds: OpenCASCADE %s, polarview %s" % (label, sorted(occt), sorted(ours)))
+    slack_of_caps = cap_slack(table)
+    print("  %-16s %-12s %-11s %9s %9s  %-19s %-19s %-19s %-19s" % (
+        label, "kind", "side", "seams", "T-jn", "gap", "angle (rad)", "dK", "dH"))
+    for kind in [st["kind"] for st in polarview["seams"] if st["kind"] in occt]:
+        o, p = occt[kind], ours[kind]
+        for name, st in (("OCCT", o), ("polarview", p)):
+            print("  %-16s %-12s %-11s %9d %9d  %s" % (label, kind, name, st["count"], st["t_junctions"],
+                                                       " ".join("%-19.12g" % st[m] for m in METRICS)))
+        for key in ("count", "t_junctions"):
+            if o[key] != p[key]:
+                fail("%s: %s %s: OpenCASCADE %d, polarview %d" % (label, kind, key, o[key], p[key]))
+        slack = slack_of_caps if kind in ("ring-cap", "cap-cap", "regular-cap") else 0.0
+        for m in METRICS:
+            smooth_o, smooth_p = o[m] <= SMOOTH + slack, p[m] <= SMOOTH + slack
+            if smooth_o != smooth_p:
+                fail("%s: %s %s: OpenCASCADE %.3g, polarview %.3g (smooth at %.3g)" % (label, kind, m, o[m], p[m],
+                                                                                        SMOOTH + slack))
+            elif not smooth_o and abs(o[m] - p[m]) > AGREE * max(o[m], p[m]) + slack:
+                fail("%s: %s %s: OpenCASCADE %.12g, polarview %.12g (%.3g relative, allowed %.3g + %.3g)" % (
+                    label, kind, m, o[m], p[m], abs(o[m] - p[m]) / max(o[m], p[m]), AGREE, slack))
 
 
 def match_faces(table, centres, label):
@@ -295,18 +369,30 @@ def main():
     parser.add_argument("--g2", default="")
     parser.add_argument("--not-g1", default="")
     parser.add_argument("--t-junctions", default="")
+    parser.add_argument("--polarview", help="`polarview continuity --samples K --json` of the same model to agree with")
     args = parser.parse_args()
     table = read_table(args.prefix + ".table")
     queries = queries_of(table)
     step = check_file(table, args.prefix + ".step", "stepread", args.label + " STEP", queries)
     check_file(table, args.prefix + ".igs", "igesread", args.label + " IGES", queries)
+    polarview = None
+    scales = {"box": table["box"], "K": table["max_abs_K"], "H": table["max_abs_H"]}
+    if args.polarview:
+        with open(args.polarview) as f:
+            polarview = json.load(f)
+        if polarview["samples"] != table["samples"]:
+            fail("%s: polarview sampled %d points a side, the table %d" % (args.label, polarview["samples"],
+                                                                          table["samples"]))
+        scales = {"box": polarview["box_diagonal"], "K": polarview["max_abs_gaussian"], "H": polarview["max_abs_mean"]}
     if step is not None:
-        seams = measure_seams(table, step)
-        for st in seams:
+        seams = measure_seams(table, step, scales)
+        for st in seams if polarview is None else []:
             print("  %-18s %-12s %4d pairs (%4d T)  gap %.1e  angle %.1e  K/H jump %.1e" % (
                 args.label, st["kind"], st["count"], st["t_junctions"], st["max_position_gap"],
                 st["max_normal_angle"], st["max_curvature_jump"]))
         check_seams(seams, args, args.label)
+        if polarview is not None:
+            compare_with_polarview(seams, polarview, table, args.label)
         if args.continuity:
             with open(args.continuity, "w") as f:
                 json.dump({"seams": seams}, f, indent=1)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # STEP and IGES export judged by OpenCASCADE (occt-draw): every file reads, has one face per surface
 # written and passes checkshape; OpenCASCADE's points, derivatives, K, H and area equal polarview's;
-# seams are measured with OpenCASCADE's derivatives (tests/cad/occt_compare.py says what is checked).
+# seams are measured with OpenCASCADE's derivatives at the parameters `polarview continuity
+# --samples 4` samples, and must agree with its JSON (tests/cad/occt_compare.py says what is checked).
 # Then `polarview export`: the same files as the reference tool, the units named and read (OCCT
 # scales inch and m files to its mm), coordinates unchanged, usage errors and a bad output path
 # leave nothing behind.
@@ -18,14 +19,17 @@ command -v occt-draw > /dev/null || fail "occt-draw (OpenCASCADE's Draw) is not 
 
 "$exe" shape cap --valence 64 -o "$tmp/cap64.obj" > /dev/null
 
-# MODEL SCHEME LEVEL [occt_compare options]: the reference files and OpenCASCADE's verdict.
+# MODEL SCHEME LEVEL [occt_compare options]: the reference files and OpenCASCADE's verdict, its
+# seams against `polarview continuity`'s (the same K = 4 points a side).
 judge() {
   local model=$1 scheme=$2 level=$3
   shift 3
   local name
   name=$(basename "$model" .obj)-$scheme-$level
-  "$reference" "$model" "$scheme" "$level" "$tmp/$name"
-  $compare "$tmp/$name" "$name" --continuity "$tmp/$name.continuity.json" "$@" || fail "$name: OpenCASCADE disagrees"
+  "$reference" "$model" "$scheme" "$level" "$tmp/$name" 4
+  "$exe" continuity "$model" --scheme "$scheme" --level "$level" --samples 4 --json > "$tmp/$name.polarview.json"
+  $compare "$tmp/$name" "$name" --continuity "$tmp/$name.continuity.json" --polarview "$tmp/$name.polarview.json" "$@" ||
+    fail "$name: OpenCASCADE disagrees"
 }
 smooth=regular,ring-ring,regular-ring
 judge "$root/assets/default.obj" c2ps 2 --g2 $smooth --not-g1 end-cap --t-junctions regular,ring-ring
@@ -34,6 +38,28 @@ judge "$root/assets/default.obj" bps 1 --g2 $smooth --not-g1 end-cap
 judge "$root/assets/globe.obj" c2ps 1 --g2 ring-ring
 judge "$tmp/cap64.obj" c2ps 1 --g2 $smooth
 judge "$root/assets/cube_cc2.obj" cc 1 --g2 regular --not-g1 end-cap
+# Valence 5: each cap sector is written as 2 pieces, sampled at the sector's parameters, their
+# seams counted per sector side (and the seam between a sector's pieces apart, as cap-piece).
+"$exe" shape cap --valence 5 -o "$tmp/cap5.obj" > /dev/null
+judge "$tmp/cap5.obj" c2ps 0 --g2 regular,ring-ring,regular-ring
+[ "$(awk '$1 == "S" && $7 == 2' "$tmp/cap5-c2ps-0.table" | wc -l)" -eq 10 ] || fail "cap5: caps not in 2 pieces"
+grep -q '"cap-piece"' "$tmp/cap5-c2ps-0.continuity.json" || fail "cap5: no seam between a sector's pieces"
+# The agreement can fail: polarview's JSON with an end-cap angle 1e-5 off, a seam count one off, K = 8.
+/usr/bin/python3 - "$tmp/cube_cc2-cc-1.polarview.json" "$tmp/tampered.json" <<'EOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+end = next(s for s in d["seams"] if s["kind"] == "end-cap")
+end["max_normal_angle"] *= 1 + 1e-5
+end["count"] += 1
+d["samples"] = 8
+json.dump(d, open(sys.argv[2], "w"))
+EOF
+if $compare "$tmp/cube_cc2-cc-1" tampered --polarview "$tmp/tampered.json" > /dev/null 2> "$tmp/err"; then
+  fail "occt_compare accepts a tampered polarview JSON"
+fi
+for what in "end-cap max_normal_angle" "end-cap count" "polarview sampled 8 points a side"; do
+  grep -q "^FAIL: tampered: .*$what" "$tmp/err" || fail "tampered JSON, no '$what' failure: $(cat "$tmp/err")"
+done
 
 # `polarview export` writes what the reference tool wrote (the same rows; headers aside).
 model="$root/assets/default.obj"

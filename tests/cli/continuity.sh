@@ -18,9 +18,11 @@ c2ps, cc = (json.load(open(p)) for p in sys.argv[1:3])
 seam_keys = {"kind", "count", "t_junctions", "max_position_gap", "max_normal_angle", "max_curvature_jump",
              "max_gaussian_jump", "max_mean_jump"}
 for d, scheme in ((c2ps, "c2ps"), (cc, "cc")):
-    assert set(d) == {"seams", "boundary_sides", "max_abs_gaussian", "max_abs_mean", "scheme", "level"}, d.keys()
+    assert set(d) == {"seams", "boundary_sides", "max_abs_gaussian", "max_abs_mean", "box_diagonal", "samples",
+                      "scheme", "level"}, d.keys()
     assert d["scheme"] == scheme and d["level"] == 3 and d["boundary_sides"] == 0, d
     assert d["max_abs_gaussian"] > 1 and d["max_abs_mean"] > 1, d
+    assert d["samples"] == 8 and 4 < d["box_diagonal"] < 5, d  # the default K; the mushroom's diagonal
     for s in d["seams"]:
         assert set(s) == seam_keys, s
         assert s["count"] > 0 and 0 <= s["t_junctions"] <= s["count"], s
