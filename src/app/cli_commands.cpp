@@ -250,6 +250,7 @@ int runExport(CommonOptions& o) {
   settings.level = o.levels;
   settings.schemeLabel = schemeName(o.scheme);
   PolyMesh mesh = loadInput(o.input);
+  if (format.curvature) requireCurvatureExtent(mesh, o.input);
   // The adaptive path's hard face limit leaves room over its estimate (an extrapolation past level 6).
   const size_t maxFaces = checkMemoryBudget(mesh, o, !o.uniform) * (o.uniform ? 1 : 2);
   const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, o.uniform, maxFaces);
@@ -307,6 +308,7 @@ void printContinuity(const CommonOptions& o, const ContinuityReport& report) {
 int runContinuity(CommonOptions& o) {
   checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
+  requireCurvatureExtent(mesh, o.input);
   // The patches `export` writes (feature-adaptive), with export's face limit.
   const size_t maxFaces = checkMemoryBudget(mesh, o, true) * 2;
   const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, false, maxFaces);

@@ -200,11 +200,11 @@ const std::vector<LengthUnitInfo>& lengthUnits() {
 
 const std::vector<ExportFormat>& exportFormats() {
   static const std::vector<ExportFormat> formats = {
-      {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", writeBv},
-      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", writePly},
-      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", writeGlb},
-      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", writeCad<writeStep>},
-      {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)",
+      {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", false, writeBv},
+      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, writePly},
+      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, writeGlb},
+      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", false, writeCad<writeStep>},
+      {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)", false,
        writeCad<writeIges>},
   };
   return formats;

@@ -34,6 +34,7 @@ struct ExportFormat {
   const char* name;                     // --format NAME: "bv", "step", "iges", "ply", "glb"
   std::vector<std::string> extensions;  // ".bv"; ".step", ".stp"; ...
   const char* description;              // one line of help
+  bool curvature;                       // holds curvature: the model must be at least kSmallestModelExtent
   // Writes `set` to `path` (atomically) and returns what it wrote, for "PATH: <summary>". Throws
   // InputError (bad data, named after settings.source) or std::runtime_error (I/O).
   std::string (*write)(const std::string& path, const PatchSet& set, const ExportSettings& settings);

@@ -176,6 +176,11 @@ std::string checkMeshShape(const PolyMesh& mesh, const std::string& name) {
 }
 }  // namespace
 
+void requireCurvatureExtent(const PolyMesh& mesh, const std::string& name) {
+  const std::string error = checkMeshShape(mesh, name);
+  if (!error.empty()) throw InputError(name, 0, error.substr(name.size() + 2));
+}
+
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
   try {
     ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)

@@ -198,6 +198,10 @@ constexpr double kSmallestModelExtent = 1e-150;
 // Checks a mesh for the viewer (the topology the refiners need, at least one face, an extent of at
 // least kSmallestModelExtent); returns the error message, empty when usable. [O(mesh)]
 std::string checkModelMesh(const PolyMesh& mesh, const std::string& name);
+// The same faces-and-extent check for the commands that compute curvature (continuity, export to
+// ply and glb): throws InputError(name, 0, ...) for a mesh without faces or smaller than
+// kSmallestModelExtent. [O(mesh)]
+void requireCurvatureExtent(const PolyMesh& mesh, const std::string& name);
 // The same for a model made with makeModel: its analysis has built the tables already. [O(points)]
 std::string checkModel(const Model& model);
 

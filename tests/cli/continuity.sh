@@ -70,4 +70,13 @@ for args in "--level 2" "--scheme c2ps" "--scheme c2ps --level 2 --samples 0"; d
   set -e
   [ $rc -eq 2 ] || fail "continuity $args: exit $rc, $(cat "$tmp/err")"
 done
+# A model of 1e-300: curvature past double's range: refused in one line, nothing on stdout.
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2*1e-300, $3*1e-300, $4*1e-300; next} {print}' \
+  "$root/assets/default.obj" > "$tmp/tiny.obj"
+set +e
+"$exe" continuity "$tmp/tiny.obj" --scheme c2ps --level 1 --json > "$tmp/out" 2> "$tmp/err"; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "tiny: exit $rc"
+[ ! -s "$tmp/out" ] || fail "tiny: printed $(cat "$tmp/out")"
+grep -q "tiny.obj: the model spans .* below 1e-150" "$tmp/err" || fail "tiny: $(cat "$tmp/err")"
 echo "continuity: ok"

@@ -93,4 +93,18 @@ fits=$(sed -n 's/.*(--samples \([0-9]*\) fits).*/\1/p' "$tmp/err.txt")
 [ -n "$fits" ] && [ "$fits" -lt 64 ] || fail "dense.ply: no fitting --samples named: $(cat "$tmp/err.txt")"
 "$exe" export "$root/assets/default.obj" -o "$tmp/dense.ply" --scheme c2ps --level 3 --samples "$fits" --memory-budget 20M \
   >/dev/null || fail "dense.ply: --samples $fits refused"
+# A model of 1e-300: its curvature (1 / size^2) is past double's range: refused as render refuses it,
+# nothing written (a STEP file, positions only, is written).
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2*1e-300, $3*1e-300, $4*1e-300; next} {print}' \
+  "$root/assets/default.obj" >"$tmp/tiny.obj"
+for ext in ply glb; do
+  set +e
+  "$exe" export "$tmp/tiny.obj" -o "$tmp/tiny.$ext" --scheme c2ps --level 1 >/dev/null 2>"$tmp/err.txt"
+  rc=$?
+  set -e
+  [ $rc -eq 1 ] || fail "tiny.$ext: exit $rc, expected 1"
+  grep -q "tiny.obj: the model spans .* below 1e-150" "$tmp/err.txt" || fail "tiny.$ext: $(cat "$tmp/err.txt")"
+  [ ! -e "$tmp/tiny.$ext" ] || fail "tiny.$ext written"
+done
+"$exe" export "$tmp/tiny.obj" -o "$tmp/tiny.step" --scheme c2ps --level 1 >/dev/null || fail "tiny.step refused"
 echo "export_tessellation: ok"
