@@ -129,4 +129,13 @@ if ls "$tmp" | grep -q '\.tmp$'; then fail "a temporary was left behind: $(ls "$
 # `help` lists the command.
 "$exe" help > "$tmp/help.txt"  # (grep -q would stop reading: pipefail)
 grep -q "polarview export IN.obj" "$tmp/help.txt" || fail "usage text lacks export"
+# The caps' measured deviation is scale-free: the mushroom and its copy of size 1e-150 report
+# the same (squaring a 1e-163 deviation underflowed to "caps within 0").
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2*1e-150, $3*1e-150, $4*1e-150; next} {print}' \
+  "$tmp/mushroom.obj" > "$tmp/small.obj"
+"$exe" export "$tmp/mushroom.obj" -o "$tmp/unit.bv" --scheme c2ps --level 2 > "$tmp/unit.txt"
+"$exe" export "$tmp/small.obj" -o "$tmp/small.bv" --scheme c2ps --level 2 > "$tmp/small.txt"
+caps() { sed -n 's/.*caps within \([^ ]*\) of.*/\1/p' "$1"; }
+[ -n "$(caps "$tmp/unit.txt")" ] && [ "$(caps "$tmp/unit.txt")" = "$(caps "$tmp/small.txt")" ] ||
+  fail "cap deviation at 1e-150: $(caps "$tmp/small.txt"), at size 1: $(caps "$tmp/unit.txt")"
 echo "export: all checks passed"

@@ -21,6 +21,11 @@ namespace polarview {
 
 namespace {
 
+// |v| without squaring's underflow (std::hypot): a cap of a 1e-150 model deviates by ~1e-163, whose
+// square is below double's range.
+double vectorLength(const Point& v) { return std::hypot(v.x, v.y, v.z); }
+
+
 constexpr int kCapRadialDegree = 4;  // the cap is a quartic in u (header)
 
 bool isFinite(const Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
@@ -205,7 +210,7 @@ double poleCapDeviation(const Patch& cap, const std::vector<BezierPatch>& pieces
       for (int b = 0; b < samplesV; ++b) {
         const double t = double(b) / (samplesV - 1);
         const Point exact = evaluatePatch(cap, u, pieceParameter(piece, split, t)).position;
-        worst = std::max(worst, glm::length(pieces[size_t(piece)].evaluate(u, t) - exact));
+        worst = std::max(worst, vectorLength(pieces[size_t(piece)].evaluate(u, t) - exact));
       }
     }
   return worst;
@@ -236,7 +241,7 @@ double patchBoxDiagonal(const PatchSet& set) {
   for (const Patch& patch : set.patches)
     for (int k = 0; k < 16; ++k)
       if (isPositionPoint(patch.kind, k)) add(patch.origin + patch.cp[size_t(k)]);
-  return set.patches.empty() ? 0.0 : glm::length(hi - lo);
+  return set.patches.empty() ? 0.0 : vectorLength(hi - lo);
 }
 
 void checkFinitePatches(const PatchSet& set, const std::string& sourceName) {
