@@ -190,7 +190,9 @@ struct SeamRecord {
 };
 
 SeamSample compare(const SurfacePoint& pa, const SurfacePoint& pb) {
-  return {glm::distance(pa.position, pb.position), glm::dot(pa.normal, pb.normal),
+  // The gap by std::hypot: on a 1e-150 model a round-off gap (1e-166) squared leaves double's range.
+  const Point gap = pa.position - pb.position;
+  return {std::hypot(gap.x, gap.y, gap.z), glm::dot(pa.normal, pb.normal),
           glm::length(glm::cross(pa.normal, pb.normal)), std::abs(pa.gaussian - pb.gaussian),
           std::abs(pa.mean - pb.mean), std::abs(pa.mean + pb.mean)};
 }
