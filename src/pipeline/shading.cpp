@@ -6,6 +6,8 @@
 
 #include <glm/common.hpp>
 
+#include "pipeline/surface_pipeline.h"  // weightedPercentile, weightedSymmetricRange
+
 namespace polarview {
 namespace {
 
@@ -109,6 +111,25 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, const ColourInt
       return 0.95f * rgb;
     }
   }
+}
+
+ColourStatistics colourStatistics(const std::vector<double>& values, const std::vector<double>& weights, float quantile) {
+  ColourStatistics statistics;
+  statistics.symmetricRange = weightedSymmetricRange(values, weights, quantile);
+  statistics.percentiles = {weightedPercentile(values, weights, 1.0 - quantile), weightedPercentile(values, weights, quantile)};
+  const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
+  statistics.min = *lowest;
+  statistics.max = *highest;
+  // A one-sided range needs a width: a sphere's K can be one value to all digits.
+  const int sign = statistics.oneSign();
+  ColourInterval& p = statistics.percentiles;
+  const double narrowest = 1e-6 * std::max(std::abs(p.low), std::abs(p.high));
+  if (sign != 0 && !(p.high - p.low >= narrowest)) {
+    const double middle = 0.5 * (p.low + p.high);
+    p = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
+    if (sign > 0 ? p.low < 0.0 : p.high > 0.0) p = sign > 0 ? ColourInterval{0.0, narrowest} : ColourInterval{-narrowest, 0.0};
+  }
+  return statistics;
 }
 
 }  // namespace polarview

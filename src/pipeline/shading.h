@@ -30,6 +30,23 @@ double colourBarPosition(double value, const ColourInterval& range);
 // The value at bar position p in [0, 1] (the inverse of colourBarPosition). [O(1)]
 double colourBarValue(double position, const ColourInterval& range);
 
+// What the automatic colour range is made of, from area-weighted values of K or H: the viewer's
+// shown samples (session) and the tessellations' vertices (export to ply, glb) read the same rule.
+struct ColourStatistics {
+  double symmetricRange = 1.0;  // weightedSymmetricRange
+  ColourInterval percentiles;   // [P(1 - q), P(q)]; one-signed values all equal: widened to 1e-6 of them
+  double min = -1.0, max = 1.0; // the values' extremes (which decide whether all have one sign)
+  // All values >= 0 (1) or <= 0 (-1), not all zero; 0 when mixed. [O(1)]
+  int oneSign() const { return min >= 0.0 && max > 0.0 ? 1 : max <= 0.0 && min < 0.0 ? -1 : 0; }
+  // The automatic range: one-sided `percentiles` for one-signed values, else +-symmetricRange. [O(1)]
+  ColourInterval automaticInterval() const {
+    return oneSign() != 0 ? percentiles : ColourInterval::symmetric(symmetricRange);
+  }
+};
+// The statistics of non-empty `values` with `weights` for the upper percentile `quantile` (0.9: the
+// 10th and 90th). [O(n log n)]
+ColourStatistics colourStatistics(const std::vector<double>& values, const std::vector<double>& weights, float quantile);
+
 // How the surface is coloured.
 struct ShadingParams {
   enum class Mode { Shaded, Gaussian, Mean, Highlight, Reflection };

@@ -73,21 +73,6 @@ void curvatureByArea(const Tessellation& mesh, const PatchSet& set, std::vector<
   }
 }
 
-// The viewer's automatic colour range of K: symmetric +-max(-P10, P90) where K has both signs,
-// one-sided [P10, P90] (at least 1e-6 of its size wide) where it has one.
-ColourInterval automaticCurvatureRange(const std::vector<double>& values, const std::vector<double>& weights) {
-  if (values.empty()) return ColourInterval{};
-  const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
-  if (*lowest < 0.0 && *highest > 0.0) return ColourInterval::symmetric(weightedSymmetricRange(values, weights, kColourQuantile));
-  ColourInterval range{weightedPercentile(values, weights, 1.0 - kColourQuantile), weightedPercentile(values, weights, kColourQuantile)};
-  const double narrowest = 1e-6 * std::max({std::abs(range.low), std::abs(range.high), 1e-300});
-  if (!(range.high - range.low >= narrowest)) {
-    const double middle = 0.5 * (range.low + range.high);
-    range = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
-  }
-  return range;
-}
-
 // Peak memory of a tessellation a vertex (about N^2 a patch): the welded mesh, its hash, colours and
 // the file's buffer. Measured: C2PS level 6 of assets/default.obj at --samples 64, 16.9 million
 // vertices, 5.13 GB peak RSS (304 bytes a vertex).
@@ -118,7 +103,7 @@ std::string writeTessellation(const std::string& path, const PatchSet& set, cons
   const Tessellation mesh = tessellatePatchSet(set, settings.samples);
   std::vector<double> values, weights;
   curvatureByArea(mesh, set, values, weights);
-  const ColourInterval range = automaticCurvatureRange(values, weights);
+  const ColourInterval range = values.empty() ? ColourInterval{} : colourStatistics(values, weights, kColourQuantile).automaticInterval();
   const ShadingParams::ColorMap map = ShadingParams{}.colormap;
   TessellationFileInfo info{settings.source, settings.schemeLabel, settings.level, {}, {}};
   info.colours.reserve(mesh.positions.size());

@@ -95,19 +95,7 @@ void Session::collectColourSamples() {
   }
   if (values.empty()) return;
   ColourRangeSettings& colour = state_.colour;
-  colour.autoRange = weightedSymmetricRange(values, weights, colour.quantile);
-  colour.autoPercentiles = {weightedPercentile(values, weights, 1.0 - colour.quantile),
-                            weightedPercentile(values, weights, colour.quantile)};
-  colour.sampleMin = *std::min_element(values.begin(), values.end());
-  colour.sampleMax = *std::max_element(values.begin(), values.end());
-  // A one-sided range needs a width: a sphere's K can be one value to all digits.
-  ColourInterval& p = colour.autoPercentiles;
-  const double narrowest = 1e-6 * std::max(std::abs(p.low), std::abs(p.high));
-  if (colour.oneSign() != 0 && !(p.high - p.low >= narrowest)) {
-    const double middle = 0.5 * (p.low + p.high);
-    p = {middle - 0.5 * narrowest, middle + 0.5 * narrowest};
-    if (colour.oneSign() > 0 ? p.low < 0.0 : p.high > 0.0) p = colour.oneSign() > 0 ? ColourInterval{0.0, narrowest} : ColourInterval{-narrowest, 0.0};
-  }
+  colour.sampled = colourStatistics(values, weights, colour.quantile);
   colour.histogram.clear();  // recomputed for the new samples
 }
 

@@ -7,10 +7,9 @@
 namespace polarview {
 
 ColourInterval ColourRangeSettings::automaticInterval() const {
-  if (oneSign() != 0) return autoPercentiles;
-  if (symmetric) return ColourInterval::symmetric(autoRange);
-  const double floor = 1e-3 * autoRange;
-  return {std::min(autoPercentiles.low, -floor), std::max(autoPercentiles.high, floor)};
+  if (oneSign() != 0 || symmetric) return sampled.automaticInterval();
+  const double floor = 1e-3 * sampled.symmetricRange;
+  return {std::min(sampled.percentiles.low, -floor), std::max(sampled.percentiles.high, floor)};
 }
 
 std::string colourRangeNote(const ViewerState& state) {
@@ -20,7 +19,7 @@ std::string colourRangeNote(const ViewerState& state) {
   char text[160];
   if (state.colour.automatic) {
     const int sign = state.colour.oneSign();
-    const bool strict = sign > 0 ? state.colour.sampleMin > 0.0 : state.colour.sampleMax < 0.0;
+    const bool strict = sign > 0 ? state.colour.sampled.min > 0.0 : state.colour.sampled.max < 0.0;
     std::snprintf(text, sizeof text, "all %s %s 0: range %.3g .. %.3g, one-sided", quantity,
                   sign > 0 ? (strict ? ">" : ">=") : (strict ? "<" : "<="), range.low, range.high);
   } else {

@@ -89,14 +89,9 @@ struct ColourRangeSettings {
   bool symmetric = true;
   double typedRange = 1.0;   // typed and symmetric: [-typedRange, typedRange]
   ColourInterval typedApart; // typed, min and max apart (min < max)
-  // Written by the session from the shown samples: the symmetric range, [P(1 - P), P(P)], and the
-  // samples' extremes (which decide whether all have one sign).
-  double autoRange = 1.0;
-  ColourInterval autoPercentiles;
-  double sampleMin = -1.0, sampleMax = 1.0;
-  // All shown values >= 0 (1) or <= 0 (-1), not all zero; 0 when mixed. Then the automatic range is
-  // one-sided.
-  int oneSign() const { return sampleMin >= 0.0 && sampleMax > 0.0 ? 1 : sampleMax <= 0.0 && sampleMin < 0.0 ? -1 : 0; }
+  // Written by the session from the shown samples (pipeline/surface_pipeline.h).
+  ColourStatistics sampled;
+  int oneSign() const { return sampled.oneSign(); }
   // The automatic range: one-sided [P(1 - P), P(P)] for one-signed values, else symmetric or each
   // side apart (a side without values keeps a sliver, 1e-3, of the other).
   ColourInterval automaticInterval() const;

@@ -352,7 +352,7 @@ void drawColourPanel(ViewerState& state) {
     if (ImGui::InputDouble("Range +-", &state.colour.typedRange, 0.0, 0.0, "%.6g")) {
       state.colour.typedRange = std::max(std::abs(state.colour.typedRange), kSmallestRange);
     }
-    if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.autoRange;
+    if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.sampled.symmetricRange;
   } else {
     ColourInterval& typed = state.colour.typedApart;
     // Min below max; zero between them keeps the map's middle, else the range is one-sided.

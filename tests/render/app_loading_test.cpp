@@ -218,7 +218,7 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
   CHECK(below > 0.0);
   CHECK(above > 0.0);
   CHECK(std::abs(below - above) > 0.1 * above);
-  CHECK(std::max(below, above) == doctest::Approx(state.colour.autoRange));  // the symmetric one is the larger
+  CHECK(std::max(below, above) == doctest::Approx(state.colour.sampled.symmetricRange));  // the symmetric one is the larger
   CHECK(state.colour.histogram.size() == size_t(kHistogramBins));
   CHECK(*std::max_element(state.colour.histogram.begin(), state.colour.histogram.end()) == 1.0f);
   setAutomaticRange(state, false);
