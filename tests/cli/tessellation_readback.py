@@ -115,7 +115,8 @@ def main():
     check(chi == int(euler), f"PLY Euler characteristic {chi} = {euler}")
     normals = np.stack([data["nx"], data["ny"], data["nz"]], axis=1)
     check(np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-12), "PLY normals unit")
-    colours = np.stack([data["red"], data["green"], data["blue"]], axis=1)
+    # meshio 1.x reads PLY "uchar" as int8 (its binary type table maps uchar to i1): back to bytes.
+    colours = np.stack([data["red"], data["green"], data["blue"]], axis=1).astype(np.uint8)
     check(len(np.unique(colours, axis=0)) > 10, "the colours vary with K")
     low, high = (float(x) for x in re.search(r"K in \[([^,]+), ([^\]]+)\]", summary).groups())
     check(abs(K.min() - low) <= 1e-5 * abs(low) and abs(K.max() - high) <= 1e-5 * abs(high), "K range = summary")
@@ -133,6 +134,10 @@ def main():
     check(np.array_equal(attributes["_MEAN_CURVATURE"][1][:, 0], H.astype(np.float32)), "glb H = PLY H as floats")
     colour = attributes["COLOR_0"][1]
     check(colour.min() >= 0.0 and colour.max() <= 1.0, "COLOR_0 in [0, 1]")
+    # The same colours: COLOR_0 is linear, the PLY's bytes sRGB (IEC 61966-2-1 decoding).
+    srgb = colours / 255.0
+    linear = np.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+    check(np.abs(colour[:, :3] - linear).max() <= 0.5 / 255.0 * 2.4, "glb COLOR_0 = the PLY's sRGB colours, linear")
     extras = gltf["asset"]["extras"]
     check("scheme" in extras and "level" in extras, "asset.extras name scheme and level")
     bad, _, _, chi = edge_topology(indices, len(positions))
