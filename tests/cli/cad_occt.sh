@@ -38,6 +38,15 @@ judge "$root/assets/default.obj" bps 1 --g2 $smooth --not-g1 end-cap
 judge "$root/assets/globe.obj" c2ps 1 --g2 ring-ring
 judge "$tmp/cap64.obj" c2ps 1 --g2 $smooth
 judge "$root/assets/cube_cc2.obj" cc 1 --g2 regular --not-g1 end-cap
+# The rest of the four models x four schemes at level 1 (cube_cc2 has no pole: every scheme is
+# Catmull-Clark there, the case above).
+judge "$root/assets/default.obj" cc 1 --g2 regular --not-g1 end-cap
+judge "$root/assets/globe.obj" rts 1 --g2 ring-ring
+judge "$root/assets/globe.obj" bps 1 --g2 ring-ring
+judge "$root/assets/globe.obj" cc 1 --g2 regular --not-g1 end-cap
+judge "$tmp/cap64.obj" rts 1 --g2 $smooth
+judge "$tmp/cap64.obj" bps 1 --g2 $smooth
+judge "$tmp/cap64.obj" cc 1 --g2 regular --not-g1 end-cap
 # Valence 5: each cap sector is written as 2 pieces, sampled at the sector's parameters, their
 # seams counted per sector side (and the seam between a sector's pieces apart, as cap-piece).
 "$exe" shape cap --valence 5 -o "$tmp/cap5.obj" > /dev/null
