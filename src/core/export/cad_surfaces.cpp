@@ -160,4 +160,13 @@ std::string shortestDouble(double value) {
   return std::string(text, result.ptr);
 }
 
+std::string cadReal(double value, char exponentLetter) {
+  const std::string text = shortestDouble(value);
+  const size_t exponent = text.find('e');
+  const std::string mantissa = text.substr(0, exponent);
+  std::string out = mantissa.find('.') == std::string::npos ? mantissa + "." : mantissa;
+  if (exponent != std::string::npos) out += exponentLetter + text.substr(exponent + 1);
+  return out;
+}
+
 }  // namespace polarview

@@ -69,5 +69,8 @@ std::string describeCadSurfaces(const CadSurfaceSet& set);
 
 // Shortest text that reads back as exactly `value` ("0.1", "1e-07"), by std::to_chars.
 std::string shortestDouble(double value);
+// shortestDouble as a CAD file's real: always a decimal point, the exponent after `exponentLetter`
+// ('E' in STEP: "1.E-07"; 'D' in IGES: "1.D-07"). [O(1)]
+std::string cadReal(double value, char exponentLetter);
 
 }  // namespace polarview

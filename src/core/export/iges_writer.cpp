@@ -149,14 +149,7 @@ std::string igesString(const std::string& text) {
   return std::to_string(clean.size()) + "H" + clean;
 }
 
-std::string igesReal(double value) {
-  std::string text = shortestDouble(value);
-  const size_t exponent = text.find('e');
-  const std::string mantissa = text.substr(0, exponent);
-  std::string out = mantissa.find('.') == std::string::npos ? mantissa + "." : mantissa;
-  if (exponent != std::string::npos) out += "D" + text.substr(exponent + 1);
-  return out;
-}
+std::string igesReal(double value) { return cadReal(value, 'D'); }
 
 void writeIges(std::ostream& out, const CadSurfaceSet& set, const CadFileInfo& info) {
   IgesSection start(out, 'S');

@@ -167,14 +167,7 @@ std::string stepString(const std::string& text) {
   return out + "'";
 }
 
-std::string stepReal(double value) {
-  std::string text = shortestDouble(value);
-  const size_t exponent = text.find('e');
-  const std::string mantissa = text.substr(0, exponent);
-  std::string out = mantissa.find('.') == std::string::npos ? mantissa + "." : mantissa;
-  if (exponent != std::string::npos) out += "E" + text.substr(exponent + 1);
-  return out;
-}
+std::string stepReal(double value) { return cadReal(value, 'E'); }
 
 void writeStep(std::ostream& out, const CadSurfaceSet& set, const CadFileInfo& info) {
   out << "ISO-10303-21;\nHEADER;\n"
