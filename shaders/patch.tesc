@@ -16,6 +16,7 @@ layout(vertices = 16) out;
 in vec3 vc_controlPoint[];
 in vec3 vc_fromEye[];
 flat in int vc_patchIndex[];
+flat in int vc_itemIndex[];
 out vec3 tc_controlPoint[];
 out vec3 tc_fromEye[];
 // (kind, ring index) of the patch. The per-patch texel's x (patch_frame.glsl's patchKindRing)
@@ -27,6 +28,10 @@ patch out ivec4 tc_jumps;  // Patch::edgeLevelDelta (patch.h edge order), for th
 patch out int tc_patchIndex;
 patch out vec3 tc_originFromEye;  // the patch's frame (PatchFrame) for patch.tese
 patch out mat3 tc_axes;
+// A group of a ring row's sectors drawn as one primitive (pipeline/draw_selection.h): (the row's
+// first entry in u_rowSlots, the first sector, sectors in the row, log2 of the sectors in the
+// group); x = -1 for a lone patch.
+patch out ivec4 tc_group;
 
 uniform vec2 u_viewportSize;         // pixels
 uniform float u_tessPixels;          // target edge length in pixels
@@ -34,6 +39,13 @@ uniform float u_maxTessLevel;
 uniform float u_fixedTessLevel;      // > 0: use this level everywhere (probes, comparisons)
 uniform int u_transitionDensity;     // k: 2^k segments per level-0 parameter unit on T-junctions
 uniform float u_nearDepth;           // the near plane's distance (perspective), w's floor below
+// Drawn items (patch_renderer.cpp, DrawItem; patch.vert): per item two RGBA32I texels, (slot, row
+// start, sector, sectors in the row) and (packed: bits 0-7 log2 of the group's sectors, 8-15 and
+// 16-23 the exponent + 1 of the segments of the group's edges u = 0 and u = 1, 0 for the patch's
+// own rule); u_useItems = 0: every primitive is a lone patch with its own rules.
+uniform int u_useItems;
+uniform isamplerBuffer u_drawItems;
+uniform isamplerBuffer u_rowSlots;  // per row its slots in sector order
 
 // Projected points are clamped to a frame half a viewport beyond each border, so an edge's level
 // follows its length on and near the screen: in close-ups, the parts of patches beside or behind
@@ -64,6 +76,9 @@ vec3 edgePoint(int a, int b, int c) {
   return ((vc_fromEye[a] + vc_fromEye[c]) + 4.0 * vc_fromEye[b]) / 6.0;
 }
 
+// The same from the group's last sector (patch.tesc's `last`: the patch itself when alone).
+vec3 lastEdgePoint(vec3 last[16], int a, int b, int c) { return ((last[a] + last[c]) + 4.0 * last[b]) / 6.0; }
+
 float levelFor(float pixels) {
   if (u_fixedTessLevel > 0.0) return u_fixedTessLevel;
   return clamp(ceil(pixels / u_tessPixels), 1.0, u_maxTessLevel);
@@ -93,6 +108,9 @@ bool outsideFrustum() {
   return any(equal(below, ivec3(16))) || any(equal(above, ivec3(16)));
 }
 
+// Level of a circle edge the draw selection set (2^exponent), else `own`.
+float circleLevel(int exponent, float own) { return exponent >= 0 ? float(1 << exponent) : own; }
+
 void main() {
   tc_controlPoint[gl_InvocationID] = vc_controlPoint[gl_InvocationID];
   tc_fromEye[gl_InvocationID] = vc_fromEye[gl_InvocationID];
@@ -102,6 +120,26 @@ void main() {
   int kind = kindLevelJumps & 0xFF, level = (kindLevelJumps >> 8) & 0xFF;
   tc_kindRing = ivec2(kind, kindRing.y);
   tc_patchIndex = vc_patchIndex[0];
+  ivec4 group = ivec4(-1, 0, 1, 0);
+  int innerExponent = -1, outerExponent = -1;
+  if (vc_itemIndex[0] >= 0) {
+    ivec4 place = texelFetch(u_drawItems, 2 * vc_itemIndex[0]);
+    int itemBits = texelFetch(u_drawItems, 2 * vc_itemIndex[0] + 1).x;
+    if (place.y >= 0) group = ivec4(place.yzw, itemBits & 0xFF);
+    innerExponent = ((itemBits >> 8) & 0xFF) - 1;
+    outerExponent = ((itemBits >> 16) & 0xFF) - 1;
+  }
+  tc_group = group;
+  // The group's edge v = 1 is its last sector's, shared with the next group's first sector: its
+  // level from that sector's points (the same bits as there).
+  int sectors = 1 << group.w;
+  vec3 last[16];
+  for (int k = 0; k < 16; ++k) last[k] = vc_fromEye[k];
+  if (sectors > 1) {
+    int lastSlot = texelFetch(u_rowSlots, group.x + (group.y + sectors - 1) % group.z).x;
+    vec3 unusedLocal[16];
+    fetchPatchPoints(lastSlot, kind, unusedLocal, last);
+  }
 
   // Quads: outer[0] is the edge u = 0, [1] v = 0, [2] u = 1, [3] v = 1.
   float outer0, outer1, outer2, outer3;
@@ -110,18 +148,16 @@ void main() {
     // Pole edge u = 0 is a point; the radial edges v = 0, 1 run from p0 to the boundary curve's
     // ends; the edge u = 1 is the boundary curve b0..b3 shared with the innermost ring.
     vec3 start = ((vc_fromEye[6] + vc_fromEye[8]) + 4.0 * vc_fromEye[7]) / 6.0;
-    vec3 end = ((vc_fromEye[7] + vc_fromEye[9]) + 4.0 * vc_fromEye[8]) / 6.0;
+    vec3 end = ((last[7] + last[9]) + 4.0 * last[8]) / 6.0;
     vec2 pole = toPixels(vc_fromEye[0]);
     outer0 = 1.0;
     outer1 = levelFor(1.5 * distance(pole, toPixels(start)));
     outer3 = levelFor(1.5 * distance(pole, toPixels(end)));
-    outer2 = levelFor(projectedCurveLength(vc_fromEye[6], vc_fromEye[7], vc_fromEye[8], vc_fromEye[9]));
-  } else if (u_fixedTessLevel <= 0.0 && outsideFrustum()) {
-    outer0 = outer1 = outer2 = outer3 = 0.0;  // discards the patch
+    outer2 = circleLevel(outerExponent, levelFor(projectedCurveLength(vc_fromEye[6], vc_fromEye[7], vc_fromEye[8], vc_fromEye[9])));
+  } else if (u_fixedTessLevel <= 0.0 && sectors == 1 && outsideFrustum()) {
+    outer0 = outer1 = outer2 = outer3 = 0.0;  // discards the patch (groups: culled on the CPU)
   } else {
-    // bitfieldExtract of an int sign-extends: the 4 jumps in patch.h edge order.
-    ivec4 jump = ivec4(bitfieldExtract(kindLevelJumps, 16, 4), bitfieldExtract(kindLevelJumps, 20, 4),
-                       bitfieldExtract(kindLevelJumps, 24, 4), bitfieldExtract(kindLevelJumps, 28, 4));
+    ivec4 jump = patchJumps(kindLevelJumps);
     tc_jumps = jump;
     // GL edge u = 0 is patch edge 3, v = 0 is 0, u = 1 is 1, v = 1 is 2.
     outer0 = edgeLevel(projectedCurveLength(edgePoint(0, 1, 2), edgePoint(4, 5, 6),
@@ -130,8 +166,10 @@ void main() {
                                             edgePoint(9, 10, 11), edgePoint(13, 14, 15)), level, jump[1]);
     outer1 = edgeLevel(projectedCurveLength(edgePoint(0, 4, 8), edgePoint(1, 5, 9),
                                             edgePoint(2, 6, 10), edgePoint(3, 7, 11)), level, jump[0]);
-    outer3 = edgeLevel(projectedCurveLength(edgePoint(4, 8, 12), edgePoint(5, 9, 13),
-                                            edgePoint(6, 10, 14), edgePoint(7, 11, 15)), level, jump[2]);
+    outer3 = edgeLevel(projectedCurveLength(lastEdgePoint(last, 4, 8, 12), lastEdgePoint(last, 5, 9, 13),
+                                            lastEdgePoint(last, 6, 10, 14), lastEdgePoint(last, 7, 11, 15)), level, jump[2]);
+    outer0 = circleLevel(innerExponent, outer0);
+    outer2 = circleLevel(outerExponent, outer2);
   }
   // The frame, for the evaluation, only for patches that are drawn (close-ups cull most).
   if (outer0 > 0.0) {

@@ -22,10 +22,13 @@ patch in ivec4 tc_jumps;
 patch in int tc_patchIndex;
 patch in vec3 tc_originFromEye;
 patch in mat3 tc_axes;
+patch in ivec4 tc_group;  // patch.tesc: a group of a row's sectors (x >= 0), one primitive
+
+uniform isamplerBuffer u_rowSlots;  // per row its slots in sector order (patch.tesc)
 
 void main() {
-  vec3 cp[16];
-  for (int k = 0; k < 16; ++k) cp[k] = tc_controlPoint[k];
+  vec3 cp[16], points[16];
+  for (int k = 0; k < 16; ++k) cp[k] = tc_controlPoint[k], points[k] = tc_fromEye[k];
   float u = gl_TessCoord.x, v = gl_TessCoord.y;
   // Derivatives, K and H are the same in any frame (rotation and translation): evaluate locally.
   int kind = tc_kindRing.x;
@@ -36,25 +39,45 @@ void main() {
     if (v == 0.0 || v == 1.0) u = snappedEdgeParameter(u, outer[v == 0.0 ? 1 : 3]);
     if (u == 0.0 || u == 1.0) v = snappedEdgeParameter(v, outer[u == 0.0 ? 0 : 2]);
   }
-  SurfacePoint s = evaluatePatch(cp, kind, u, v);
+  // A group of g sectors (pipeline/draw_selection.h): v runs over all of them; the vertex is
+  // evaluated in sector s = floor(v g) at v g - s (exact: g and the circle levels are powers of two),
+  // from that sector's own points. Its circle edges then have outer / g segments per sector, the
+  // same as the sectors across the circle; only the group's ends are radial edges shared.
+  int sectors = tc_group.x >= 0 ? 1 << tc_group.w : 1;
+  int patchIndex = tc_patchIndex;
+  ivec4 jumps = tc_jumps;
+  mat3 axes = tc_axes;
+  float sectorV = v;
+  bvec4 onEdge = bvec4(u == 0.0, v == 0.0, u == 1.0, v == 1.0);
+  if (sectors > 1) {
+    float scaled = v * float(sectors);
+    int s = min(int(floor(scaled)), sectors - 1);
+    sectorV = scaled - float(s);
+    bool onCircle = onEdge.x || onEdge.z;
+    onEdge.y = sectorV == 0.0 && (s == 0 || onCircle);
+    onEdge.w = sectorV == 1.0;
+    outer[0] /= float(sectors);
+    outer[2] /= float(sectors);
+    if (s > 0) {
+      patchIndex = texelFetch(u_rowSlots, tc_group.x + (tc_group.y + s) % tc_group.z).x;
+      fetchPatchPoints(patchIndex, kind, cp, points);
+      axes = patchFrame(patchIndex).axes;
+      jumps = kind == kPatchPoleCap ? ivec4(0) : patchJumps(patchKindRing(patchIndex).x);
+    }
+  }
+  SurfacePoint s = evaluatePatch(cp, kind, u, sectorV);
   // The position: a cap's from its frame; a B-spline patch's from the points shared with its
   // neighbours, its shared edges and corners alike on both sides (patch_frame.glsl).
   vec3 fromEye;
-  if (kind == kPatchPoleCap) {
-    vec3 shared[16];
-    for (int k = 0; k < 16; ++k) shared[k] = tc_fromEye[k];
-    fromEye = capPositionFromEye(shared, u, v);
-  } else {
-    vec3 points[16];
-    for (int k = 0; k < 16; ++k) points[k] = tc_fromEye[k];
-    fromEye = kind == kPatchEndCap ? positionFromEye(points, u, v) : watertightPositionFromEye(points, u, v, outer, tc_jumps);
-  }
+  if (kind == kPatchPoleCap) fromEye = capPositionFromEye(points, u, sectorV);
+  else if (kind == kPatchEndCap) fromEye = positionFromEye(points, u, sectorV);
+  else fromEye = watertightPositionFromEye(points, u, sectorV, outer, jumps, onEdge);
 #ifdef PROBE
   probe_uvKH = vec4(u, v, s.gaussian, s.mean);
-  probe_positionPatch = vec4(fromEye, float(tc_patchIndex));
+  probe_positionPatch = vec4(fromEye, float(patchIndex));
 #else
   te_out.position = fromEye;
-  te_out.normal = tc_axes * s.normal;
+  te_out.normal = axes * s.normal;
   te_out.curvature = vec2(s.gaussian, s.mean);
   te_out.uv = vec2(u, v);
   te_out.kindRing = tc_kindRing;

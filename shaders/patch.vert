@@ -14,18 +14,29 @@ layout(location = 3) in vec3 a_pointLo;
 
 out vec3 vc_controlPoint;
 out vec3 vc_fromEye;
-// The patch's index in the buffer: gl_VertexID counts from the buffer start in every run of a
-// multi-draw, where gl_PrimitiveID restarts (patch_renderer.cpp draws runs of patches).
+// The patch's slot in the buffers, and the drawn item it is part of (-1: drawn alone, the slots in
+// order). A plain draw's gl_VertexID is slot * 16 + k (counting from the buffer start in every run
+// of a multi-draw, where gl_PrimitiveID restarts); an item draw's is item * 16 + k, the item's
+// texels (patch.tesc's u_drawItems) name the slot and its points come from u_patchPoints.
 flat out int vc_patchIndex;
+flat out int vc_itemIndex;
 
-const int kPoleCapKind = 3;  // patch_eval.glsl's kPatchPoleCap
+uniform int u_useItems;
+uniform isamplerBuffer u_drawItems;
 
 void main() {
-  vc_controlPoint = a_localPoint;
+  int k = gl_VertexID % 16;
+  vec3 local = a_localPoint, hi = a_pointHi, lo = a_pointLo;
   vc_patchIndex = gl_VertexID / 16;
-  // A cap's vector and parameter slots (all but p0 and b_j: 0, 6..9) hold world vectors and
-  // (j, n, R) as they are (patch_renderer.cpp, capSharedSlot).
-  int slot = gl_VertexID % 16;
-  bool capData = (patchKindRing(vc_patchIndex).x & 0xFF) == kPoleCapKind && slot != 0 && (slot < 6 || slot > 9);
-  vc_fromEye = capData ? a_pointHi + a_pointLo : relativeToEye(a_pointHi, a_pointLo);
+  vc_itemIndex = -1;
+  if (u_useItems != 0) {
+    vc_itemIndex = gl_VertexID / 16;
+    vc_patchIndex = texelFetch(u_drawItems, 2 * vc_itemIndex).x;
+    int texel = 48 * vc_patchIndex + 3 * k;
+    local = texelFetch(u_patchPoints, texel).xyz;
+    hi = texelFetch(u_patchPoints, texel + 1).xyz;
+    lo = texelFetch(u_patchPoints, texel + 2).xyz;
+  }
+  vc_controlPoint = local;
+  vc_fromEye = sharedPointFromEye(hi, lo, patchKindRing(vc_patchIndex).x & 0xFF, k);
 }

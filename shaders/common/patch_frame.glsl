@@ -24,12 +24,42 @@ uniform isamplerBuffer u_patchKinds;
 
 ivec2 patchKindRing(int patchIndex) { return texelFetch(u_patchKinds, patchIndex).xy; }
 
+// Patch::edgeLevelDelta of edges 0..3 (patch.h order) from the packed kind texel (bitfieldExtract
+// of an int sign-extends).
+ivec4 patchJumps(int kindLevelJumps) {
+  return ivec4(bitfieldExtract(kindLevelJumps, 16, 4), bitfieldExtract(kindLevelJumps, 20, 4),
+               bitfieldExtract(kindLevelJumps, 24, 4), bitfieldExtract(kindLevelJumps, 28, 4));
+}
+
+// Per slot its 16 control points as (GPU form, world hi, world lo), RGB32F texels: the vertex
+// buffer itself, from which patch.tesc and patch.tese fetch the other sectors of a group
+// (pipeline/draw_selection.h).
+uniform samplerBuffer u_patchPoints;
+
 // hi + lo (relative to the model centre) minus the eye: differences of nearby floats are exact,
 // so the result is as precise as a float of its own size. `precise` keeps the compiler from
 // reassociating the sum (which would round at the size of the model instead).
 vec3 relativeToEye(vec3 hi, vec3 lo) {
   precise vec3 d = (hi - u_eyeHi) + (lo - u_eyeLo);
   return d;
+}
+
+// A control point relative to the eye as patch.vert passes it on: a cap's vector and parameter
+// slots (all but p0 and b_j: 0, 6..9) as they are (patch_renderer.cpp, capSharedSlot). One function
+// for every stage, so that a point fetched in patch.tese is the same bits as patch.vert's.
+vec3 sharedPointFromEye(vec3 hi, vec3 lo, int kind, int slot) {
+  bool capData = kind == 3 && slot != 0 && (slot < 6 || slot > 9);  // kind 3: kPatchPoleCap
+  return capData ? hi + lo : relativeToEye(hi, lo);
+}
+
+// Patch `patchIndex`'s control points: in its frame (for evaluation) and relative to the eye.
+void fetchPatchPoints(int patchIndex, int kind, out vec3 local[16], out vec3 fromEye[16]) {
+  int base = 48 * patchIndex;
+  for (int k = 0; k < 16; ++k) {
+    local[k] = texelFetch(u_patchPoints, base + 3 * k).xyz;
+    fromEye[k] = sharedPointFromEye(texelFetch(u_patchPoints, base + 3 * k + 1).xyz,
+                                    texelFetch(u_patchPoints, base + 3 * k + 2).xyz, kind, k);
+  }
 }
 
 struct PatchFrame {
@@ -149,8 +179,10 @@ void patchColumn(vec3 p[16], int i, out vec3 column[4]) { for (int j = 0; j < 4;
 // 2 u = 1, 3 v = 1) and level jumps (patch.h order: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0): shared
 // edges and corners as above, the inside (and T-junction edges, whose sides hold other curves) as
 // positionFromEye.
-vec3 watertightPositionFromEye(vec3 p[16], float u, float v, float outer[4], ivec4 jumps) {
-  bool u0 = u == 0.0, u1 = u == 1.0, v0 = v == 0.0, v1 = v == 1.0;
+// `onEdge`: whether (u, v) is on the edge u = 0, v = 0, u = 1, v = 1 that the patch shares (a
+// sector inside a group shares only its circle edges and the group's ends, patch.tese).
+vec3 watertightPositionFromEye(vec3 p[16], float u, float v, float outer[4], ivec4 jumps, bvec4 onEdge) {
+  bool u0 = onEdge.x, v0 = onEdge.y, u1 = onEdge.z, v1 = onEdge.w;
   if ((u0 || u1) && (v0 || v1)) return sharedCornerPosition(p, u0 ? 1 : 2, v0 ? 1 : 2);
   vec3 a[4], b[4], c[4];
   if ((v0 && jumps[0] == 0) || (v1 && jumps[2] == 0)) {
@@ -166,4 +198,8 @@ vec3 watertightPositionFromEye(vec3 p[16], float u, float v, float outer[4], ive
     return sharedEdgePosition(a, b, c, v, outer[u0 ? 0 : 2]);
   }
   return positionFromEye(p, u, v);
+}
+
+vec3 watertightPositionFromEye(vec3 p[16], float u, float v, float outer[4], ivec4 jumps) {
+  return watertightPositionFromEye(p, u, v, outer, jumps, bvec4(u == 0.0, v == 0.0, u == 1.0, v == 1.0));
 }

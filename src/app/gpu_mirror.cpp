@@ -69,6 +69,7 @@ std::unique_ptr<PatchRenderer> GpuMirror::makeRenderer() const {
   auto renderer = std::make_unique<PatchRenderer>();
   std::string log;
   if (!renderer->init(&log, shaders_)) throw std::runtime_error("shaders: " + log);  // compiled once already
+  renderer->setRegionDetail(levelOfDetail_.enabled);  // render --full-draw: every patch alone
   return renderer;
 }
 

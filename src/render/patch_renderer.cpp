@@ -54,6 +54,9 @@ constexpr int kFrameTexelsPerPatch = 5;  // origin hi, origin lo, axes x, y, z (
 constexpr size_t kFloatsPerFrame = 3 * kFrameTexelsPerPatch;
 constexpr int kFrameTextureUnit = 3;     // texture units of u_patchFrames and u_patchKinds
 constexpr int kKindTextureUnit = 4;
+constexpr int kPointTextureUnit = 5;     // u_patchPoints, u_drawItems, u_rowSlots
+constexpr int kItemTextureUnit = 6;
+constexpr int kRowSlotTextureUnit = 7;
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // A double vector rounded to float. Through a volatile: GCC 12.2 at -O2 and -O3 vectorises
@@ -211,10 +214,12 @@ GpuPatch gpuForm(const Patch& patch) {
 // The per-patch kind texel's x as patch.tesc unpacks it: bits 0-7 PatchKind, 8-15 level, then
 // Patch::edgeLevelDelta of edges 0..3 as signed 4-bit fields at bits 16 + 4s (jumps beyond
 // [-8, 7] get the same tessellation as those ends, see transitionEdgeSegments).
+// A ring patch goes up turned by its ringTurn (u outwards, v around: sector groups, patch.tese),
+// its jumps with it (turnedPatch).
 int32_t packKindLevelJumps(const Patch& patch) {
   uint32_t packed = uint32_t(patch.kind) | uint32_t(patch.level) << 8;
   for (int s = 0; s < 4; ++s)
-    packed |= (uint32_t(std::clamp(int(patch.edgeLevelDelta[s]), -8, 7)) & 0xFu) << (16 + 4 * s);
+    packed |= (uint32_t(std::clamp(int(patch.edgeLevelDelta[size_t((s + patch.ringTurn) % 4)]), -8, 7)) & 0xFu) << (16 + 4 * s);
   return static_cast<int32_t>(packed);
 }
 
@@ -298,6 +303,7 @@ ProgramSpec overlaySpec() {
 // call, so GPUs that need no split pay nothing measurable.
 constexpr int kMaxVerticesPerDraw = 65535;
 
+
 int patchesPerRun(int maxLevel) {
   const int perPatch = (std::clamp(maxLevel, 1, 64) + 1) * (std::clamp(maxLevel, 1, 64) + 1);
   return std::max(1, kMaxVerticesPerDraw / perPatch);
@@ -368,6 +374,9 @@ struct PatchRenderer::Impl {
   // Per patch (patch_frame.glsl's texels): frame; kind, level, jumps and ring.
   GLuint frameBuffer = 0, frameTexture = 0, kindBuffer = 0, kindTexture = 0;
   size_t positionsCapacity = 0, frameCapacity = 0, kindCapacity = 0;  // bytes allocated in each
+  // The control points again as texels (patch.tese fetches a group's other sectors); per drawn item
+  // its texel; per row its slots; the drawn items' indices.
+  GLuint pointTexture = 0, itemBuffer = 0, itemTexture = 0, rowSlotBuffer = 0, rowSlotTexture = 0;
   double transitionUnitLength = 0.0;  // see addTransitionSides: sets the transition density
   GLuint netVao = 0, netBuffer = 0;
   GLuint poleVao = 0, poleBuffer = 0;
@@ -395,6 +404,12 @@ struct PatchRenderer::Impl {
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, frameBuffer);
     glBindTexture(GL_TEXTURE_BUFFER, kindTexture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32I, kindBuffer);
+    glBindTexture(GL_TEXTURE_BUFFER, pointTexture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, patchPositions);
+    glBindTexture(GL_TEXTURE_BUFFER, rowSlotTexture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32I, rowSlotBuffer);
+    glBindTexture(GL_TEXTURE_BUFFER, itemTexture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32I, itemBuffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
   }
   // `colors`: one per point, or one for all.
@@ -430,10 +445,11 @@ PatchRenderer::~PatchRenderer() {
   glDeleteVertexArrays(1, &g.patchVao);
   glDeleteVertexArrays(1, &g.netVao);
   glDeleteVertexArrays(1, &g.poleVao);
-  const GLuint buffers[] = {g.patchPositions, g.kindBuffer, g.frameBuffer, g.netBuffer, g.poleBuffer};
-  glDeleteBuffers(5, buffers);
-  const GLuint textures[] = {g.frameTexture, g.kindTexture};
-  glDeleteTextures(2, textures);
+  const GLuint buffers[] = {g.patchPositions, g.kindBuffer, g.frameBuffer, g.netBuffer, g.poleBuffer,
+                            g.itemBuffer, g.rowSlotBuffer};
+  glDeleteBuffers(7, buffers);
+  const GLuint textures[] = {g.frameTexture, g.kindTexture, g.pointTexture, g.itemTexture, g.rowSlotTexture};
+  glDeleteTextures(5, textures);
   glDeleteQueries(2, g.timerQueries);
 }
 
@@ -460,6 +476,17 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
     glGenBuffers(1, &g.frameBuffer);
     glGenTextures(1, &g.frameTexture);
     glGenTextures(1, &g.kindTexture);
+    glGenTextures(1, &g.pointTexture);
+    glGenTextures(1, &g.itemTexture);
+    glGenTextures(1, &g.rowSlotTexture);
+    glGenBuffers(1, &g.itemBuffer);
+    glGenBuffers(1, &g.rowSlotBuffer);
+    // Texture buffers need a store before they are attached.
+    for (const GLuint buffer : {g.itemBuffer, g.rowSlotBuffer}) {
+      glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+      glBufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_DYNAMIC_DRAW);
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
     glGenVertexArrays(1, &g.netVao);
     glGenBuffers(1, &g.netBuffer);
     glGenVertexArrays(1, &g.poleVao);
@@ -580,7 +607,7 @@ void packGpuPatches(const std::vector<Patch>& patches, size_t first, const glm::
   runParts(parts, [&](unsigned part) {
     const size_t end = first + size_t(partBound(Index(added), parts, part + 1));
     for (size_t p = first + size_t(partBound(Index(added), parts, part)); p < end; ++p) {
-      const Patch& patch = patches[p];
+      const Patch patch = turnedPatch(patches[p], patches[p].ringTurn);  // see packKindLevelJumps
       const GpuPatch gpu = gpuForm(patch);
       const PatchFrameCpu& frame = gpu.frame;
       float* texels = frameTexels + (p - first) * kFloatsPerFrame;
@@ -657,6 +684,19 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
   g.kindBuffer = reserveBuffer(g.kindBuffer, &g.kindCapacity, 0, kindRings.size() * sizeof(int32_t));
   writeBuffer(GL_TEXTURE_BUFFER, g.kindBuffer, 0, kindRings.size(), sizeof(int32_t), kindRings.data());
 
+  std::vector<uint32_t> slotOfPatch(patches.size());
+  turnOfPatch_.resize(patches.size());
+  for (size_t p = 0; p < patches.size(); ++p) {
+    slotOfPatch[p] = uint32_t(layout.slotOf(p));
+    turnOfPatch_[p] = patches[p].ringTurn;
+  }
+  selection_.build(patches, slotOfPatch);
+  const std::vector<int32_t>& rowSlots = selection_.rowSlots();
+  glBindBuffer(GL_TEXTURE_BUFFER, g.rowSlotBuffer);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(std::max<size_t>(rowSlots.size(), 1) * sizeof(int32_t)),
+               rowSlots.empty() ? nullptr : rowSlots.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+
   g.attachBuffers();
 
   // Overlays are stored relative to the centre too: re-upload them when it moved.
@@ -729,6 +769,15 @@ void PatchRenderer::setEyeUniforms(unsigned program, const ViewParams& view) con
   glBindTexture(GL_TEXTURE_BUFFER, impl_->frameTexture);
   glActiveTexture(GL_TEXTURE0 + kKindTextureUnit);
   glBindTexture(GL_TEXTURE_BUFFER, impl_->kindTexture);
+  setUniform(program, "u_patchPoints", kPointTextureUnit);
+  setUniform(program, "u_drawItems", kItemTextureUnit);
+  setUniform(program, "u_rowSlots", kRowSlotTextureUnit);
+  const std::pair<int, GLuint> texelBuffers[] = {
+      {kPointTextureUnit, impl_->pointTexture}, {kItemTextureUnit, impl_->itemTexture}, {kRowSlotTextureUnit, impl_->rowSlotTexture}};
+  for (const auto& [unit, texture] : texelBuffers) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_BUFFER, texture);
+  }
   glActiveTexture(GL_TEXTURE0);
 }
 
@@ -815,8 +864,61 @@ void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& sha
   // Push the surface back a little so boundary curves and markers on it stay visible.
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 2.0f);
-  drawPatchRuns(drawRanges_, largestTessLevel(shading));
+  if (regionDetail_ && shading.fixedTessLevel <= 0) {
+    DrawSelectionSettings settings;
+    settings.tessPixels = std::max(shading.tessPixels, 0.5f);
+    settings.maxTessLevel = shading.maxTessLevel;
+    settings.viewportHeight = view.viewport.w;
+    DrawSelectionStats counted;
+    const std::vector<DrawItem> items = selection_.select(view, settings, &counted);
+    stats_.drawnPrimitives = counted.items;
+    stats_.drawnPatches = counted.patches;
+    stats_.culledPatches = counted.culled;
+    drawItems(program, items);
+  } else {
+    setUniform(program, "u_useItems", 0);
+    stats_.drawnPrimitives = stats_.drawnPatches = size_t(patchCount_);
+    stats_.culledPatches = 0;
+    drawPatchRuns(drawRanges_, largestTessLevel(shading));
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void PatchRenderer::drawItems(unsigned program, const std::vector<DrawItem>& items) {
+  Impl& g = *impl_;
+  // Per item two texels (patch.tesc's u_drawItems); item i is drawn as vertices 16 i .. 16 i + 15
+  // (patch.vert fetches its slot's points).
+  std::vector<int32_t> texels(items.size() * 8, 0);
+  for (size_t i = 0; i < items.size(); ++i) {
+    const DrawItem& item = items[i];
+    int32_t* texel = texels.data() + 8 * i;
+    texel[0] = int32_t(item.slot);
+    texel[1] = item.rowStart;
+    texel[2] = item.sector;
+    texel[3] = std::max(item.rowSize, 1);
+    texel[4] = int32_t(uint32_t(item.groupLog2) | uint32_t(item.innerExponent + 1) << 8 | uint32_t(item.outerExponent + 1) << 16);
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, g.itemBuffer);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(std::max<size_t>(texels.size(), 8) * sizeof(int32_t)),
+               texels.empty() ? nullptr : texels.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_BUFFER, g.itemTexture);  // a new store: attached again
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32I, g.itemBuffer);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  setUniform(program, "u_useItems", 1);
+  // Runs whose items tessellate into at most kMaxVerticesPerDraw vertices (drawPatchRuns).
+  std::vector<GLint> firsts;
+  std::vector<GLsizei> counts;
+  for (size_t first = 0; first < items.size();) {
+    size_t end = first, vertices = 0;
+    while (end < items.size() && (end == first || vertices + items[end].vertexBound <= size_t(kMaxVerticesPerDraw)))
+      vertices += items[end++].vertexBound;
+    firsts.push_back(static_cast<GLint>(first * kControlPointsPerPatch));
+    counts.push_back(static_cast<GLsizei>((end - first) * kControlPointsPerPatch));
+    first = end;
+  }
+  if (!firsts.empty()) glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
+  setUniform(program, "u_useItems", 0);
 }
 
 void PatchRenderer::drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags) {
@@ -980,6 +1082,10 @@ std::vector<SurfaceProbe> PatchRenderer::probeSurface(const ViewParams& view,
     s.gaussian = double(d[2]) / (unit_ * unit_);  // from GPU units back to the world's
     s.mean = double(d[3]) / unit_;
     s.patch = patchIndexOfSlot(size_t(d[7]));
+    // The GPU evaluates ring patches turned (packKindLevelJumps): back to the patch's parameter.
+    double u = s.u, v = s.v;
+    if (s.patch >= 0) turnedParameter(&u, &v, turnOfPatch_[size_t(s.patch)]);
+    s.u = float(u), s.v = float(v);
     // Where draw() places the vertex, relative to the eye: back to world coordinates in double.
     s.position = view.eye + unit_ * glm::dvec3(d[4], d[5], d[6]);
   }

@@ -19,6 +19,7 @@
 #include "core/mesh/poly_mesh.h"
 #include "core/spline/patch.h"
 #include "pipeline/control_net.h"
+#include "pipeline/draw_selection.h"
 #include "pipeline/shading.h"
 
 namespace polarview {
@@ -29,6 +30,9 @@ class ShaderLibrary;
 struct DrawStats {
   int patchCount = 0;
   double gpuMilliseconds = 0.0;  // of the draw before the last one; 0 until available
+  // What the view drew (pipeline/draw_selection.h): primitives, the patches they cover (sector
+  // groups cover several), and patches culled outside the view.
+  size_t drawnPrimitives = 0, drawnPatches = 0, culledPatches = 0;
 };
 
 // One tessellation vertex read back from the GPU evaluator (PatchRenderer::probeSurface).
@@ -104,6 +108,11 @@ class PatchRenderer {
   // unless shading.fixedTessLevel > 0): exposes the levels, e.g. to check shared edges match.
   std::vector<SurfaceProbe> probeSurface(const ViewParams& view, const ShadingParams& shading);
 
+  // Per region detail (default on): draw() culls what is outside the view and draws sub-pixel
+  // sectors of a polar ring several to a primitive (pipeline/draw_selection.h); off, every patch of
+  // the set is drawn alone (the reference picture, render --full-draw).
+  void setRegionDetail(bool on) { regionDetail_ = on; }
+
   // Bounding box of the uploaded patches (their control points / cap positions), world coords.
   glm::dvec3 boundsMin() const { return boundsMin_; }
   glm::dvec3 boundsMax() const { return boundsMax_; }
@@ -127,6 +136,8 @@ class PatchRenderer {
   void setShadingUniforms(unsigned program, const ViewParams& view, const ShadingParams& shading,
                           const DisplayFlags& flags) const;
   void drawSurface(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
+  // The selected items' texels and element indices uploaded, then drawn in runs Mesa counts right.
+  void drawItems(unsigned program, const std::vector<DrawItem>& items);
   void drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags);
   void drawControlNet(unsigned overlay, bool overSurface);
   void drawPoleMarkers(unsigned overlay);
@@ -146,6 +157,10 @@ class PatchRenderer {
   double unit_ = 1.0;
   int patchCount_ = 0;
   std::vector<DrawRange> drawRanges_;
+  DrawSelection selection_;  // the set's rows and bounds, for culling and sector groups
+  std::vector<int8_t> turnOfPatch_;  // Patch::ringTurn per patch: the GPU's parameter is turned
+  // Whether draws choose their patches per region (culled, sector groups; setRegionDetail).
+  bool regionDetail_ = true;
   uint64_t stableStamp_ = 0;  // setPatches' sequence on the GPU, and how many of its slots are valid
   size_t stableOnGpu_ = 0;
   size_t reusedPatches_ = 0;

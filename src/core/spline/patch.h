@@ -6,7 +6,8 @@
 //   points; the patch covers the middle knot span (u,v) in [0,1]^2, whose corners
 //   (0,0),(1,0),(1,1),(0,1) sit over cp[5], cp[6], cp[10], cp[9], i.e. over the mesh face
 //   (v0, v1, v2, v3) in its counter-clockwise order, so x_u x x_v points along the face normal.
-//   For a polar ring patch u runs radially outwards (link i -> i+1) and v periodically (j -> j+1).
+//   For a polar ring patch one of u, v runs radially and the other around the pole; turned by
+//   Patch::ringTurn (turnedPatch), u runs outwards (link i -> i + 1) and v around.
 //
 // PoleCap (the Taylor cap closing the hole at a pole, paper (32)), per sector j of n:
 //   cp[0..5]  = p0..p5 (in the cap's own radial unit: the hole is r <= R)
@@ -63,6 +64,15 @@ struct Patch {
   int32_t ring = -1;   // polar ring index m (PolarRing, PoleCap); -1 otherwise
   int32_t pole = -1;   // index of the pole (in the scheme's pole list) it belongs to; -1 otherwise
   int32_t face = -1;   // face index at `level` it was made from (-1 for caps)
+  // Where in its pole's grid at `level` it lies, -1 otherwise. A PolarRing's face is between links
+  // `link` and link + 1 (links 1..5 around the pole) and is the sector-th of its row in the order its
+  // v runs once turned by ringTurn quarter turns (the parameter square turned so that u runs
+  // outwards: the turned patch's (u', v') is the patch's (1 - v', u') applied ringTurn times). A
+  // PoleCap: link 0, sector j. The viewer draws runs of sub-pixel sectors of one row as one
+  // primitive by these (pipeline/draw_selection.h).
+  int32_t sector = -1;
+  int16_t link = -1;
+  int8_t ringTurn = 0;
   std::array<int8_t, 4> edgeLevelDelta{};  // per edge (order above): level jump to the neighbour
 };
 
@@ -84,5 +94,11 @@ bool isPositionPoint(PatchKind kind, int k);
 // The patch with its origin added to its positions and then zero (absolute coordinates, rounded
 // there): for writers and comparisons that do not need the precision. [O(1)]
 Patch withAbsolutePositions(const Patch& patch);
+// The same B-spline patch with its parameter square turned `turns` quarter turns (any integer):
+// the result at (u', v') is the patch at turnedParameter(u', v', turns); cp and edgeLevelDelta
+// follow, orientation (x_u x x_v) is kept. A PoleCap is returned as it is. [O(1)]
+Patch turnedPatch(const Patch& patch, int turns);
+// (u, v) of a patch for (u', v') of turnedPatch(patch, turns): (1 - v', u') applied `turns` times.
+void turnedParameter(double* u, double* v, int turns);
 
 }  // namespace polarview

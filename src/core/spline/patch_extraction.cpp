@@ -192,10 +192,14 @@ size_t patchBound(const LevelStack& stack) {
   return bound;
 }
 
-// Per vertex: up to two poles whose links 1..5 hold it (two for short globes), -1 otherwise.
+// Per vertex: up to two poles whose links 1..5 hold it (two for short globes), -1 otherwise, and
+// where in each pole's links it is (PolarConfig::links: (i - 1) * valence + j).
 struct RingMembership {
   std::vector<int32_t> first, second;
+  std::vector<int32_t> firstAt, secondAt;
+  std::vector<int32_t> valence;  // per pole
   bool holds(Index v, int pole) const { return first[v] == pole || second[v] == pole; }
+  int32_t at(Index v, int pole) const { return first[v] == pole ? firstAt[v] : secondAt[v]; }
 };
 
 // Empty when the level has no pole (no patch is a PolarRing there).
@@ -204,13 +208,16 @@ RingMembership markRingLinks(const RefinedLevel& level) {
   if (level.poles.empty()) return rings;
   rings.first.assign(level.mesh.vertexCount(), -1);
   rings.second.assign(level.mesh.vertexCount(), -1);
+  rings.firstAt.assign(level.mesh.vertexCount(), -1);
+  rings.secondAt.assign(level.mesh.vertexCount(), -1);
   for (size_t p = 0; p < level.poles.size(); ++p) {
     const PolarConfig& config = level.poles[p];
+    rings.valence.push_back(config.valence);
     const size_t count = size_t(std::min(config.linkCount, 5)) * config.valence;
     for (size_t k = 0; k < count && k < config.links.size(); ++k) {
       const Index v = config.links[k];
-      if (rings.first[v] < 0) rings.first[v] = int32_t(p);
-      else if (rings.first[v] != int32_t(p)) rings.second[v] = int32_t(p);
+      if (rings.first[v] < 0) rings.first[v] = int32_t(p), rings.firstAt[v] = int32_t(k);
+      else if (rings.first[v] != int32_t(p)) rings.second[v] = int32_t(p), rings.secondAt[v] = int32_t(k);
     }
   }
   return rings;
@@ -608,6 +615,8 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, const Poi
     cap.ring = level;
     cap.pole = pole;
     cap.face = -1;
+    cap.link = 0;
+    cap.sector = j;
     out.push_back(cap);
   }
 }
@@ -737,6 +746,30 @@ void prefetchForWrite(const std::vector<T>& v, size_t ahead) {
 #endif
 }
 
+// Where a PolarRing's face lies in its pole's grid (Patch::link, sector, ringTurn): the corner
+// whose next corner along u is one link further out is the turned patch's first; its column, counted
+// in the direction the turned v runs, is the sector. Left -1 if no corner is (not a grid face).
+void setRingPlace(const RingMembership& rings, int32_t pole, const std::array<Index, 16>& ids, Patch& patch) {
+  static constexpr int kCorners[4] = {5, 6, 10, 9};  // (u, v) = (0,0), (1,0), (1,1), (0,1)
+  const int32_t valence = rings.valence[size_t(pole)];
+  int32_t link[4], column[4];
+  for (int c = 0; c < 4; ++c) {
+    const int32_t at = rings.at(ids[size_t(kCorners[c])], pole);
+    link[c] = at / valence + 1;
+    column[c] = at % valence;
+  }
+  for (int turn = 0; turn < 4; ++turn) {
+    const int first = turn, alongU = (turn + 1) % 4, alongV = (turn + 3) % 4;
+    if (link[alongU] != link[first] + 1 || column[alongU] != column[first] || link[alongV] != link[first]) continue;
+    const int32_t step = (column[alongV] - column[first] + valence) % valence;
+    if (step != 1 && step != valence - 1) return;
+    patch.link = int16_t(link[first]);
+    patch.sector = step == 1 ? column[first] : (valence - column[first]) % valence;
+    patch.ringTurn = int8_t(turn);
+    return;
+  }
+}
+
 // Kind, ring and pole of a regular patch from its stencil: a PolarRing when the whole stencil lies
 // in links 1..5 of one pole.
 void setRegularKind(const RingMembership& rings, int m, const std::array<Index, 16>& ids, const std::array<bool, 4>& sideMissing,
@@ -752,6 +785,7 @@ void setRegularKind(const RingMembership& rings, int m, const std::array<Index, 
     patch.kind = PatchKind::PolarRing;
     patch.ring = m;
     patch.pole = candidate;
+    setRingPlace(rings, candidate, ids, patch);
     return;
   }
 }

@@ -1,0 +1,367 @@
+// Draw selection (see draw_selection.h and docs/shading.md, "Close-ups: detail per region").
+#include "pipeline/draw_selection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+namespace polarview {
+namespace {
+
+constexpr int kMaxSegments = 64;  // GL's (and patch.tesc's) largest tessellation level
+// Neighbouring rows' group counts may differ by this much (a circle's density then fits both).
+constexpr int kMaxGroupRatioLog2 = 5;
+
+Point absolutePoint(const Patch& patch, int k) { return patch.origin + patch.cp[size_t(k)]; }
+
+// The limit point at a corner of a B-spline patch's square, over control point (i, j) (1 or 2):
+// (1, 4, 1) x (1, 4, 1) / 36.
+Point splineCorner(const Patch& patch, int i, int j) {
+  static constexpr double kW[3] = {1.0 / 6, 4.0 / 6, 1.0 / 6};
+  Point sum(0.0);
+  for (int b = -1; b <= 1; ++b)
+    for (int a = -1; a <= 1; ++a) sum += (kW[a + 1] * kW[b + 1]) * absolutePoint(patch, 4 * (j + b) + (i + a));
+  return sum;
+}
+
+// A cap's rim point at its sector's start and end: the boundary B-spline b_{j-1..j+2} at its knots.
+Point capRimStart(const Patch& cap) {
+  return (absolutePoint(cap, 6) + 4.0 * absolutePoint(cap, 7) + absolutePoint(cap, 8)) / 6.0;
+}
+Point capRimEnd(const Patch& cap) {
+  return (absolutePoint(cap, 7) + 4.0 * absolutePoint(cap, 8) + absolutePoint(cap, 9)) / 6.0;
+}
+
+// A ring patch turned so that u runs outwards and v along its row (Patch::ringTurn).
+Patch upright(const Patch& patch) { return turnedPatch(patch, patch.ringTurn); }
+
+bool near(const Point& a, const Point& b, double scale) {
+  return glm::length(a - b) <= 1e-7 * scale;
+}
+
+struct Frustum {
+  std::array<glm::dvec4, 6> planes{};
+  // Outside when the box's corner furthest along a plane's normal is behind it.
+  bool outside(const glm::dvec3& lo, const glm::dvec3& hi) const {
+    for (const glm::dvec4& plane : planes) {
+      const glm::dvec3 corner(plane.x >= 0.0 ? hi.x : lo.x, plane.y >= 0.0 ? hi.y : lo.y, plane.z >= 0.0 ? hi.z : lo.z);
+      if (glm::dot(glm::dvec3(plane), corner) + plane.w < 0.0) return true;
+    }
+    return false;
+  }
+};
+
+// Gribb & Hartmann: the clip planes of clip = M world are row 3 +- rows 0..2 of M.
+Frustum frustumOf(const glm::dmat4& m) {
+  Frustum f;
+  const auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  for (int axis = 0; axis < 3; ++axis) {
+    f.planes[size_t(2 * axis)] = row(3) + row(axis);
+    f.planes[size_t(2 * axis + 1)] = row(3) - row(axis);
+  }
+  return f;
+}
+
+// Pixels a length inside a box covers: perspective at the box's nearest point (the near plane's
+// distance at the least), orthographic at the view's scale.
+struct Projector {
+  glm::dvec3 eye{0.0};
+  double pixelsPerUnit = 1.0;  // at distance 1 (perspective) or everywhere (orthographic)
+  double nearDepth = 0.0;
+  bool perspective = true;
+  double pixels(double length, const glm::dvec3& lo, const glm::dvec3& hi) const {
+    if (!perspective) return length * pixelsPerUnit;
+    const double distance = glm::length(eye - glm::clamp(eye, lo, hi));
+    return length * pixelsPerUnit / std::max(distance, nearDepth);
+  }
+};
+
+int segmentsFor(double pixels, const DrawSelectionSettings& settings) {
+  const double segments = std::ceil(pixels / std::max(settings.tessPixels, 0.5));
+  return int(std::clamp(segments, 1.0, double(std::clamp(settings.maxTessLevel, 1, kMaxSegments))));
+}
+
+uint32_t vertexBound(int levelU, int levelV) { return uint32_t(levelU + 2) * uint32_t(levelV + 2); }
+
+int log2Exact(int64_t value) {
+  int e = 0;
+  while ((int64_t(1) << e) < value) ++e;
+  return e;
+}
+
+}  // namespace
+
+void patchBounds(const Patch& patch, glm::dvec3* lo, glm::dvec3* hi) {
+  *lo = Point(std::numeric_limits<double>::max());
+  *hi = Point(-std::numeric_limits<double>::max());
+  for (int k = 0; k < 16; ++k)
+    if (isPositionPoint(patch.kind, k)) {
+      *lo = glm::min(*lo, absolutePoint(patch, k));
+      *hi = glm::max(*hi, absolutePoint(patch, k));
+    }
+  // A cap bulges off the hull of its pole and rim points (its Taylor terms): a quarter more.
+  if (patch.kind == PatchKind::PoleCap) {
+    const glm::dvec3 margin = 0.25 * (*hi - *lo) + glm::dvec3(0.25 * glm::length(*hi - *lo));
+    *lo -= margin;
+    *hi += margin;
+  }
+}
+
+void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<uint32_t>& slotOfPatch) {
+  rows_.clear();
+  circles_.clear();
+  rowSlots_.clear();
+  loneBoxes_.clear();
+  loneSlots_.clear();
+  loneHasJump_.clear();
+  patchCount_ = patches.size();
+  std::map<std::tuple<int, int, int>, std::vector<size_t>> byRow;  // (pole, level, link) -> patches
+  const auto addLone = [&](size_t p) {
+    Box box;
+    patchBounds(patches[p], &box.lo, &box.hi);
+    loneBoxes_.push_back(box);
+    loneSlots_.push_back(slotOfPatch[p]);
+    const auto& jumps = patches[p].edgeLevelDelta;
+    loneHasJump_.push_back(std::any_of(jumps.begin(), jumps.end(), [](int8_t d) { return d != 0; }));
+  };
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const Patch& patch = patches[p];
+    const bool inRow = (patch.kind == PatchKind::PolarRing || patch.kind == PatchKind::PoleCap) && patch.pole >= 0 &&
+                       patch.sector >= 0 && patch.link >= 0;
+    if (inRow) byRow[{patch.pole, patch.ring, patch.link}].push_back(p);
+    else addLone(p);
+  }
+  std::vector<std::vector<size_t>> rowPatches;
+  for (auto& [key, members] : byRow) {
+    const int32_t size = int32_t(members.size());
+    std::vector<size_t> bySector(members.size(), SIZE_MAX);
+    bool complete = true;
+    for (size_t p : members) {
+      const int32_t s = patches[p].sector;
+      if (s >= size || bySector[size_t(s)] != SIZE_MAX) complete = false;
+      else bySector[size_t(s)] = p;
+    }
+    // Neighbouring sectors share their control columns (a cap: its rim points), so the groups'
+    // shared radial edges are the same points on both sides.
+    const bool cap = std::get<2>(key) == 0;
+    for (int32_t s = 0; complete && s < size; ++s) {
+      const Patch a = upright(patches[bySector[size_t(s)]]);
+      const Patch b = upright(patches[bySector[size_t((s + 1) % size)]]);
+      const double scale = glm::length(absolutePoint(a, cap ? 9 : 15) - absolutePoint(a, cap ? 6 : 0));
+      complete = cap ? near(absolutePoint(a, 7), absolutePoint(b, 6), scale)
+                     : near(absolutePoint(a, 4), absolutePoint(b, 0), scale) && near(absolutePoint(a, 7), absolutePoint(b, 3), scale);
+    }
+    if (!complete) {
+      for (size_t p : members) addLone(p);
+      continue;
+    }
+    Row row;
+    row.pole = std::get<0>(key);
+    row.level = std::get<1>(key);
+    row.link = std::get<2>(key);
+    row.isCap = cap;
+    row.start = int32_t(rowSlots_.size());
+    row.size = size;
+    for (size_t p : bySector) rowSlots_.push_back(int32_t(slotOfPatch[p]));
+    // Group sizes 2^a that divide the row and leave at least 4 groups (a quarter turn at most).
+    while (size % (2 << row.maxGroupLog2) == 0 && (2 << row.maxGroupLog2) * 4 <= size) ++row.maxGroupLog2;
+    row.pyramid.resize(size_t(row.maxGroupLog2) + 1);
+    for (size_t p : bySector) {
+      Box box;
+      patchBounds(patches[p], &box.lo, &box.hi);
+      const Patch sector = upright(patches[p]);
+      box.arc = cap ? glm::length(capRimEnd(sector) - capRimStart(sector))
+                    : glm::length(splineCorner(sector, 2, 2) - splineCorner(sector, 2, 1));
+      row.pyramid[0].push_back(box);
+    }
+    for (size_t a = 1; a < row.pyramid.size(); ++a)
+      for (size_t g = 0; g < row.pyramid[a - 1].size(); g += 2) {
+        const Box& b0 = row.pyramid[a - 1][g];
+        const Box& b1 = row.pyramid[a - 1][g + 1];
+        row.pyramid[a].push_back({glm::min(b0.lo, b1.lo), glm::max(b0.hi, b1.hi), b0.arc + b1.arc});
+      }
+    rows_.push_back(std::move(row));
+    rowPatches.push_back(std::move(bySector));
+  }
+  linkRows(patches, rowPatches);
+}
+
+// The circles between a pole's rows, outside in: level m's links 3 | 2 (same sectors), level m's
+// link 2 | level m + 1's link 4 (its S or 2S sectors, C2PS doubling), the last level's link 2 | its
+// caps. Each is checked where the two sides' sector starts meet.
+void DrawSelection::linkRows(const std::vector<Patch>& patches, const std::vector<std::vector<size_t>>& rowPatches) {
+  std::map<std::tuple<int, int, int>, int> rowOf;
+  for (size_t r = 0; r < rows_.size(); ++r) rowOf[{rows_[r].pole, rows_[r].level, rows_[r].link}] = int(r);
+  const auto find = [&](int pole, int level, int link) {
+    const auto it = rowOf.find({pole, level, link});
+    return it == rowOf.end() ? -1 : it->second;
+  };
+  // Whether the inner edge of `outside`'s sectors meets the outer edge of `inside`'s (a cap's rim):
+  // the sector starts of two of its sectors are sector starts there. [O(sectors)]
+  const auto meets = [&](int outside, int inside) {
+    const Row& out = rows_[size_t(outside)];
+    const Row& in = rows_[size_t(inside)];
+    if (in.size != out.size && in.size != 2 * out.size) return false;
+    std::vector<Point> starts;
+    for (size_t p : rowPatches[size_t(inside)]) starts.push_back(in.isCap ? capRimStart(patches[p]) : splineCorner(upright(patches[p]), 2, 1));
+    for (int32_t s : {0, out.size / 2 + 1}) {
+      const Patch a = upright(patches[rowPatches[size_t(outside)][size_t(s % out.size)]]);
+      const Point onOut = splineCorner(a, 1, 1);
+      const double scale = glm::length(splineCorner(a, 2, 1) - onOut);
+      if (std::none_of(starts.begin(), starts.end(), [&](const Point& q) { return near(onOut, q, scale); })) return false;
+    }
+    return true;
+  };
+  const auto link = [&](int outside, int inside) {
+    if (outside < 0 || inside < 0 || !meets(outside, inside)) return;
+    rows_[size_t(outside)].innerCircle = rows_[size_t(inside)].outerCircle = int(circles_.size());
+    circles_.push_back({inside, outside});
+  };
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    if (row.link == 3) link(int(r), find(row.pole, row.level, 2));
+    if (row.link == 2) {
+      link(int(r), find(row.pole, row.level + 1, 3));
+      link(int(r), find(row.pole, row.level, 0));
+    }
+  }
+  // A row with an edge not shared with a grouped row keeps that edge's own rule: one sector each.
+  for (Row& row : rows_)
+    if (row.outerCircle < 0 || (row.innerCircle < 0 && !row.isCap)) row.maxGroupLog2 = 0;
+}
+
+std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSelectionSettings& settings,
+                                            DrawSelectionStats* stats) const {
+  DrawSelectionStats counted;
+  std::vector<DrawItem> items;
+  const Frustum frustum = frustumOf(view.proj * view.view);
+  Projector projector;
+  projector.eye = view.eye;
+  projector.perspective = view.proj[2][3] < -0.5;
+  projector.pixelsPerUnit = 0.5 * settings.viewportHeight * view.proj[1][1];
+  projector.nearDepth = projector.perspective ? std::max(view.proj[3][2] / (view.proj[2][2] - 1.0), 0.0) : 0.0;
+  const auto across = [&](const Box& b) { return projector.pixels(glm::length(b.hi - b.lo), b.lo, b.hi); };
+  const auto arc = [&](const Box& b) { return projector.pixels(b.arc, b.lo, b.hi); };
+
+  for (size_t k = 0; k < loneSlots_.size(); ++k) {
+    const Box& b = loneBoxes_[k];
+    if (frustum.outside(b.lo, b.hi)) {
+      ++counted.culled;
+      continue;
+    }
+    // An edge's level comes from its Bezier polygon (3 legs, each within the box): 3x its diagonal.
+    const int level = loneHasJump_[k] ? kMaxSegments : segmentsFor(3.0 * across(b), settings);
+    DrawItem item;
+    item.slot = loneSlots_[k];
+    item.vertexBound = vertexBound(level, level);
+    items.push_back(item);
+    ++counted.patches;
+  }
+
+  // Per row the group exponent: the largest whose visible groups' arcs all stay under groupPixels.
+  std::vector<int> groupLog2(rows_.size(), -1);  // -1: nothing of the row is visible
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    for (int a = row.maxGroupLog2; a >= 0; --a) {
+      bool anyVisible = false, small = true;
+      for (const Box& b : row.pyramid[size_t(a)]) {
+        if (frustum.outside(b.lo, b.hi)) continue;
+        anyVisible = true;
+        if (arc(b) > settings.groupPixels) {
+          small = false;
+          break;
+        }
+      }
+      if (!anyVisible) break;
+      if (small || a == 0) {
+        groupLog2[r] = a;
+        break;
+      }
+    }
+  }
+  // Neighbours across a circle within 2^kMaxGroupRatioLog2 of each other's group counts: the
+  // coarser one gets finer groups where needed.
+  const auto groups = [&](int r) { return int64_t(rows_[size_t(r)].size) >> std::max(groupLog2[size_t(r)], 0); };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const Circle& c : circles_) {
+      if (groupLog2[size_t(c.inside)] < 0 || groupLog2[size_t(c.outside)] < 0) continue;
+      const bool insideFiner = groups(c.inside) > groups(c.outside);
+      const int fine = insideFiner ? c.inside : c.outside, coarse = insideFiner ? c.outside : c.inside;
+      if (groups(fine) > (groups(coarse) << kMaxGroupRatioLog2) && groupLog2[size_t(coarse)] > 0) {
+        --groupLog2[size_t(coarse)];
+        changed = true;
+      }
+    }
+  }
+  // Per circle its segments per turn rho (a power of two times the larger group count), from the
+  // arcs of the groups on it; each side's group edge then has rho / groups segments.
+  std::vector<int> circleExponent(circles_.size() * 2, -1);  // [2c]: inside row's, [2c + 1]: outside's
+  for (size_t c = 0; c < circles_.size(); ++c) {
+    const int sides[2] = {circles_[c].inside, circles_[c].outside};
+    int64_t most = 1, fewest = INT64_MAX, wanted = 1;
+    for (int r : sides) {
+      const int a = groupLog2[size_t(r)];
+      if (a < 0) continue;
+      most = std::max(most, groups(r));
+      fewest = std::min(fewest, groups(r));
+      for (const Box& b : rows_[size_t(r)].pyramid[size_t(a)])
+        if (!frustum.outside(b.lo, b.hi)) wanted = std::max(wanted, int64_t(segmentsFor(arc(b), settings)) * groups(r));
+    }
+    if (fewest == INT64_MAX) continue;
+    int64_t rho = most;
+    while (rho < wanted && rho * 2 <= fewest * kMaxSegments) rho *= 2;
+    for (int side = 0; side < 2; ++side)
+      if (groupLog2[size_t(sides[side])] >= 0) circleExponent[2 * c + size_t(side)] = log2Exact(rho / groups(sides[side]));
+  }
+
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    const int a = groupLog2[r];
+    if (a < 0) {
+      counted.culled += size_t(row.size);
+      continue;
+    }
+    ++counted.rows;
+    const int innerExponent = row.innerCircle >= 0 ? circleExponent[2 * size_t(row.innerCircle) + 1] : -1;
+    const int outerExponent = row.outerCircle >= 0 ? circleExponent[2 * size_t(row.outerCircle)] : -1;
+    // Along v the circles' segments (or the T-junction rule's 64 where an edge keeps its own rule).
+    const int alongV = std::max(innerExponent < 0 && !row.isCap ? kMaxSegments : 1 << std::max(innerExponent, 0),
+                                outerExponent < 0 ? kMaxSegments : 1 << outerExponent);
+    const int sectors = 1 << a;
+    const std::vector<Box>& boxes = row.pyramid[size_t(a)];
+    for (size_t g = 0; g < boxes.size(); ++g) {
+      const Box& b = boxes[g];
+      if (frustum.outside(b.lo, b.hi)) {
+        counted.culled += size_t(sectors);
+        continue;
+      }
+      DrawItem item;
+      item.sector = int32_t(g) * sectors;
+      item.slot = uint32_t(rowSlots_[size_t(row.start + item.sector)]);
+      item.rowStart = row.start;
+      item.rowSize = row.size;
+      item.groupLog2 = int8_t(a);
+      item.innerExponent = int8_t(innerExponent);
+      item.outerExponent = int8_t(outerExponent);
+      // Along u the radial edges' adaptive levels, within 3x the group's box.
+      item.vertexBound = vertexBound(segmentsFor(3.0 * across(b), settings), alongV);
+      items.push_back(item);
+      counted.patches += size_t(sectors);
+    }
+  }
+  // In slot order: a renderer's draws then take neighbouring slots together (patch_renderer.cpp).
+  std::sort(items.begin(), items.end(), [](const DrawItem& a, const DrawItem& b) { return a.slot < b.slot; });
+  counted.items = items.size();
+  if (stats) *stats = counted;
+  return items;
+}
+
+}  // namespace polarview
