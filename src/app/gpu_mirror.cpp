@@ -197,6 +197,11 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     DisplayFlags first = display;
     if (netAfter) first.controlNet = false;
     gpu.renderer->draw(params, shading, first);
+    const DrawStats& drew = gpu.renderer->lastDrawStats();
+    ViewStatus& status = state.views[v].status;
+    status.drawnPrimitives = int(drew.drawnPrimitives);
+    status.visiblePatches = int(drew.drawnPatches);
+    status.culledPatches = int(drew.culledPatches);
     if (markPoles)
       visiblePoles(gpu.surface->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
     if (netAfter) gpu.renderer->drawControlNetOver(params);

@@ -156,6 +156,11 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   // The level drawn (< the level where deeper rings are below a pixel) and its patches.
   perView("drawn_levels", &ViewStatus::drawnLevel);
   perView("drawn_patches", &ViewStatus::drawnPatches);
+  // What the last frame drew of those (pipeline/draw_selection.h): primitives (a group of sub-pixel
+  // ring sectors is one), the patches they cover, the patches culled outside the view.
+  perView("drawn_primitives", &ViewStatus::drawnPrimitives);
+  perView("visible_patches", &ViewStatus::visiblePatches);
+  perView("culled_patches", &ViewStatus::culledPatches);
   // Poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
   perView("poles_by_scheme", &ViewStatus::polesByScheme);
   perView("poles_by_cc", &ViewStatus::polesByCatmullClark);

@@ -266,6 +266,7 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
   }
 
   // Per row the group exponent: the largest whose visible groups' arcs all stay under groupPixels.
+  const double groupPixels = settings.groupScale * std::max(settings.tessPixels, 0.5);
   std::vector<int> groupLog2(rows_.size(), -1);  // -1: nothing of the row is visible
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
@@ -274,7 +275,7 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       for (const Box& b : row.pyramid[size_t(a)]) {
         if (frustum.outside(b.lo, b.hi)) continue;
         anyVisible = true;
-        if (arc(b) > settings.groupPixels) {
+        if (arc(b) > groupPixels) {
           small = false;
           break;
         }
@@ -301,8 +302,8 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       }
     }
   }
-  // Per circle its segments per turn rho (a power of two times the larger group count), from the
-  // arcs of the groups on it; each side's group edge then has rho / groups segments.
+  // Per circle with a group on it, its segments per turn rho (a power of two times the larger group
+  // count), from the arcs of the groups on it; each side's group edge then has rho / groups segments.
   std::vector<int> circleExponent(circles_.size() * 2, -1);  // [2c]: inside row's, [2c + 1]: outside's
   for (size_t c = 0; c < circles_.size(); ++c) {
     const int sides[2] = {circles_[c].inside, circles_[c].outside};
@@ -315,7 +316,8 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       for (const Box& b : rows_[size_t(r)].pyramid[size_t(a)])
         if (!frustum.outside(b.lo, b.hi)) wanted = std::max(wanted, int64_t(segmentsFor(arc(b), settings)) * groups(r));
     }
-    if (fewest == INT64_MAX) continue;
+    // Sectors drawn alone on both sides keep their own rule (the full draw's tessellation there).
+    if (fewest == INT64_MAX || std::max(groupLog2[size_t(sides[0])], groupLog2[size_t(sides[1])]) == 0) continue;
     int64_t rho = most;
     while (rho < wanted && rho * 2 <= fewest * kMaxSegments) rho *= 2;
     for (int side = 0; side < 2; ++side)

@@ -12,7 +12,7 @@
 //    evaluates each of them exactly where its vertices fall (shaders/patch.tese): the same limit
 //    surface, tessellated by pixels instead of by patches. a is per row and frame, the largest that
 //    keeps every visible group's arc (its sectors' outer chords, at its nearest distance) under
-//    DrawSelectionSettings::groupPixels;
+//    DrawSelectionSettings::groupScale segments;
 //  - circle densities: the two sides of a link circle (the rows on it, or a row and its pole cap)
 //    are cut into the same vertices: rho segments per turn, a power of two times the sector counts,
 //    from the circle's projected size, so that both sides agree whatever their group sizes (a
@@ -55,8 +55,10 @@ struct DrawSelectionSettings {
   double tessPixels = 12.0;  // target edge length (ShadingParams::tessPixels)
   int maxTessLevel = 64;
   double viewportHeight = 600.0;
-  // Groups are merged until one would project larger than this many pixels.
-  double groupPixels = 48.0;
+  // Sectors are merged while a group's arc stays under groupScale * tessPixels: with 1, a group is
+  // at most one tessellation segment along its circles, so merging changes the tessellation only
+  // where the sectors were each below a segment.
+  double groupScale = 1.0;
 };
 
 class DrawSelection {

@@ -43,6 +43,11 @@ struct ViewStatus {
                                    //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
   int drawnLevel = 0;              // the level drawn (< patchLevel where deeper rings are below a pixel)
   int drawnPatches = 0;            // and its patches
+  // What the last frame drew of them (pipeline/draw_selection.h): primitives (a group of sub-pixel
+  // ring sectors is one), the patches they cover, and the patches outside the view (culled).
+  int drawnPrimitives = 0;
+  int visiblePatches = 0;
+  int culledPatches = 0;
   int polesByScheme = 0;           // polar configurations the shown scheme refines
   int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
   std::string fallbackReason;      // why (empty when none)

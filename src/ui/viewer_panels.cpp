@@ -489,6 +489,11 @@ void drawStatsPanel(const ViewerState& state) {
     if (s.drawnLevel < s.patchLevel)
       ImGui::TextWrapped("Drawn at level %d (%d patches): the deeper rings and caps are below a pixel here; "
                          "zoom in and they are drawn.", s.drawnLevel, s.drawnPatches);
+    // Per region detail (pipeline/draw_selection.h): culled outside the view, sub-pixel ring
+    // sectors drawn several to a primitive.
+    if (s.drawnPrimitives > 0)
+      ImGui::TextWrapped("Last frame: %d primitives for %d patches in view, %d outside it", s.drawnPrimitives,
+                         s.visiblePatches, s.culledPatches);
     if (s.polesByCatmullClark > 0) {
       wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f),
                          std::to_string(s.polesByCatmullClark) + " of " +
