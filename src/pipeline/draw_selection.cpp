@@ -106,9 +106,11 @@ void patchBounds(const Patch& patch, glm::dvec3* lo, glm::dvec3* hi) {
       *lo = glm::min(*lo, absolutePoint(patch, k));
       *hi = glm::max(*hi, absolutePoint(patch, k));
     }
-  // A cap bulges off the hull of its pole and rim points (its Taylor terms): a quarter more.
+  // A cap bulges off the hull of its pole and rim points (its Taylor terms over a wedge of radius
+  // R: heights of about K R^2, a few percent of R where the rings are below a pixel): a tenth of its
+  // size more. (Not more: a thick box around a wedge under the eye would hold the eye.)
   if (patch.kind == PatchKind::PoleCap) {
-    const glm::dvec3 margin = 0.25 * (*hi - *lo) + glm::dvec3(0.25 * glm::length(*hi - *lo));
+    const glm::dvec3 margin(0.1 * glm::length(*hi - *lo));
     *lo -= margin;
     *hi += margin;
   }
@@ -179,13 +181,21 @@ void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<u
       const Patch sector = upright(patches[p]);
       box.arc = cap ? glm::length(capRimEnd(sector) - capRimStart(sector))
                     : glm::length(splineCorner(sector, 2, 2) - splineCorner(sector, 2, 1));
+      box.rimLo = box.lo, box.rimHi = box.hi;
+      if (cap) {
+        box.rimLo = glm::min(capRimStart(sector), capRimEnd(sector));
+        box.rimHi = glm::max(capRimStart(sector), capRimEnd(sector));
+        row.polePoint = absolutePoint(sector, 0);
+        row.rimRadius = glm::length(capRimStart(sector) - row.polePoint);
+      }
       row.pyramid[0].push_back(box);
     }
     for (size_t a = 1; a < row.pyramid.size(); ++a)
       for (size_t g = 0; g < row.pyramid[a - 1].size(); g += 2) {
         const Box& b0 = row.pyramid[a - 1][g];
         const Box& b1 = row.pyramid[a - 1][g + 1];
-        row.pyramid[a].push_back({glm::min(b0.lo, b1.lo), glm::max(b0.hi, b1.hi), b0.arc + b1.arc});
+        row.pyramid[a].push_back({glm::min(b0.lo, b1.lo), glm::max(b0.hi, b1.hi), b0.arc + b1.arc,
+                                  glm::min(b0.rimLo, b1.rimLo), glm::max(b0.rimHi, b1.rimHi)});
       }
     rows_.push_back(std::move(row));
     rowPatches.push_back(std::move(bySector));
@@ -248,7 +258,22 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
   projector.pixelsPerUnit = 0.5 * settings.viewportHeight * view.proj[1][1];
   projector.nearDepth = projector.perspective ? std::max(view.proj[3][2] / (view.proj[2][2] - 1.0), 0.0) : 0.0;
   const auto across = [&](const Box& b) { return projector.pixels(glm::length(b.hi - b.lo), b.lo, b.hi); };
-  const auto arc = [&](const Box& b) { return projector.pixels(b.arc, b.lo, b.hi); };
+  // A group's arc along its outer circle, in pixels at that circle's distance.
+  const auto arc = [&](const Box& b) { return projector.pixels(b.arc, b.rimLo, b.rimHi); };
+  // How wide a group is anywhere: a ring's arc (rows are thin radially); a cap's wedge, an angle
+  // theta from its pole, at radius r and distance d(r) >= |e - r| (e the eye's distance from the
+  // pole) is r theta / d(r) wide: the largest of that over its radii.
+  const auto width = [&](const Row& row, const Box& b) {
+    if (!row.isCap) return arc(b);
+    const double theta = b.arc / std::max(row.rimRadius, 1e-300), e = glm::length(view.eye - row.polePoint);
+    double widest = 0.0;
+    for (double r : {row.rimRadius, std::min(e, row.rimRadius), 0.5 * row.rimRadius, 0.25 * row.rimRadius}) {
+      const glm::dvec3 at = glm::clamp(view.eye, b.lo, b.hi);
+      const double d = std::max({std::abs(e - r), glm::length(view.eye - at), projector.nearDepth});
+      widest = std::max(widest, projector.perspective ? r * theta * projector.pixelsPerUnit / d : r * theta * projector.pixelsPerUnit);
+    }
+    return widest;
+  };
 
   for (size_t k = 0; k < loneSlots_.size(); ++k) {
     const Box& b = loneBoxes_[k];
@@ -275,7 +300,7 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       for (const Box& b : row.pyramid[size_t(a)]) {
         if (frustum.outside(b.lo, b.hi)) continue;
         anyVisible = true;
-        if (arc(b) > groupPixels) {
+        if (width(row, b) > groupPixels) {
           small = false;
           break;
         }

@@ -78,11 +78,14 @@ class DrawSelection {
  private:
   struct Box {
     glm::dvec3 lo{0.0}, hi{0.0};
-    double arc = 0.0;  // a row's group: its sectors' chords along their outer circle
+    double arc = 0.0;  // a row's group: its sectors' chords along their outer circle,
+    glm::dvec3 rimLo{0.0}, rimHi{0.0};  // which lies in this box (a cap's rim; a ring's whole box)
   };
   struct Row {
     int pole = -1, level = 0, link = 0;  // link 0: the pole's caps
     bool isCap = false;
+    Point polePoint{0.0};  // a cap row's pole (p0)
+    double rimRadius = 0.0;  // its rim's distance from the pole
     int32_t start = 0, size = 0;         // in rowSlots_
     int maxGroupLog2 = 0;
     int innerCircle = -1, outerCircle = -1;  // in circles_; -1: not shared with a grouped row
