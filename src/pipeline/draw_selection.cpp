@@ -90,6 +90,12 @@ int segmentsFor(double pixels, const DrawSelectionSettings& settings) {
 
 uint32_t vertexBound(int levelU, int levelV) { return uint32_t(levelU + 2) * uint32_t(levelV + 2); }
 
+// A group of a row: sectors index * 2^log2 .. (index + 1) * 2^log2 - 1 (pyramid[log2][index]).
+struct Group {
+  int log2 = 0;
+  int32_t index = 0;
+};
+
 int log2Exact(int64_t value) {
   int e = 0;
   while ((int64_t(1) << e) < value) ++e;
@@ -290,98 +296,114 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
     ++counted.patches;
   }
 
-  // Per row the group exponent: the largest whose visible groups' arcs all stay under groupPixels.
+  // Per row its groups: from quarter turns down, a group is split while it is wider than
+  // groupPixels (or outside the view: then dropped).
   const double groupPixels = settings.groupScale * std::max(settings.tessPixels, 0.5);
-  std::vector<int> groupLog2(rows_.size(), -1);  // -1: nothing of the row is visible
+  std::vector<std::vector<Group>> groups(rows_.size());
+  const auto addGroup = [&](size_t r, Group group, std::vector<Group>& out, bool split) {
+    const Row& row = rows_[r];
+    std::vector<Group> pending{group};
+    while (!pending.empty()) {
+      const Group g = pending.back();
+      pending.pop_back();
+      const Box& b = row.pyramid[size_t(g.log2)][size_t(g.index)];
+      if (frustum.outside(b.lo, b.hi)) {
+        counted.culled += size_t(1) << g.log2;
+        continue;
+      }
+      if (g.log2 > 0 && (split || width(row, b) > groupPixels)) {
+        pending.push_back({g.log2 - 1, 2 * g.index + 1});
+        pending.push_back({g.log2 - 1, 2 * g.index});
+        split = false;  // only the group asked for is split, its halves are judged
+        continue;
+      }
+      out.push_back(g);
+    }
+  };
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
-    for (int a = row.maxGroupLog2; a >= 0; --a) {
-      bool anyVisible = false, small = true;
-      for (const Box& b : row.pyramid[size_t(a)]) {
-        if (frustum.outside(b.lo, b.hi)) continue;
-        anyVisible = true;
-        if (width(row, b) > groupPixels) {
-          small = false;
-          break;
-        }
-      }
-      if (!anyVisible) break;
-      if (small || a == 0) {
-        groupLog2[r] = a;
-        break;
-      }
-    }
+    for (int32_t k = 0; k < int32_t(row.pyramid[size_t(row.maxGroupLog2)].size()); ++k)
+      addGroup(r, {row.maxGroupLog2, k}, groups[r], false);
   }
-  // Neighbours across a circle within 2^kMaxGroupRatioLog2 of each other's group counts: the
-  // coarser one gets finer groups where needed.
-  const auto groups = [&](int r) { return int64_t(rows_[size_t(r)].size) >> std::max(groupLog2[size_t(r)], 0); };
+  // On a circle the groups of both sides stay within 2^kMaxGroupRatioLog2 of the smallest there (in
+  // turns), so that one density gives each at least one and at most 64 segments: larger ones split.
+  // A group's size in sectors of the circle's finer side: 2^log2 * (finer sectors / its row's).
+  const auto finerSectors = [&](const Circle& c) {
+    return std::max(rows_[size_t(c.inside)].size, rows_[size_t(c.outside)].size);
+  };
+  const auto sizeOn = [&](const Circle& c, int r, const Group& g) {
+    return (int64_t(1) << g.log2) * (finerSectors(c) / rows_[size_t(r)].size);
+  };
   for (bool changed = true; changed;) {
     changed = false;
     for (const Circle& c : circles_) {
-      if (groupLog2[size_t(c.inside)] < 0 || groupLog2[size_t(c.outside)] < 0) continue;
-      const bool insideFiner = groups(c.inside) > groups(c.outside);
-      const int fine = insideFiner ? c.inside : c.outside, coarse = insideFiner ? c.outside : c.inside;
-      if (groups(fine) > (groups(coarse) << kMaxGroupRatioLog2) && groupLog2[size_t(coarse)] > 0) {
-        --groupLog2[size_t(coarse)];
-        changed = true;
+      int64_t smallest = INT64_MAX;
+      for (int r : {c.inside, c.outside})
+        for (const Group& g : groups[size_t(r)]) smallest = std::min(smallest, sizeOn(c, r, g));
+      for (int r : {c.inside, c.outside}) {
+        std::vector<Group> kept;
+        for (const Group& g : groups[size_t(r)]) {
+          if (g.log2 > 0 && sizeOn(c, r, g) > (smallest << kMaxGroupRatioLog2)) {
+            addGroup(size_t(r), g, kept, true);
+            changed = true;
+          } else {
+            kept.push_back(g);
+          }
+        }
+        groups[size_t(r)] = std::move(kept);
       }
     }
   }
-  // Per circle with a group on it, its segments per turn rho (a power of two times the larger group
-  // count), from the arcs of the groups on it; each side's group edge then has rho / groups segments.
-  std::vector<int> circleExponent(circles_.size() * 2, -1);  // [2c]: inside row's, [2c + 1]: outside's
+  // Per circle with a group on it, its segments per turn rho: from the arcs of the groups on it,
+  // at least one segment on the smallest, at most 64 on the largest; each group's edge then has
+  // rho * (its share of the turn) segments, a power of two (sizes and rho are).
+  std::vector<int64_t> circleDensity(circles_.size(), 0);  // 0: the patches' own rule
   for (size_t c = 0; c < circles_.size(); ++c) {
-    const int sides[2] = {circles_[c].inside, circles_[c].outside};
-    int64_t most = 1, fewest = INT64_MAX, wanted = 1;
-    for (int r : sides) {
-      const int a = groupLog2[size_t(r)];
-      if (a < 0) continue;
-      most = std::max(most, groups(r));
-      fewest = std::min(fewest, groups(r));
-      for (const Box& b : rows_[size_t(r)].pyramid[size_t(a)])
-        if (!frustum.outside(b.lo, b.hi)) wanted = std::max(wanted, int64_t(segmentsFor(arc(b), settings)) * groups(r));
-    }
-    // Sectors drawn alone on both sides keep their own rule (the full draw's tessellation there).
-    if (fewest == INT64_MAX || std::max(groupLog2[size_t(sides[0])], groupLog2[size_t(sides[1])]) == 0) continue;
-    int64_t rho = most;
-    while (rho < wanted && rho * 2 <= fewest * kMaxSegments) rho *= 2;
-    for (int side = 0; side < 2; ++side)
-      if (groupLog2[size_t(sides[side])] >= 0) circleExponent[2 * c + size_t(side)] = log2Exact(rho / groups(sides[side]));
+    const Circle& circle = circles_[c];
+    int64_t smallest = INT64_MAX, largest = 0;
+    double wanted = 0.0;
+    bool grouped = false;
+    for (int r : {circle.inside, circle.outside})
+      for (const Group& g : groups[size_t(r)]) {
+        const int64_t size = sizeOn(circle, r, g);
+        smallest = std::min(smallest, size);
+        largest = std::max(largest, size);
+        grouped = grouped || g.log2 > 0;
+        const Box& b = rows_[size_t(r)].pyramid[size_t(g.log2)][size_t(g.index)];
+        wanted = std::max(wanted, segmentsFor(arc(b), settings) * double(finerSectors(circle)) / double(size));
+      }
+    if (!grouped) continue;  // sectors alone on both sides keep their own rule (the full draw's)
+    const int64_t sectors = finerSectors(circle);
+    int64_t rho = sectors / smallest;
+    while (double(rho) < wanted && rho * 2 * largest <= sectors * kMaxSegments) rho *= 2;
+    circleDensity[c] = rho;
   }
+  const auto exponentOn = [&](int c, int r, const Group& g) {
+    if (c < 0 || circleDensity[size_t(c)] == 0) return -1;
+    const Circle& circle = circles_[size_t(c)];
+    return log2Exact(circleDensity[size_t(c)] * sizeOn(circle, r, g) / finerSectors(circle));
+  };
 
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
-    const int a = groupLog2[r];
-    if (a < 0) {
-      counted.culled += size_t(row.size);
-      continue;
-    }
-    ++counted.rows;
-    const int innerExponent = row.innerCircle >= 0 ? circleExponent[2 * size_t(row.innerCircle) + 1] : -1;
-    const int outerExponent = row.outerCircle >= 0 ? circleExponent[2 * size_t(row.outerCircle)] : -1;
-    // Along v the circles' segments (or the T-junction rule's 64 where an edge keeps its own rule).
-    const int alongV = std::max(innerExponent < 0 && !row.isCap ? kMaxSegments : 1 << std::max(innerExponent, 0),
-                                outerExponent < 0 ? kMaxSegments : 1 << outerExponent);
-    const int sectors = 1 << a;
-    const std::vector<Box>& boxes = row.pyramid[size_t(a)];
-    for (size_t g = 0; g < boxes.size(); ++g) {
-      const Box& b = boxes[g];
-      if (frustum.outside(b.lo, b.hi)) {
-        counted.culled += size_t(sectors);
-        continue;
-      }
+    if (!groups[r].empty()) ++counted.rows;
+    for (const Group& g : groups[r]) {
+      const Box& b = row.pyramid[size_t(g.log2)][size_t(g.index)];
       DrawItem item;
-      item.sector = int32_t(g) * sectors;
+      item.sector = g.index << g.log2;
       item.slot = uint32_t(rowSlots_[size_t(row.start + item.sector)]);
       item.rowStart = row.start;
       item.rowSize = row.size;
-      item.groupLog2 = int8_t(a);
-      item.innerExponent = int8_t(innerExponent);
-      item.outerExponent = int8_t(outerExponent);
-      // Along u the radial edges' adaptive levels, within 3x the group's box.
+      item.groupLog2 = int8_t(g.log2);
+      item.innerExponent = int8_t(exponentOn(row.innerCircle, int(r), g));
+      item.outerExponent = int8_t(exponentOn(row.outerCircle, int(r), g));
+      // Along v the circles' segments (or the T-junction rule's 64 where an edge keeps its own
+      // rule); along u the radial edges' adaptive levels, within 3x the group's box.
+      const int alongV = std::max(item.innerExponent < 0 && !row.isCap ? kMaxSegments : 1 << std::max<int>(item.innerExponent, 0),
+                                  item.outerExponent < 0 ? kMaxSegments : 1 << item.outerExponent);
       item.vertexBound = vertexBound(segmentsFor(3.0 * across(b), settings), alongV);
       items.push_back(item);
-      counted.patches += size_t(sectors);
+      counted.patches += size_t(1) << g.log2;
     }
   }
   // In slot order: a renderer's draws then take neighbouring slots together (patch_renderer.cpp).

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <glm/gtc/matrix_transform.hpp>
@@ -870,7 +869,6 @@ void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& sha
     settings.tessPixels = std::max(shading.tessPixels, 0.5f);
     settings.maxTessLevel = shading.maxTessLevel;
     settings.viewportHeight = view.viewport.w;
-    if (std::getenv("PV_GS")) settings.groupScale = atof(std::getenv("PV_GS"));
     DrawSelectionStats counted;
     const std::vector<DrawItem> items = selection_.select(view, settings, &counted);
     stats_.drawnPrimitives = counted.items;
