@@ -309,3 +309,27 @@ TEST_CASE("patch kinds have distinct names") {
   CHECK(std::string(patchKindName(PatchKind::PolarRing)) != patchKindName(PatchKind::PoleCap));
   CHECK(std::string(patchKindName(PatchKind::EndCap)) == "end-cap");
 }
+
+TEST_CASE("bicubic patch: a turned patch is the same surface, its orientation, K and H kept; edges follow") {
+  std::mt19937 rng(17);
+  Patch patch;
+  for (Point& c : patch.cp) c = randomPoint(rng);
+  patch.edgeLevelDelta = {1, -2, 3, 0};
+  for (int turns = 0; turns < 4; ++turns) {
+    CAPTURE(turns);
+    const Patch turned = turnedPatch(patch, turns);
+    for (double u : {0.0, 0.3, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double pu = u, pv = v;
+        turnedParameter(&pu, &pv, turns);
+        const SurfacePoint a = evaluatePatch(turned, u, v), b = evaluatePatch(patch, pu, pv);
+        CHECK(glm::length(a.position - b.position) < 1e-12);
+        CHECK(glm::length(a.normal - b.normal) < 1e-9);  // a turn keeps x_u x x_v's direction
+        CHECK(a.gaussian == doctest::Approx(b.gaussian).epsilon(1e-9));
+        CHECK(a.mean == doctest::Approx(b.mean).epsilon(1e-9));
+      }
+    // Edge s of the turned patch runs along edge s + turns of the patch.
+    for (int s = 0; s < 4; ++s) CHECK(turned.edgeLevelDelta[size_t(s)] == patch.edgeLevelDelta[size_t((s + turns) % 4)]);
+  }
+  CHECK(turnedPatch(turnedPatch(patch, 3), 1).cp == patch.cp);
+}

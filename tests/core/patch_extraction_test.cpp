@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
 #include <string>
 #include <tuple>
@@ -821,4 +822,43 @@ TEST_CASE("extraction: faces at infinitely sharp creases are boundary patches cu
     offPlane = std::max(offPlane, nearest);
   }
   CHECK(offPlane <= 1e-14);
+}
+
+// Patch::link, sector and ringTurn (patch.h): turned, a ring patch's u runs outwards (its corner at
+// u = 1 is further from the pole's limit point than at u = 0), and along its row the sectors follow
+// one another in v (sector s's last control column is sector s + 1's first but one).
+TEST_CASE("extraction: ring patches know their place: link, sector along v, and the turn that points u outwards") {
+  for (Scheme scheme : {Scheme::C2PS, Scheme::RTS}) {
+    CAPTURE(static_cast<int>(scheme));
+    RefineOptions options;
+    options.scheme = scheme;
+    options.levels = 3;
+    const Refinement refinement(shapes::globe(6, 9), options);
+    const PatchSet set = extractPatches(refinement);
+    std::map<std::tuple<int, int, int>, std::map<int, const Patch*>> rows;  // (pole, ring, link) -> sector -> patch
+    Point pole[2];
+    for (const Patch& p : set.patches)
+      if (p.kind == PatchKind::PoleCap) pole[p.pole] = p.origin + p.cp[0];
+    size_t rings = 0;
+    for (const Patch& p : set.patches) {
+      if (p.kind != PatchKind::PolarRing) continue;
+      ++rings;
+      REQUIRE(p.link >= 1);
+      REQUIRE(p.sector >= 0);
+      CHECK(rows[{p.pole, p.ring, p.link}].emplace(p.sector, &p).second);  // one patch a sector
+    }
+    CHECK(rings > 0);
+    for (const auto& [key, row] : rows) {
+      const int sectors = int(row.size());
+      CHECK(row.rbegin()->first == sectors - 1);
+      for (const auto& [s, p] : row) {
+        const Patch turned = turnedPatch(*p, p->ringTurn);
+        const Point& centre = pole[std::get<0>(key)];
+        CHECK(glm::length(turned.cp[6] - centre) > glm::length(turned.cp[5] - centre));
+        const Patch& next = *row.at((s + 1) % sectors);
+        const Patch nextTurned = turnedPatch(next, next.ringTurn);
+        for (int i = 0; i < 4; ++i) CHECK(glm::length(turned.cp[size_t(4 + i)] - nextTurned.cp[size_t(i)]) < 1e-12);
+      }
+    }
+  }
 }
