@@ -89,7 +89,7 @@ GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, cons
   return {millisecondsSince(start), slot.renderer->lastReusedPatches()};
 }
 
-double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state) {
+double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model) {
   GpuView& gpu = views_[size_t(v)];
   const std::shared_ptr<const BuiltSurface>& shown = surfaces.shown(v);
   const std::shared_ptr<const BuiltSurface>& parked = surfaces.parked(v);
@@ -117,11 +117,17 @@ double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state) {
   }
   const int zoom = !shown || shown->poles.empty() ? -1 : state.poleInspector.zoomRing;
   if (!shown || (gpu.shown.surface == shown && gpu.shown.zoom == zoom)) return 0.0;
-  const UploadCost cost = upload(v, *shown, state);
-  gpu.uploadMs = cost.milliseconds;  // the Stats panel's: a level-of-detail switch does not count
+  // What the level of detail draws of it goes up (all of it where it picks the surface's level).
+  std::shared_ptr<const BuiltSurface> drawn;
+  if (gpu.pixelsHigh > 0.0 && zoom < 0) {
+    const int wanted = levelOfDetail(v, *shown, gpu.pixelsHigh, state, model);
+    if (wanted < shown->patchLevel) drawn = drawnSurface(*shown, model, wanted);
+  }
+  const UploadCost cost = upload(v, drawn ? *drawn : *shown, state);
+  gpu.uploadMs = cost.milliseconds;  // the Stats panel's: a later level-of-detail switch does not count
   gpu.keptPatches = surfaces.refreshed(v) ? 0 : cost.keptPatches;  // moved points: no patch stayed
   gpu.shown.surface = shown;
-  gpu.shown.drawn.reset();  // the level of detail is picked again for the new surface
+  gpu.shown.drawn = std::move(drawn);
   gpu.shown.renderer->setControlMesh(shown->controlMesh, shown->netSegments);
   gpu.shown.renderer->setPoleMarkers(shown->poles);
   return cost.milliseconds;
@@ -138,14 +144,18 @@ void GpuMirror::report(int v, ViewStatus& status) const {
   }
 }
 
+int GpuMirror::levelOfDetail(int v, const BuiltSurface& shown, double pixelsHigh, const ViewerState& state,
+                             const Model& model) const {
+  // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
+  if (!levelOfDetail_.enabled || state.edit.dragging || shown.key.points != model.points) return shown.patchLevel;
+  return levelToDraw(shown.detail, shown.patchLevel, state.camera(v), pixelsHigh, levelOfDetail_.pixels);
+}
+
 void GpuMirror::updateDrawnLevel(int v, double pixelsHigh, ViewerState& state, const Model& model) {
   GpuSlot& slot = views_[size_t(v)].shown;
   const BuiltSurface* shown = slot.surface.get();
   if (!shown || slot.zoom >= 0) return;
-  // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
-  int wanted = shown->patchLevel;
-  if (levelOfDetail_.enabled && !state.edit.dragging && shown->key.points == model.points)
-    wanted = levelToDraw(shown->detail, shown->patchLevel, state.camera(v), pixelsHigh, levelOfDetail_.pixels);
+  const int wanted = levelOfDetail(v, *shown, pixelsHigh, state, model);
   const int drawnNow = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
   if (wanted != drawnNow) {
     std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model, wanted) : nullptr;
@@ -184,7 +194,8 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     display.poleMarkers = false;
     const ScreenRect& r = rects[v];
     const OrbitCamera& camera = state.camera(int(v));
-    updateDrawnLevel(int(v), double(r.h) * pixelScale, state, document.model());
+    views_[v].pixelsHigh = double(r.h) * pixelScale;
+    updateDrawnLevel(int(v), views_[v].pixelsHigh, state, document.model());
     ViewParams params;
     params.viewport = glm::ivec4(int(r.x * pixelScale), framebufferHeight - int((r.y + r.h) * pixelScale),
                                  int(r.w * pixelScale), int(r.h * pixelScale));

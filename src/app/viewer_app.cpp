@@ -236,7 +236,7 @@ std::string ViewerApp::clipboard() {
 void ViewerApp::updateSurfaces() {
   std::optional<EditCost> cost = session_.updateModelAndSurfaces();
   for (int v = 0; v < kMaxViews; ++v) {
-    const double uploadMs = gpu_->sync(v, session_.surfaces(), state_);
+    const double uploadMs = gpu_->sync(v, session_.surfaces(), state_, document().model());
     if (cost && session_.surfaces().refreshed(v)) {  // the upload is part of an edit's cost
       cost->uploadMs += uploadMs;
       cost->totalMs += uploadMs;

@@ -1,6 +1,8 @@
 // Draw selection (see draw_selection.h and docs/shading.md, "Close-ups: detail per region").
 #include "pipeline/draw_selection.h"
 
+#include "core/subdiv/parallel_for.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,7 +21,21 @@ constexpr int kMaxSegments = 64;  // GL's (and patch.tesc's) largest tessellatio
 // Neighbouring rows' group counts may differ by this much (a circle's density then fits both).
 constexpr int kMaxGroupRatioLog2 = 5;
 
-Point absolutePoint(const Patch& patch, int k) { return patch.origin + patch.cp[size_t(k)]; }
+// Control point k of the patch turned upright (Patch::ringTurn: a ring patch's u outwards, v along
+// its row; other kinds are not turned), in absolute coordinates.
+constexpr std::array<std::array<int8_t, 16>, 4> kTurnedIndex = [] {
+  std::array<std::array<int8_t, 16>, 4> table{};
+  for (int turns = 0; turns < 4; ++turns)
+    for (int c = 0; c < 16; ++c) {
+      int k = c;
+      for (int t = 0; t < turns; ++t) k = 4 * (k % 4) + (3 - k / 4);  // turnedControlIndex
+      table[size_t(turns)][size_t(c)] = int8_t(k);
+    }
+  return table;
+}();
+Point absolutePoint(const Patch& patch, int k) {
+  return patch.origin + patch.cp[size_t(kTurnedIndex[size_t(patch.ringTurn & 3)][size_t(k)])];
+}
 
 // The limit point at a corner of a B-spline patch's square, over control point (i, j) (1 or 2):
 // (1, 4, 1) x (1, 4, 1) / 36.
@@ -38,9 +54,6 @@ Point capRimStart(const Patch& cap) {
 Point capRimEnd(const Patch& cap) {
   return (absolutePoint(cap, 7) + 4.0 * absolutePoint(cap, 8) + absolutePoint(cap, 9)) / 6.0;
 }
-
-// A ring patch turned so that u runs outwards and v along its row (Patch::ringTurn).
-Patch upright(const Patch& patch) { return turnedPatch(patch, patch.ringTurn); }
 
 bool near(const Point& a, const Point& b, double scale) {
   return glm::length(a - b) <= 1e-7 * scale;
@@ -107,11 +120,17 @@ int log2Exact(int64_t value) {
 void patchBounds(const Patch& patch, glm::dvec3* lo, glm::dvec3* hi) {
   *lo = Point(std::numeric_limits<double>::max());
   *hi = Point(-std::numeric_limits<double>::max());
-  for (int k = 0; k < 16; ++k)
-    if (isPositionPoint(patch.kind, k)) {
-      *lo = glm::min(*lo, absolutePoint(patch, k));
-      *hi = glm::max(*hi, absolutePoint(patch, k));
-    }
+  const auto take = [&](const Point& c) {
+    *lo = glm::min(*lo, c);
+    *hi = glm::max(*hi, c);
+  };
+  if (patch.kind == PatchKind::PoleCap) {
+    for (int k : {0, 6, 7, 8, 9}) take(patch.cp[size_t(k)]);  // isPositionPoint's
+  } else {
+    for (const Point& c : patch.cp) take(c);
+  }
+  *lo += patch.origin;
+  *hi += patch.origin;
   // A cap bulges off the hull of its pole and rim points (its Taylor terms over a wedge of radius
   // R: heights of about K R^2, a few percent of R where the rings are below a pixel): a tenth of its
   // size more. (Not more: a thick box around a wedge under the eye would hold the eye.)
@@ -122,6 +141,22 @@ void patchBounds(const Patch& patch, glm::dvec3* lo, glm::dvec3* hi) {
   }
 }
 
+// A patch's box, and a row sector's arc and rim (see Box). [O(1)]
+DrawSelection::Box DrawSelection::boxOf(const Patch& patch) {
+  Box box;
+  patchBounds(patch, &box.lo, &box.hi);
+  box.rimLo = box.lo, box.rimHi = box.hi;
+  if (patch.kind == PatchKind::PolarRing) {
+    // Of the control points over the outer circle: a measure in pixels, not the curve's length.
+    box.arc = glm::length(absolutePoint(patch, 10) - absolutePoint(patch, 6));
+  } else if (patch.kind == PatchKind::PoleCap) {
+    box.arc = glm::length(absolutePoint(patch, 8) - absolutePoint(patch, 7));
+    box.rimLo = glm::min(capRimStart(patch), capRimEnd(patch));
+    box.rimHi = glm::max(capRimStart(patch), capRimEnd(patch));
+  }
+  return box;
+}
+
 void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<uint32_t>& slotOfPatch) {
   rows_.clear();
   circles_.clear();
@@ -130,21 +165,33 @@ void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<u
   loneSlots_.clear();
   loneHasJump_.clear();
   patchCount_ = patches.size();
+  // The boxes in one pass over the patches in memory order, split over the cores (a patch is 440
+  // bytes: C2PS 12's 246k are 108 MB to read).
+  std::vector<Box> boxes(patches.size());
+  parallelRanges(Index(patches.size()), threadsFor(patches.size()), [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p) boxes[size_t(p)] = boxOf(patches[size_t(p)]);
+  });
   std::map<std::tuple<int, int, int>, std::vector<size_t>> byRow;  // (pole, level, link) -> patches
   const auto addLone = [&](size_t p) {
-    Box box;
-    patchBounds(patches[p], &box.lo, &box.hi);
-    loneBoxes_.push_back(box);
+    loneBoxes_.push_back(boxes[p]);
     loneSlots_.push_back(slotOfPatch[p]);
     const auto& jumps = patches[p].edgeLevelDelta;
     loneHasJump_.push_back(std::any_of(jumps.begin(), jumps.end(), [](int8_t d) { return d != 0; }));
   };
+  std::vector<size_t>* lastRow = nullptr;
+  std::tuple<int, int, int> lastKey;
   for (size_t p = 0; p < patches.size(); ++p) {
     const Patch& patch = patches[p];
     const bool inRow = (patch.kind == PatchKind::PolarRing || patch.kind == PatchKind::PoleCap) && patch.pole >= 0 &&
                        patch.sector >= 0 && patch.link >= 0;
-    if (inRow) byRow[{patch.pole, patch.ring, patch.link}].push_back(p);
-    else addLone(p);
+    if (!inRow) {
+      addLone(p);
+      continue;
+    }
+    // Patches of a row mostly come one after another: the last row's entry first.
+    const std::tuple<int, int, int> key{patch.pole, patch.ring, patch.link};
+    if (!lastRow || lastKey != key) lastRow = &byRow[key], lastKey = key;
+    lastRow->push_back(p);
   }
   std::vector<std::vector<size_t>> rowPatches;
   for (auto& [key, members] : byRow) {
@@ -157,11 +204,13 @@ void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<u
       else bySector[size_t(s)] = p;
     }
     // Neighbouring sectors share their control columns (a cap: its rim points), so the groups'
-    // shared radial edges are the same points on both sides.
+    // shared radial edges are the same points on both sides: by construction of Patch::sector
+    // (patch_extraction.cpp, setRingPlace), checked here at two sectors.
     const bool cap = std::get<2>(key) == 0;
-    for (int32_t s = 0; complete && s < size; ++s) {
-      const Patch a = upright(patches[bySector[size_t(s)]]);
-      const Patch b = upright(patches[bySector[size_t((s + 1) % size)]]);
+    for (int32_t s : {0, size / 2}) {
+      if (!complete) break;
+      const Patch& a = patches[bySector[size_t(s)]];
+      const Patch& b = patches[bySector[size_t((s + 1) % size)]];
       const double scale = glm::length(absolutePoint(a, cap ? 9 : 15) - absolutePoint(a, cap ? 6 : 0));
       complete = cap ? near(absolutePoint(a, 7), absolutePoint(b, 6), scale)
                      : near(absolutePoint(a, 4), absolutePoint(b, 0), scale) && near(absolutePoint(a, 7), absolutePoint(b, 3), scale);
@@ -178,24 +227,15 @@ void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<u
     row.start = int32_t(rowSlots_.size());
     row.size = size;
     for (size_t p : bySector) rowSlots_.push_back(int32_t(slotOfPatch[p]));
+    if (cap) {
+      row.polePoint = absolutePoint(patches[bySector[0]], 0);
+      row.rimRadius = glm::length(capRimStart(patches[bySector[0]]) - row.polePoint);
+    }
     // Group sizes 2^a that divide the row and leave at least 4 groups (a quarter turn at most).
     while (size % (2 << row.maxGroupLog2) == 0 && (2 << row.maxGroupLog2) * 4 <= size) ++row.maxGroupLog2;
     row.pyramid.resize(size_t(row.maxGroupLog2) + 1);
-    for (size_t p : bySector) {
-      Box box;
-      patchBounds(patches[p], &box.lo, &box.hi);
-      const Patch sector = upright(patches[p]);
-      box.arc = cap ? glm::length(capRimEnd(sector) - capRimStart(sector))
-                    : glm::length(splineCorner(sector, 2, 2) - splineCorner(sector, 2, 1));
-      box.rimLo = box.lo, box.rimHi = box.hi;
-      if (cap) {
-        box.rimLo = glm::min(capRimStart(sector), capRimEnd(sector));
-        box.rimHi = glm::max(capRimStart(sector), capRimEnd(sector));
-        row.polePoint = absolutePoint(sector, 0);
-        row.rimRadius = glm::length(capRimStart(sector) - row.polePoint);
-      }
-      row.pyramid[0].push_back(box);
-    }
+    for (size_t a = 0; a < row.pyramid.size(); ++a) row.pyramid[a].reserve(size_t(size) >> a);
+    for (size_t p : bySector) row.pyramid[0].push_back(boxes[p]);
     for (size_t a = 1; a < row.pyramid.size(); ++a)
       for (size_t g = 0; g < row.pyramid[a - 1].size(); g += 2) {
         const Box& b0 = row.pyramid[a - 1][g];
@@ -225,13 +265,19 @@ void DrawSelection::linkRows(const std::vector<Patch>& patches, const std::vecto
     const Row& out = rows_[size_t(outside)];
     const Row& in = rows_[size_t(inside)];
     if (in.size != out.size && in.size != 2 * out.size) return false;
-    std::vector<Point> starts;
-    for (size_t p : rowPatches[size_t(inside)]) starts.push_back(in.isCap ? capRimStart(patches[p]) : splineCorner(upright(patches[p]), 2, 1));
+    const auto startInside = [&](int32_t s) {
+      const Patch& b = patches[rowPatches[size_t(inside)][size_t(s)]];
+      return in.isCap ? capRimStart(b) : splineCorner(b, 2, 1);
+    };
+    const int32_t ratio = in.size / out.size;
     for (int32_t s : {0, out.size / 2 + 1}) {
-      const Patch a = upright(patches[rowPatches[size_t(outside)][size_t(s % out.size)]]);
+      const Patch& a = patches[rowPatches[size_t(outside)][size_t(s % out.size)]];
       const Point onOut = splineCorner(a, 1, 1);
       const double scale = glm::length(splineCorner(a, 2, 1) - onOut);
-      if (std::none_of(starts.begin(), starts.end(), [&](const Point& q) { return near(onOut, q, scale); })) return false;
+      // Where the numbering agrees, sector s is sector ratio s inside; else any sector may be.
+      bool found = near(onOut, startInside((s * ratio) % in.size), scale);
+      for (int32_t t = 0; t < in.size && !found; ++t) found = near(onOut, startInside(t), scale);
+      if (!found) return false;
     }
     return true;
   };

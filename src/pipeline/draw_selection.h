@@ -94,6 +94,7 @@ class DrawSelection {
   struct Circle {
     int inside = -1, outside = -1;  // rows
   };
+  static Box boxOf(const Patch& patch);
   void linkRows(const std::vector<Patch>& patches, const std::vector<std::vector<size_t>>& rowPatches);
   std::vector<Row> rows_;
   std::vector<Circle> circles_;

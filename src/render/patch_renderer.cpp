@@ -7,6 +7,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -162,6 +163,20 @@ struct GpuPatch {
   std::array<glm::dvec3, 16> cp{};
 };
 
+// A ring patch goes up turned by its ringTurn (u outwards, v around: sector groups, patch.tese; its
+// jumps with it, packKindLevelJumps): control point k of the GPU form is the patch's
+// turnedControlIndex(k, ringTurn), a table here (this runs for every patch of an upload).
+const std::array<std::array<int8_t, 16>, 4> kTurnedIndex = [] {
+  std::array<std::array<int8_t, 16>, 4> table{};
+  for (int turns = 0; turns < 4; ++turns)
+    for (int k = 0; k < 16; ++k) table[size_t(turns)][size_t(k)] = int8_t(turnedControlIndex(k, turns));
+  return table;
+}();
+
+const glm::dvec3& drawnPoint(const Patch& patch, int k) {
+  return patch.cp[size_t(kTurnedIndex[size_t(patch.ringTurn & 3)][size_t(k)])];
+}
+
 GpuPatch gpuForm(const Patch& patch) {
   GpuPatch out;
   if (patch.kind == PatchKind::PoleCap) {
@@ -194,7 +209,7 @@ GpuPatch gpuForm(const Patch& patch) {
   glm::dvec3 centre(0.0), du(0.0), dv(0.0);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
-      const glm::dvec3& c = patch.cp[4 * j + i];
+      const glm::dvec3& c = drawnPoint(patch, 4 * j + i);
       centre += (kB[i] * kB[j]) * c;
       du += (kD[i] * kB[j]) * c;
       dv += (kB[i] * kD[j]) * c;
@@ -202,8 +217,8 @@ GpuPatch gpuForm(const Patch& patch) {
   if (std::isfinite(glm::dot(centre, centre) + glm::dot(du, du) + glm::dot(dv, dv)))
     out.frame = frameAt(centre, du, glm::cross(du, dv));
   else
-    out.frame = frameAt(patch.cp[5], glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1));
-  for (int k = 0; k < 16; ++k) out.cp[k] = out.frame.toLocal * (patch.cp[k] - out.frame.origin);
+    out.frame = frameAt(drawnPoint(patch, 5), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1));
+  for (int k = 0; k < 16; ++k) out.cp[k] = out.frame.toLocal * (drawnPoint(patch, k) - out.frame.origin);
   for (int j = 0; j < 4; ++j) toForwardDifferences(out.cp, 4 * j, 1);  // along u, each row
   for (int i = 0; i < 4; ++i) toForwardDifferences(out.cp, i, 4);      // then along v
   out.frame.origin += patch.origin;  // the frame was placed relative to the patch's origin
@@ -214,8 +229,7 @@ GpuPatch gpuForm(const Patch& patch) {
 // The per-patch kind texel's x as patch.tesc unpacks it: bits 0-7 PatchKind, 8-15 level, then
 // Patch::edgeLevelDelta of edges 0..3 as signed 4-bit fields at bits 16 + 4s (jumps beyond
 // [-8, 7] get the same tessellation as those ends, see transitionEdgeSegments).
-// A ring patch goes up turned by its ringTurn (u outwards, v around: sector groups, patch.tese),
-// its jumps with it (turnedPatch).
+// A ring patch's jumps go up turned with it (gpuForm).
 int32_t packKindLevelJumps(const Patch& patch) {
   uint32_t packed = uint32_t(patch.kind) | uint32_t(patch.level) << 8;
   for (int s = 0; s < 4; ++s)
@@ -607,7 +621,7 @@ void packGpuPatches(const std::vector<Patch>& patches, size_t first, const glm::
   runParts(parts, [&](unsigned part) {
     const size_t end = first + size_t(partBound(Index(added), parts, part + 1));
     for (size_t p = first + size_t(partBound(Index(added), parts, part)); p < end; ++p) {
-      const Patch patch = turnedPatch(patches[p], patches[p].ringTurn);  // see packKindLevelJumps
+      const Patch& patch = patches[p];
       const GpuPatch gpu = gpuForm(patch);
       const PatchFrameCpu& frame = gpu.frame;
       float* texels = frameTexels + (p - first) * kFloatsPerFrame;
@@ -618,7 +632,7 @@ void packGpuPatches(const std::vector<Patch>& patches, size_t first, const glm::
       for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
         const glm::vec3 local(inUnits(patch.kind, k, gpu.cp[k], perUnit));
         point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center) + patch.cp[k]) * perUnit
+        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center) + drawnPoint(patch, k)) * perUnit
                                                  : inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit),
                   point + 3, point + 6);
       }

@@ -222,17 +222,18 @@ Patch withAbsolutePositions(const Patch& patch) {
   return out;
 }
 
+int turnedControlIndex(int k, int turns) {
+  // One quarter turn: (u, v) = (1 - v', u'), so control point (i', j') is (3 - j', i') before it.
+  for (int t = 0; t < ((turns % 4) + 4) % 4; ++t) k = 4 * (k % 4) + (3 - k / 4);
+  return k;
+}
+
 Patch turnedPatch(const Patch& patch, int turns) {
   if (patch.kind == PatchKind::PoleCap) return patch;
   Patch turned = patch;
-  for (int t = 0; t < ((turns % 4) + 4) % 4; ++t) {
-    const Patch before = turned;
-    // One quarter turn: (u, v) = (1 - v', u'), so control point (i', j') is (3 - j', i') before it,
-    // and edge s (corner s to s + 1) is edge s + 1 before it.
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i) turned.cp[size_t(4 * j + i)] = before.cp[size_t(4 * i + (3 - j))];
-    for (int s = 0; s < 4; ++s) turned.edgeLevelDelta[size_t(s)] = before.edgeLevelDelta[size_t((s + 1) % 4)];
-  }
+  for (int k = 0; k < 16; ++k) turned.cp[size_t(k)] = patch.cp[size_t(turnedControlIndex(k, turns))];
+  // Edge s (corner s to s + 1) of the turned patch is edge s + turns of the patch.
+  for (int s = 0; s < 4; ++s) turned.edgeLevelDelta[size_t(s)] = patch.edgeLevelDelta[size_t((s + turns % 4 + 4) % 4)];
   return turned;
 }
 

@@ -98,6 +98,8 @@ Patch withAbsolutePositions(const Patch& patch);
 // the result at (u', v') is the patch at turnedParameter(u', v', turns); cp and edgeLevelDelta
 // follow, orientation (x_u x x_v) is kept. A PoleCap is returned as it is. [O(1)]
 Patch turnedPatch(const Patch& patch, int turns);
+// Which of the patch's control points is control point k of turnedPatch(patch, turns). [O(1)]
+int turnedControlIndex(int k, int turns);
 // (u, v) of a patch for (u', v') of turnedPatch(patch, turns): (1 - v', u') applied `turns` times.
 void turnedParameter(double* u, double* v, int turns);
 
