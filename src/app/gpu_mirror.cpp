@@ -213,8 +213,13 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     status.drawnPrimitives = int(drew.drawnPrimitives);
     status.visiblePatches = int(drew.drawnPatches);
     status.culledPatches = int(drew.culledPatches);
-    if (markPoles)
-      visiblePoles(gpu.surface->poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
+    // A pole zoom draws that pole's rings scaled about it: its marker stays, the others are not there.
+    if (markPoles) {
+      std::vector<Point> poles = gpu.surface->poles;
+      if (gpu.zoom >= 0 && !poles.empty())
+        poles = {poles[size_t(std::clamp(state.poleInspector.pole, 0, int(poles.size()) - 1))]};
+      visiblePoles(poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
+    }
     if (netAfter) gpu.renderer->drawControlNetOver(params);
   }
   return markers;

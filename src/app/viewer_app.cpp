@@ -346,9 +346,19 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
     return;
   }
   if (pick.readout && session_.surfaces().shown(pick.view)) {
+    const BuiltSurface& shown = *session_.surfaces().shown(pick.view);
     // The depth buffer holds the surface up to its resolution: search within 1% of the distance.
-    const double tolerance = 1e-2 * glm::length(world - camera.eye());
-    if (const auto readout = readSurfacePoint(session_.surfaces().shown(pick.view)->patches, world, tolerance)) {
+    double tolerance = 1e-2 * glm::length(world - camera.eye());
+    glm::dvec3 onSurface = world;
+    // A pole zoom draws the rings scaled by 2^m about the pole (zoomAboutPole): the point picked is
+    // that of the surface itself scaled back.
+    const int zoom = state_.poleInspector.zoomRing;
+    if (zoom >= 0 && !shown.poles.empty()) {
+      const Point& pole = shown.poles[size_t(std::clamp(state_.poleInspector.pole, 0, int(shown.poles.size()) - 1))];
+      onSurface = pole + std::ldexp(1.0, -zoom) * (world - pole);
+      tolerance = std::ldexp(tolerance, -zoom);
+    }
+    if (const auto readout = readSurfacePoint(shown.patches, onSurface, tolerance)) {
       state_.readout = ReadoutSettings{true, pick.view, *readout, readout->text()};
       state_.notice = "K " + std::to_string(readout->point.gaussian) + ", H " + std::to_string(readout->point.mean) +
                       " (panel Point; Copy)";
@@ -423,6 +433,7 @@ void ViewerApp::runFrame() {
     poles = gpu_->draw(rects, pixelScale, fbHeight, state_, document());
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
+  lastPoleMarkers_ = poles;
   drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles,
                   vertexMarkers(rects), pointMarkers(rects));
   ImGui::Render();

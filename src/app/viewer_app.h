@@ -90,6 +90,8 @@ class ViewerApp : public WindowServices {
   glm::dvec3 modelMax() const { return document().modelMax(); }
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
   const BuiltSurface* shownSurface(int v) const { return session_.surfaces().shown(v).get(); }
+  // The pole markers the last frame drew (overlay coordinates), for tests.
+  const std::vector<PoleMarker>& lastPoleMarkers() const { return lastPoleMarkers_; }
   const BuiltSurface* parkedSurface(int v) const { return session_.surfaces().parked(v).get(); }
   // View v's renderer (what is on the GPU), for tests.
   const PatchRenderer& renderer(int v) const { return gpu_->renderer(v); }
@@ -170,6 +172,7 @@ class ViewerApp : public WindowServices {
   std::optional<PointerState> pointerOverride_;
   std::pair<double, double> eventCursor_{0.0, 0.0};  // the cursor as of the last event GLFW delivered
   std::optional<std::pair<float, float>> buttonPosition_;  // where this frame's mouse button changed (window coordinates)
+  std::vector<PoleMarker> lastPoleMarkers_;  // the last frame's (lastPoleMarkers)
 };
 
 }  // namespace polarview

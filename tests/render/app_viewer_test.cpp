@@ -777,4 +777,60 @@ TEST_CASE("pole zoom: the views draw rings m..m+2 of the pole scaled by 2^m, and
   CHECK(app->renderer(0).patchCount() == whole);
 }
 
+TEST_CASE("pole zoom: only the zoomed pole is marked, and Alt+click reads the surface itself at the point drawn") {
+  auto app = makeHiddenApp(640, 480);
+  REQUIRE(app->loadMesh(shapes::globe(8, 6), "globe"));
+  ViewerState& state = app->state();
+  state.views[0].scheme = SchemeChoice::C2PS;
+  state.views[0].level = 7;
+  state.display.poleMarkers = true;
+  app->waitUntilIdle();
+  state.camera(0).pitchDeg = 60.0;
+  for (int frame = 0; frame < 3; ++frame) app->runFrame();
+  const BuiltSurface& shown = *app->shownSurface(0);
+  REQUIRE(shown.poles.size() == 2);
+  // The pole in sight from above is marked.
+  const ViewTransform before = app->viewTransform(0);
+  REQUIRE(app->lastPoleMarkers().size() == 1);
+  int top = -1;
+  for (int p = 0; p < 2; ++p) {
+    const auto at = before.project(shown.poles[size_t(p)]);
+    if (at && std::hypot(at->x - app->lastPoleMarkers()[0].x, at->y - app->lastPoleMarkers()[0].y) < 2.0) top = p;
+  }
+  REQUIRE(top >= 0);
+  // Zoomed on the other pole (its rings scaled by 16 about it, nothing else drawn), the top pole,
+  // still inside the view, is not marked: at most the zoomed pole is, where it is.
+  const int zoomed = 1 - top;
+  state.poleInspector.pole = zoomed;
+  state.poleInspector.zoomRing = 4;
+  for (int frame = 0; frame < 3; ++frame) app->runFrame();
+  const ViewTransform view = app->viewTransform(0);
+  const auto topAt = view.project(shown.poles[size_t(top)]);
+  REQUIRE(topAt);
+  CHECK(view.rect.contains(float(topAt->x), float(topAt->y)));
+  CHECK(app->lastPoleMarkers().size() <= 1);
+  for (const PoleMarker& marker : app->lastPoleMarkers()) {
+    const auto at = view.project(shown.poles[size_t(zoomed)]);
+    REQUIRE(at);
+    CHECK(std::hypot(at->x - marker.x, at->y - marker.y) < 2.0);
+  }
+  // Framed (F) on the zoomed rings, Alt+click reads the surface itself, scaled back about the pole.
+  app->frameModel();
+  for (int frame = 0; frame < 3; ++frame) app->runFrame();
+  const ViewTransform framed = app->viewTransform(0);
+  const float x = framed.rect.x + 0.6f * framed.rect.w, y = framed.rect.y + 0.5f * framed.rect.h;
+  app->requestPivot(PivotPick{0, x, y, 0.0f, true, false});
+  app->runFrame();
+  REQUIRE(state.readout.valid);
+  const PointReadout& r = state.readout.readout;
+  CHECK(shown.patches.at(r.patchIndex).pole == zoomed);
+  const SurfacePoint again = evaluatePatch(shown.patches.at(r.patchIndex), r.u, r.v);
+  CHECK(glm::length(again.position - r.point.position) < 1e-9);
+  const Point& pole = shown.poles[size_t(zoomed)];
+  const auto at = framed.project(pole + 16.0 * (r.point.position - pole));
+  REQUIRE(at);
+  CHECK(std::abs(at->x - x) < 1.5);
+  CHECK(std::abs(at->y - y) < 1.5);
+}
+
 }  // namespace polarview
