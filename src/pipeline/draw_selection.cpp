@@ -357,7 +357,10 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
         counted.culled += size_t(1) << g.log2;
         continue;
       }
-      if (g.log2 > 0 && (split || width(row, b) > groupPixels)) {
+      // A cap's group is a wedge cut by its rim's segments (up to 64) all the way to the pole: it
+      // may be as wide as 64 segments (its rim gets as many as its width asks, below).
+      const double widest = row.isCap ? kMaxSegments * groupPixels : groupPixels;
+      if (g.log2 > 0 && (split || width(row, b) > widest)) {
         pending.push_back({g.log2 - 1, 2 * g.index + 1});
         pending.push_back({g.log2 - 1, 2 * g.index});
         split = false;  // only the group asked for is split, its halves are judged
@@ -371,69 +374,109 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
     for (int32_t k = 0; k < int32_t(row.pyramid[size_t(row.maxGroupLog2)].size()); ++k)
       addGroup(r, {row.maxGroupLog2, k}, groups[r], false);
   }
-  // On a circle the groups of both sides stay within 2^kMaxGroupRatioLog2 of the smallest there (in
-  // turns), so that one density gives each at least one and at most 64 segments: larger ones split.
-  // A group's size in sectors of the circle's finer side: 2^log2 * (finer sectors / its row's).
+  // A circle's vertices are agreed per domain: the groups on it, of both sides, are intervals of its
+  // finer side's sectors that nest or are apart (sizes are powers of two), and a domain is one that
+  // no other holds with those it holds. Within a domain one density (segments per sector, a power of
+  // two) cuts every group's edge; domains meet at a vertex of both sides. A group's size in sectors
+  // of the circle's finer side: 2^log2 * (finer sectors / its row's).
   const auto finerSectors = [&](const Circle& c) {
     return std::max(rows_[size_t(c.inside)].size, rows_[size_t(c.outside)].size);
   };
-  const auto sizeOn = [&](const Circle& c, int r, const Group& g) {
-    return (int64_t(1) << g.log2) * (finerSectors(c) / rows_[size_t(r)].size);
+  struct OnCircle {
+    int64_t start = 0, size = 0;
+    int side = 0;     // 0 inside (the circle is the row's outer edge), 1 outside
+    size_t group = 0;  // in groups[its row]
+    int domain = 0;
   };
+  const auto onCircle = [&](const Circle& c) {
+    std::vector<OnCircle> found;
+    const int64_t finer = finerSectors(c);
+    for (int side = 0; side < 2; ++side) {
+      const int r = side == 0 ? c.inside : c.outside;
+      const int64_t scale = finer / rows_[size_t(r)].size;
+      for (size_t k = 0; k < groups[size_t(r)].size(); ++k) {
+        const Group& g = groups[size_t(r)][k];
+        found.push_back({(int64_t(g.index) << g.log2) * scale, (int64_t(1) << g.log2) * scale, side, k, 0});
+      }
+    }
+    std::sort(found.begin(), found.end(), [](const OnCircle& a, const OnCircle& b) {
+      return a.start != b.start ? a.start < b.start : a.size > b.size;
+    });
+    int64_t domainEnd = -1;
+    int domain = -1;
+    for (OnCircle& g : found) {
+      if (g.start >= domainEnd) domainEnd = g.start + g.size, ++domain;
+      g.domain = domain;
+    }
+    return found;
+  };
+  // Within a domain the groups stay within 2^kMaxGroupRatioLog2 of its smallest, so that one density
+  // gives each at least one segment and at most 64: larger ones split.
   for (bool changed = true; changed;) {
     changed = false;
     for (const Circle& c : circles_) {
-      int64_t smallest = INT64_MAX;
-      for (int r : {c.inside, c.outside})
-        for (const Group& g : groups[size_t(r)]) smallest = std::min(smallest, sizeOn(c, r, g));
-      for (int r : {c.inside, c.outside}) {
+      const std::vector<OnCircle> found = onCircle(c);
+      std::vector<int64_t> smallest(found.empty() ? 0 : size_t(found.back().domain) + 1, INT64_MAX);
+      for (const OnCircle& g : found) smallest[size_t(g.domain)] = std::min(smallest[size_t(g.domain)], g.size);
+      std::vector<uint8_t> split[2] = {std::vector<uint8_t>(groups[size_t(c.inside)].size(), 0),
+                                       std::vector<uint8_t>(groups[size_t(c.outside)].size(), 0)};
+      bool any = false;
+      for (const OnCircle& g : found)
+        if (g.size > (smallest[size_t(g.domain)] << kMaxGroupRatioLog2)) split[g.side][g.group] = 1, any = true;
+      if (!any) continue;
+      for (int side = 0; side < 2; ++side) {
+        const size_t r = size_t(side == 0 ? c.inside : c.outside);
         std::vector<Group> kept;
-        for (const Group& g : groups[size_t(r)]) {
-          if (g.log2 > 0 && sizeOn(c, r, g) > (smallest << kMaxGroupRatioLog2)) {
-            addGroup(size_t(r), g, kept, true);
-            changed = true;
-          } else {
-            kept.push_back(g);
-          }
+        for (size_t k = 0; k < groups[r].size(); ++k) {
+          if (split[side][k] && groups[r][k].log2 > 0) addGroup(r, groups[r][k], kept, true), changed = true;
+          else kept.push_back(groups[r][k]);
         }
-        groups[size_t(r)] = std::move(kept);
+        groups[r] = std::move(kept);
       }
     }
   }
-  // Per circle with a group on it, its segments per turn rho: from the arcs of the groups on it,
-  // at least one segment on the smallest, at most 64 on the largest; each group's edge then has
-  // rho * (its share of the turn) segments, a power of two (sizes and rho are).
-  std::vector<int64_t> circleDensity(circles_.size(), 0);  // 0: the patches' own rule
-  for (size_t c = 0; c < circles_.size(); ++c) {
-    const Circle& circle = circles_[c];
-    int64_t smallest = INT64_MAX, largest = 0;
-    double wanted = 0.0;
-    bool grouped = false;
-    for (int r : {circle.inside, circle.outside})
-      for (const Group& g : groups[size_t(r)]) {
-        const int64_t size = sizeOn(circle, r, g);
-        smallest = std::min(smallest, size);
-        largest = std::max(largest, size);
-        grouped = grouped || g.log2 > 0;
-        const Box& b = rows_[size_t(r)].pyramid[size_t(g.log2)][size_t(g.index)];
-        wanted = std::max(wanted, segmentsFor(arc(b), settings) * double(finerSectors(circle)) / double(size));
-      }
-    if (!grouped) continue;  // sectors alone on both sides keep their own rule (the full draw's)
-    const int64_t sectors = finerSectors(circle);
-    int64_t rho = sectors / smallest;
-    while (double(rho) < wanted && rho * 2 * largest <= sectors * kMaxSegments) rho *= 2;
-    circleDensity[c] = rho;
+  // Per domain its density: from the groups' widths along the circle (a cap's wedge: its widest),
+  // at least one segment on its smallest group and at most 64 on its largest. Each group's edge on
+  // the circle gets 2^exponent segments (-1: the patches' own rule, where every group of the domain
+  // is a sector alone: the full draw's tessellation there).
+  std::vector<std::array<std::vector<int>, 2>> exponents(rows_.size());  // [row][0 inner, 1 outer][group]
+  for (size_t r = 0; r < rows_.size(); ++r)
+    for (auto& side : exponents[r]) side.assign(groups[r].size(), -1);
+  for (const Circle& c : circles_) {
+    const std::vector<OnCircle> found = onCircle(c);
+    const size_t domains = found.empty() ? 0 : size_t(found.back().domain) + 1;
+    std::vector<int64_t> smallest(domains, INT64_MAX), largest(domains, 0);
+    std::vector<double> wanted(domains, 0.0);  // segments per finer sector
+    std::vector<uint8_t> grouped(domains, 0);
+    for (const OnCircle& g : found) {
+      const int r = g.side == 0 ? c.inside : c.outside;
+      const Row& row = rows_[size_t(r)];
+      const Group& group = groups[size_t(r)][g.group];
+      const Box& b = row.pyramid[size_t(group.log2)][size_t(group.index)];
+      const double pixels = row.isCap ? std::max(arc(b), width(row, b)) : arc(b);
+      const size_t d = size_t(g.domain);
+      smallest[d] = std::min(smallest[d], g.size);
+      largest[d] = std::max(largest[d], g.size);
+      wanted[d] = std::max(wanted[d], segmentsFor(pixels, settings) / double(g.size));
+      grouped[d] = grouped[d] || group.log2 > 0;
+    }
+    for (const OnCircle& g : found) {
+      const size_t d = size_t(g.domain);
+      if (!grouped[d]) continue;
+      // Segments per finer sector 2^e: e from -log2(smallest) (one on the smallest) up to what the
+      // widths ask, while the largest gets at most 64.
+      int e = -log2Exact(smallest[d]);
+      while (std::ldexp(1.0, e) < wanted[d] && std::ldexp(double(largest[d]), e + 1) <= kMaxSegments) ++e;
+      const int r = g.side == 0 ? c.inside : c.outside;
+      exponents[size_t(r)][g.side == 0 ? 1 : 0][g.group] = e + log2Exact(g.size);
+    }
   }
-  const auto exponentOn = [&](int c, int r, const Group& g) {
-    if (c < 0 || circleDensity[size_t(c)] == 0) return -1;
-    const Circle& circle = circles_[size_t(c)];
-    return log2Exact(circleDensity[size_t(c)] * sizeOn(circle, r, g) / finerSectors(circle));
-  };
 
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
     if (!groups[r].empty()) ++counted.rows;
-    for (const Group& g : groups[r]) {
+    for (size_t k = 0; k < groups[r].size(); ++k) {
+      const Group& g = groups[r][k];
       const Box& b = row.pyramid[size_t(g.log2)][size_t(g.index)];
       DrawItem item;
       item.sector = g.index << g.log2;
@@ -441,8 +484,8 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       item.rowStart = row.start;
       item.rowSize = row.size;
       item.groupLog2 = int8_t(g.log2);
-      item.innerExponent = int8_t(exponentOn(row.innerCircle, int(r), g));
-      item.outerExponent = int8_t(exponentOn(row.outerCircle, int(r), g));
+      item.innerExponent = int8_t(exponents[r][0][k]);
+      item.outerExponent = int8_t(exponents[r][1][k]);
       // Along v the circles' segments (or the T-junction rule's 64 where an edge keeps its own
       // rule); along u the radial edges' adaptive levels, within 3x the group's box.
       const int alongV = std::max(item.innerExponent < 0 && !row.isCap ? kMaxSegments : 1 << std::max<int>(item.innerExponent, 0),

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <glm/geometric.hpp>
@@ -70,33 +71,64 @@ size_t checkCoverage(const Scene& scene, const std::vector<DrawItem>& items) {
   return size_t(std::count(drawn.begin(), drawn.end(), 1));
 }
 
-// Per circle (pole level link of the row outside it) the segments per turn each item on it has: one
-// value for all of them, on both sides, and 1..64 segments on each item's edge.
+// Per circle (the level and link of the row outside it): both sides cut it into the same vertices
+// where both are drawn. Positions in 1/64 of the circle's finer sectors; each item's edge on it has
+// 1..64 segments.
 void checkCircles(const Scene& scene, const std::vector<DrawItem>& items) {
-  std::map<std::tuple<int, int>, std::vector<double>> perTurn;  // (level, link of the circle's row outside)
+  struct Edge {
+    int64_t start, size, segments;  // in units of the finer side's sectors; its row's size
+    int rowSize;
+  };
+  std::map<std::tuple<int, int>, std::vector<Edge>> sides[2];  // [0]: the row inside the circle
   for (const DrawItem& item : items) {
     if (item.rowStart < 0) continue;
     const Patch& patch = scene.patches[item.slot];
-    const double share = double(1 << item.groupLog2) / item.rowSize;  // of a turn
-    for (int side = 0; side < 2; ++side) {
-      const int exponent = side == 0 ? item.innerExponent : item.outerExponent;
+    for (int edge = 0; edge < 2; ++edge) {
+      const int exponent = edge == 0 ? item.innerExponent : item.outerExponent;
       if (exponent < 0) continue;
       CHECK(exponent <= 6);
       // The circle inside row (m, 3) is outside row (m, 2); inside (m, 2): outside (m + 1, 3) or
       // the caps (m, 0).
       std::tuple<int, int> circle;
-      if (side == 0) circle = {patch.level, patch.link};
+      if (edge == 0) circle = {patch.level, patch.link};
       else if (patch.link == 2) circle = {patch.level, 3};
       else if (patch.link == 3) circle = {patch.level - 1, 2};
       else circle = {patch.level, 2};  // a cap's rim: inside ring (level, 2)
-      perTurn[circle].push_back(double(1 << exponent) / share);
+      sides[edge == 0 ? 1 : 0][circle].push_back({item.sector, int64_t(1) << item.groupLog2, int64_t(1) << exponent, item.rowSize});
     }
   }
-  for (const auto& [circle, values] : perTurn) {
+  size_t circles = 0;
+  for (const auto& [circle, inside] : sides[0]) {
+    const auto found = sides[1].find(circle);
+    if (found == sides[1].end()) continue;
+    const std::vector<Edge>& outside = found->second;
+    ++circles;
     CAPTURE(std::get<0>(circle));
     CAPTURE(std::get<1>(circle));
-    CHECK(*std::min_element(values.begin(), values.end()) == *std::max_element(values.begin(), values.end()));
+    int finer = 0;
+    for (const std::vector<Edge>* edges : {&inside, &outside})
+      for (const Edge& e : *edges) finer = std::max(finer, e.rowSize);
+    // Per side its vertices and the stretches it covers, in 1/64 finer sector.
+    std::set<int64_t> vertices[2];
+    std::vector<std::pair<int64_t, int64_t>> covered[2];
+    int side = 0;
+    for (const std::vector<Edge>* edges : {&inside, &outside}) {
+      for (const Edge& e : *edges) {
+        const int64_t scale = 64 * (finer / e.rowSize), start = e.start * scale, length = e.size * scale;
+        REQUIRE(length % e.segments == 0);
+        for (int64_t k = 0; k <= e.segments; ++k) vertices[side].insert(start + k * (length / e.segments));
+        covered[side].push_back({start, start + length});
+      }
+      ++side;
+    }
+    for (int a = 0; a < 2; ++a)
+      for (int64_t v : vertices[a]) {
+        const bool inOther = std::any_of(covered[1 - a].begin(), covered[1 - a].end(),
+                                         [&](const auto& c) { return v > c.first && v < c.second; });
+        if (inOther) CHECK(vertices[1 - a].count(v) == 1);
+      }
   }
+  CHECK(circles > 0);
 }
 
 }  // namespace
