@@ -20,6 +20,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <thread>
 #include <chrono>
@@ -73,6 +74,22 @@ std::pair<int, int> pngSize(const std::string& path) {
   in.read(reinterpret_cast<char*>(header), 24);
   auto be32 = [&](int at) { return int(header[at]) << 24 | int(header[at + 1]) << 16 | int(header[at + 2]) << 8 | int(header[at + 3]); };
   return {be32(16), be32(20)};
+}
+
+// Alt+click at the fractions (fx, fy) of view 0 (the readout lands in state().readout); checks
+// that `drawn` (the read point as the view draws it) projects back under the cursor.
+const PointReadout& altClickReadout(ViewerApp& app, float fx, float fy, const std::function<Point(const Point&)>& drawn) {
+  const ViewTransform view = app.viewTransform(0);
+  const float x = view.rect.x + fx * view.rect.w, y = view.rect.y + fy * view.rect.h;
+  app.requestPivot(PivotPick{0, x, y, 0.0f, true, false});
+  app.runFrame();
+  REQUIRE(app.state().readout.valid);
+  const PointReadout& r = app.state().readout.readout;
+  const auto at = view.project(drawn(r.point.position));
+  REQUIRE(at);
+  CHECK(std::abs(at->x - x) < 1.5);
+  CHECK(std::abs(at->y - y) < 1.5);
+  return r;
 }
 
 }  // namespace
@@ -675,19 +692,10 @@ TEST_CASE("point readout: Alt+click reads the surface point under the cursor wit
   app->waitUntilIdle();
   for (int frame = 0; frame < 3; ++frame) app->runFrame();
   const OrbitCamera before = state.camera(0);
-  const ViewTransform view = app->viewTransform(0);
-  const float x = view.rect.x + 0.5f * view.rect.w, y = view.rect.y + 0.45f * view.rect.h;
-  app->requestPivot(PivotPick{0, x, y, 0.0f, true, false});
-  app->runFrame();
-  REQUIRE(state.readout.valid);
-  const PointReadout& r = state.readout.readout;
+  // The point projects back under the cursor, and its K is the patch's there.
+  const PointReadout& r = altClickReadout(*app, 0.5f, 0.45f, [](const Point& p) { return p; });
   CHECK(state.camera(0).target == before.target);  // Alt+click moves nothing
   CHECK(state.camera(0).distance == before.distance);
-  // The point projects back under the cursor, and its K is the patch's there.
-  const auto at = view.project(r.point.position);
-  REQUIRE(at);
-  CHECK(std::abs(at->x - x) < 1.5);
-  CHECK(std::abs(at->y - y) < 1.5);
   const SurfacePoint again = evaluatePatch(app->shownSurface(0)->patches.at(r.patchIndex), r.u, r.v);
   CHECK(again.gaussian == doctest::Approx(r.point.gaussian));
   CHECK(state.readout.text.find("K ") != std::string::npos);
@@ -817,20 +825,11 @@ TEST_CASE("pole zoom: only the zoomed pole is marked, and Alt+click reads the su
   // Framed (F) on the zoomed rings, Alt+click reads the surface itself, scaled back about the pole.
   app->frameModel();
   for (int frame = 0; frame < 3; ++frame) app->runFrame();
-  const ViewTransform framed = app->viewTransform(0);
-  const float x = framed.rect.x + 0.6f * framed.rect.w, y = framed.rect.y + 0.5f * framed.rect.h;
-  app->requestPivot(PivotPick{0, x, y, 0.0f, true, false});
-  app->runFrame();
-  REQUIRE(state.readout.valid);
-  const PointReadout& r = state.readout.readout;
+  const Point& pole = shown.poles[size_t(zoomed)];
+  const PointReadout& r = altClickReadout(*app, 0.6f, 0.5f, [&](const Point& p) { return pole + 16.0 * (p - pole); });
   CHECK(shown.patches.at(r.patchIndex).pole == zoomed);
   const SurfacePoint again = evaluatePatch(shown.patches.at(r.patchIndex), r.u, r.v);
   CHECK(glm::length(again.position - r.point.position) < 1e-9);
-  const Point& pole = shown.poles[size_t(zoomed)];
-  const auto at = framed.project(pole + 16.0 * (r.point.position - pole));
-  REQUIRE(at);
-  CHECK(std::abs(at->x - x) < 1.5);
-  CHECK(std::abs(at->y - y) < 1.5);
 }
 
 }  // namespace polarview
