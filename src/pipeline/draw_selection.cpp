@@ -149,6 +149,7 @@ DrawSelection::Box DrawSelection::boxOf(const Patch& patch) {
   if (patch.kind == PatchKind::PolarRing) {
     // Of the control points over the outer circle: a measure in pixels, not the curve's length.
     box.arc = glm::length(absolutePoint(patch, 10) - absolutePoint(patch, 6));
+    box.innerArc = glm::length(absolutePoint(patch, 9) - absolutePoint(patch, 5));
   } else if (patch.kind == PatchKind::PoleCap) {
     box.arc = glm::length(absolutePoint(patch, 8) - absolutePoint(patch, 7));
     box.rimLo = glm::min(capRimStart(patch), capRimEnd(patch));
@@ -240,7 +241,7 @@ void DrawSelection::build(const std::vector<Patch>& patches, const std::vector<u
       for (size_t g = 0; g < row.pyramid[a - 1].size(); g += 2) {
         const Box& b0 = row.pyramid[a - 1][g];
         const Box& b1 = row.pyramid[a - 1][g + 1];
-        row.pyramid[a].push_back({glm::min(b0.lo, b1.lo), glm::max(b0.hi, b1.hi), b0.arc + b1.arc,
+        row.pyramid[a].push_back({glm::min(b0.lo, b1.lo), glm::max(b0.hi, b1.hi), b0.innerArc + b1.innerArc, b0.arc + b1.arc,
                                   glm::min(b0.rimLo, b1.rimLo), glm::max(b0.rimHi, b1.rimHi)});
       }
     rows_.push_back(std::move(row));
@@ -453,11 +454,17 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
       const Row& row = rows_[size_t(r)];
       const Group& group = groups[size_t(r)][g.group];
       const Box& b = row.pyramid[size_t(group.log2)][size_t(group.index)];
-      const double pixels = row.isCap ? std::max(arc(b), width(row, b)) : arc(b);
+      // Its length on this circle: the outer arc of the row inside, the inner arc of the row
+      // outside (at the same distance as the outer: rows are thin); a cap's widest.
+      double pixels = g.side == 0 ? arc(b) : projector.pixels(b.innerArc, b.rimLo, b.rimHi);
+      if (row.isCap) pixels = std::max(pixels, width(row, b));
       const size_t d = size_t(g.domain);
       smallest[d] = std::min(smallest[d], g.size);
       largest[d] = std::max(largest[d], g.size);
-      wanted[d] = std::max(wanted[d], segmentsFor(pixels, settings) / double(g.size));
+      // Segments per sector at tessPixels apiece (not rounded per group: a domain of many small
+      // groups would ask a segment for each part of one).
+      const double segments = std::min(pixels / std::max(settings.tessPixels, 0.5), double(std::clamp(settings.maxTessLevel, 1, kMaxSegments)));
+      wanted[d] = std::max(wanted[d], segments / double(g.size));
       grouped[d] = grouped[d] || group.log2 > 0;
     }
     for (const OnCircle& g : found) {

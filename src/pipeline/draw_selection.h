@@ -79,7 +79,8 @@ class DrawSelection {
  private:
   struct Box {
     glm::dvec3 lo{0.0}, hi{0.0};
-    double arc = 0.0;  // a row's group: its sectors' chords along their outer circle,
+    double innerArc = 0.0;  // a row's group: its sectors' chords along their inner circle (0: a cap),
+    double arc = 0.0;       // and along their outer circle,
     glm::dvec3 rimLo{0.0}, rimHi{0.0};  // which lies in this box (a cap's rim; a ring's whole box)
   };
   struct Row {
