@@ -89,7 +89,7 @@ GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, cons
   return {millisecondsSince(start), slot.renderer->lastReusedPatches()};
 }
 
-double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model) {
+double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model, double firstPixelsHigh) {
   GpuView& gpu = views_[size_t(v)];
   const std::shared_ptr<const BuiltSurface>& shown = surfaces.shown(v);
   const std::shared_ptr<const BuiltSurface>& parked = surfaces.parked(v);
@@ -119,8 +119,9 @@ double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const 
   if (!shown || (gpu.shown.surface == shown && gpu.shown.zoom == zoom)) return 0.0;
   // What the level of detail draws of it goes up (all of it where it picks the surface's level).
   std::shared_ptr<const BuiltSurface> drawn;
-  if (gpu.pixelsHigh > 0.0 && zoom < 0) {
-    const int wanted = levelOfDetail(v, *shown, gpu.pixelsHigh, state, model);
+  const double pixelsHigh = gpu.pixelsHigh > 0.0 ? gpu.pixelsHigh : firstPixelsHigh;
+  if (pixelsHigh > 0.0 && zoom < 0) {
+    const int wanted = levelOfDetail(v, *shown, pixelsHigh, state, model);
     if (wanted < shown->patchLevel) drawn = drawnSurface(*shown, model, wanted);
   }
   const UploadCost cost = upload(v, drawn ? *drawn : *shown, state);

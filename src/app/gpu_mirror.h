@@ -36,10 +36,10 @@ class GpuMirror {
   // Brings view v's renderers to the cache's shown and parked surfaces: swaps, drops or uploads
   // (and reserves room for a level made ahead). Returns the milliseconds an upload took (0 when
   // none). [O(patches not on the GPU)]
-  // A new surface goes up as the level of detail would draw it at the view's last camera and size
-  // (its shallower set where deeper rings are below a pixel: the first C2PS 12 build uploads the
-  // 8,000 patches drawn, not all 246,000).
-  double sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model);
+  // A new surface goes up as the level of detail would draw it at the view's camera and last size
+  // (`firstPixelsHigh` before its first draw): its shallower set where deeper rings are below a
+  // pixel (the first C2PS 12 build uploads the 3,800-8,000 patches drawn, not all 246,000).
+  double sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model, double firstPixelsHigh);
   // The GPU's part of view v's status: upload time, patches kept, pole zoom, level drawn.
   void report(int v, ViewStatus& status) const;
   // Draws the views into the bound framebuffer; returns the pole markers the surfaces leave visible

@@ -235,8 +235,11 @@ std::string ViewerApp::clipboard() {
 
 void ViewerApp::updateSurfaces() {
   std::optional<EditCost> cost = session_.updateModelAndSurfaces();
+  // A view not drawn yet uploads for its height in the window (GpuMirror::sync).
+  const std::vector<ScreenRect> rects = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f));
   for (int v = 0; v < kMaxViews; ++v) {
-    const double uploadMs = gpu_->sync(v, session_.surfaces(), state_, document().model());
+    const double firstHigh = v < int(rects.size()) ? double(rects[size_t(v)].h) : 0.0;
+    const double uploadMs = gpu_->sync(v, session_.surfaces(), state_, document().model(), firstHigh);
     if (cost && session_.surfaces().refreshed(v)) {  // the upload is part of an edit's cost
       cost->uploadMs += uploadMs;
       cost->totalMs += uploadMs;
