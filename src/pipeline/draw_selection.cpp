@@ -300,122 +300,139 @@ void DrawSelection::linkRows(const std::vector<Patch>& patches, const std::vecto
     if (row.outerCircle < 0 || (row.innerCircle < 0 && !row.isCap)) row.maxGroupLog2 = 0;
 }
 
-std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSelectionSettings& settings,
-                                            DrawSelectionStats* stats) const {
+// One frame's selection (select): the view's measures, the groups chosen per row, the items.
+struct DrawSelection::Frame {
+  const DrawSelection& selection;
+  const ViewParams& view;
+  const DrawSelectionSettings& settings;
+  Frustum frustum;
+  Projector projector;
+  double groupPixels = 0.0;
+  std::vector<std::vector<Group>> groups;                 // per row
+  std::vector<std::array<std::vector<int>, 2>> exponents;  // [row][0 inner, 1 outer][group]: its circles' 2^e
   DrawSelectionStats counted;
   std::vector<DrawItem> items;
-  const Frustum frustum = frustumOf(view.proj * view.view);
-  Projector projector;
-  projector.eye = view.eye;
-  projector.perspective = view.proj[2][3] < -0.5;
-  projector.pixelsPerUnit = 0.5 * settings.viewportHeight * view.proj[1][1];
-  projector.nearDepth = projector.perspective ? std::max(view.proj[3][2] / (view.proj[2][2] - 1.0), 0.0) : 0.0;
-  const auto across = [&](const Box& b) { return projector.pixels(glm::length(b.hi - b.lo), b.lo, b.hi); };
+
+  // A group on a circle, in sectors of the circle's finer side (2^log2 * finer / its row's).
+  struct OnCircle {
+    int64_t start = 0, size = 0;
+    int side = 0;      // 0 inside (the circle is the row's outer edge), 1 outside
+    size_t group = 0;  // in groups[its row]
+    int domain = 0;
+  };
+
+  Frame(const DrawSelection& s, const ViewParams& v, const DrawSelectionSettings& st)
+      : selection(s), view(v), settings(st), frustum(frustumOf(v.proj * v.view)), groups(s.rows_.size()) {
+    projector.eye = view.eye;
+    projector.perspective = view.proj[2][3] < -0.5;
+    projector.pixelsPerUnit = 0.5 * settings.viewportHeight * view.proj[1][1];
+    projector.nearDepth = projector.perspective ? std::max(view.proj[3][2] / (view.proj[2][2] - 1.0), 0.0) : 0.0;
+    groupPixels = settings.groupScale * std::max(settings.tessPixels, 0.5);
+  }
+
+  const Row& row(int r) const { return selection.rows_[size_t(r)]; }
+  const Box& boxOf(int r, const Group& g) const { return row(r).pyramid[size_t(g.log2)][size_t(g.index)]; }
+  double across(const Box& b) const { return projector.pixels(glm::length(b.hi - b.lo), b.lo, b.hi); }
   // A group's arc along its outer circle, in pixels at that circle's distance.
-  const auto arc = [&](const Box& b) { return projector.pixels(b.arc, b.rimLo, b.rimHi); };
+  double arc(const Box& b) const { return projector.pixels(b.arc, b.rimLo, b.rimHi); }
   // How wide a group is anywhere: a ring's arc (rows are thin radially); a cap's wedge, an angle
   // theta from its pole, at radius r and distance d(r) >= |e - r| (e the eye's distance from the
   // pole) is r theta / d(r) wide: the largest of that over its radii.
-  const auto width = [&](const Row& row, const Box& b) {
+  double width(const Row& row, const Box& b) const {
     if (!row.isCap) return arc(b);
     const double theta = b.arc / std::max(row.rimRadius, 1e-300), e = glm::length(view.eye - row.polePoint);
+    const double boxDistance = glm::length(view.eye - glm::clamp(view.eye, b.lo, b.hi));
     double widest = 0.0;
     for (double r : {row.rimRadius, std::min(e, row.rimRadius), 0.5 * row.rimRadius, 0.25 * row.rimRadius}) {
-      const glm::dvec3 at = glm::clamp(view.eye, b.lo, b.hi);
-      const double d = std::max({std::abs(e - r), glm::length(view.eye - at), projector.nearDepth});
-      widest = std::max(widest, projector.perspective ? r * theta * projector.pixelsPerUnit / d : r * theta * projector.pixelsPerUnit);
+      const double d = std::max({std::abs(e - r), boxDistance, projector.nearDepth});
+      widest = std::max(widest, r * theta * projector.pixelsPerUnit / (projector.perspective ? d : 1.0));
     }
     return widest;
-  };
+  }
 
-  for (size_t k = 0; k < loneSlots_.size(); ++k) {
-    const Box& b = loneBoxes_[k];
+  void addLonePatches();
+  // Adds `group` of row r to `out`, split while wider than groupPixels (`split`: split it once
+  // anyway), dropping what is outside the view.
+  void addGroup(int r, Group group, std::vector<Group>& out, bool split);
+  std::vector<OnCircle> onCircle(const Circle& c) const;
+  void balanceCircles();
+  void circleExponents();
+  void addGroupItems();
+};
+
+void DrawSelection::Frame::addLonePatches() {
+  for (size_t k = 0; k < selection.loneSlots_.size(); ++k) {
+    const Box& b = selection.loneBoxes_[k];
     if (frustum.outside(b.lo, b.hi)) {
       ++counted.culled;
       continue;
     }
     // An edge's level comes from its Bezier polygon (3 legs, each within the box): 3x its diagonal.
-    const int level = loneHasJump_[k] ? kMaxSegments : segmentsFor(3.0 * across(b), settings);
+    const int level = selection.loneHasJump_[k] ? kMaxSegments : segmentsFor(3.0 * across(b), settings);
     DrawItem item;
-    item.slot = loneSlots_[k];
+    item.slot = selection.loneSlots_[k];
     item.vertexBound = vertexBound(level, level);
     items.push_back(item);
     ++counted.patches;
   }
+}
 
-  // Per row its groups: from quarter turns down, a group is split while it is wider than
-  // groupPixels (or outside the view: then dropped).
-  const double groupPixels = settings.groupScale * std::max(settings.tessPixels, 0.5);
-  std::vector<std::vector<Group>> groups(rows_.size());
-  const auto addGroup = [&](size_t r, Group group, std::vector<Group>& out, bool split) {
-    const Row& row = rows_[r];
-    std::vector<Group> pending{group};
-    while (!pending.empty()) {
-      const Group g = pending.back();
-      pending.pop_back();
-      const Box& b = row.pyramid[size_t(g.log2)][size_t(g.index)];
-      if (frustum.outside(b.lo, b.hi)) {
-        counted.culled += size_t(1) << g.log2;
-        continue;
-      }
-      // A cap's group is a wedge cut by its rim's segments (up to 64) all the way to the pole: it
-      // may be as wide as 64 segments (its rim gets as many as its width asks, below).
-      const double widest = row.isCap ? kMaxSegments * groupPixels : groupPixels;
-      if (g.log2 > 0 && (split || width(row, b) > widest)) {
-        pending.push_back({g.log2 - 1, 2 * g.index + 1});
-        pending.push_back({g.log2 - 1, 2 * g.index});
-        split = false;  // only the group asked for is split, its halves are judged
-        continue;
-      }
-      out.push_back(g);
+void DrawSelection::Frame::addGroup(int r, Group group, std::vector<Group>& out, bool split) {
+  std::vector<Group> pending{group};
+  while (!pending.empty()) {
+    const Group g = pending.back();
+    pending.pop_back();
+    const Box& b = boxOf(r, g);
+    if (frustum.outside(b.lo, b.hi)) {
+      counted.culled += size_t(1) << g.log2;
+      continue;
     }
-  };
-  for (size_t r = 0; r < rows_.size(); ++r) {
-    const Row& row = rows_[r];
-    for (int32_t k = 0; k < int32_t(row.pyramid[size_t(row.maxGroupLog2)].size()); ++k)
-      addGroup(r, {row.maxGroupLog2, k}, groups[r], false);
+    // A cap's group is a wedge cut by its rim's segments (up to 64) all the way to the pole: it may
+    // be as wide as 64 segments (its rim gets as many as its width asks, circleExponents).
+    const double widest = row(r).isCap ? kMaxSegments * groupPixels : groupPixels;
+    if (g.log2 > 0 && (split || width(row(r), b) > widest)) {
+      pending.push_back({g.log2 - 1, 2 * g.index + 1});
+      pending.push_back({g.log2 - 1, 2 * g.index});
+      split = false;  // only the group asked for is split, its halves are judged
+      continue;
+    }
+    out.push_back(g);
   }
-  // A circle's vertices are agreed per domain: the groups on it, of both sides, are intervals of its
-  // finer side's sectors that nest or are apart (sizes are powers of two), and a domain is one that
-  // no other holds with those it holds. Within a domain one density (segments per sector, a power of
-  // two) cuts every group's edge; domains meet at a vertex of both sides. A group's size in sectors
-  // of the circle's finer side: 2^log2 * (finer sectors / its row's).
-  const auto finerSectors = [&](const Circle& c) {
-    return std::max(rows_[size_t(c.inside)].size, rows_[size_t(c.outside)].size);
-  };
-  struct OnCircle {
-    int64_t start = 0, size = 0;
-    int side = 0;     // 0 inside (the circle is the row's outer edge), 1 outside
-    size_t group = 0;  // in groups[its row]
-    int domain = 0;
-  };
-  const auto onCircle = [&](const Circle& c) {
-    std::vector<OnCircle> found;
-    const int64_t finer = finerSectors(c);
-    for (int side = 0; side < 2; ++side) {
-      const int r = side == 0 ? c.inside : c.outside;
-      const int64_t scale = finer / rows_[size_t(r)].size;
-      for (size_t k = 0; k < groups[size_t(r)].size(); ++k) {
-        const Group& g = groups[size_t(r)][k];
-        found.push_back({(int64_t(g.index) << g.log2) * scale, (int64_t(1) << g.log2) * scale, side, k, 0});
-      }
+}
+
+// A circle's vertices are agreed per domain: the groups on it, of both sides, are intervals of its
+// finer side's sectors that nest or are apart (sizes are powers of two), and a domain is one that no
+// other holds with those it holds. Within a domain one density (segments per sector, a power of two)
+// cuts every group's edge; domains meet at a vertex of both sides. [O(groups log groups)]
+std::vector<DrawSelection::Frame::OnCircle> DrawSelection::Frame::onCircle(const Circle& c) const {
+  std::vector<OnCircle> found;
+  const int64_t finer = std::max(row(c.inside).size, row(c.outside).size);
+  for (int side = 0; side < 2; ++side) {
+    const int r = side == 0 ? c.inside : c.outside;
+    const int64_t scale = finer / row(r).size;
+    for (size_t k = 0; k < groups[size_t(r)].size(); ++k) {
+      const Group& g = groups[size_t(r)][k];
+      found.push_back({(int64_t(g.index) << g.log2) * scale, (int64_t(1) << g.log2) * scale, side, k, 0});
     }
-    std::sort(found.begin(), found.end(), [](const OnCircle& a, const OnCircle& b) {
-      return a.start != b.start ? a.start < b.start : a.size > b.size;
-    });
-    int64_t domainEnd = -1;
-    int domain = -1;
-    for (OnCircle& g : found) {
-      if (g.start >= domainEnd) domainEnd = g.start + g.size, ++domain;
-      g.domain = domain;
-    }
-    return found;
-  };
-  // Within a domain the groups stay within 2^kMaxGroupRatioLog2 of its smallest, so that one density
-  // gives each at least one segment and at most 64: larger ones split.
+  }
+  std::sort(found.begin(), found.end(), [](const OnCircle& a, const OnCircle& b) {
+    return a.start != b.start ? a.start < b.start : a.size > b.size;
+  });
+  int64_t domainEnd = -1;
+  int domain = -1;
+  for (OnCircle& g : found) {
+    if (g.start >= domainEnd) domainEnd = g.start + g.size, ++domain;
+    g.domain = domain;
+  }
+  return found;
+}
+
+// Within a domain the groups stay within 2^kMaxGroupRatioLog2 of its smallest, so that one density
+// gives each at least one segment and at most 64: larger ones split (until nothing changes).
+void DrawSelection::Frame::balanceCircles() {
   for (bool changed = true; changed;) {
     changed = false;
-    for (const Circle& c : circles_) {
+    for (const Circle& c : selection.circles_) {
       const std::vector<OnCircle> found = onCircle(c);
       std::vector<int64_t> smallest(found.empty() ? 0 : size_t(found.back().domain) + 1, INT64_MAX);
       for (const OnCircle& g : found) smallest[size_t(g.domain)] = std::min(smallest[size_t(g.domain)], g.size);
@@ -426,24 +443,29 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
         if (g.size > (smallest[size_t(g.domain)] << kMaxGroupRatioLog2)) split[g.side][g.group] = 1, any = true;
       if (!any) continue;
       for (int side = 0; side < 2; ++side) {
-        const size_t r = size_t(side == 0 ? c.inside : c.outside);
+        const int r = side == 0 ? c.inside : c.outside;
         std::vector<Group> kept;
-        for (size_t k = 0; k < groups[r].size(); ++k) {
-          if (split[side][k] && groups[r][k].log2 > 0) addGroup(r, groups[r][k], kept, true), changed = true;
-          else kept.push_back(groups[r][k]);
+        for (size_t k = 0; k < groups[size_t(r)].size(); ++k) {
+          const Group& g = groups[size_t(r)][k];
+          if (split[side][k] && g.log2 > 0) addGroup(r, g, kept, true), changed = true;
+          else kept.push_back(g);
         }
-        groups[r] = std::move(kept);
+        groups[size_t(r)] = std::move(kept);
       }
     }
   }
-  // Per domain its density: from the groups' widths along the circle (a cap's wedge: its widest),
-  // at least one segment on its smallest group and at most 64 on its largest. Each group's edge on
-  // the circle gets 2^exponent segments (-1: the patches' own rule, where every group of the domain
-  // is a sector alone: the full draw's tessellation there).
-  std::vector<std::array<std::vector<int>, 2>> exponents(rows_.size());  // [row][0 inner, 1 outer][group]
-  for (size_t r = 0; r < rows_.size(); ++r)
+}
+
+// Per domain its density: from the groups' lengths on the circle, at least one segment on its
+// smallest group and at most 64 on its largest. Each group's edge on the circle gets 2^exponent
+// segments (-1: the patches' own rule, where every group of the domain is a sector alone: the full
+// draw's tessellation there).
+void DrawSelection::Frame::circleExponents() {
+  exponents.assign(groups.size(), {});
+  for (size_t r = 0; r < groups.size(); ++r)
     for (auto& side : exponents[r]) side.assign(groups[r].size(), -1);
-  for (const Circle& c : circles_) {
+  const double mostSegments = double(std::clamp(settings.maxTessLevel, 1, kMaxSegments));
+  for (const Circle& c : selection.circles_) {
     const std::vector<OnCircle> found = onCircle(c);
     const size_t domains = found.empty() ? 0 : size_t(found.back().domain) + 1;
     std::vector<int64_t> smallest(domains, INT64_MAX), largest(domains, 0);
@@ -451,62 +473,75 @@ std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSe
     std::vector<uint8_t> grouped(domains, 0);
     for (const OnCircle& g : found) {
       const int r = g.side == 0 ? c.inside : c.outside;
-      const Row& row = rows_[size_t(r)];
       const Group& group = groups[size_t(r)][g.group];
-      const Box& b = row.pyramid[size_t(group.log2)][size_t(group.index)];
+      const Box& b = boxOf(r, group);
       // Its length on this circle: the outer arc of the row inside, the inner arc of the row
       // outside (at the same distance as the outer: rows are thin); a cap's widest.
       double pixels = g.side == 0 ? arc(b) : projector.pixels(b.innerArc, b.rimLo, b.rimHi);
-      if (row.isCap) pixels = std::max(pixels, width(row, b));
+      if (row(r).isCap) pixels = std::max(pixels, width(row(r), b));
       const size_t d = size_t(g.domain);
       smallest[d] = std::min(smallest[d], g.size);
       largest[d] = std::max(largest[d], g.size);
       // Segments per sector at tessPixels apiece (not rounded per group: a domain of many small
       // groups would ask a segment for each part of one).
-      const double segments = std::min(pixels / std::max(settings.tessPixels, 0.5), double(std::clamp(settings.maxTessLevel, 1, kMaxSegments)));
-      wanted[d] = std::max(wanted[d], segments / double(g.size));
+      wanted[d] = std::max(wanted[d], std::min(pixels / std::max(settings.tessPixels, 0.5), mostSegments) / double(g.size));
       grouped[d] = grouped[d] || group.log2 > 0;
     }
     for (const OnCircle& g : found) {
       const size_t d = size_t(g.domain);
       if (!grouped[d]) continue;
-      // Segments per finer sector 2^e: e from -log2(smallest) (one on the smallest) up to what the
-      // widths ask, while the largest gets at most 64.
+      // Segments per finer sector 2^e: from one on the smallest up to what the lengths ask, while
+      // the largest gets at most 64.
       int e = -log2Exact(smallest[d]);
       while (std::ldexp(1.0, e) < wanted[d] && std::ldexp(double(largest[d]), e + 1) <= kMaxSegments) ++e;
       const int r = g.side == 0 ? c.inside : c.outside;
       exponents[size_t(r)][g.side == 0 ? 1 : 0][g.group] = e + log2Exact(g.size);
     }
   }
+}
 
-  for (size_t r = 0; r < rows_.size(); ++r) {
-    const Row& row = rows_[r];
+void DrawSelection::Frame::addGroupItems() {
+  for (size_t r = 0; r < groups.size(); ++r) {
+    const Row& rw = row(int(r));
     if (!groups[r].empty()) ++counted.rows;
     for (size_t k = 0; k < groups[r].size(); ++k) {
       const Group& g = groups[r][k];
-      const Box& b = row.pyramid[size_t(g.log2)][size_t(g.index)];
       DrawItem item;
       item.sector = g.index << g.log2;
-      item.slot = uint32_t(rowSlots_[size_t(row.start + item.sector)]);
-      item.rowStart = row.start;
-      item.rowSize = row.size;
+      item.slot = uint32_t(selection.rowSlots_[size_t(rw.start + item.sector)]);
+      item.rowStart = rw.start;
+      item.rowSize = rw.size;
       item.groupLog2 = int8_t(g.log2);
       item.innerExponent = int8_t(exponents[r][0][k]);
       item.outerExponent = int8_t(exponents[r][1][k]);
       // Along v the circles' segments (or the T-junction rule's 64 where an edge keeps its own
       // rule); along u the radial edges' adaptive levels, within 3x the group's box.
-      const int alongV = std::max(item.innerExponent < 0 && !row.isCap ? kMaxSegments : 1 << std::max<int>(item.innerExponent, 0),
+      const int alongV = std::max(item.innerExponent < 0 && !rw.isCap ? kMaxSegments : 1 << std::max<int>(item.innerExponent, 0),
                                   item.outerExponent < 0 ? kMaxSegments : 1 << item.outerExponent);
-      item.vertexBound = vertexBound(segmentsFor(3.0 * across(b), settings), alongV);
+      item.vertexBound = vertexBound(segmentsFor(3.0 * across(boxOf(int(r), g)), settings), alongV);
       items.push_back(item);
       counted.patches += size_t(1) << g.log2;
     }
   }
+}
+
+std::vector<DrawItem> DrawSelection::select(const ViewParams& view, const DrawSelectionSettings& settings,
+                                            DrawSelectionStats* stats) const {
+  Frame frame(*this, view, settings);
+  frame.addLonePatches();
+  // Per row its groups: from quarter turns down, split while wider than groupPixels.
+  for (size_t r = 0; r < rows_.size(); ++r)
+    for (int32_t k = 0; k < int32_t(rows_[r].pyramid[size_t(rows_[r].maxGroupLog2)].size()); ++k)
+      frame.addGroup(int(r), {rows_[r].maxGroupLog2, k}, frame.groups[r], false);
+  frame.balanceCircles();
+  frame.circleExponents();
+  frame.addGroupItems();
   // In slot order: a renderer's draws then take neighbouring slots together (patch_renderer.cpp).
+  std::vector<DrawItem>& items = frame.items;
   std::sort(items.begin(), items.end(), [](const DrawItem& a, const DrawItem& b) { return a.slot < b.slot; });
-  counted.items = items.size();
-  if (stats) *stats = counted;
-  return items;
+  frame.counted.items = items.size();
+  if (stats) *stats = frame.counted;
+  return std::move(items);
 }
 
 }  // namespace polarview

@@ -96,6 +96,7 @@ class DrawSelection {
   struct Circle {
     int inside = -1, outside = -1;  // rows
   };
+  struct Frame;  // one select() call's state (draw_selection.cpp)
   static Box boxOf(const Patch& patch);
   void linkRows(const std::vector<Patch>& patches, const std::vector<std::vector<size_t>>& rowPatches);
   std::vector<Row> rows_;
