@@ -1,5 +1,7 @@
 #include "pipeline/surface_pipeline.h"
 
+#include "core/subdiv/parallel_for.h"
+
 #include "pipeline/stopwatch.h"
 
 #include <algorithm>
@@ -93,23 +95,31 @@ std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch
   // Deep levels hold hundreds of thousands of patches: every stride-th one is sampled, standing
   // for the area of `stride` patches (the percentiles are of the area, the patches come level by level).
   const size_t stride = std::max<size_t>(1, patches.size() / kMostSampledPatches);
-  size_t count = patches.size() / stride * size_t(s) * size_t(s);
-  samples->gaussian.reserve(count);
-  samples->mean.reserve(count);
-  samples->areas.reserve(count);
-  for (size_t k = 0; k < patches.size(); k += stride) {
-    const Patch& patch = patches[k];
-    if (patch.kind == PatchKind::EndCap && !onlyEndCaps) continue;
-    for (int j = 0; j < s; ++j) {
-      for (int i = 0; i < s; ++i) {
-        SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
-        double area = areaElement(p.du, p.dv) * double(stride) / double(s * s);
-        if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
-        samples->gaussian.push_back(p.gaussian);
-        samples->mean.push_back(p.mean);
-        samples->areas.push_back(area);
+  const size_t sampled = (patches.size() + stride - 1) / stride;
+  // Split over the cores in contiguous parts, joined in order: the same samples as one thread's.
+  const unsigned parts = threadsFor(sampled * size_t(s) * size_t(s) * 8);
+  std::vector<CurvatureSamples> part(parts);
+  runParts(parts, [&](unsigned k) {
+    CurvatureSamples& out = part[k];
+    for (size_t n = size_t(partBound(Index(sampled), parts, k)); n < size_t(partBound(Index(sampled), parts, k + 1)); ++n) {
+      const Patch& patch = patches[n * stride];
+      if (patch.kind == PatchKind::EndCap && !onlyEndCaps) continue;
+      for (int j = 0; j < s; ++j) {
+        for (int i = 0; i < s; ++i) {
+          SurfacePoint p = evaluatePatch(patch, (i + 0.5) / s, (j + 0.5) / s);
+          double area = areaElement(p.du, p.dv) * double(stride) / double(s * s);
+          if (!std::isfinite(p.gaussian) || !std::isfinite(p.mean) || !std::isfinite(area)) continue;
+          out.gaussian.push_back(p.gaussian);
+          out.mean.push_back(p.mean);
+          out.areas.push_back(area);
+        }
       }
     }
+  });
+  for (const CurvatureSamples& from : part) {
+    samples->gaussian.insert(samples->gaussian.end(), from.gaussian.begin(), from.gaussian.end());
+    samples->mean.insert(samples->mean.end(), from.mean.begin(), from.mean.end());
+    samples->areas.insert(samples->areas.end(), from.areas.begin(), from.areas.end());
   }
   return samples;
 }
