@@ -54,12 +54,15 @@ void main() {
   // evaluated in sector s = floor(v g) at v g - s (exact: g and the circle levels are powers of two),
   // from that sector's own points. Its circle edges then have outer / g segments per sector, the
   // same as the sectors across the circle; only the group's ends are radial edges shared.
-  int sectors = tc_group.x >= 0 ? 1 << tc_group.w : 1;
+  // Only the program for groups (SECTOR_GROUPS, patch_renderer.cpp) has this path: llvmpipe runs
+  // a shader with it, even where no vertex takes it, 20% slower (a Catmull-Clark close-up).
   int patchIndex = tc_patchIndex;
   ivec4 jumps = tc_jumps;
   mat3 axes = tc_axes;
   float sectorV = v;
   bvec4 onEdge = bvec4(u == 0.0, v == 0.0, u == 1.0, v == 1.0);
+#ifdef SECTOR_GROUPS
+  int sectors = tc_group.x >= 0 ? 1 << tc_group.w : 1;
   if (sectors > 1) {
     float scaled = v * float(sectors);
     int s = min(int(floor(scaled)), sectors - 1);
@@ -76,6 +79,7 @@ void main() {
       jumps = kind == kPatchPoleCap ? ivec4(0) : patchJumps(patchKindRing(patchIndex).x);
     }
   }
+#endif
   SurfacePoint s = evaluatePatch(cp, kind, u, sectorV);
   // The position: a cap's from its frame; a B-spline patch's from the points shared with its
   // neighbours, its shared edges and corners alike on both sides (patch_frame.glsl).

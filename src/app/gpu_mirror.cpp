@@ -214,6 +214,7 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     status.drawnPrimitives = int(drew.drawnPrimitives);
     status.visiblePatches = int(drew.drawnPatches);
     status.culledPatches = int(drew.culledPatches);
+    status.drawMs = drew.wallMilliseconds;
     // A pole zoom draws that pole's rings scaled about it: its marker stays, the others are not there.
     if (markPoles) {
       std::vector<Point> poles = gpu.surface->poles;

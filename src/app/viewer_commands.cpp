@@ -161,6 +161,10 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   perView("drawn_primitives", &ViewStatus::drawnPrimitives);
   perView("visible_patches", &ViewStatus::visiblePatches);
   perView("culled_patches", &ViewStatus::culledPatches);
+  // Per view the last frame's draw of it, finished, ms.
+  json << ",\"view_ms\":[";
+  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << std::round(state.views[size_t(v)].status.drawMs * 100.0) / 100.0;
+  json << "]";
   // Poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
   perView("poles_by_scheme", &ViewStatus::polesByScheme);
   perView("poles_by_cc", &ViewStatus::polesByCatmullClark);

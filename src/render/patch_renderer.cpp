@@ -7,6 +7,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -264,8 +265,9 @@ void addTransitionSides(const Patch& patch, TransitionSides& found) {
 
 // Program specs: every shader file and variant the renderer uses.
 // One surface program per shading mode (a #define, so llvmpipe runs no per-pixel mode branches),
-// with or without the wireframe geometry shader.
-ProgramSpec surfaceSpec(ShadingParams::Mode mode, bool wireframe) {
+// with or without the wireframe geometry shader, and for lone patches or for groups of ring
+// sectors (SECTOR_GROUPS: patch.tese's path for them, which slows llvmpipe's shader for all).
+ProgramSpec surfaceSpec(ShadingParams::Mode mode, bool wireframe, bool groups) {
   ProgramSpec spec;
   spec.vertex = "patch.vert";
   spec.tessControl = "patch.tesc";
@@ -276,12 +278,13 @@ ProgramSpec surfaceSpec(ShadingParams::Mode mode, bool wireframe) {
     spec.geometry = "patch_wire.geom";
     spec.defines.push_back("WIREFRAME");
   }
+  if (groups) spec.defines.push_back("SECTOR_GROUPS");
   return spec;
 }
 
-std::string surfaceProgramName(ShadingParams::Mode mode, bool wireframe) {
-  return std::string("patch_mode") + std::to_string(static_cast<int>(mode)) +
-         (wireframe ? "_wire" : "");
+std::string surfaceProgramName(ShadingParams::Mode mode, bool wireframe, bool groups) {
+  return std::string("patch_mode") + std::to_string(static_cast<int>(mode)) + (wireframe ? "_wire" : "") +
+         (groups ? "_groups" : "");
 }
 
 ProgramSpec probeSpec() {
@@ -473,8 +476,8 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
   // Build each program once per library (renderers sharing a library share the programs).
   // Surface variants of other modes are built on first use (see surfaceProgram).
   const std::pair<std::string, ProgramSpec> programs[] = {
-      {surfaceProgramName(ShadingParams::Mode::Shaded, false),
-       surfaceSpec(ShadingParams::Mode::Shaded, false)},
+      {surfaceProgramName(ShadingParams::Mode::Shaded, false, false),
+       surfaceSpec(ShadingParams::Mode::Shaded, false, false)},
       {kProbeProgram, probeSpec()},
       {kBoundaryProgram, boundarySpec()},
       {kOverlayProgram, overlaySpec()}};
@@ -512,15 +515,15 @@ bool PatchRenderer::init(std::string* error, std::shared_ptr<ShaderLibrary> shad
 
 bool PatchRenderer::reloadShaders(std::string* error) { return impl_->shaders->reloadAll(error); }
 
-unsigned PatchRenderer::surfaceProgram(ShadingParams::Mode mode, bool wireframe) {
+unsigned PatchRenderer::surfaceProgram(ShadingParams::Mode mode, bool wireframe, bool groups) {
   ShaderLibrary& library = *impl_->shaders;
-  const std::string name = surfaceProgramName(mode, wireframe);
+  const std::string name = surfaceProgramName(mode, wireframe, groups);
   if (const unsigned program = library.program(name)) return program;
   std::string error;
-  if (library.build(name, surfaceSpec(mode, wireframe), &error)) return library.program(name);
+  if (library.build(name, surfaceSpec(mode, wireframe, groups), &error)) return library.program(name);
   // A broken variant: report once (lastError) and draw with the plain shaded program.
   lastError_ = error;
-  return library.program(surfaceProgramName(ShadingParams::Mode::Shaded, false));
+  return library.program(surfaceProgramName(ShadingParams::Mode::Shaded, false, groups));
 }
 
 // [SECTION] Uploads
@@ -870,7 +873,7 @@ void PatchRenderer::setShadingUniforms(unsigned program, const ViewParams& view,
 }
 
 void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags) {
-  const GLuint program = surfaceProgram(shading.mode, flags.wireframe);
+  const GLuint program = surfaceProgram(shading.mode, flags.wireframe, false);
   setShadingUniforms(program, view, shading, flags);
   glUseProgram(program);
   glBindVertexArray(impl_->patchVao);
@@ -888,7 +891,7 @@ void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& sha
     stats_.drawnPrimitives = counted.items;
     stats_.drawnPatches = counted.patches;
     stats_.culledPatches = counted.culled;
-    drawItems(program, items);
+    drawItems(view, shading, flags, program, items);
   } else {
     setUniform(program, "u_useItems", 0);
     stats_.drawnPrimitives = stats_.drawnPatches = size_t(patchCount_);
@@ -898,8 +901,12 @@ void PatchRenderer::drawSurface(const ViewParams& view, const ShadingParams& sha
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-void PatchRenderer::drawItems(unsigned program, const std::vector<DrawItem>& items) {
+void PatchRenderer::drawItems(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags,
+                              unsigned program, std::vector<DrawItem> items) {
   Impl& g = *impl_;
+  // Lone patches first, drawn by `program`, then the groups of sectors by its SECTOR_GROUPS twin.
+  const auto firstGroup = std::stable_partition(items.begin(), items.end(), [](const DrawItem& item) { return item.groupLog2 == 0; });
+  const size_t lone = size_t(firstGroup - items.begin());
   // Per item two texels (patch.tesc's u_drawItems); item i is drawn as vertices 16 i .. 16 i + 15
   // (patch.vert fetches its slot's points).
   std::vector<int32_t> texels(items.size() * 8, 0);
@@ -919,20 +926,30 @@ void PatchRenderer::drawItems(unsigned program, const std::vector<DrawItem>& ite
   glBindTexture(GL_TEXTURE_BUFFER, g.itemTexture);  // a new store: attached again
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32I, g.itemBuffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
-  setUniform(program, "u_useItems", 1);
-  // Runs whose items tessellate into at most kMaxVerticesPerDraw vertices (drawPatchRuns).
-  std::vector<GLint> firsts;
-  std::vector<GLsizei> counts;
-  for (size_t first = 0; first < items.size();) {
-    size_t end = first, vertices = 0;
-    while (end < items.size() && (end == first || vertices + items[end].vertexBound <= size_t(kMaxVerticesPerDraw)))
-      vertices += items[end++].vertexBound;
-    firsts.push_back(static_cast<GLint>(first * kControlPointsPerPatch));
-    counts.push_back(static_cast<GLsizei>((end - first) * kControlPointsPerPatch));
-    first = end;
+  const auto drawRange = [&](GLuint drawing, size_t begin, size_t end) {
+    if (begin == end) return;
+    glUseProgram(drawing);
+    setUniform(drawing, "u_useItems", 1);
+    // Runs whose items tessellate into at most kMaxVerticesPerDraw vertices (drawPatchRuns).
+    std::vector<GLint> firsts;
+    std::vector<GLsizei> counts;
+    for (size_t first = begin; first < end;) {
+      size_t last = first, vertices = 0;
+      while (last < end && (last == first || vertices + items[last].vertexBound <= size_t(kMaxVerticesPerDraw)))
+        vertices += items[last++].vertexBound;
+      firsts.push_back(static_cast<GLint>(first * kControlPointsPerPatch));
+      counts.push_back(static_cast<GLsizei>((last - first) * kControlPointsPerPatch));
+      first = last;
+    }
+    glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
+    setUniform(drawing, "u_useItems", 0);
+  };
+  drawRange(program, 0, lone);
+  if (lone < items.size()) {
+    const GLuint groups = surfaceProgram(shading.mode, flags.wireframe, true);
+    setShadingUniforms(groups, view, shading, flags);
+    drawRange(groups, lone, items.size());
   }
-  if (!firsts.empty()) glMultiDrawArrays(GL_PATCHES, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
-  setUniform(program, "u_useItems", 0);
 }
 
 void PatchRenderer::drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags) {
@@ -1005,6 +1022,8 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);  // two-sided surfaces
   glDisable(GL_BLEND);
+  glFinish();  // what came before is not this view's (wallMilliseconds)
+  const auto wallStart = std::chrono::steady_clock::now();
   startGpuTimer();
   stats_.patchCount = patchCount_;
 
@@ -1020,6 +1039,8 @@ void PatchRenderer::draw(const ViewParams& view, const ShadingParams& shading,
   glBindVertexArray(0);
   glUseProgram(0);
   glEndQuery(GL_TIME_ELAPSED);
+  glFinish();
+  stats_.wallMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart).count();
 }
 
 void PatchRenderer::drawControlNetOver(const ViewParams& view) {

@@ -30,6 +30,9 @@ class ShaderLibrary;
 struct DrawStats {
   int patchCount = 0;
   double gpuMilliseconds = 0.0;  // of the draw before the last one; 0 until available
+  // The last draw's wall time, from the GL work before it finished to its own finished
+  // (glFinish on both ends): on llvmpipe, whose timer queries do not see the work, the view's cost.
+  double wallMilliseconds = 0.0;
   // What the view drew (pipeline/draw_selection.h): primitives, the patches they cover (sector
   // groups cover several), and patches culled outside the view.
   size_t drawnPrimitives = 0, drawnPatches = 0, culledPatches = 0;
@@ -126,7 +129,7 @@ class PatchRenderer {
 
  private:
   struct Impl;
-  unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe);
+  unsigned surfaceProgram(ShadingParams::Mode mode, bool wireframe, bool groups);
   // setPatches' steps: the bounding box, centre, radius and GPU unit of the set (patches before
   // `first` are already inside the box when `sameSequence`).
   void placeBounds(const std::vector<Patch>& patches, size_t first, bool sameSequence);
@@ -136,8 +139,10 @@ class PatchRenderer {
   void setShadingUniforms(unsigned program, const ViewParams& view, const ShadingParams& shading,
                           const DisplayFlags& flags) const;
   void drawSurface(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags);
-  // The selected items' texels and element indices uploaded, then drawn in runs Mesa counts right.
-  void drawItems(unsigned program, const std::vector<DrawItem>& items);
+  // The selected items' texels uploaded, then drawn in runs Mesa counts right: lone patches by
+  // `program`, groups of sectors by its SECTOR_GROUPS twin.
+  void drawItems(const ViewParams& view, const ShadingParams& shading, const DisplayFlags& flags, unsigned program,
+                 std::vector<DrawItem> items);
   void drawPatchBoundaries(const ViewParams& view, const DisplayFlags& flags);
   void drawControlNet(unsigned overlay, bool overSurface);
   void drawPoleMarkers(unsigned overlay);

@@ -48,6 +48,7 @@ struct ViewStatus {
   int drawnPrimitives = 0;
   int visiblePatches = 0;
   int culledPatches = 0;
+  double drawMs = 0.0;             // the view's draw, finished (PatchRenderer DrawStats::wallMilliseconds)
   int polesByScheme = 0;           // polar configurations the shown scheme refines
   int polesByCatmullClark = 0;     // those Catmull-Clark refines instead (RTS / BPS below valence 5)
   std::string fallbackReason;      // why (empty when none)

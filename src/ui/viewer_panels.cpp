@@ -492,8 +492,8 @@ void drawStatsPanel(const ViewerState& state) {
     // Per region detail (pipeline/draw_selection.h): culled outside the view, sub-pixel ring
     // sectors drawn several to a primitive.
     if (s.drawnPrimitives > 0)
-      ImGui::TextWrapped("Last frame: %d primitives for %d patches in view, %d outside it", s.drawnPrimitives,
-                         s.visiblePatches, s.culledPatches);
+      ImGui::TextWrapped("Last frame: %d primitives for %d patches in view, %d outside it; drawn in %.1f ms",
+                         s.drawnPrimitives, s.visiblePatches, s.culledPatches, s.drawMs);
     if (s.polesByCatmullClark > 0) {
       wrappedColoredText(ImVec4(1.0f, 0.85f, 0.3f, 1.0f),
                          std::to_string(s.polesByCatmullClark) + " of " +
