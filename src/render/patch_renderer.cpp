@@ -7,8 +7,8 @@
 #include <glad/gl.h>
 
 #include <algorithm>
-#include <chrono>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
