@@ -8,6 +8,9 @@
 // k = u_transitionDensity. With equal spacing the fine vertices are then exactly the coarse ones.
 // Levels and culling use the control points relative to the eye (vc_fromEye, the same bits in
 // every patch that shares them); evaluation gets them in the patch's frame (patch_frame.glsl).
+// A drawn item (patch_renderer.cpp) may be a group of a ring row's sectors, and the edges on its
+// link circles may have levels the draw selection agreed for both sides (circleLevel,
+// pipeline/draw_selection.h); those replace the rules above there.
 #include "common/patch_eval.glsl"
 #include "common/patch_frame.glsl"
 
