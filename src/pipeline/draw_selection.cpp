@@ -23,18 +23,8 @@ constexpr int kMaxGroupRatioLog2 = 5;
 
 // Control point k of the patch turned upright (Patch::ringTurn: a ring patch's u outwards, v along
 // its row; other kinds are not turned), in absolute coordinates.
-constexpr std::array<std::array<int8_t, 16>, 4> kTurnedIndex = [] {
-  std::array<std::array<int8_t, 16>, 4> table{};
-  for (int turns = 0; turns < 4; ++turns)
-    for (int c = 0; c < 16; ++c) {
-      int k = c;
-      for (int t = 0; t < turns; ++t) k = 4 * (k % 4) + (3 - k / 4);  // turnedControlIndex
-      table[size_t(turns)][size_t(c)] = int8_t(k);
-    }
-  return table;
-}();
 Point absolutePoint(const Patch& patch, int k) {
-  return patch.origin + patch.cp[size_t(kTurnedIndex[size_t(patch.ringTurn & 3)][size_t(k)])];
+  return patch.origin + patch.cp[size_t(turnedControlIndex(k, patch.ringTurn))];
 }
 
 // The limit point at a corner of a B-spline patch's square, over control point (i, j) (1 or 2):

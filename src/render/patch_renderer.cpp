@@ -166,17 +166,8 @@ struct GpuPatch {
 
 // A ring patch goes up turned by its ringTurn (u outwards, v around: sector groups, patch.tese; its
 // jumps with it, packKindLevelJumps): control point k of the GPU form is the patch's
-// turnedControlIndex(k, ringTurn), a table here (this runs for every patch of an upload).
-const std::array<std::array<int8_t, 16>, 4> kTurnedIndex = [] {
-  std::array<std::array<int8_t, 16>, 4> table{};
-  for (int turns = 0; turns < 4; ++turns)
-    for (int k = 0; k < 16; ++k) table[size_t(turns)][size_t(k)] = int8_t(turnedControlIndex(k, turns));
-  return table;
-}();
-
-const glm::dvec3& drawnPoint(const Patch& patch, int k) {
-  return patch.cp[size_t(kTurnedIndex[size_t(patch.ringTurn & 3)][size_t(k)])];
-}
+// turnedControlIndex(k, ringTurn).
+const glm::dvec3& drawnPoint(const Patch& patch, int k) { return patch.cp[size_t(turnedControlIndex(k, patch.ringTurn))]; }
 
 GpuPatch gpuForm(const Patch& patch) {
   GpuPatch out;
@@ -319,7 +310,6 @@ ProgramSpec overlaySpec() {
 // when every edge reaches `maxLevel` ((level + 1)^2 vertices a quad patch); one glMultiDrawArrays
 // call, so GPUs that need no split pay nothing measurable.
 constexpr int kMaxVerticesPerDraw = 65535;
-
 
 int patchesPerRun(int maxLevel) {
   const int perPatch = (std::clamp(maxLevel, 1, 64) + 1) * (std::clamp(maxLevel, 1, 64) + 1);
@@ -707,7 +697,9 @@ void PatchRenderer::setPatches(const std::vector<Patch>& patches, uint64_t stabl
     slotOfPatch[p] = uint32_t(layout.slotOf(p));
     turnOfPatch_[p] = patches[p].ringTurn;
   }
-  selection_.build(patches, slotOfPatch);
+  // The draw selection's rows and bounds, where draws choose per region (setRegionDetail).
+  if (regionDetail_) selection_.build(patches, slotOfPatch);
+  else selection_.build({}, {});
   const std::vector<int32_t>& rowSlots = selection_.rowSlots();
   glBindBuffer(GL_TEXTURE_BUFFER, g.rowSlotBuffer);
   glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(std::max<size_t>(rowSlots.size(), 1) * sizeof(int32_t)),

@@ -113,7 +113,8 @@ class PatchRenderer {
 
   // Per region detail (default on): draw() culls what is outside the view and draws sub-pixel
   // sectors of a polar ring several to a primitive (pipeline/draw_selection.h); off, every patch of
-  // the set is drawn alone (the reference picture, render --full-draw).
+  // the set is drawn alone (the reference picture, render --full-draw). Set it before setPatches,
+  // which builds the selection only where it is on.
   void setRegionDetail(bool on) { regionDetail_ = on; }
 
   // Bounding box of the uploaded patches (their control points / cap positions), world coords.

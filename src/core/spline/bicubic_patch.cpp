@@ -222,12 +222,6 @@ Patch withAbsolutePositions(const Patch& patch) {
   return out;
 }
 
-int turnedControlIndex(int k, int turns) {
-  // One quarter turn: (u, v) = (1 - v', u'), so control point (i', j') is (3 - j', i') before it.
-  for (int t = 0; t < ((turns % 4) + 4) % 4; ++t) k = 4 * (k % 4) + (3 - k / 4);
-  return k;
-}
-
 Patch turnedPatch(const Patch& patch, int turns) {
   if (patch.kind == PatchKind::PoleCap) return patch;
   Patch turned = patch;
@@ -246,4 +240,3 @@ void turnedParameter(double* u, double* v, int turns) {
 }
 
 }  // namespace polarview
-

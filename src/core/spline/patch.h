@@ -98,8 +98,20 @@ Patch withAbsolutePositions(const Patch& patch);
 // the result at (u', v') is the patch at turnedParameter(u', v', turns); cp and edgeLevelDelta
 // follow, orientation (x_u x x_v) is kept. A PoleCap is returned as it is. [O(1)]
 Patch turnedPatch(const Patch& patch, int turns);
-// Which of the patch's control points is control point k of turnedPatch(patch, turns). [O(1)]
-int turnedControlIndex(int k, int turns);
+// Which of the patch's control points is control point k of turnedPatch(patch, turns), turns in
+// 0..3: one quarter turn maps (i', j') to (3 - j', i'). A table: uploads and the viewer's draw
+// selection read every ring patch through it. [O(1)]
+inline constexpr std::array<std::array<int8_t, 16>, 4> kTurnedControlIndex = [] {
+  std::array<std::array<int8_t, 16>, 4> table{};
+  for (int turns = 0; turns < 4; ++turns)
+    for (int c = 0; c < 16; ++c) {
+      int k = c;
+      for (int t = 0; t < turns; ++t) k = 4 * (k % 4) + (3 - k / 4);
+      table[size_t(turns)][size_t(c)] = int8_t(k);
+    }
+  return table;
+}();
+inline int turnedControlIndex(int k, int turns) { return kTurnedControlIndex[size_t(((turns % 4) + 4) % 4)][size_t(k)]; }
 // (u, v) of a patch for (u', v') of turnedPatch(patch, turns): (1 - v', u') applied `turns` times.
 void turnedParameter(double* u, double* v, int turns);
 
