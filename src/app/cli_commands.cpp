@@ -35,7 +35,10 @@
 #include "core/subdiv/spectrum.h"
 #include "core/subdiv/adaptive_refiner.h"
 #include "pipeline/scheme_choice.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_key.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/mesh_report.h"
 #include "pipeline/pole_report.h"
@@ -586,7 +589,7 @@ double refinementBytes(const Refinement& refinement) {
 // The viewer's level steps on one kept refinement and LevelPatchCache (levels >= 1):
 // level_up_ms = level L-1 shown, extend(1) + the patch set of L; level_down_ms = back to L-1;
 // level_up_again_ms = to L once more (all of it cached).
-// The viewer's own step (surface_pipeline.h): level L-1 shown, level L's whole surface made ahead
+// The viewer's own step (surface_build.h): level L-1 shown, level L's whole surface made ahead
 // while idle (made_ahead_ms: prepareLevel, refinement, patches and curvature samples), then the step
 // (level_up_made_ahead_ms: buildSurface handing it out; the GPU upload is not in it).
 // --vs-opensubdiv: OpenSubdiv's RefineAdaptive + PatchTableFactory beside it (AdaptivePeer), its
@@ -653,7 +656,7 @@ void timeLevelSteps(const CommonOptions& o, const PolyMesh& mesh, size_t budgetF
   b.levelUpAgain.push_back(millisecondsSince(t0));
 }
 
-// The viewer's own step (surface_pipeline.h): level L made ahead while L-1 is shown, then the step.
+// The viewer's own step (surface_build.h): level L made ahead while L-1 is shown, then the step.
 // The viewer offers fewer levels than the bench refines (its level cap, its bytes a face): where it
 // would refuse these, the bench says so instead of timing them.
 void timeViewerStep(const CommonOptions& o, const Model& model, const std::string& scheme, size_t viewFaceBudget,

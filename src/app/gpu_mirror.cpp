@@ -2,6 +2,8 @@
 #include "app/gpu_mirror.h"
 
 #include "pipeline/stopwatch.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_build.h"
 
 #include <algorithm>
 #include <chrono>

@@ -18,6 +18,8 @@
 #include "session/document.h"
 #include "session/surface_cache.h"
 #include "ui/viewer_panels.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 

@@ -17,6 +17,7 @@
 #include "render/gl_context.h"
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

@@ -22,6 +22,9 @@
 #include "session/session.h"
 #include "ui/input_events.h"
 #include "ui/viewer_panels.h"
+#include "pipeline/model.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 
 struct GLFWwindow;
 

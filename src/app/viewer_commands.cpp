@@ -17,6 +17,8 @@
 #include "core/mesh/constants.h"
 #include "app/viewer_styles.h"
 #include "core/mesh/input_error.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
 #include "pipeline/patch_export.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/level_limits.h"
 
 namespace polarview {
 
@@ -44,7 +44,7 @@ BudgetRefusal budgetRefusal(const std::string& source, int level, bool requested
 
 }  // namespace
 
-// Faces cost kBytesPerUniformFace (uniform) or kBytesPerAdaptiveFace (surface_pipeline.h, measured).
+// Faces cost kBytesPerUniformFace (uniform) or kBytesPerAdaptiveFace (level_limits.h, measured).
 size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
                          bool adaptive) {
   const size_t budget = memoryBudgetBytes(requested);

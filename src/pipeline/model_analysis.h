@@ -1,5 +1,5 @@
 // What a model's faces determine, made once per loaded mesh and owned by the Model
-// (surface_pipeline.h: makeModel): the mesh refinements start from and its tables, its polar
+// (model.h: makeModel): the mesh refinements start from and its tables, its polar
 // configurations, whether RTS/BPS refine it radially, whether each scheme refines a pole, and the
 // face estimates behind the level limit. Copies of the Model (the viewer hands them to worker
 // threads) share one analysis; an edit keeps it: none of it reads the points (the tables, polar

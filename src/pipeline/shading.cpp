@@ -6,7 +6,7 @@
 
 #include <glm/common.hpp>
 
-#include "pipeline/surface_pipeline.h"  // weightedPercentile, weightedSymmetricRange
+#include "pipeline/weighted_statistics.h"
 
 namespace polarview {
 namespace {
@@ -130,6 +130,22 @@ ColourStatistics colourStatistics(const std::vector<double>& values, const std::
     if (sign > 0 ? p.low < 0.0 : p.high > 0.0) p = sign > 0 ? ColourInterval{0.0, narrowest} : ColourInterval{-narrowest, 0.0};
   }
   return statistics;
+}
+
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights,
+                                     const ColourInterval& range, int bins) {
+  std::vector<float> histogram(size_t(std::max(bins, 1)), 0.0f);
+  if (!(range.high > range.low)) return histogram;
+  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
+    const double p = colourBarPosition(values[i], range);  // as the bar: two slopes or one-sided
+    const int bin = std::min(int(p * double(histogram.size())), int(histogram.size()) - 1);
+    histogram[size_t(bin)] += float(weights[i]);
+  }
+  const float largest = *std::max_element(histogram.begin(), histogram.end());
+  if (largest > 0.0f)
+    for (float& h : histogram) h /= largest;
+  return histogram;
 }
 
 }  // namespace polarview

@@ -125,4 +125,9 @@ inline glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, double r
   return colorMapCpu(map, value, ColourInterval::symmetric(range));
 }
 
+// Area-weighted histogram over the colour bar of `range` (two slopes or one-sided, as the map:
+// colourBarPosition; values beyond go to the end bins), scaled so the largest bin is 1. [O(n)]
+std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights,
+                                     const ColourInterval& range, int bins);
+
 }  // namespace polarview

@@ -18,7 +18,6 @@
 #include "pipeline/memory_budget.h"
 #include "pipeline/patch_export.h"
 #include "pipeline/shading.h"
-#include "pipeline/surface_pipeline.h"
 
 namespace polarview {
 

@@ -1,7 +1,7 @@
 // Live editing of the base control mesh (the control net the views draw): picking a control vertex
 // on screen, moving it in the camera-facing plane through it, and undo / redo over whole drags.
 // CPU math on GLM only: no GL, no ImGui (the app hands in cursor positions and view matrices, and
-// turns changed points into positions-only surface updates, pipeline/surface_pipeline.h refreshSurface).
+// turns changed points into positions-only surface updates, pipeline/surface_build.h refreshSurface).
 #pragma once
 
 #include <optional>

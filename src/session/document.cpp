@@ -16,6 +16,9 @@
 #include "pipeline/eigen_nets.h"
 #include "pipeline/patch_export.h"
 #include "pipeline/surface_export.h"
+#include "pipeline/model.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

@@ -14,7 +14,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/model.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 #include "pipeline/vertex_edit.h"
 #include "pipeline/background_job.h"
 #include "session/surface_cache.h"

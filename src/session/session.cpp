@@ -7,6 +7,7 @@
 
 #include "core/subdiv/spectrum.h"
 #include "pipeline/model_analysis.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

@@ -12,6 +12,9 @@
 #include <vector>
 
 #include "pipeline/background_job.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_build.h"
 #include "session/command_table.h"
 #include "session/document.h"
 #include "session/surface_cache.h"

@@ -2,6 +2,11 @@
 #include "session/surface_cache.h"
 
 #include "pipeline/stopwatch.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_key.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
+#include "pipeline/surface_job.h"
 
 #include <algorithm>
 #include <chrono>

@@ -16,7 +16,10 @@
 #include <optional>
 #include <vector>
 
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_key.h"
+#include "pipeline/surface_build.h"
+#include "pipeline/surface_job.h"
 #include "pipeline/background_job.h"
 #include "session/viewer_state.h"
 

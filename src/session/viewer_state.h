@@ -15,6 +15,7 @@
 #include "pipeline/scheme_choice.h"
 #include "pipeline/shading.h"
 #include "pipeline/orbit_camera.h"
+#include "pipeline/level_limits.h"
 
 namespace polarview {
 
@@ -40,7 +41,7 @@ struct ViewStatus {
   bool reshown = false;            //   the level shown before the last step, shown again (nothing built)
   int zoomRing = -1;               // >= 0: the view shows rings zoomRing.. of a pole, zoomed (Poles panel)
   int patchLevel = 0;              // the level the shown patches close the poles at (>= shownLevel:
-                                   //   RTS/BPS close them deeper, pipeline/surface_pipeline.h kNonC2CapLevel)
+                                   //   RTS/BPS close them deeper, pipeline/level_limits.h kNonC2CapLevel)
   int drawnLevel = 0;              // the level drawn (< patchLevel where deeper rings are below a pixel)
   int drawnPatches = 0;            // and its patches
   // What the last frame drew of them (pipeline/draw_selection.h): primitives (a group of sub-pixel
@@ -95,7 +96,7 @@ struct ColourRangeSettings {
   bool symmetric = true;
   double typedRange = 1.0;   // typed and symmetric: [-typedRange, typedRange]
   ColourInterval typedApart; // typed, min and max apart (min < max)
-  // Written by the session from the shown samples (pipeline/surface_pipeline.h).
+  // Written by the session from the shown samples (pipeline/surface_build.h).
   ColourStatistics sampled;
   int oneSign() const { return sampled.oneSign(); }
   // The automatic range: one-sided [P(1 - P), P(P)] for one-signed values, else symmetric or each

@@ -1,7 +1,7 @@
 // libFuzzer target over the level limit's face estimate (tests/fuzz/README.md): small OBJ inputs ->
 // estimateAdaptiveFaceCounts (adaptive_refiner.h) for each of the viewer's six schemes at the
 // viewer's deepest level (refineOptionsFor(scheme, kMaxLevel), as estimatedLevelFaces in
-// surface_pipeline.h asks for it), under a small face budget and with 1..7 measured levels (a
+// level_limits.h asks for it), under a small face budget and with 1..7 measured levels (a
 // check of level L measures L), both picked by a hash of the input.
 //
 // Expected: polarview::InputError (a mesh no refinement takes). A finding: any other exception, a

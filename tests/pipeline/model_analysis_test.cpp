@@ -14,7 +14,10 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "pipeline/model_analysis.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_key.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

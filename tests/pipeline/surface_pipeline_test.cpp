@@ -1,4 +1,4 @@
-// The GL-free surface pipeline (pipeline/surface_pipeline.h): what a view shows, built, stepped
+// The GL-free surface pipeline (pipeline/model.h, level_limits.h, surface_build.h, surface_job.h): what a view shows, built, stepped
 // between levels, refreshed after edits, and the statistics behind the colour range. No display.
 #include <doctest/doctest.h>
 
@@ -17,7 +17,11 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "core/mesh/topology.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/model.h"
+#include "pipeline/surface_key.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/weighted_statistics.h"
+#include "pipeline/surface_build.h"
 
 namespace polarview {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "app_test_support.h"
 #include "app/viewer_app.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/surface_build.h"
 #include "ui/viewer_panels.h"
 #include "core/mesh/shapes.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/viewer_app.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/level_limits.h"
 
 namespace polarview {
 

@@ -7,7 +7,8 @@
 
 #include "app_test_support.h"
 #include "app/viewer_app.h"
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/level_limits.h"
+#include "pipeline/surface_build.h"
 #include "core/spline/patch_extraction.h"
 #include "pipeline/eigen_nets.h"
 #include "render/patch_renderer.h"

@@ -8,7 +8,6 @@
 
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/prefetch.h"
-#include "core/subdiv/refine_steps.h"
 
 namespace polarview {
 

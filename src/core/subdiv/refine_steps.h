@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "core/subdiv/polar_grid.h"
-#include "core/subdiv/refiner.h"
+#include "core/subdiv/refined_level.h"
+#include "core/subdiv/scheme.h"
 
 namespace polarview {
 

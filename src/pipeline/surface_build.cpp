@@ -1,4 +1,5 @@
-#include "pipeline/surface_pipeline.h"
+#include "pipeline/surface_build.h"
+
 
 #include "core/subdiv/parallel_for.h"
 
@@ -21,7 +22,9 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/refiner.h"
+#include "pipeline/level_limits.h"
 #include "pipeline/model_analysis.h"
+#include "pipeline/weighted_statistics.h"
 
 namespace polarview {
 namespace {
@@ -125,175 +128,6 @@ std::shared_ptr<const CurvatureSamples> sampleCurvatures(const std::vector<Patch
 }
 
 }  // namespace
-
-double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction) {
-  std::vector<std::pair<double, double>> sorted;  // (value, weight) by value
-  double total = 0.0;
-  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
-    sorted.emplace_back(values[i], weights[i]);
-    total += weights[i];
-  }
-  if (sorted.empty() || !(total > 0.0)) return 0.0;
-  std::sort(sorted.begin(), sorted.end());
-  const double needed = std::clamp(fraction, 0.0, 1.0) * total;
-  double sum = 0.0;
-  for (const auto& [value, weight] : sorted) {
-    sum += weight;
-    if (sum >= needed) return value;
-  }
-  return sorted.back().first;
-}
-
-std::vector<float> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights,
-                                     const ColourInterval& range, int bins) {
-  std::vector<float> histogram(size_t(std::max(bins, 1)), 0.0f);
-  if (!(range.high > range.low)) return histogram;
-  for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
-    if (!(weights[i] > 0.0) || !std::isfinite(values[i])) continue;
-    const double p = colourBarPosition(values[i], range);  // as the bar: two slopes or one-sided
-    const int bin = std::min(int(p * double(histogram.size())), int(histogram.size()) - 1);
-    histogram[size_t(bin)] += float(weights[i]);
-  }
-  const float largest = *std::max_element(histogram.begin(), histogram.end());
-  if (largest > 0.0f)
-    for (float& h : histogram) h /= largest;
-  return histogram;
-}
-
-double weightedSymmetricRange(const std::vector<double>& values, const std::vector<double>& weights, float quantile) {
-  const double upper = std::clamp(double(quantile), 0.5, 1.0);
-  const double range = std::max(-weightedPercentile(values, weights, 1.0 - upper), weightedPercentile(values, weights, upper));
-  return range > 0.0 && std::isfinite(range) ? range : 1.0;  // also when there is no weight
-}
-
-namespace {
-// The checks beyond the tables: faces, and an extent whose curvature double can hold.
-std::string checkMeshShape(const PolyMesh& mesh, const std::string& name) {
-  if (mesh.points.empty() || mesh.faceCount() == 0) return name + ": no faces";
-  // Curvature goes as 1 / size^2: below 1e-150 it leaves double's range (1.8e308) and nothing can be
-  // shaded; the reader's 1e150 bounds the other end.
-  double extent = 0.0;
-  for (const Point& p : mesh.points)
-    for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(p[c] - mesh.points[0][c]));
-  if (extent < kSmallestModelExtent) {
-    char text[160];
-    std::snprintf(text, sizeof text, ": the model spans %.3g, below %.0e: its curvature (1 / size^2) is past double's range; scale it up",
-                  extent, kSmallestModelExtent);
-    return name + text;
-  }
-  return {};
-}
-}  // namespace
-
-void requireCurvatureExtent(const PolyMesh& mesh, const std::string& name) {
-  const std::string error = checkMeshShape(mesh, name);
-  if (!error.empty()) throw InputError(name, 0, error.substr(name.size() + 2));
-}
-
-std::string checkModelMesh(const PolyMesh& mesh, const std::string& name) {
-  try {
-    ManifoldSplit split;  // non-manifold meshes are refined as their split (manifold_split.h)
-    MeshTopology topology;
-    refinableMesh(mesh, split, topology, name);  // throws InputError for meshes even that cannot refine
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return checkMeshShape(mesh, name);
-}
-
-std::string checkModel(const Model& model) {
-  if (!model.analysis->error().empty()) return model.analysis->error();  // refinableMesh's message
-  return checkMeshShape(*model.mesh, model.name);
-}
-
-LoadedModel readModelFile(const std::string& path) {
-  LoadedModel loaded;
-  loaded.path = path;
-  try {
-    std::string text;
-    PolyMesh mesh = loadObj(path, &loaded.warnings, &text);
-    // The analysis (tables, poles, the refinability check) here, off the window's thread.
-    loaded.model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), path, 0);
-    loaded.error = checkModel(loaded.model);
-    if (loaded.error.empty()) loaded.model.sourceText = std::make_shared<const std::string>(std::move(text));
-  } catch (const std::exception& e) {
-    // InputError (FILE:LINE: ...), a missing file, bad_alloc on a huge one: the model stays.
-    loaded.error = e.what();
-  }
-  return loaded;
-}
-
-Model makeModel(std::shared_ptr<const PolyMesh> mesh, std::string name, uint64_t generation) {
-  Model model;
-  if (mesh) {
-    model.analysis = std::make_shared<const ModelAnalysis>(*mesh, name);
-    model.radialForRtsBps = model.analysis->radialForRtsBps();
-  }
-  model.mesh = std::move(mesh);
-  model.name = std::move(name);
-  model.generation = generation;
-  return model;
-}
-
-namespace {
-// The model's analysis: a Model made without makeModel has none (an error in the caller).
-const ModelAnalysis& analysisOf(const Model& model) {
-  if (!model.analysis) throw std::invalid_argument(model.name + ": a Model without its analysis (make it with makeModel)");
-  return *model.analysis;
-}
-
-// The model's face estimate (ModelAnalysis::estimatedFaces, measured to `measured` levels).
-size_t estimatedFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget, int measured = kMeasuredLevels) {
-  return analysisOf(model).estimatedFaces(*model.mesh, scheme, level, faceBudget, measured);
-}
-
-// The deepest level whose estimate (measured to `measured` levels) fits the budget.
-int deepestMeasuredLevel(const Model& model, SchemeChoice scheme, size_t faceBudget, int measured) {
-  int level = 0;
-  while (level < kMaxLevel && estimatedFaces(model, scheme, level + 1, faceBudget, measured) <= faceBudget) ++level;
-  return level;
-}
-}  // namespace
-
-size_t estimatedLevelFaces(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
-  return estimatedFaces(model, scheme, level, faceBudget);
-}
-
-int patchLevelFor(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
-  const Scheme refined = refineOptionsFor(scheme, level).scheme;
-  const SchemeTraits& traits = schemeTraits(refined);
-  if (!traits.polar() || traits.curvatureContinuous || level >= kNonC2CapLevel || !model.mesh || !analysisOf(model).refinesPoles(refined))
-    return level;
-  return std::max(level, std::min(kNonC2CapLevel, deepestLevel(model, scheme, faceBudget)));
-}
-
-int deepestLevel(const Model& model, SchemeChoice scheme, size_t faceBudget) {
-  return deepestMeasuredLevel(model, scheme, faceBudget, kMeasuredLevels);
-}
-
-std::string levelRefusal(const Model& model, SchemeChoice scheme, int level, size_t faceBudget) {
-  // Whether `level` fits needs the levels up to it measured, no deeper: the deepest level below it is
-  // among them when it does not.
-  const int measured = std::min(std::max(level, 1), kMeasuredLevels);
-  const int deepest = deepestMeasuredLevel(model, scheme, faceBudget, measured);
-  if (level <= deepest) return {};
-  std::string text = "level " + std::to_string(level) + " refused: " + schemeChoiceLabel(scheme) +
-                     " stops at level " + std::to_string(deepest) + " on this model";
-  if (deepest < kMaxLevel) {
-    const size_t faces = estimatedFaces(model, scheme, deepest + 1, faceBudget, measured);
-    text += " (level " + std::to_string(deepest + 1) + " would make " +
-            (faces == faceBudget + 1 ? "more than " + std::to_string(faceBudget) : "about " + std::to_string(faces)) +
-            " faces, over the budget of " + std::to_string(faceBudget) + ")";
-  } else {
-    text += " (the deepest level polarview offers)";
-  }
-  return text;
-}
-
-std::string checkFaceBudget(const Model& model, const SurfaceKey& key, size_t faceBudget) {
-  return levelRefusal(model, key.scheme, key.level, faceBudget);
-}
 
 SurfaceHierarchy::SurfaceHierarchy(std::unique_ptr<AdaptiveRefinement> made) : refinement(std::move(made)) { renewStamp(); }
 SurfaceHierarchy::~SurfaceHierarchy() = default;
@@ -508,26 +342,6 @@ void dropAhead(SurfaceHierarchy& hierarchy) {
   const std::lock_guard<std::mutex> lock(hierarchy.mutex);
   hierarchy.ahead.reset();
   hierarchy.aheadLevel = -1;
-}
-
-void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse) {
-  if (job_.start([model, key, faceBudget, reuse] { return buildSurface(model, key, faceBudget, reuse); })) key_ = key;
-}
-
-std::optional<SurfaceJob::Outcome> SurfaceJob::poll() { return outcome(false); }
-std::optional<SurfaceJob::Outcome> SurfaceJob::wait() { return outcome(true); }
-
-std::optional<SurfaceJob::Outcome> SurfaceJob::outcome(bool block) {
-  if (!(block ? job_.running() : job_.finished())) return std::nullopt;
-  Outcome outcome;
-  outcome.key = key_;
-  try {
-    outcome.surface = *job_.wait();
-  } catch (const std::exception& e) {
-    // InputError (budget, unsupported mesh) and bad_alloc alike: the view keeps what it shows.
-    outcome.error = e.what();
-  }
-  return outcome;
 }
 
 }  // namespace polarview
