@@ -187,6 +187,11 @@ PolyMesh loadInput(const std::string& path) {
 
 // [SECTION] refine, export, convert
 
+// What o asks to be refined (pipeline/patch_export.h).
+RefineRequest refineRequest(const CommonOptions& o, bool uniform) {
+  return RefineRequest{{o.scheme, o.levels, o.uniformFirstStep}, uniform, o.memoryBudget, 0};
+}
+
 OptionTable refineTable(CommonOptions& o) {
   return {inputRow(o), outputRow(&o.output, "OUT.obj", "the finest level's mesh (OBJ)"), schemeRow(o),
           levelsRow(o, {"--levels", "--level"}), uniformFirstStepRow(o), memoryBudgetRow(o)};
@@ -195,13 +200,7 @@ OptionTable refineTable(CommonOptions& o) {
 int runRefine(CommonOptions& o) {
   checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
-  const size_t maxFaces = checkMemoryBudget(mesh, o);
-  RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  options.finestVertexRings = false;  // only the finest level's faces and points are written
-  Refinement refinement(mesh, options, o.input, maxFaces);
-  // A non-manifold input was refined split: its copies merge back (the input's topology refined).
-  if (refinement.splitInput()) saveObj(o.output, refinement.outputMesh(), o.input);
-  else saveObj(o.output, refinement.finest().mesh, o.input);
+  saveObj(o.output, makeRefinedMesh(mesh, o.input, refineRequest(o, true)), o.input);
   return 0;
 }
 
@@ -254,10 +253,8 @@ int runExport(CommonOptions& o) {
   settings.schemeLabel = schemeName(o.scheme);
   PolyMesh mesh = loadInput(o.input);
   if (format.curvature) requireCurvatureExtent(mesh, o.input);
-  // The adaptive path's hard face limit leaves room over its estimate (an extrapolation past level 6).
-  const size_t maxFaces = checkMemoryBudget(mesh, o, !o.uniform) * (o.uniform ? 1 : 2);
-  const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, o.uniform, maxFaces);
-  const std::string summary = format.write(o.output, set, settings);
+  const PatchSet set = makePatchSet(mesh, o.input, refineRequest(o, o.uniform));
+  const std::string summary = exportSummary(writeSurfaceFile(o.output, set, format, settings));
   std::printf("%s: %s; %s refinement\n", o.output.c_str(), summary.c_str(), o.uniform ? "uniform" : "feature-adaptive");
   return 0;
 }
@@ -312,9 +309,7 @@ int runContinuity(CommonOptions& o) {
   checkFirstStep(o);
   PolyMesh mesh = loadInput(o.input);
   requireCurvatureExtent(mesh, o.input);
-  // The patches `export` writes (feature-adaptive), with export's face limit.
-  const size_t maxFaces = checkMemoryBudget(mesh, o, true) * 2;
-  const PatchSet set = exportPatchSet(mesh, {o.scheme, o.levels, o.uniformFirstStep}, o.input, false, maxFaces);
+  const PatchSet set = makePatchSet(mesh, o.input, refineRequest(o, false));  // the patches `export` writes
   ContinuityOptions options;
   options.samplesPerSide = o.samples;
   const ContinuityReport report = measureContinuity(set, options);

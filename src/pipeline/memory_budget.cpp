@@ -6,7 +6,6 @@
 
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
-#include "pipeline/patch_export.h"
 #include "pipeline/level_limits.h"
 
 namespace polarview {
@@ -68,6 +67,18 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, con
     throw refusal(beyondEstimate ? "more than " + gigabytes(double(budget)) : "about " + gigabytes(bytesAt(options.levels)), fits);
   }
   return size_t(double(budget) / double(kBytesPerAdaptiveFace));
+}
+
+UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces) {
+  auto facesAt = [&](int level) {
+    RefineOptions at = options;
+    at.levels = level;
+    return estimateFaceCount(mesh, at, radial);
+  };
+  UniformLevelEstimate estimate{facesAt(options.levels), options.levels, true};
+  estimate.fits = estimate.faces <= maxFaces;
+  while (estimate.deepestFitting > 0 && facesAt(estimate.deepestFitting) > maxFaces) --estimate.deepestFitting;
+  return estimate;
 }
 
 }  // namespace polarview

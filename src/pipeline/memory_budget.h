@@ -30,4 +30,15 @@ size_t memoryBudgetBytes(size_t requested);
 size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
                          bool adaptive = false);
 
+// A uniform refinement's size against a face budget, before any allocation: the faces of the
+// finest level (estimateFaceCount; `radial` where RTS/BPS refine the whole mesh radially) and the
+// deepest level within `maxFaces`. The uniform refusals read it: refine, bench and export --uniform
+// (as bytes, kBytesPerUniformFace a face) and the viewer's refined control mesh. [O(levels x mesh)]
+struct UniformLevelEstimate {
+  size_t faces = 0;        // at options.levels
+  int deepestFitting = 0;  // options.levels itself when it fits
+  bool fits = true;
+};
+UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces);
+
 }  // namespace polarview

@@ -1,13 +1,11 @@
-// The limit surface as Bezier patches in BezierView's .bv format, as `polarview export` and the
-// viewer's Export .bv write it
-// (core/spline/bezierview_export.h says what is written and how exact it is).
+// What the commands, the Python module and the viewer make of a mesh to hand out or write: the
+// limit surface's patches, the refined control mesh, each within a budget that refuses a level
+// before anything is allocated (memory_budget.h).
 #pragma once
 
-#include <functional>
-#include <iosfwd>
+#include <cstddef>
 #include <string>
 
-#include "core/spline/bezierview_export.h"
 #include "core/spline/patch_extraction.h"
 
 namespace polarview {
@@ -19,22 +17,23 @@ namespace polarview {
 PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, bool uniform,
                         size_t maxFaces);
 
-// A uniform refinement's size against a face budget, before any allocation: the faces of the
-// finest level (estimateFaceCount; `radial` where RTS/BPS refine the whole mesh radially) and the
-// deepest level within `maxFaces`. The uniform refusals read it: refine, bench and export --uniform
-// (as bytes, kBytesPerUniformFace a face) and the viewer's refined control mesh. [O(levels x mesh)]
-struct UniformLevelEstimate {
-  size_t faces = 0;        // at options.levels
-  int deepestFitting = 0;  // options.levels itself when it fits
-  bool fits = true;
+// What a caller asks to be refined, and the memory it may take.
+struct RefineRequest {
+  RefineOptions options;
+  bool uniform = false;     // patches: every face refined (Refinement), else feature-adaptive
+  size_t memoryBudget = 0;  // bytes, as --memory-budget (0: memory_budget.h's default)
+  size_t faceBudget = 0;    // when > 0, a face limit instead, checked by the caller (the viewer's)
 };
-UniformLevelEstimate estimateUniformLevel(const PolyMesh& mesh, const RefineOptions& options, bool radial, size_t maxFaces);
 
-// Runs `write` on a stream into an AtomicFileWriter for `path` and commits it: any exception (from
-// `write` or the file) leaves nothing behind. The stream throws on bad writes. [O(bytes)]
-void writeStreamAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+// The patches of `request`: refused (BudgetRefusal, naming `source` and the deepest level that fits)
+// before any allocation when over the memory budget; the feature-adaptive path's hard limit is twice
+// its estimate (an extrapolation past level 6). `export`, `continuity`, limit_patches() and the
+// viewer's Export surface. [O(output)]
+PatchSet makePatchSet(const PolyMesh& mesh, const std::string& source, const RefineRequest& request);
 
-// Writes `set` to `path` atomically (nothing is left on any error) and says what was written.
-BezierViewStats writeBezierViewFile(const std::string& path, const PatchSet& set, const std::string& source);
+// The control mesh after options.levels uniform steps (a non-manifold input was refined split: its
+// copies merge back), refused as makePatchSet's uniform path. `refine`, refine() and the viewer's
+// Export refined OBJ. [O(output)]
+PolyMesh makeRefinedMesh(const PolyMesh& mesh, const std::string& source, const RefineRequest& request);
 
 }  // namespace polarview

@@ -1,5 +1,6 @@
 // The export formats' table (surface_export.h). Each row's writer lives with its format: .bv in
-// core/spline/bezierview_export (through patch_export), CAD and tessellations in core/export.
+// core/spline/bezierview_export, CAD and tessellations in core/export; all write to a stream, and
+// writeSurfaceFile makes the file (atomic_file.h).
 #include "pipeline/surface_export.h"
 
 #include <algorithm>
@@ -8,37 +9,24 @@
 #include <cstdio>
 #include <ctime>
 #include <limits>
+#include <ostream>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "core/export/iges_writer.h"
+#include "core/mesh/atomic_file.h"
 #include "core/export/step_writer.h"
 #include "core/export/tessellation_writers.h"
 #include "pipeline/memory_budget.h"
-#include "pipeline/patch_export.h"
 #include "pipeline/shading.h"
 
 namespace polarview {
 
 namespace {
 
-std::string writeBv(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
-  const BezierViewStats stats = writeBezierViewFile(path, set, settings.source);
-  std::string text = std::to_string(stats.total()) + " Bezier patches in " + std::to_string(stats.groups) +
-                     " groups (regular " + std::to_string(stats.written[size_t(PatchKind::Regular)]) + ", boundary " +
-                     std::to_string(stats.written[size_t(PatchKind::Boundary)]) + ", polar-ring " +
-                     std::to_string(stats.written[size_t(PatchKind::PolarRing)]) + ", pole-cap " +
-                     std::to_string(stats.written[size_t(PatchKind::PoleCap)]) + " for " +
-                     std::to_string(stats.capSectors) + " cap sectors, end-cap " +
-                     std::to_string(stats.written[size_t(PatchKind::EndCap)]) + ")";
-  if (stats.capSectors > 0) {
-    char caps[96];
-    std::snprintf(caps, sizeof caps, "; caps within %.2g of the bounding box (at most %d piece%s a cap sector)",
-                  stats.capRelativeDeviation(), stats.maxCapSplit, stats.maxCapSplit == 1 ? "" : "s");
-    text += caps;
-  }
-  return text;
+ExportStats writeBv(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
+  return writeBezierView(out, set, BezierViewOptions{}, settings.source);
 }
 
 // [SECTION] tessellations (PLY, glb): the core writes, the colours come from here
@@ -94,10 +82,9 @@ void checkTessellationBudget(const PatchSet& set, const ExportSettings& settings
   throw BudgetRefusal(settings.source, 0, text);
 }
 
-// Tessellates `set`, colours K as the viewer's default Gaussian view does, writes it with `write`
-// and says what it wrote: "12345 vertices, 24680 triangles, watertight, K in [a, b]; ...".
-std::string writeTessellation(const std::string& path, const PatchSet& set, const ExportSettings& settings,
-                              void (*write)(const std::string&, const Tessellation&, const TessellationFileInfo&)) {
+// Tessellates `set`, colours K as the viewer's default Gaussian view does and writes it with `write`.
+ExportStats writeTessellation(std::ostream& out, const PatchSet& set, const ExportSettings& settings,
+                              void (*write)(std::ostream&, const Tessellation&, const TessellationFileInfo&)) {
   checkTessellationBudget(set, settings);
   const Tessellation mesh = tessellatePatchSet(set, settings.samples);
   std::vector<double> values, weights;
@@ -110,27 +97,27 @@ std::string writeTessellation(const std::string& path, const PatchSet& set, cons
   char colouring[96];
   std::snprintf(colouring, sizeof colouring, "K through the paper colour map over [%.6g, %.6g]", range.low, range.high);
   info.colouring = colouring;
-  write(path, mesh, info);
+  write(out, mesh, info);
 
-  const TessellationEdges edges = countTessellationEdges(mesh);
-  std::string closure = edges.watertight() ? "watertight" : std::to_string(edges.boundary) + " boundary edges";
-  if (edges.nonManifold + edges.misoriented > 0)  // a degenerate input (a part of it collapsed to a point)
-    closure += ", not a manifold: " + std::to_string(edges.nonManifold + edges.misoriented) +
-               " edges used by three or more triangles or twice the same way";
-  const auto [lowest, highest] = std::minmax_element(mesh.gaussian.begin(), mesh.gaussian.end());
-  char text[160];
-  std::snprintf(text, sizeof text, ", K in [%.6g, %.6g]; colours over [%.6g, %.6g]", mesh.gaussian.empty() ? 0.0 : *lowest,
-                mesh.gaussian.empty() ? 0.0 : *highest, range.low, range.high);
-  return std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) + " triangles, " +
-         closure + text;
+  TessellationStats stats;
+  stats.vertices = mesh.positions.size();
+  stats.triangles = mesh.triangles.size();
+  stats.edges = countTessellationEdges(mesh);
+  if (!mesh.gaussian.empty()) {
+    const auto [lowest, highest] = std::minmax_element(mesh.gaussian.begin(), mesh.gaussian.end());
+    stats.gaussianLow = *lowest;
+    stats.gaussianHigh = *highest;
+  }
+  stats.colours = range;
+  return stats;
 }
 
-std::string writePly(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
-  return writeTessellation(path, set, settings, writePlyFile);
+ExportStats writePlyFormat(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
+  return writeTessellation(out, set, settings, writePly);
 }
 
-std::string writeGlb(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
-  return writeTessellation(path, set, settings, writeGlbFile);
+ExportStats writeGlbFormat(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
+  return writeTessellation(out, set, settings, writeGlb);
 }
 
 // [SECTION] CAD files (STEP, IGES): B-spline surfaces, written by the core
@@ -141,9 +128,9 @@ std::string baseName(const std::string& path) {
 }
 
 // What the CAD file says about itself: names, the time it is written (UTC) and its unit.
-CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings) {
+CadFileInfo cadFileInfo(const ExportSettings& settings) {
   CadFileInfo info;
-  info.fileName = baseName(path);
+  info.fileName = settings.fileName;
   info.productName = baseName(settings.source);
   info.description = "polarview limit surface: " + settings.schemeLabel + " level " + std::to_string(settings.level) +
                      " of " + info.productName;
@@ -159,14 +146,60 @@ CadFileInfo cadFileInfo(const std::string& path, const ExportSettings& settings)
 
 // A CAD row: the surfaces (refused before anything is written when not finite), then the file.
 template <void (*writeFile)(std::ostream&, const CadSurfaceSet&, const CadFileInfo&)>
-std::string writeCad(const std::string& path, const PatchSet& set, const ExportSettings& settings) {
+ExportStats writeCad(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
   const CadSurfaceSet surfaces = cadSurfaces(set, settings.source);
-  const CadFileInfo info = cadFileInfo(path, settings);
-  writeStreamAtomically(path, [&](std::ostream& out) { writeFile(out, surfaces, info); });
-  std::string units;
+  writeFile(out, surfaces, cadFileInfo(settings));
+  CadStats stats;
+  stats.surfaces = surfaces.surfaces.size();
+  stats.written = surfaces.written;
+  stats.capSectors = surfaces.capSectors;
+  stats.capRelativeDeviation = surfaces.capRelativeDeviation();
+  stats.units = settings.units;
+  return stats;
+}
+
+// "(regular a, boundary b, polar-ring c, pole-cap d for e cap sectors, end-cap f)".
+std::string kindCounts(const std::array<size_t, 5>& written, size_t capSectors) {
+  auto count = [&](PatchKind kind) { return std::to_string(written[size_t(kind)]); };
+  return "(regular " + count(PatchKind::Regular) + ", boundary " + count(PatchKind::Boundary) + ", polar-ring " +
+         count(PatchKind::PolarRing) + ", pole-cap " + count(PatchKind::PoleCap) + " for " + std::to_string(capSectors) +
+         " cap sectors, end-cap " + count(PatchKind::EndCap) + ")";
+}
+
+std::string summary(const BezierViewStats& stats) {
+  std::string text = std::to_string(stats.total()) + " Bezier patches in " + std::to_string(stats.groups) + " groups " +
+                     kindCounts(stats.written, stats.capSectors);
+  if (stats.capSectors > 0) {
+    char caps[96];
+    std::snprintf(caps, sizeof caps, "; caps within %.2g of the bounding box (at most %d piece%s a cap sector)",
+                  stats.capRelativeDeviation(), stats.maxCapSplit, stats.maxCapSplit == 1 ? "" : "s");
+    text += caps;
+  }
+  return text;
+}
+
+std::string summary(const TessellationStats& stats) {
+  const TessellationEdges& edges = stats.edges;
+  std::string closure = edges.watertight() ? "watertight" : std::to_string(edges.boundary) + " boundary edges";
+  if (edges.nonManifold + edges.misoriented > 0)  // a degenerate input (a part of it collapsed to a point)
+    closure += ", not a manifold: " + std::to_string(edges.nonManifold + edges.misoriented) +
+               " edges used by three or more triangles or twice the same way";
+  char text[160];
+  std::snprintf(text, sizeof text, ", K in [%.6g, %.6g]; colours over [%.6g, %.6g]", stats.gaussianLow, stats.gaussianHigh,
+                stats.colours.low, stats.colours.high);
+  return std::to_string(stats.vertices) + " vertices, " + std::to_string(stats.triangles) + " triangles, " + closure + text;
+}
+
+std::string summary(const CadStats& stats) {
+  std::string text = std::to_string(stats.surfaces) + " B-spline surfaces " + kindCounts(stats.written, stats.capSectors);
+  if (stats.capSectors > 0) {
+    char caps[64];
+    std::snprintf(caps, sizeof caps, "; caps within %.2g of the bounding box", stats.capRelativeDeviation);
+    text += caps;
+  }
   for (const LengthUnitInfo& unit : lengthUnits())
-    if (unit.unit == settings.units) units = unit.name;
-  return describeCadSurfaces(surfaces) + ", units " + units;
+    if (unit.unit == stats.units) text += std::string(", units ") + unit.name;
+  return text;
 }
 
 std::string lowered(std::string text) {
@@ -185,8 +218,8 @@ const std::vector<LengthUnitInfo>& lengthUnits() {
 const std::vector<ExportFormat>& exportFormats() {
   static const std::vector<ExportFormat> formats = {
       {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", false, writeBv},
-      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, writePly},
-      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, writeGlb},
+      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, writePlyFormat},
+      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, writeGlbFormat},
       {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", false, writeCad<writeStep>},
       {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)", false,
        writeCad<writeIges>},
@@ -207,6 +240,17 @@ const ExportFormat* exportFormatForPath(const std::string& path) {
       if (lower.size() > extension.size() && lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0)
         return &format;
   return nullptr;
+}
+
+std::string exportSummary(const ExportStats& stats) {
+  return std::visit([](const auto& s) { return summary(s); }, stats);
+}
+
+ExportStats writeSurfaceFile(const std::string& path, const PatchSet& set, const ExportFormat& format, ExportSettings settings) {
+  if (settings.fileName.empty()) settings.fileName = baseName(path);
+  ExportStats stats;
+  writeFileAtomically(path, [&](std::ostream& out) { stats = format.write(out, set, settings); });
+  return stats;
 }
 
 std::string exportFormatNames() {

@@ -1,13 +1,20 @@
 // The formats the limit surface is written in, one table: `polarview export` (format from the
 // output's extension, --format to override) and the viewer's "Edit and export" read it. Each row
-// writes a PatchSet atomically (nothing is left behind on any error) and says what it wrote.
+// writes a PatchSet to a stream and returns what it wrote; writeSurfaceFile makes the file
+// atomically (nothing is left behind on any error) and exportSummary says it in a line.
 #pragma once
 
+#include <array>
+#include <iosfwd>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/export/cad_file_info.h"
+#include "core/export/tessellation.h"
+#include "core/spline/bezierview_export.h"
 #include "core/spline/patch_extraction.h"
+#include "pipeline/shading.h"
 
 namespace polarview {
 
@@ -28,18 +35,47 @@ struct ExportSettings {
   LengthUnit units = LengthUnit::Millimetre;
   int samples = 8;                   // tessellations (PLY, glb): segments along each patch edge
   size_t memoryBudget = 0;           // bytes a tessellation may take (0: memory_budget.h's default)
+  std::string fileName;              // the name CAD files give themselves (writeSurfaceFile: the path's)
 };
+
+// What a tessellation file holds (PLY, glb).
+struct TessellationStats {
+  size_t vertices = 0, triangles = 0;
+  TessellationEdges edges;                      // boundary and non-manifold edges (watertight: none)
+  double gaussianLow = 0.0, gaussianHigh = 0.0;  // K over the vertices
+  ColourInterval colours;                       // the K the colour map spans
+};
+
+// What a CAD file holds (STEP, IGES).
+struct CadStats {
+  size_t surfaces = 0;
+  std::array<size_t, 5> written{};  // surfaces per PatchKind (caps: the pieces)
+  size_t capSectors = 0;
+  double capRelativeDeviation = 0.0;  // the caps' distance from the limit / bounding-box diagonal
+  LengthUnit units = LengthUnit::Millimetre;
+};
+
+// What a format's writer wrote: .bv, a tessellation, or CAD surfaces.
+using ExportStats = std::variant<BezierViewStats, TessellationStats, CadStats>;
 
 struct ExportFormat {
   const char* name;                     // --format NAME: "bv", "step", "iges", "ply", "glb"
   std::vector<std::string> extensions;  // ".bv"; ".step", ".stp"; ...
   const char* description;              // one line of help
   bool curvature;                       // holds curvature: the model must be at least kSmallestModelExtent
-  // Writes `set` to `path` (atomically) and returns what it wrote, for "PATH: <summary>". Throws
-  // InputError (bad data, named after settings.source) or std::runtime_error (I/O).
-  std::string (*write)(const std::string& path, const PatchSet& set, const ExportSettings& settings);
+  // Writes `set` to `out` and returns what it wrote. Throws InputError (bad data, named after
+  // settings.source) or std::ios_base::failure (I/O).
+  ExportStats (*write)(std::ostream& out, const PatchSet& set, const ExportSettings& settings);
 };
 const std::vector<ExportFormat>& exportFormats();
+
+// Writes `set` in `format` to `path` atomically (settings.fileName: the path's base name when
+// empty). Throws as the writer, or InputError(path, 0, ...) when the file cannot be made. [O(output)]
+ExportStats writeSurfaceFile(const std::string& path, const PatchSet& set, const ExportFormat& format, ExportSettings settings);
+// One line of what was written, for "wrote PATH: <summary>": "357 Bezier patches in 3 groups
+// (regular a, ...)", "12345 vertices, 24680 triangles, watertight, K in [a, b]; ...", "357 B-spline
+// surfaces (...), units mm".
+std::string exportSummary(const ExportStats& stats);
 
 // The row named `name`, or whose extension `path` ends with (case-insensitive); nullptr if none.
 const ExportFormat* exportFormatNamed(const std::string& name);

@@ -1,7 +1,5 @@
 #include "pipeline/surface_job.h"
 
-
-
 namespace polarview {
 
 void SurfaceJob::start(const Model& model, const SurfaceKey& key, size_t faceBudget, std::shared_ptr<SurfaceHierarchy> reuse) {

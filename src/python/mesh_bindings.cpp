@@ -10,6 +10,7 @@
 #include "core/mesh/shape_catalog.h"
 #include "core/subdiv/refiner.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/patch_export.h"
 #include "pipeline/mesh_report.h"
 #include "python/bindings.h"
 
@@ -124,13 +125,9 @@ py::dict tagsDict(const Mesh& m) {
 Mesh refineMesh(const Mesh& m, const std::string& scheme, int levels, size_t memoryBudget) {
   if (levels < 0 || levels > 64) throw py::value_error("levels must be in 0..64");
   const SchemeVariant variant = schemeArgument(scheme);
-  RefineOptions options{variant.scheme, levels, variant.uniformFirstStep};
-  options.finestVertexRings = false;  // only the finest level's faces and points are handed out
-  const size_t maxFaces = checkMemoryBudget(*m.mesh, options, m.source, memoryBudget);
+  const RefineRequest request{{variant.scheme, levels, variant.uniformFirstStep}, true, memoryBudget, 0};
   py::gil_scoped_release unlocked;
-  Refinement refinement(*m.mesh, options, m.source, maxFaces);
-  // A non-manifold input was refined split: its copies merge back, as `polarview refine` writes.
-  return wrap(refinement.splitInput() ? refinement.outputMesh() : refinement.finest().mesh, m.source);
+  return wrap(makeRefinedMesh(*m.mesh, m.source, request), m.source);  // as `polarview refine` writes
 }
 
 Mesh namedShape(const std::string& name, std::optional<int> valence, std::optional<int> links, const std::string& height) {

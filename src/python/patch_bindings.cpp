@@ -30,10 +30,9 @@ Patches limitPatches(const Mesh& m, const std::string& scheme, int level, bool u
   if (level < 0 || level > 64) throw py::value_error("level must be in 0..64");
   const SchemeVariant variant = schemeArgument(scheme);
   const RefineOptions options{variant.scheme, level, variant.uniformFirstStep};
-  // As `export`: the adaptive path's hard face limit leaves room over its estimate.
-  const size_t maxFaces = checkMemoryBudget(*m.mesh, options, m.source, memoryBudget, !uniform) * (uniform ? 1 : 2);
+  const RefineRequest request{options, uniform, memoryBudget, 0};  // as `export`
   py::gil_scoped_release unlocked;
-  Patches p{exportPatchSet(*m.mesh, options, m.source, uniform, maxFaces), {}, level, schemeVariantName(variant)};
+  Patches p{makePatchSet(*m.mesh, m.source, request), {}, level, schemeVariantName(variant)};
   p.absolute.reserve(p.set.patches.size());
   for (const Patch& patch : p.set.patches) p.absolute.push_back(withAbsolutePositions(patch));
   return p;

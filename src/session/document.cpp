@@ -14,6 +14,7 @@
 #include "core/subdiv/refiner.h"
 #include "core/subdiv/table_pool.h"
 #include "pipeline/eigen_nets.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/patch_export.h"
 #include "pipeline/surface_export.h"
 #include "pipeline/model.h"
@@ -373,10 +374,10 @@ void Document::startExport(bool bezierView, const BuiltSurface* shown) {
     settings.schemeLabel = schemeChoiceLabel(scheme);
     settings.level = level;
     // The view's own refinement path and limit (the shown level is within it).
-    const size_t maxFaces = 2 * faceBudget_;
-    exportJob_.start([model, options, path, maxFaces, scheme, level, format, settings] {
-      const PatchSet set = exportPatchSet(*model.mesh, options, model.name, false, maxFaces);
-      const std::string summary = format->write(path, set, settings);
+    const RefineRequest request{options, false, 0, faceBudget_};
+    exportJob_.start([model, request, path, scheme, level, format, settings] {
+      const PatchSet set = makePatchSet(*model.mesh, model.name, request);
+      const std::string summary = exportSummary(writeSurfaceFile(path, set, *format, settings));
       return "wrote " + absolutePath(path) + ": " + summary + " (" + schemeChoiceLabel(scheme) + " level " +
              std::to_string(level) + ", feature-adaptive)";
     });
@@ -398,11 +399,7 @@ void Document::startExport(bool bezierView, const BuiltSurface* shown) {
     exportJob_.start([model, options, path, budget, scheme, level] {
       std::string done;
       {
-        RefineOptions written = options;
-        written.finestVertexRings = false;  // only its faces and points are written
-        const Refinement refinement(*model.mesh, written, model.name, budget);
-        // A non-manifold model was refined split: its copies merge back, as `refine` writes it.
-        const PolyMesh refined = refinement.splitInput() ? refinement.outputMesh() : refinement.finest().mesh;
+        const PolyMesh refined = makeRefinedMesh(*model.mesh, model.name, {options, true, 0, budget});  // as `refine`
         saveObj(path, refined, model.name);
         done = "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
                " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +

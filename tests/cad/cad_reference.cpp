@@ -216,7 +216,7 @@ int run(int argc, char** argv) {
   settings.schemeLabel = schemeVariantLabel(*variant);
   settings.level = level;
   for (const char* format : {"step", "iges"})
-    exportFormatNamed(format)->write(prefix + (format == std::string("step") ? ".step" : ".igs"), set, settings);
+    writeSurfaceFile(prefix + (format == std::string("step") ? ".step" : ".igs"), set, *exportFormatNamed(format), settings);
 
   const CadSurfaceSet surfaces = cadSurfaces(set, input);
   FILE* out = std::fopen((prefix + ".table").c_str(), "w");

@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app_test_support.h"
+#include "core/spline/bezierview_export.h"
 #include "pipeline/patch_export.h"
 #include "app/viewer_app.h"
 #include "pipeline/vertex_edit.h"
@@ -375,7 +376,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   fs::remove_all(dir);
   fs::create_directories(dir);
 
-  // .bv: the same bytes as exportPatchSet + writeBezierViewFile of the edited mesh.
+  // .bv: the same bytes as exportPatchSet + writeBezierView of the edited mesh.
   CHECK(state.edit.defaultSurfacePath == "default_c2ps_2.bv");
   state.edit.surfacePath = (dir / "view.bv").string();
   queueCommand(state, "export.surface");
@@ -385,7 +386,10 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   CHECK(state.edit.error.empty());
   const RefineOptions options = refineOptionsFor(SchemeChoice::C2PS, 2);
   const PatchSet set = exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
-  writeBezierViewFile((dir / "cli.bv").string(), set, app->model().name);
+  {
+    std::ofstream cli(dir / "cli.bv", std::ios::binary);
+    writeBezierView(cli, set, BezierViewOptions{}, app->model().name);
+  }
   auto bytes = [](const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::ostringstream s;

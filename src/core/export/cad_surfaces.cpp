@@ -140,20 +140,6 @@ CadSurfaceSet cadSurfaces(const PatchSet& set, const std::string& sourceName) {
   return out;
 }
 
-std::string describeCadSurfaces(const CadSurfaceSet& set) {
-  auto count = [&](PatchKind kind) { return std::to_string(set.written[size_t(kind)]); };
-  std::string text = std::to_string(set.surfaces.size()) + " B-spline surfaces (regular " + count(PatchKind::Regular) +
-                     ", boundary " + count(PatchKind::Boundary) + ", polar-ring " + count(PatchKind::PolarRing) +
-                     ", pole-cap " + count(PatchKind::PoleCap) + " for " + std::to_string(set.capSectors) +
-                     " cap sectors, end-cap " + count(PatchKind::EndCap) + ")";
-  if (set.capSectors > 0) {
-    char caps[64];
-    std::snprintf(caps, sizeof caps, "; caps within %.2g of the bounding box", set.capRelativeDeviation());
-    text += caps;
-  }
-  return text;
-}
-
 std::string shortestDouble(double value) {
   char text[32];
   const auto result = std::to_chars(text, text + sizeof text, value);

@@ -63,10 +63,6 @@ CadSurfaceDerivatives evaluateCadSurface(const CadSurface& surface, double u, do
 // The cap parameter of a piece's (u, v): the sector's v. [O(1)]
 inline double sectorV(const CadSurface& surface, double v) { return (surface.piece + v) / surface.pieces; }
 
-// "357 B-spline surfaces (regular a, boundary b, polar-ring c, pole-cap d for e cap sectors,
-// end-cap f); caps within X of the bounding box" for the export summary.
-std::string describeCadSurfaces(const CadSurfaceSet& set);
-
 // Shortest text that reads back as exactly `value` ("0.1", "1e-07"), by std::to_chars.
 std::string shortestDouble(double value);
 // shortestDouble as a CAD file's real: always a decimal point, the exponent after `exponentLetter`

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <ostream>
 
 #include <glm/geometric.hpp>
 
-#include "core/mesh/atomic_file.h"
 #include "core/mesh/input_error.h"
 
 namespace polarview {
@@ -224,14 +224,14 @@ std::string glbBytes(const Tessellation& mesh, const TessellationFileInfo& info)
   return out + chunks;
 }
 
-void writePlyFile(const std::string& path, const Tessellation& mesh, const TessellationFileInfo& info) {
+void writePly(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info) {
   const std::string bytes = plyBytes(mesh, info);
-  writeFileAtomically(path, bytes);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
-void writeGlbFile(const std::string& path, const Tessellation& mesh, const TessellationFileInfo& info) {
+void writeGlb(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info) {
   const std::string bytes = glbBytes(mesh, info);
-  writeFileAtomically(path, bytes);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
 }  // namespace polarview

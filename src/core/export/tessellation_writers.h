@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,8 @@ std::string plyBytes(const Tessellation& mesh, const TessellationFileInfo& info)
 // [O(vertices + triangles)]
 std::string glbBytes(const Tessellation& mesh, const TessellationFileInfo& info);
 
-// The bytes written to `path` atomically (AtomicFileWriter): nothing is left on any error.
-void writePlyFile(const std::string& path, const Tessellation& mesh, const TessellationFileInfo& info);
-void writeGlbFile(const std::string& path, const Tessellation& mesh, const TessellationFileInfo& info);
+// The same bytes written to `out` (the file is the caller's: atomic_file.h writeFileAtomically).
+void writePly(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info);
+void writeGlb(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info);
 
 }  // namespace polarview

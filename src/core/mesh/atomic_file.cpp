@@ -12,6 +12,8 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <ostream>
+#include <streambuf>
 
 #include "core/mesh/input_error.h"
 
@@ -292,6 +294,54 @@ void AtomicFileWriter::fail(const std::string& what, int err) {
 void writeFileAtomically(const std::string& path, std::string_view bytes) {
   AtomicFileWriter file(path);
   file.write(bytes);
+  file.commit();
+}
+
+namespace {
+
+// A stream buffer that hands its bytes to an AtomicFileWriter in blocks (its errors propagate
+// through the ostream, whose exceptions() must include badbit).
+class AtomicFileBuffer : public std::streambuf {
+ public:
+  explicit AtomicFileBuffer(AtomicFileWriter& file) : file_(file) { setp(block_, block_ + sizeof block_); }
+
+ protected:
+  int_type overflow(int_type c) override {
+    drain();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    drain();
+    file_.write(std::string_view(s, size_t(n)));
+    return n;
+  }
+  int sync() override {
+    drain();
+    return 0;
+  }
+
+ private:
+  void drain() {
+    if (pptr() > pbase()) file_.write(std::string_view(pbase(), size_t(pptr() - pbase())));
+    setp(block_, block_ + sizeof block_);
+  }
+  AtomicFileWriter& file_;
+  char block_[1 << 16];
+};
+
+}  // namespace
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  AtomicFileWriter file(path);
+  AtomicFileBuffer buffer(file);
+  std::ostream stream(&buffer);
+  stream.exceptions(std::ios::badbit | std::ios::failbit);
+  write(stream);
+  stream.flush();
   file.commit();
 }
 

@@ -1,7 +1,11 @@
 // Atomic output files: a reader of PATH sees the old file or the whole new one, never a part, and
-// no temporary is left behind. Every file polarview writes (OBJ, PNG) goes through here. POSIX.
+// no temporary is left behind. Every file polarview writes goes through here: each format's writer
+// writes to a std::ostream (OBJ, .bv, STEP, IGES, PLY, glb) or makes its bytes (PNG), and
+// writeFileAtomically makes the file of it. POSIX.
 #pragma once
 
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <string_view>
 
@@ -54,6 +58,10 @@ class AtomicFileWriter {
 
 // Writes `bytes` to `path` with an AtomicFileWriter. [O(bytes)]
 void writeFileAtomically(const std::string& path, std::string_view bytes);
+// Runs `write` on a stream into an AtomicFileWriter for `path` (in 64 KiB blocks) and commits it:
+// any exception, from `write` or the file, leaves nothing behind. The stream throws on bad writes.
+// [O(bytes)]
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // Signals that remove the named temporaries in progress before the process dies of them: SIGINT,
 // SIGTERM, SIGHUP, each only while its disposition is the default (an ignored SIGINT stays

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <istream>
+#include <ostream>
 #include <iterator>
 #include <memory>
 #include <string_view>
@@ -678,21 +679,20 @@ void refuseNonFinite(const std::string& path, const PolyMesh& mesh, const std::s
     throw InputError(source, 0, "a crease or corner sharpness is negative or not finite; " + path + " not written");
 }
 
-// An atomic output filled through a buffer written in large blocks.
-struct BufferedObjFile {
+// Text made in a buffer and handed to the stream in large blocks (one write per megabyte).
+struct BufferedObjText {
   static constexpr size_t kFlushAt = size_t(1) << 20;
-  AtomicFileWriter file;
+  std::ostream& stream;
   std::string out;
 
-  explicit BufferedObjFile(const std::string& path) : file(path) { out.reserve(kFlushAt + 256); }
+  explicit BufferedObjText(std::ostream& to) : stream(to) { out.reserve(kFlushAt + 256); }
   void flushIfFull() {
     if (out.size() < kFlushAt) return;
-    file.write(out);
-    out.clear();
+    flush();
   }
-  void commit() {
-    file.write(out);
-    file.commit();
+  void flush() {
+    stream.write(out.data(), std::streamsize(out.size()));
+    out.clear();
   }
 };
 
@@ -809,9 +809,8 @@ PolyMesh loadObj(const std::string& path, std::vector<std::string>* warnings, st
   return parser.finish();
 }
 
-void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName) {
-  refuseNonFinite(path, mesh, sourceName);
-  BufferedObjFile file(path);
+void writeObj(std::ostream& stream, const PolyMesh& mesh) {
+  BufferedObjText file(stream);
   for (const Point& p : mesh.points) {
     file.out += 'v';
     for (int i = 0; i < 3; ++i) {
@@ -831,20 +830,18 @@ void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& s
     file.flushIfFull();
   }
   file.out += tagLines(mesh.tags);
-  file.commit();
+  file.flush();
 }
 
-bool saveObjEdited(const std::string& path, const PolyMesh& mesh, const std::string& sourceText, const std::string& sourceName) {
-  // The source read again (it parsed when loaded): its points say which vertices moved, its faces
-  // and tags whether `mesh` is still its mesh.
-  const PolyMesh source = parseObjText(sourceText, sourceName.empty() ? path : sourceName);
-  if (source.vertexCount() != mesh.vertexCount() || source.faceStart != mesh.faceStart || source.faceVerts != mesh.faceVerts ||
-      !sameTags(source.tags, mesh.tags)) {
-    saveObj(path, mesh, sourceName);
-    return false;
-  }
+void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName) {
   refuseNonFinite(path, mesh, sourceName);
-  BufferedObjFile file(path);
+  writeFileAtomically(path, [&](std::ostream& out) { writeObj(out, mesh); });
+}
+
+namespace {
+// The source text with the moved vertices' coordinates rewritten (saveObjEdited).
+void writeObjEdited(std::ostream& stream, const PolyMesh& mesh, const PolyMesh& source, const std::string& sourceText) {
+  BufferedObjText file(stream);
   SourceStatements statements(sourceText);
   Index vertex = 0;
   for (SourceStatement s = statements.next(); !s.bytes.empty(); s = statements.next()) {
@@ -858,7 +855,21 @@ bool saveObjEdited(const std::string& path, const PolyMesh& mesh, const std::str
     if (s.isVertex) ++vertex;
     file.flushIfFull();
   }
-  file.commit();
+  file.flush();
+}
+}  // namespace
+
+bool saveObjEdited(const std::string& path, const PolyMesh& mesh, const std::string& sourceText, const std::string& sourceName) {
+  // The source read again (it parsed when loaded): its points say which vertices moved, its faces
+  // and tags whether `mesh` is still its mesh.
+  const PolyMesh source = parseObjText(sourceText, sourceName.empty() ? path : sourceName);
+  if (source.vertexCount() != mesh.vertexCount() || source.faceStart != mesh.faceStart || source.faceVerts != mesh.faceVerts ||
+      !sameTags(source.tags, mesh.tags)) {
+    saveObj(path, mesh, sourceName);
+    return false;
+  }
+  refuseNonFinite(path, mesh, sourceName);
+  writeFileAtomically(path, [&](std::ostream& out) { writeObjEdited(out, mesh, source, sourceText); });
   return true;
 }
 

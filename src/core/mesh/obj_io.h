@@ -42,11 +42,13 @@ PolyMesh parseObjText(const std::string& text, const std::string& sourceName,
                       std::vector<std::string>* warnings = nullptr);
 
 // Writes `v` lines, 1-based `f` lines and `t` lines for mesh.tags (options only where not the
-// default), atomically (atomic_file.h): a failure or a kill never leaves a partial file or a
-// temporary. Each number is the shortest decimal that reads back to the same double
-// (std::to_chars' shortest form: 0.19509 stays "0.19509"). A non-finite coordinate or sharpness is
-// refused before anything is written: InputError naming `sourceName` (the input the mesh came from;
-// `path` when empty). Other failures: InputError(path, 0, msg). [O(mesh)]
+// default) to `out`. Each number is the shortest decimal that reads back to the same double
+// (std::to_chars' shortest form: 0.19509 stays "0.19509"). [O(mesh)]
+void writeObj(std::ostream& out, const PolyMesh& mesh);
+// writeObj into `path`, atomically (atomic_file.h): a failure or a kill never leaves a partial file
+// or a temporary. A non-finite coordinate or sharpness is refused before anything is written:
+// InputError naming `sourceName` (the input the mesh came from; `path` when empty). Other failures:
+// InputError(path, 0, msg). [O(mesh)]
 void saveObj(const std::string& path, const PolyMesh& mesh, const std::string& sourceName = "");
 
 // Writes `mesh` into `sourceText`, the OBJ text it was read from (loadObj's `text`) before its

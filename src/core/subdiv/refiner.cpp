@@ -492,6 +492,10 @@ bool Refinement::radialOnly() const { return plan_->radial; }
 
 bool Refinement::splitInput() const { return !plan_->sourceVertex.empty(); }
 
+PolyMesh Refinement::takeOutputMesh() && {
+  return splitInput() ? outputMesh() : std::move(levels_.back().mesh);
+}
+
 PolyMesh Refinement::outputMesh() const {
   if (plan_->sourceVertex.empty() || plan_->radial) return finest().mesh;
   // merged[v]: the output vertex of split vertex v at the current level.

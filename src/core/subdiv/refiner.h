@@ -54,6 +54,9 @@ class Refinement {
   // vertex, which merge), tags mapped. The finest mesh itself when nothing was split.
   // [O(corners of all levels)]
   PolyMesh outputMesh() const;
+  // outputMesh, the finest mesh moved out when nothing was split (no copy at the memory limit):
+  // the Refinement is spent. [O(1) unsplit]
+  PolyMesh takeOutputMesh() &&;
 
   // Whether the finest level has its vertex rings (RefineOptions::finestVertexRings, or
   // completeFinestTopology since). Extracting patches or walking around its vertices needs them.
