@@ -1,5 +1,5 @@
 // The command-line subcommands of `polarview` that need no window: refine, export, continuity, convert, info,
-// pole, bench, shape, spectrum. Each is an option table and a body (command_args.h): main.cpp's
+// pole, shape, spectrum (bench: bench_command.h). Each is an option table and a body (command_args.h): main.cpp's
 // command table runs them through runGuarded, which gives the exit code: 0 success, 1 bad input
 // (one line "polarview: FILE:LINE: what" on stderr), 2 usage error. What each command does and its
 // options: `polarview COMMAND --help`, generated from the tables in cli_commands.cpp.
@@ -27,9 +27,6 @@ CommandParser convertCommand();
 CommandParser infoCommand();
 // pole IN.obj: limit, normal and curvature at each pole (the Taylor expansion (32)), ring by ring.
 CommandParser poleCommand();
-// bench IN.obj: timings and memory; speed-ups over the OpenSubdiv peer only where both computed the
-// same (Catmull-Clark) surface.
-CommandParser benchCommand();
 // shape NAME -o OUT.obj: the models polarview ships (the paper's Figs. 12 and 2c among them).
 CommandParser shapeCommand();
 // spectrum --scheme S --valence n: the leading eigenvalues of the scheme's subdivision matrix at

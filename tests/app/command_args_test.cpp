@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_command.h"
 #include "app/cli_commands.h"
 #include "app/command_args.h"
 
