@@ -5,13 +5,14 @@
 
 #include "core/mesh/input_error.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/scheme_choice.h"
 #include "python/bindings.h"
 
 namespace polarview::python {
 
 SchemeVariant schemeArgument(const std::string& name) {
   const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
-  if (!variant) throw py::value_error("unknown scheme '" + name + "' (cc, c2ps, c2ps-u, rts, rts-u, bps)");
+  if (!variant) throw py::value_error("unknown scheme '" + name + "' (" + schemeChoiceNames(", ") + ")");
   return *variant;
 }
 
