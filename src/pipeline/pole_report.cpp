@@ -21,10 +21,10 @@ void checkC2psRings(const std::string& file, const RefinedLevel& level, int ring
                                     std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
 }
 
-// One pole's object of `pole --json`: limit, normal, K and H (null where undefined), p0..p5, and rings 1..M
-// (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
+// One pole's object of `pole --json`: limit, normal, K and H (null where undefined), p0..p5, and
+// rings 1..M (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
 std::vector<RingCurvature> writePole(ReportBuilder& w, const SchemeVariant& variant, const RefinedLevel& level, size_t k,
-                                         const PoleDifferential& d, int rings) {
+                                     const PoleDifferential& d, int rings) {
   const TaylorCoefficients& t = level.poleTaylor[k];
   w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
   w.field("scheme", schemeVariantName(variant)).field("limit", d.limit).field("normal", d.normal);
