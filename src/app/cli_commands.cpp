@@ -42,6 +42,8 @@
 #include "pipeline/memory_budget.h"
 #include "pipeline/mesh_report.h"
 #include "pipeline/pole_report.h"
+#include "pipeline/report_value.h"
+#include "pipeline/spectrum_report.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/parallel_for.h"
 #include "core/subdiv/refiner.h"
@@ -408,10 +410,10 @@ int runPole(PoleArgs& o) {
   const SchemeTraits& traits = schemeTraits(o.scheme);
   const bool directional = traits.taylorOrder == 2 && !traits.curvatureContinuous;
   const int rings = directional && !o.json ? std::max(o.rings, 8) : o.rings;
-  // The JSON is made first, text or not: it refuses a non-finite number before anything is printed.
+  // The report's tree is made first, text or not: it refuses a non-finite number before anything is printed.
   const PoleReport report = makePoleReport(loadInput(o.input), o.input, {o.scheme, o.uniformFirstStep}, rings);
   const RefinedLevel& level = report.refinement.level(0);
-  if (o.json) std::cout << report.json << "\n";
+  if (o.json) std::cout << reportJson(report.value) << "\n";
   else if (level.poles.empty()) std::printf("no refinable poles\n");
   else
     for (size_t k = 0; k < level.poles.size(); ++k)
@@ -440,24 +442,17 @@ void writeSpectrumVector(JsonWriter& w, const char* key, const std::vector<Compl
 
 // `spectrum --scheme c2ps`: no stationary matrix, so Lemma 5 and (30) measured instead
 // (c2psEigencoefficientScaling).
-int runC2psSpectrum(int valence, int steps, bool json) {
-  const std::vector<C2psScalingStep> table = c2psEigencoefficientScaling(valence, steps);
+int printMeasuredSpectrum(const SpectrumReport& r, bool json) {
   if (json) {
-    JsonWriter w("spectrum");
-    w.beginObject().field("scheme", "c2ps").field("valence", valence).key("steps").beginArray();
-    for (const C2psScalingStep& s : table) {
-      w.beginObject().field("m", s.m).field("valence", s.valence).field("coefficient_error", s.coefficientError);
-      w.field("deviation", s.deviation).field("deviation_links01", s.deviationLinks01).endObject();
-    }
-    w.endArray().endObject();
-    std::cout << w.str() << "\n";
+    std::cout << reportJson(measuredSpectrumValue(r)) << "\n";
     return 0;
   }
+  const int valence = r.valence;
   std::printf("c2ps, valence %d: no stationary matrix (the valence doubles every step). C2PS applied m times to RTS's\n"
               "eigenvectors v_0..v_5 of valence %d (links 0..5), against Lemma 5 (p_h = lambda_k^m delta_hk) and (30):\n"
               "   m  valence  max|p_h - lambda_k^m delta_hk|  max|T^m v_k - lambda_k^m v_k|  x 8^m   on links 0, 1\n",
               valence, valence);
-  for (const C2psScalingStep& s : table)
+  for (const C2psScalingStep& s : r.steps)
     std::printf("  %2d  %7d  %30.2e  %29.2e  %6.2f  %12.2e\n", s.m, s.valence, s.coefficientError, s.deviation,
                 s.deviation * std::ldexp(1.0, 3 * s.m), s.deviationLinks01);
   return 0;
@@ -490,30 +485,14 @@ void checkSpectrumOptions(const SpectrumOptions& o, bool c2ps) {
                      "eigenvectors of its own (--scheme rts has them); --scheme c2ps takes --steps M"};
   if (!c2ps && o.steps > 0) throw UsageError{"--steps applies to --scheme c2ps"};
   // C2PS is measured on RTS's eigenvectors, so RTS's valence bound applies.
-  const Scheme bounded = c2ps ? Scheme::RTS : o.scheme;
-  if (o.valence < schemeTraits(bounded).minValence)
+  if (o.valence < spectrumMinValence(o.scheme))
     throw UsageError{std::string(schemeName(o.scheme)) + " is defined for valence >= " +
-                     std::to_string(schemeTraits(bounded).minValence) + " (" +
+                     std::to_string(spectrumMinValence(o.scheme)) + " (" +
                      (c2ps ? "it is measured on RTS's eigenvectors" : "its weights alias below") + ")"};
 }
 
 // An eigenvalue whose imaginary part is round-off is printed as real.
-double visibleImaginary(const Complex& z) { return std::abs(z.imag()) > 1e-12 * std::max(1.0, std::abs(z)) ? z.imag() : 0.0; }
-
-// What `spectrum` prints: the leading eigenvalues, and with --vectors their eigenpairs and the matrix.
-struct SpectrumReport {
-  std::string name;
-  bool polar = false;
-  std::vector<TaggedEigenvalue> all;
-  size_t shown = 0;
-  std::vector<EigenPair> pairs;
-  Matrix matrix;
-  // The support's order, as the matrix lists it (schemeMatrix).
-  const char* order() const {
-    return polar ? "q_ij at 6 j + i: link i = 0..5 (0: the pole, once per column), column j = 0..n-1 (13)"
-                 : "v, e_0..e_{n-1} (spoke ends), f_0..f_{n-1} (quad j's far corner, between e_j and e_{j+1})";
-  }
-};
+double visibleImaginary(const Complex& z) { return shownEigenvalue(z).imag(); }
 
 void writeSpectrumJson(const SpectrumReport& r, int valence, bool vectors) {
   JsonWriter w("spectrum");
@@ -578,18 +557,11 @@ void printSpectrumText(const SpectrumReport& r, int valence, bool vectors) {
 }
 
 int runSpectrum(SpectrumOptions& o) {
-  const bool c2ps = schemeTraits(o.scheme).polar() && !schemeTraits(o.scheme).keepsValence;
+  const bool c2ps = spectrumIsMeasured(o.scheme);
   checkSpectrumOptions(o, c2ps);
-  if (c2ps) return runC2psSpectrum(o.valence, o.steps > 0 ? o.steps : 8, o.json);
-  SpectrumReport r;
-  r.all = schemeSpectrum(o.scheme, o.valence);
-  r.shown = std::min(r.all.size(), size_t(o.count));
-  r.name = cliSchemeName(o.scheme, false);
-  r.polar = schemeTraits(o.scheme).polar();
-  if (o.vectors) {
-    r.pairs = schemeEigenPairs(o.scheme, o.valence, r.shown);
-    r.matrix = schemeMatrix(o.scheme, o.valence);
-  }
+  const SpectrumReport r =
+      makeSpectrumReport({o.scheme, o.valence, size_t(o.count), o.vectors, o.vectors, o.steps > 0 ? o.steps : 8});
+  if (c2ps) return printMeasuredSpectrum(r, o.json);
   if (o.json) writeSpectrumJson(r, o.valence, o.vectors);
   else printSpectrumText(r, o.valence, o.vectors);
   return 0;

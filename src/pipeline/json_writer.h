@@ -25,9 +25,7 @@ class JsonWriter {
   // JSON has no inf or NaN, and printing null for a value that overflowed would hide the failure:
   // throws InputError(source, 0, ...) naming the key.
   JsonWriter& value(double x) {
-    if (!std::isfinite(x))
-      throw InputError(source_, 0, "the result has a non-finite number (\"" + lastKey_ +
-                                       "\"): the input's coordinates are too large, too small or degenerate");
+    if (!std::isfinite(x)) throw nonFiniteError(source_, lastKey_);
     separate();
     out_ += number(x);
     return *this;
@@ -43,6 +41,12 @@ class JsonWriter {
   template <class T>
   JsonWriter& field(const char* name, const T& v) { key(name); return value(v); }
   const std::string& str() const { return out_; }
+
+  // The error a non-finite number under `key` raises (ReportBuilder raises it too).
+  static InputError nonFiniteError(const std::string& source, const std::string& key) {
+    return InputError(source, 0, "the result has a non-finite number (\"" + key +
+                                     "\"): the input's coordinates are too large, too small or degenerate");
+  }
 
   // 17 significant digits (round-trips a double); NaN/inf become null (value() refuses them first).
   static std::string number(double x) {

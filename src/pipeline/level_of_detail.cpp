@@ -1,6 +1,7 @@
 // Level of detail for drawing (see level_of_detail.h).
 #include "pipeline/level_of_detail.h"
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/parallel_for.h"
 
 #include <algorithm>
@@ -14,7 +15,6 @@ namespace polarview {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr size_t kMostFeatures = 4096;  // beyond: every k-th (only the nearest matters)
 
 // A patch's size: the edges of its face (B-spline kinds: control points 5, 6, 9, 10 are the face's

@@ -6,7 +6,6 @@
 #include "core/mesh/ngon_to_fan.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/refiner.h"
-#include "pipeline/json_writer.h"
 
 namespace polarview {
 
@@ -97,9 +96,9 @@ MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTop
   return r;
 }
 
-std::string meshInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
-                         const MeshReport& r) {
-  JsonWriter w(file);
+ReportValue meshInfoValue(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                          const MeshReport& r) {
+  ReportBuilder w(file);
   w.beginObject();
   w.field("file", file).field("vertices", r.used).field("unreferenced_vertices", topo.vertexCount - r.used);
   w.field("faces", mesh.faceCount()).field("edges", topo.edgeCount).field("triangles", r.triangles);
@@ -144,14 +143,19 @@ std::string meshInfoJson(const std::string& file, const PolyMesh& mesh, const Me
     w.endObject();
   }
   w.endArray().endObject();
-  return w.str();
+  return w.take();
 }
 
-std::string meshInfoJson(const std::string& file, const PolyMesh& input) {
+std::string meshInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                         const MeshReport& r) {
+  return reportJson(meshInfoValue(file, mesh, topo, split, r));
+}
+
+ReportValue meshInfoValue(const std::string& file, const PolyMesh& input) {
   ManifoldSplit split;  // a non-manifold input: its poles are the split mesh's (manifold_split.h)
   MeshTopology topo;
   const PolyMesh& mesh = refinableMesh(input, split, topo, file);
-  return meshInfoJson(file, mesh, topo, split, reportMesh(input, mesh, topo));
+  return meshInfoValue(file, mesh, topo, split, reportMesh(input, mesh, topo));
 }
 
 }  // namespace polarview

@@ -1,6 +1,6 @@
 // What `polarview info` reports on a mesh (poles, rejected pole candidates, extraordinary vertices,
 // boundaries), made once and written as the CLI's text or as JSON; the Python module's Mesh.info()
-// reads the same JSON.
+// converts the same tree (meshInfoValue) the JSON is printed from.
 #pragma once
 
 #include <map>
@@ -12,6 +12,7 @@
 #include "core/mesh/topology.h"
 #include "core/subdiv/polar_config.h"
 #include "core/subdiv/scheme.h"
+#include "pipeline/report_value.h"
 
 namespace polarview {
 
@@ -41,11 +42,14 @@ std::string schemeAction(Scheme scheme, const PolarConfig& c, bool radialMesh);
 int countBoundaryLoops(const MeshTopology& topo);
 // The report on `mesh` (refinableMesh of `input`, with its tables `topo`). [O(mesh)]
 MeshReport reportMesh(const PolyMesh& input, const PolyMesh& mesh, const MeshTopology& topo);
-// `info --json`'s object (one line, numbers round-trip). [O(mesh)]
+// `info --json`'s object as a tree. [O(mesh)]
+ReportValue meshInfoValue(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
+                          const MeshReport& r);
+// ... and as `info --json` prints it (one line, numbers round-trip). [O(mesh)]
 std::string meshInfoJson(const std::string& file, const PolyMesh& mesh, const MeshTopology& topo, const ManifoldSplit& split,
                          const MeshReport& r);
-// The same from the input alone: split where non-manifold, tables built, reported. Throws
+// The tree from the input alone: split where non-manifold, tables built, reported. Throws
 // InputError naming `file` for meshes refinableMesh refuses. [O(mesh)]
-std::string meshInfoJson(const std::string& file, const PolyMesh& input);
+ReportValue meshInfoValue(const std::string& file, const PolyMesh& input);
 
 }  // namespace polarview

@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "core/mesh/input_error.h"
-#include "pipeline/json_writer.h"
 
 namespace polarview {
 
@@ -22,10 +21,10 @@ void checkC2psRings(const std::string& file, const RefinedLevel& level, int ring
                                     std::to_string(std::max(0, int(std::floor(std::log2(double(1 << 18) / level.poleGrids[k].n))))));
 }
 
-// One pole's JSON object: limit, normal, K and H (null where undefined), p0..p5, and rings 1..M
-// (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
-std::vector<RingCurvature> writePoleJson(JsonWriter& w, const SchemeVariant& variant, const RefinedLevel& level, size_t k,
-                                         const PoleDifferential& d, int rings) {
+// One pole's object of `pole --json`: limit, normal, K and H (null where undefined), p0..p5, and
+// rings 1..M (paper (6), r in [2, 4] 2^-m), refined from the pole's own links 0..5, which it returns.
+std::vector<RingCurvature> writePole(ReportBuilder& w, const SchemeVariant& variant, const RefinedLevel& level, size_t k,
+                                     const PoleDifferential& d, int rings) {
   const TaylorCoefficients& t = level.poleTaylor[k];
   w.beginObject().field("vertex", level.poles[k].pole).field("valence", level.poles[k].valence);
   w.field("scheme", schemeVariantName(variant)).field("limit", d.limit).field("normal", d.normal);
@@ -66,14 +65,14 @@ PoleReport makePoleReport(const PolyMesh& mesh, const std::string& file, const S
   PoleReport report{Refinement(mesh, {variant.scheme, 0, variant.uniformFirstStep}, file), {}, {}};
   const RefinedLevel& level = report.refinement.level(0);
   if (rings > 0 && !schemeTraits(variant.scheme).keepsValence) checkC2psRings(file, level, rings);
-  JsonWriter w(file);
+  ReportBuilder w(file);
   w.beginObject().key("poles").beginArray();
   for (size_t k = 0; k < level.poles.size(); ++k) {
     const PoleDifferential d = analyzePole(level.poleTaylor[k]);
-    report.poles.push_back({d, writePoleJson(w, variant, level, k, d, rings)});
+    report.poles.push_back({d, writePole(w, variant, level, k, d, rings)});
   }
   w.endArray().endObject();
-  report.json = w.str();
+  report.value = w.take();
   return report;
 }
 

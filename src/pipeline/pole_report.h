@@ -1,6 +1,6 @@
 // What `polarview pole` reports on each refinable pole of a mesh: limit, normal, K and H from the
 // Taylor expansion (32), p0..p5, and the curvature over spline rings 1..M; the CLI prints it as text
-// or JSON, the Python module's pole() reads the JSON.
+// or JSON, the Python module's pole() converts the tree the JSON is printed from.
 #pragma once
 
 #include <string>
@@ -9,6 +9,7 @@
 #include "core/spline/pole_taylor.h"
 #include "core/spline/ring_curvature.h"
 #include "core/subdiv/refiner.h"
+#include "pipeline/report_value.h"
 
 namespace polarview {
 
@@ -20,7 +21,7 @@ struct PoleReportEntry {
 struct PoleReport {
   Refinement refinement;  // level 0 only: the poles of the input's own configurations
   std::vector<PoleReportEntry> poles;  // parallel to refinement.level(0).poles
-  std::string json;                    // `pole --json`'s object {"poles": [...]}
+  ReportValue value;                   // `pole --json`'s object {"poles": [...]} (reportJson prints it)
 };
 
 // The report of `variant` (a polar scheme) on `mesh`, with `rings` spline rings per pole (0: none;

@@ -38,16 +38,16 @@ const std::array<std::pair<std::string, std::string>, kSchemeChoiceCount>& choic
 const char* schemeChoiceLabel(SchemeChoice scheme) { return choiceTexts()[size_t(scheme)].first.c_str(); }
 const char* schemeChoiceCliName(SchemeChoice scheme) { return choiceTexts()[size_t(scheme)].second.c_str(); }
 
-std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
-  std::string key = lowercase(name);
-  if (key == "c2ps-u" || key == "c2ps-uniform" || key == "c2psu") return SchemeChoice::C2PSUniformFirstStep;
-  if (key == "rts-uniform" || key == "rtsu") return SchemeChoice::RTSUniformFirstStep;
-  if (key == "catmull-clark" || key == "catmullclark") return SchemeChoice::CatmullClark;
-  for (int i = 0; i < kSchemeChoiceCount; ++i) {
-    auto scheme = static_cast<SchemeChoice>(i);
-    if (key == schemeChoiceCliName(scheme)) return scheme;
-  }
+std::optional<SchemeChoice> schemeChoiceFor(const SchemeVariant& variant) {
+  for (int i = 0; i < kSchemeChoiceCount; ++i)
+    if (kChoiceVariants[i].scheme == variant.scheme && kChoiceVariants[i].uniformFirstStep == variant.uniformFirstStep)
+      return static_cast<SchemeChoice>(i);
   return std::nullopt;
+}
+
+std::optional<SchemeChoice> parseSchemeChoice(const std::string& name) {
+  const std::optional<SchemeVariant> variant = parseSchemeVariant(name);
+  return variant ? schemeChoiceFor(*variant) : std::nullopt;
 }
 
 SchemeVariant schemeChoiceVariant(SchemeChoice scheme) { return kChoiceVariants[int(scheme)]; }

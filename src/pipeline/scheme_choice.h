@@ -25,7 +25,10 @@ constexpr int kPatchKindCount = 5;  // PatchKind::Regular .. EndCap
 const char* schemeChoiceLabel(SchemeChoice scheme);
 // Command-line name: "cc", "c2ps", "c2ps-u", "rts", "rts-u", "bps".
 const char* schemeChoiceCliName(SchemeChoice scheme);
-// Accepts the command-line names (case-insensitive; also "c2ps-uniform", "rts-uniform", "catmull-clark").
+// The choice that shows `variant` (every variant of the scheme table has one). [O(choices)]
+std::optional<SchemeChoice> schemeChoiceFor(const SchemeVariant& variant);
+// The choice a name stands for: parseSchemeVariant's names (core/subdiv/scheme.h, the one parser:
+// case-insensitive, "c2ps-uniform", "catmull-clark", ...). [O(choices)]
 std::optional<SchemeChoice> parseSchemeChoice(const std::string& name);
 // The scheme-table row and first step a choice stands for (its traits: schemeTraits(variant.scheme)).
 SchemeVariant schemeChoiceVariant(SchemeChoice scheme);

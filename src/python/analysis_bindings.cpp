@@ -10,20 +10,24 @@
 #include <pybind11/stl.h>
 
 #include "core/subdiv/refiner.h"
-#include "core/subdiv/spectrum.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/pole_report.h"
+#include "pipeline/scheme_choice.h"
+#include "pipeline/spectrum_report.h"
 #include "python/bindings.h"
 
 namespace polarview::python {
 
 namespace {
 
+bool polarChoice(SchemeChoice c) { return schemeTraits(schemeChoiceVariant(c).scheme).polar(); }
+
 py::list poleAnalysis(const Mesh& m, const std::string& scheme, int rings) {
   const SchemeVariant variant = schemeArgument(scheme);
-  if (!schemeTraits(variant.scheme).polar()) throw py::value_error("pole analysis needs a polar scheme (c2ps, c2ps-u, rts, rts-u, bps)");
+  if (!schemeTraits(variant.scheme).polar())
+    throw py::value_error("pole analysis needs a polar scheme (" + schemeChoiceNames(", ", polarChoice) + ")");
   if (rings < 0 || rings > 20) throw py::value_error("rings must be in 0..20");
-  return parseJson(makePoleReport(*m.mesh, m.source, variant, rings).json)["poles"];
+  return toPython(makePoleReport(*m.mesh, m.source, variant, rings).value["poles"], IntegralNumbers::AsInt);
 }
 
 // Complex vectors as rows of a (count, size) array; NaN rows where a pair has none (zero or
@@ -38,57 +42,44 @@ py::array_t<std::complex<double>> vectorRows(const std::vector<EigenPair>& pairs
   return out;
 }
 
-// C2PS: no stationary matrix; Lemma 5 and (30) measured on RTS's eigenvectors, as `spectrum --scheme c2ps`.
-py::dict c2psSpectrum(int valence, int steps) {
-  py::list rows;
-  for (const C2psScalingStep& s : c2psEigencoefficientScaling(valence, steps)) {
-    py::dict row;
-    row["m"] = s.m, row["valence"] = s.valence, row["coefficient_error"] = s.coefficientError;
-    row["deviation"] = s.deviation, row["deviation_links01"] = s.deviationLinks01;
-    rows.append(row);
-  }
-  py::dict d;
-  d["scheme"] = "c2ps", d["valence"] = valence, d["steps"] = rows;
-  return d;
-}
-
-py::dict spectrum(const std::string& scheme, int valence, int count, int steps) {
-  const SchemeVariant variant = schemeArgument(scheme);
-  const SchemeTraits& traits = schemeTraits(variant.scheme);
-  if (variant.uniformFirstStep) throw py::value_error("the Section-6 first step has no subdivision matrix of its own");
-  const bool c2ps = traits.polar() && !traits.keepsValence;
-  const SchemeTraits& bounded = schemeTraits(c2ps ? Scheme::RTS : variant.scheme);  // C2PS: measured on RTS's vectors
-  if (valence < std::max(3, bounded.minValence) || valence > 64)
-    throw py::value_error(std::string(traits.name) + " takes valence " + std::to_string(std::max(3, bounded.minValence)) + "..64");
-  if (c2ps) return c2psSpectrum(valence, steps);
-  if (count < 1) throw py::value_error("count must be at least 1");
-  const std::vector<TaggedEigenvalue> all = schemeSpectrum(variant.scheme, valence);
-  const size_t shown = std::min(all.size(), size_t(count));
-  const std::vector<EigenPair> pairs = schemeEigenPairs(variant.scheme, valence, shown);
-  py::array_t<std::complex<double>> values(static_cast<py::ssize_t>(shown));
-  py::array_t<int> blocks(static_cast<py::ssize_t>(shown));
+// The eigenvalues (round-off imaginary parts 0, as `spectrum` prints them), their Fourier blocks and
+// modes, eigenvectors and the matrix of a report made with vectors and matrix.
+py::dict eigenDict(const SpectrumReport& r) {
+  py::array_t<std::complex<double>> values(static_cast<py::ssize_t>(r.shown));
+  py::array_t<int> blocks(static_cast<py::ssize_t>(r.shown));
   py::list modes;
-  for (size_t k = 0; k < shown; ++k) {
-    // An imaginary part that is round-off is 0, as `spectrum` prints it.
-    const Complex z = all[k].value;
-    const bool real = std::abs(z.imag()) <= 1e-12 * std::max(1.0, std::abs(z));
-    values.mutable_at(k) = real ? Complex(z.real(), 0.0) : z, blocks.mutable_at(k) = all[k].alpha;
-    modes.append(fourierModeName(pairs[k].mode));
+  for (size_t k = 0; k < r.shown; ++k) {
+    values.mutable_at(k) = shownEigenvalue(r.all[k].value), blocks.mutable_at(k) = r.all[k].alpha;
+    modes.append(fourierModeName(r.pairs[k].mode));
   }
-  const Matrix matrix = schemeMatrix(variant.scheme, valence);
-  py::array_t<double> dense({py::ssize_t(matrix.size()), py::ssize_t(matrix.empty() ? 0 : matrix[0].size())});
-  for (size_t i = 0; i < matrix.size(); ++i)
-    for (size_t j = 0; j < matrix[i].size(); ++j) dense.mutable_at(i, j) = matrix[i][j];
+  py::array_t<double> dense({py::ssize_t(r.matrix.size()), py::ssize_t(r.matrix.empty() ? 0 : r.matrix[0].size())});
+  for (size_t i = 0; i < r.matrix.size(); ++i)
+    for (size_t j = 0; j < r.matrix[i].size(); ++j) dense.mutable_at(i, j) = r.matrix[i][j];
   py::dict d;
-  d["scheme"] = traits.name, d["valence"] = valence, d["size"] = all.size();
+  d["scheme"] = r.name, d["valence"] = r.valence, d["size"] = r.all.size();
   d["eigenvalues"] = values, d["fourier_blocks"] = blocks, d["modes"] = modes;
-  d["right"] = vectorRows(pairs, &EigenPair::right), d["left"] = vectorRows(pairs, &EigenPair::left);
-  d["right_profile"] = vectorRows(pairs, &EigenPair::rightProfile);
-  d["left_profile"] = vectorRows(pairs, &EigenPair::leftProfile);
+  d["right"] = vectorRows(r.pairs, &EigenPair::right), d["left"] = vectorRows(r.pairs, &EigenPair::left);
+  d["right_profile"] = vectorRows(r.pairs, &EigenPair::rightProfile);
+  d["left_profile"] = vectorRows(r.pairs, &EigenPair::leftProfile);
   d["matrix"] = dense;
   return d;
 }
 
+// C2PS: no stationary matrix; Lemma 5 and (30) measured on RTS's eigenvectors, as `spectrum --scheme
+// c2ps --json` prints them.
+py::object spectrum(const std::string& scheme, int valence, int count, int steps) {
+  const SchemeVariant variant = schemeArgument(scheme);
+  if (variant.uniformFirstStep) throw py::value_error("the Section-6 first step has no subdivision matrix of its own");
+  const int least = std::max(3, spectrumMinValence(variant.scheme));
+  if (valence < least || valence > 64)
+    throw py::value_error(std::string(schemeName(variant.scheme)) + " takes valence " + std::to_string(least) + "..64");
+  const bool measured = spectrumIsMeasured(variant.scheme);
+  if (!measured && count < 1) throw py::value_error("count must be at least 1");
+  if (measured && (steps < 1 || steps > 12)) throw py::value_error("steps must be in 1..12");
+  const SpectrumReport r = makeSpectrumReport({variant.scheme, valence, size_t(std::max(count, 1)), true, true, steps});
+  if (measured) return toPython(measuredSpectrumValue(r), IntegralNumbers::AsFloat);
+  return eigenDict(r);
+}
 
 // The matrix applied to the mesh's points must give the step's points (to round-off of the sums'
 // order): a rule that is not linear, or a column read wrong, fails here instead of handing out a

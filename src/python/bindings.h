@@ -1,7 +1,8 @@
 // The Python module `polarview` (docs/python.md): numpy arrays in and out over the core and the
 // pipeline. One file per topic: meshes (mesh_bindings.cpp), patches and their evaluation
 // (patch_bindings.cpp), the analysis of poles, spectra and subdivision matrices
-// (analysis_bindings.cpp); module.cpp joins them and maps errors to Python's.
+// (analysis_bindings.cpp); report trees as dicts (report_conversion.cpp); module.cpp joins them and
+// maps errors to Python's. The package over it (python/polarview/__init__.py) checks the arguments.
 #pragma once
 
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "core/mesh/poly_mesh.h"
 #include "core/subdiv/scheme.h"
+#include "pipeline/report_value.h"
 
 namespace polarview::python {
 
@@ -31,8 +33,12 @@ SchemeVariant schemeArgument(const std::string& name);
 py::array readOnlyView(py::dtype dtype, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides, const void* data,
                        py::handle owner);
 
-// A Python object from JSON text (json.loads). [O(text)]
-py::object parseJson(const std::string& text);
+// How a report's doubles become Python numbers. info() and pole() have always handed out what
+// json.loads made of the CLI's text, where an integral double (printed without a point) is an int:
+// AsInt keeps that. spectrum()'s c2ps dict has always held floats: AsFloat.
+enum class IntegralNumbers { AsInt, AsFloat };
+// A report tree as dicts (keys in order), lists, numbers, strings, bools and None. [O(size)]
+py::object toPython(const ReportValue& value, IntegralNumbers integral);
 
 void bindMeshes(py::module_& m);
 void bindPatches(py::module_& m);

@@ -159,7 +159,7 @@ void bindMeshes(py::module_& m) {
       .def_property_readonly("source", [](const Mesh& self) { return self.source; })
       .def_property_readonly("vertex_count", [](const Mesh& self) { return self.mesh->vertexCount(); })
       .def_property_readonly("face_count", [](const Mesh& self) { return self.mesh->faceCount(); })
-      .def("info", [](const Mesh& self) { return parseJson(meshInfoJson(self.source, *self.mesh)); },
+      .def("info", [](const Mesh& self) { return toPython(meshInfoValue(self.source, *self.mesh), IntegralNumbers::AsInt); },
            "what `polarview info --json` prints, as a dict")
       .def("save", [](const Mesh& self, const std::string& path) { saveObj(path, *self.mesh, self.source); }, py::arg("path"),
            "writes an OBJ atomically, as `polarview refine` does")

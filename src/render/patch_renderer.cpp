@@ -2,6 +2,7 @@
 // overlays (see patch_renderer.h). Shaders: shaders/patch.*, patch_boundary.*, overlay.*.
 #include "render/patch_renderer.h"
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/parallel_for.h"
 
 #include <glad/gl.h>
@@ -59,7 +60,6 @@ constexpr int kKindTextureUnit = 4;
 constexpr int kPointTextureUnit = 5;     // u_patchPoints, u_drawItems, u_rowSlots
 constexpr int kItemTextureUnit = 6;
 constexpr int kRowSlotTextureUnit = 7;
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // A double vector rounded to float. Through a volatile: GCC 12.2 at -O2 and -O3 vectorises
 // double(float(x)) back to x (seen: the lo of splitHiLo came out 0 in y and z, a level-20 cap

@@ -7,6 +7,7 @@
 
 #include "core/subdiv/spectrum.h"
 #include "pipeline/model_analysis.h"
+#include "pipeline/spectrum_report.h"
 #include "pipeline/surface_build.h"
 
 namespace polarview {
@@ -147,7 +148,7 @@ void Session::updateSpectrum() {
   // Small (6n x 6n, n <= 24): computed on the GL thread when the valence changes.
   spectrum.lines.clear();
   try {
-    const std::vector<EigenPair> pairs = schemeEigenPairs(Scheme::RTS, spectrum.valence, 8);
+    const std::vector<EigenPair> pairs = makeSpectrumReport({Scheme::RTS, spectrum.valence, 8, true}).pairs;
     for (size_t k = 0; k < pairs.size(); ++k) {
       char line[96];
       std::snprintf(line, sizeof line, "v%zu  %.12g  block %d  %s", k, pairs[k].value.real(), pairs[k].alpha,

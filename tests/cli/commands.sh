@@ -104,6 +104,14 @@ import json,sys; s=json.loads(sys.stdin.read())['steps']; assert [x['valence'] f
 assert all(x['coefficient_error']<1e-12 and x['deviation_links01']<1e-12 for x in s), s
 assert 6 < s[4]['deviation']/s[5]['deviation'] < 8.5, s"
 
+# one scheme-name parser for every command: refine takes the spellings render and view take
+"$exe" refine "$tmp/globe.obj" -o "$tmp/cc.obj" --scheme cc --levels 1
+"$exe" refine "$tmp/globe.obj" -o "$tmp/catmull.obj" --scheme catmull-clark --levels 1
+cmp -s "$tmp/cc.obj" "$tmp/catmull.obj" || fail "refine --scheme catmull-clark should refine as --scheme cc"
+"$exe" refine "$tmp/globe.obj" -o "$tmp/c2psu.obj" --scheme C2PS-Uniform --levels 1
+"$exe" refine "$tmp/globe.obj" -o "$tmp/c2ps-u.obj" --scheme c2ps-u --levels 1
+cmp -s "$tmp/c2psu.obj" "$tmp/c2ps-u.obj" || fail "refine --scheme C2PS-Uniform should refine as --scheme c2ps-u"
+
 # usage errors exit 2 with the usage; an unknown scheme too
 set +e
 "$exe" refine "$tmp/globe.obj" --levels 1 >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing -o should exit 2"

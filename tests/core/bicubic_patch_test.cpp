@@ -6,14 +6,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/spline/patch.h"
 #include "core/spline/pole_taylor.h"
 
 using namespace polarview;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Point randomPoint(std::mt19937& rng, double scale = 1.0) {
   std::uniform_real_distribution<double> d(-scale, scale);

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/subdiv/catmull_clark.h"
@@ -115,7 +116,6 @@ PolyMesh mixedOpenMesh() {
 // on top and a pentagon at the bottom.
 PolyMesh closedMixedMesh() {
   PolyMesh m;
-  constexpr double kPi = 3.14159265358979323846;
   for (int ring = 0; ring < 2; ++ring)
     for (int j = 0; j < 5; ++j) m.points.emplace_back(std::cos(2 * kPi * j / 5), std::sin(2 * kPi * j / 5), ring);
   m.points.emplace_back(0, 0, 1.7);  // top apex, vertex 10

@@ -17,6 +17,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
 #include "core/spline/patch.h"
@@ -27,8 +28,6 @@
 using namespace polarview;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Point of side s at t: s = 0: v = 0, u = t; 1: u = 1, v = t; 2: v = 1, u = 1-t; 3: u = 0, v = 1-t.
 void sideParameter(int s, double t, double& u, double& v) {

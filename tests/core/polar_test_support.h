@@ -12,12 +12,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/polar_grid.h"
 #include "core/subdiv/spectrum.h"
 
 namespace polarview::test {
-
-constexpr double kPi = 3.14159265358979323846264338327950288;
 
 inline double distance(const Point& a, const Point& b) { return glm::length(a - b); }
 

@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/spline/patch.h"
 #include "core/spline/pole_taylor.h"
 #include "core/spline/spline_ring.h"
@@ -23,7 +24,6 @@ using namespace polarview;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kLinks = 5;  // links 0..5: what one spline ring (6) needs
 
 // A generic polar configuration: a perturbed polar grid over a random smooth height field.

@@ -4,10 +4,25 @@
 
 using namespace polarview;
 
-TEST_CASE("scheme names round-trip through the parser") {
-  for (Scheme s : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS})
-    CHECK(parseScheme(schemeName(s)) == s);
-  CHECK_FALSE(parseScheme("loop").has_value());
+TEST_CASE("scheme names round-trip through the one parser, which also takes the other spellings") {
+  for (Scheme s : {Scheme::CatmullClark, Scheme::C2PS, Scheme::RTS, Scheme::BPS}) {
+    CHECK(parseSchemeVariant(schemeName(s))->scheme == s);
+    CHECK_FALSE(parseSchemeVariant(schemeName(s))->uniformFirstStep);
+  }
+  CHECK_FALSE(parseSchemeVariant("loop").has_value());
+  CHECK_FALSE(parseSchemeVariant("").has_value());
+  for (const char* name : {"catmull-clark", "CatmullClark", "CC"}) {
+    REQUIRE(parseSchemeVariant(name));
+    CHECK(parseSchemeVariant(name)->scheme == Scheme::CatmullClark);
+  }
+  for (const char* name : {"c2ps-uniform", "C2PSU", "C2PS-U"}) {
+    REQUIRE(parseSchemeVariant(name));
+    CHECK(parseSchemeVariant(name)->scheme == Scheme::C2PS);
+    CHECK(parseSchemeVariant(name)->uniformFirstStep);
+  }
+  CHECK(parseSchemeVariant("rts-uniform")->uniformFirstStep);
+  CHECK_FALSE(parseSchemeVariant("bps-uniform"));
+  CHECK_FALSE(parseSchemeVariant("bpsu"));
 }
 
 TEST_CASE("scheme table: one row per scheme in enum order; every name and variant reads back") {
@@ -16,7 +31,7 @@ TEST_CASE("scheme table: one row per scheme in enum order; every name and varian
   for (Scheme s : all) {
     const SchemeTraits& traits = schemeTraits(s);
     CHECK(traits.scheme == s);
-    CHECK(parseScheme(traits.name) == s);
+    CHECK(parseSchemeVariant(traits.name)->scheme == s);
     // A polar scheme has all four rules; Catmull-Clark none and no Taylor expansion.
     CHECK(traits.polar() == (traits.refineGrid && traits.refinePole && traits.refineLink1 && traits.refineLink2));
     CHECK(traits.polar() == (traits.taylorOrder > 0));
@@ -35,5 +50,5 @@ TEST_CASE("scheme table: one row per scheme in enum order; every name and varian
   CHECK(variants == 6);  // cc, c2ps, c2ps-u, rts, rts-u, bps
   CHECK(schemeVariantLabel({Scheme::C2PS, true}) == "C2PS-U");
   CHECK_FALSE(parseSchemeVariant("bps-u"));
-  CHECK_FALSE(parseSchemeVariant("C2PS"));
+  CHECK(parseSchemeVariant("C2PS")->scheme == Scheme::C2PS);  // case-insensitive, as the viewer always took it
 }

@@ -8,12 +8,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/spectrum.h"
 
 using namespace polarview;
 
 TEST_CASE("spectrum: Catmull-Clark at valence n has 1, the subdominant pair of the closed form, then 1/4-like values") {
-  constexpr double kPi = 3.14159265358979323846;
   for (int n = 3; n <= 16; ++n) {
     const std::vector<TaggedEigenvalue> s = schemeSpectrum(Scheme::CatmullClark, n);
     REQUIRE(s.size() == size_t(2 * n + 1));
@@ -43,8 +43,6 @@ TEST_CASE("spectrum: RTS gives Table 1 at every valence from 5 to 64; C2PS has n
 }
 
 namespace {
-
-constexpr double kTwoPi = 6.28318530717958647692;
 
 // Largest |imaginary part| of a vector: the eigenvectors of real eigenvalues must be real.
 double largestImaginary(const std::vector<Complex>& v) {

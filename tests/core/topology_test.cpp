@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "core/mesh/constants.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/input_error.h"
 #include "core/mesh/topology.h"
@@ -14,8 +15,6 @@
 using namespace polarview;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // nu x nv quads over a periodic or open parameter grid; `wrapU`/`wrapV` glue opposite sides.
 PolyMesh quadGrid(int nu, int nv, bool wrapU, bool wrapV) {

@@ -21,6 +21,7 @@
 
 #include "app/osd_descriptor.h"
 
+#include "core/mesh/constants.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/topology.h"
@@ -35,7 +36,6 @@ namespace Sdc = OpenSubdiv::Sdc;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kLevels = 4;
 
 // The vertex type PrimvarRefiner interpolates (its Clear / AddWithWeight interface).

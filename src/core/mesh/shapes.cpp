@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mesh/constants.h"
+
 namespace polarview::shapes {
 
 namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Adds the quads between two consecutive rings of n vertices starting at `inner` and `outer`.
 void addRingQuads(PolyMesh& mesh, Index inner, Index outer, int n) {

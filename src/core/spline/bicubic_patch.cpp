@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/mesh/constants.h"
 #include "core/spline/patch.h"
 
 namespace polarview {
@@ -22,8 +23,6 @@ const char* patchKindName(PatchKind kind) {
 }
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Uniform cubic B-spline basis on the middle knot span, with first and second derivatives
 // (docs/patches.md, B-spline basis and Bezier form).

@@ -6,13 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/polar_rules.h"
 
 namespace polarview::bps {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // n gamma_g = beta + cos + 1/2 cos2 + 1/8 cos3 (c^2 = 1/2 + 1/2 cos2, c^3 = 3/4 c + 1/4 cos3).
 constexpr std::array<double, kMaxLinkFrequency + 1> kGammaModes{0.0, 1.0, 0.5, 0.125};

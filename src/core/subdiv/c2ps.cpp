@@ -7,13 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/constants.h"
 #include "core/subdiv/polar_rules.h"
 
 namespace polarview::c2ps {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 void checkGrid(const PolarGrid& grid, int minLinks, const char* what) {
   if (grid.n < 3 || grid.links < minLinks || grid.ring.size() != size_t(grid.n) * grid.links)

@@ -4,11 +4,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/mesh/constants.h"
+
 namespace polarview {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // (cos, sin) of the multiples 1..kMaxLinkFrequency of an angle, by the addition theorem.
 std::array<std::array<double, 2>, kMaxLinkFrequency + 1> angleMultiples(const std::array<double, 2>& unit) {

@@ -1,5 +1,7 @@
 #include "core/subdiv/scheme.h"
 
+#include <cctype>
+
 #include "core/subdiv/bps.h"
 #include "core/subdiv/c2ps.h"
 #include "core/subdiv/rts.h"
@@ -21,6 +23,9 @@ const std::array<SchemeTraits, 4> kSchemes = {{
      bps::refinePole, bps::refineLink1, [](const PolarGrid& g, Point* out, bool) { bps::refineLink2(g, out); }},
 }};
 
+// Catmull-Clark's other spellings (lower case).
+constexpr const char* kCatmullClarkAliases[] = {"catmull-clark", "catmullclark"};
+
 }  // namespace
 
 const std::array<SchemeTraits, 4>& schemeTable() { return kSchemes; }
@@ -28,17 +33,17 @@ const SchemeTraits& schemeTraits(Scheme scheme) { return kSchemes[size_t(scheme)
 
 const char* schemeName(Scheme s) { return schemeTraits(s).name; }
 
-std::optional<Scheme> parseScheme(const std::string& name) {
-  for (const SchemeTraits& traits : kSchemes)
-    if (name == traits.name) return traits.scheme;
-  return std::nullopt;
-}
-
 std::optional<SchemeVariant> parseSchemeVariant(const std::string& name) {
+  std::string key = name;
+  for (char& c : key) c = char(std::tolower(static_cast<unsigned char>(c)));
   for (const SchemeTraits& traits : kSchemes) {
-    if (name == traits.name) return SchemeVariant{traits.scheme, false};
-    if (traits.hasUniformFirstStep && name == std::string(traits.name) + "-u") return SchemeVariant{traits.scheme, true};
+    const std::string row = traits.name;
+    if (key == row) return SchemeVariant{traits.scheme, false};
+    if (traits.hasUniformFirstStep && (key == row + "-u" || key == row + "-uniform" || key == row + "u"))
+      return SchemeVariant{traits.scheme, true};
   }
+  for (const char* alias : kCatmullClarkAliases)
+    if (key == alias) return SchemeVariant{Scheme::CatmullClark, false};
   return std::nullopt;
 }
 

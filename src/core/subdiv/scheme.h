@@ -47,7 +47,6 @@ const std::array<SchemeTraits, 4>& schemeTable();
 const SchemeTraits& schemeTraits(Scheme scheme);
 
 const char* schemeName(Scheme s);  // "cc", "c2ps", "rts", "bps"
-std::optional<Scheme> parseScheme(const std::string& name);
 
 // A scheme and its first step: the names every command and the viewer take ("c2ps-u" is C2PS with
 // the uniform first step).
@@ -55,7 +54,10 @@ struct SchemeVariant {
   Scheme scheme = Scheme::C2PS;
   bool uniformFirstStep = false;
 };
-std::optional<SchemeVariant> parseSchemeVariant(const std::string& name);  // "cc", ..., "c2ps-u", "rts-u"
+// The one parser of scheme names (the CLI's --scheme, the viewer's, the Python module's): the table's
+// names and "-u" for the Section-6 variant, case-insensitive; also "-uniform" or "u" for "-u"
+// ("c2ps-uniform", "rtsu") and "catmull-clark" / "catmullclark" for "cc". [O(1)]
+std::optional<SchemeVariant> parseSchemeVariant(const std::string& name);
 std::string schemeVariantName(const SchemeVariant& variant);               // "c2ps-u"
 std::string schemeVariantLabel(const SchemeVariant& variant);              // "C2PS-U"
 

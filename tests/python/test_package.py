@@ -1,0 +1,72 @@
+# The package over the extension (src/python/polarview/__init__.py): the scheme lists from the C++
+# table, one scheme-name parser, and the arguments checked before they reach C++.
+import pathlib
+
+import numpy as np
+import pytest
+
+import polarview as pv
+from conftest import asset
+
+
+def test_the_package_wraps_the_extension():
+    assert pathlib.Path(pv.__file__).name == "__init__.py"
+    assert pv.Mesh is pv._core.Mesh and pv.Patches is pv._core.Patches
+    for name in pv.__all__:
+        assert getattr(pv, name).__doc__ if callable(getattr(pv, name)) else getattr(pv, name)
+
+
+def test_scheme_lists_come_from_the_scheme_table():
+    assert pv.SCHEMES == ("cc", "c2ps", "c2ps-u", "rts", "rts-u", "bps")
+    assert pv.POLAR_SCHEMES == ("c2ps", "c2ps-u", "rts", "rts-u", "bps")
+    rows = {row["name"]: row for row in pv.schemes()}
+    assert rows["c2ps-u"]["label"] == "C2PS-U" and rows["c2ps-u"]["uniform_first_step"]
+    assert rows["rts"]["min_valence"] == 5 and not rows["cc"]["polar"]
+
+
+def test_one_parser_takes_every_spelling_the_cli_takes():
+    assert [pv.scheme_name(s) for s in ("catmull-clark", "CC", "C2PS-Uniform", "rtsu")] == ["cc", "cc", "c2ps-u", "rts-u"]
+    with pytest.raises(ValueError, match=r"unknown scheme 'bps-u' \(cc, c2ps, c2ps-u, rts, rts-u, bps\)"):
+        pv.scheme_name("bps-u")
+    mesh = pv.load(asset("globe"))
+    assert np.array_equal(pv.refine(mesh, "catmull-clark", 1).vertices, pv.refine(mesh, "cc", 1).vertices)
+
+
+def test_paths_may_be_path_objects():
+    assert pv.load(pathlib.Path(asset("default"))).vertex_count == pv.load(asset("default")).vertex_count
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda m: pv.refine("default.obj"), "mesh must be a polarview.Mesh, not str"),
+    (lambda m: pv.refine(m, 3), "scheme must be a str"),
+    (lambda m: pv.refine(m, "cc", 2.5), "levels must be an int, not float"),
+    (lambda m: pv.refine(m, "cc", True), "levels must be an int, not bool"),
+    (lambda m: pv.refine(m, "cc", 1, memory_budget="1G"), "memory_budget must be an int"),
+    (lambda m: pv.limit_patches(m, "c2ps", 2, uniform="yes"), "uniform must be a bool"),
+    (lambda m: pv.evaluate(m, [0], [[0.0, 0.0]]), "patches must be a polarview.Patches, not Mesh"),
+    (lambda m: pv.load(3), "path must be a str or os.PathLike, not int"),
+    (lambda m: pv.shape("cap", height=None), "height must be a str, not NoneType"),
+])
+def test_wrong_types_raise_type_error_naming_the_argument(call, message):
+    with pytest.raises(TypeError, match=message):
+        call(pv.load(asset("default")))
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda m: pv.refine(m, "cc", -1), r"levels must be in 0\.\.64"),
+    (lambda m: pv.refine(m, "cc", 2**40), "levels = 1099511627776 is out of range"),
+    (lambda m: pv.refine(m, "cc", 1, memory_budget=-1), "memory_budget must be a number of bytes >= 0"),
+    (lambda m: pv.pole(m, "c2ps", rings=21), r"rings must be in 0\.\.20"),
+    (lambda m: pv.pole(m, "catmull-clark"), "pole analysis needs a polar scheme"),
+    (lambda m: pv.spectrum("rts", 4), r"rts takes valence 5\.\.64"),
+    (lambda m: pv.spectrum("c2ps", 6, steps=0), r"steps must be in 1\.\.12"),
+    (lambda m: pv.spectrum("rts", 6, count=0), "count must be at least 1"),
+])
+def test_values_out_of_range_raise_value_error(call, message):
+    with pytest.raises(ValueError, match=message):
+        call(pv.load(asset("default")))
+
+
+def test_numpy_integers_are_ints():
+    mesh = pv.load(asset("default"))
+    assert pv.refine(mesh, "cc", np.int64(1)).vertex_count == pv.refine(mesh, "cc", 1).vertex_count
