@@ -128,12 +128,13 @@ bool ViewerApp::init(std::string* error) {
     return false;
   }
   state_.glInfo = currentGlVersion();
-  for (const std::string& id : options_.scriptedCommands) {
-    if (!viewerCommands().find(id)) {
-      if (error) *error = "unknown viewer command '" + id + "' (polarview help keys lists them)";
+  for (const std::string& command : options_.scriptedCommands) {
+    std::string refusal;
+    if (!viewerCommands().parse(command, &refusal)) {
+      if (error) *error = refusal + " (polarview help keys lists the commands)";
       return false;
     }
-    queueCommand(state_, id);
+    queueCommand(state_, command);
   }
   if (options_.persistRecent) document().loadRecent();
   return true;

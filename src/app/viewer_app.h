@@ -55,7 +55,8 @@ struct ViewerOptions {
   // every view draws the level it shows (render --full-draw, comparisons).
   bool levelOfDetail = true;
   double levelOfDetailPixels = 3.0;
-  // Viewer commands (ids of session/command_table.h) run in the first frame, in order: `view --do`.
+  // Viewer commands ("level 7", "camera.frame": session/command_table.h) run in the first frame, in
+  // order: `view --do`.
   std::vector<std::string> scriptedCommands;
 };
 

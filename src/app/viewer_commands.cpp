@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "session/command_ids.h"
 #include "session/command_table.h"
 #include "app/viewer_commands.h"
 #include "app/command_args.h"
@@ -452,7 +453,7 @@ struct ViewRequest {
   bool levelSteps = false;  // first view: level L-1, then L (deeper), L-1, L again, each step timed
   bool inspectPoles = false;  // open the "Poles" section
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
-  std::vector<std::string> commands;  // --do: viewer command ids, run once the model is loaded
+  std::vector<std::string> commands;  // --do: viewer commands ("level 7"), run once the model is loaded
 };
 
 OptionTable viewTable(ViewRequest& r) {
@@ -472,7 +473,9 @@ OptionTable viewTable(ViewRequest& r) {
           flagOption({"--show-help"}, "open the help window", &r.showHelp),
           flagOption({"--inspect-poles"}, "open the Poles section", &r.inspectPoles),
           listOption({"--do"}, "CMD[,CMD...]",
-                     "run these viewer commands (their ids: `polarview help keys`) after the model loads", &r.commands)};
+                     "run these viewer commands after the model loads: an id and its argument, if any ('level 7', "
+                     "'shade gaussian', 'camera.frame'; `polarview help keys` lists them)",
+                     &r.commands)};
 }
 
 // The combinations the table cannot refuse.
@@ -480,8 +483,10 @@ void checkViewRequest(const ViewRequest& r) {
   if (r.edit && r.frames == 0) throw UsageError("--edit needs --frames N");
   if (r.levelSteps && (r.frames == 0 || !r.level || *r.level < 1))
     throw UsageError("--level-steps needs --frames N and --level L >= 1");
-  for (const std::string& id : r.commands)
-    if (!viewerCommands().find(id)) throw UsageError("--do: unknown viewer command '" + id + "' (polarview help keys lists them)");
+  for (const std::string& command : r.commands) {
+    std::string error;
+    if (!viewerCommands().parse(command, &error)) throw UsageError("--do: " + error + " (polarview help keys lists the commands)");
+  }
 }
 
 // --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
@@ -601,7 +606,7 @@ int viewWithApp(ViewRequest& r) {
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
-  if (r.inspectPoles) queueCommand(state, "poles.inspect");
+  if (r.inspectPoles) queueCommand(state, command_ids::kPolesInspect);
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();
