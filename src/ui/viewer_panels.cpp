@@ -541,6 +541,8 @@ void drawNotice(const ViewerState& state) {
 void drawHelpWindow(ViewerState& state) {
   if (!state.showHelp) return;
   ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
+  // At most the window's height (the list scrolls): a row a key, under its heading, is long.
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(ImGui::GetIO().DisplaySize.y - 60.0f, 200.0f)));
   if (ImGui::Begin("Controls (?)", &state.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
     // The mouse gestures, then every command with a help line: the command table's rows.
     if (ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
@@ -558,10 +560,13 @@ void drawHelpWindow(ViewerState& state) {
       };
       heading("mouse");
       for (const GestureHelp& gesture : gestureHelp()) row(gesture.gesture, gesture.action);
-      // The command table's rows under their headings (`view --do` names them as the third column).
+      // The command table's rows that have keys, under their headings (the third column: what
+      // `view --do` calls them); the panels' buttons show the others.
       for (const HelpSection& section : viewerCommands().helpSections()) {
-        heading(section.title);
+        bool headed = false;
         for (const Command* command : section.commands) {
+          if (command->keys.empty()) continue;
+          if (!std::exchange(headed, true)) heading(section.title);
           row(CommandTable::keysText(*command), command->help);
           ImGui::TableSetColumnIndex(2);
           ImGui::TextDisabled("%s", CommandTable::usage(*command).c_str());
@@ -569,6 +574,7 @@ void drawHelpWindow(ViewerState& state) {
       }
       ImGui::EndTable();
     }
+    ImGui::TextDisabled("Every command, buttons' too, with its `view --do` name: polarview help keys");
   }
   ImGui::End();
 }
