@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <optional>
+#include <stdexcept>
 
 #include "session/keys.h"
 #include "session/session.h"
@@ -37,10 +38,8 @@ class Rows {
   // A row acting on the session.
   Command& add(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
                std::function<void(Session&)> run) {
-    Command command{std::move(id), std::move(label), std::move(chords), std::move(help), group_, {}, nullptr, nullptr};
-    command.action = [run = std::move(run)](Session& session, int) { run(session); };
-    rows_.push_back(std::move(command));
-    return rows_.back();
+    return push(std::move(id), std::move(label), std::move(chords), std::move(help), {},
+                [run = std::move(run)](Session& session, int) { run(session); });
   }
   // A row that sets a state field or flips a flag.
   Command& state(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
@@ -51,13 +50,18 @@ class Rows {
   // A row taking `argument`, acting on the state with its value.
   Command& withArgument(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
                         CommandArgument argument, std::function<void(ViewerState&, int)> set) {
-    Command& command = add(std::move(id), std::move(label), std::move(chords), std::move(help), nullptr);
-    command.argument = std::move(argument);
-    command.action = [set = std::move(set)](Session& session, int value) { set(session.state(), value); };
-    return command;
+    return push(std::move(id), std::move(label), std::move(chords), std::move(help), std::move(argument),
+                [set = std::move(set)](Session& session, int value) { set(session.state(), value); });
   }
 
  private:
+  Command& push(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                CommandArgument argument, std::function<void(Session&, int)> action) {
+    rows_.push_back(Command{std::move(id), std::move(label), std::move(chords), std::move(help), group_,
+                            std::move(argument), nullptr, std::move(action)});
+    return rows_.back();
+  }
+
   std::vector<Command>& rows_;
   std::string group_;
 };

@@ -65,7 +65,10 @@ TEST_CASE("command table: ids are unique, every row has an action, a help line a
     CHECK_FALSE(command.label.empty());
     CHECK_FALSE(command.help.empty());
     CHECK_FALSE(command.group.empty());
-    // An id with a dot never reads as a row with an argument and its value ("level.deeper" is a row).
+    // No id reads as another row with an argument ("level.deeper" is a row: "deeper" is no level).
+    const size_t dot = command.id.rfind('.');
+    if (const Command* prefix = dot == std::string::npos ? nullptr : table.find(command.id.substr(0, dot)))
+      CHECK_FALSE(prefix->argument.parse(command.id.substr(dot + 1)).has_value());
     // Two rows may share a key only when one of them is enabled on a condition (PageDown: the
     // dropped files when there are several, else the level).
     for (const KeyChord& chord : command.keys) {
