@@ -315,8 +315,8 @@ void checkRenderRequest(const RenderRequest& r) {
 // fails with its one-line error before any window or output exists.
 bool openModelAndWindow(ViewerApp& app, const std::string& input) {
   if (input.empty()) {
-    app.loadDefaultModel();
-  } else if (!app.loadFile(input)) {
+    app.document().loadDefaultModel();
+  } else if (!app.document().loadFile(input)) {
     std::cerr << "polarview: " << app.state().file.error << "\n";
     return false;
   }
@@ -535,7 +535,7 @@ std::string runLevelSteps(ViewerApp& app, int level) {
 // view's centre (in front when several do); -1 when none is on screen.
 int centralVertex(const ViewerApp& app) {
   const ViewTransform view = app.viewTransform(0);
-  const std::vector<Point>& points = app.editor().points();
+  const std::vector<Point>& points = app.document().editor().points();
   const float cx = view.rect.x + 0.5f * view.rect.w, cy = view.rect.y + 0.5f * view.rect.h;
   int best = -1;
   double bestDistance = 1e300;
@@ -560,7 +560,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   app.runFrame();
   const int vertex = centralVertex(app);
   if (vertex < 0) throw std::runtime_error("view --edit: no control vertex on screen to drag");
-  const std::optional<glm::dvec3> at = app.viewTransform(0).project(app.editor().points()[size_t(vertex)]);
+  const std::optional<glm::dvec3> at = app.viewTransform(0).project(app.document().editor().points()[size_t(vertex)]);
   const float x0 = float(at->x), y0 = float(at->y);
   app.overridePointer(PointerState{x0, y0, false});
   app.runFrame();
@@ -579,7 +579,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   app.overridePointer(PointerState{x, y, false});  // released where it is: one undo step
   app.runFrame();
   app.overridePointer(std::nullopt);
-  if (app.editCosts().empty()) throw std::runtime_error("view --edit: the drag moved no control vertex");
+  if (app.document().editCosts().empty()) throw std::runtime_error("view --edit: the drag moved no control vertex");
   return frameMs;
 }
 
@@ -633,7 +633,7 @@ int viewWithApp(ViewRequest& r) {
     app.runFrame();
   }
   if (r.stats)
-    std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.editCosts() : nullptr, levelSteps) << "\n";
+    std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.document().editCosts() : nullptr, levelSteps) << "\n";
   return 0;
 }
 
