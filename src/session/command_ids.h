@@ -7,31 +7,30 @@
 #include <string_view>
 
 // X(constant, id): one line a command the code names.
-#define POLARVIEW_NAMED_COMMANDS(X)                            \
-  X(kFileOpen, "file.open")                                    \
-  X(kFileReload, "file.reload")                                \
-  X(kFileDefault, "file.default")                              \
-  X(kFilePreviousModel, "file.previous-model")                 \
-  X(kEditUndo, "edit.undo")                                    \
-  X(kEditRedo, "edit.redo")                                    \
-  X(kEditReset, "edit.reset")                                  \
-  X(kEditSave, "edit.save")                                    \
-  X(kExportSurface, "export.surface")                          \
-  X(kExportRefinedObj, "export.refined-obj")                   \
-  X(kModelEvToPolar, "model.ev-to-polar")                      \
-  X(kModelEvToPolarPentagons, "model.ev-to-polar-pentagons")   \
-  X(kModelNgonToFan, "model.ngon-to-fan")                      \
-  X(kModelEigenvector, "model.eigenvector")                    \
-  X(kCameraFrame, "camera.frame")                              \
-  X(kCameraFront, "camera.front")                              \
-  X(kCameraTop, "camera.top")                                  \
-  X(kCameraSide, "camera.side")                                \
-  X(kCameraIso, "camera.iso")                                  \
-  X(kCameraCopy, "camera.copy")                                \
-  X(kCameraPaste, "camera.paste")                              \
-  X(kLevel, "level")                                           \
-  X(kShade, "shade")                                           \
-  X(kScreenshot, "screenshot")                                 \
+#define POLARVIEW_NAMED_COMMANDS(X)                          \
+  X(kFileOpen, "file.open")                                  \
+  X(kFileReload, "file.reload")                              \
+  X(kFileDefault, "file.default")                            \
+  X(kFilePreviousModel, "file.previous-model")               \
+  X(kEditUndo, "edit.undo")                                  \
+  X(kEditRedo, "edit.redo")                                  \
+  X(kEditReset, "edit.reset")                                \
+  X(kEditSave, "edit.save")                                  \
+  X(kExportSurface, "export.surface")                        \
+  X(kExportRefinedObj, "export.refined-obj")                 \
+  X(kModelEvToPolar, "model.ev-to-polar")                    \
+  X(kModelEvToPolarPentagons, "model.ev-to-polar-pentagons") \
+  X(kModelNgonToFan, "model.ngon-to-fan")                    \
+  X(kModelEigenvector, "model.eigenvector")                  \
+  X(kCameraFrame, "camera.frame")                            \
+  X(kCameraFront, "camera.front")                            \
+  X(kCameraTop, "camera.top")                                \
+  X(kCameraSide, "camera.side")                              \
+  X(kCameraIso, "camera.iso")                                \
+  X(kCameraCopy, "camera.copy")                              \
+  X(kCameraPaste, "camera.paste")                            \
+  X(kShade, "shade")                                         \
+  X(kScreenshot, "screenshot")                               \
   X(kPolesInspect, "poles.inspect")
 
 namespace polarview::command_ids {

@@ -20,7 +20,8 @@ KeyChord key(int code, int mods = 0) { return KeyChord{code, mods, 0, 0}; }
 // "CC, C2PS, C2PS-U, RTS, RTS-U, BPS": the order S steps through.
 std::string schemeLabels() {
   std::string text;
-  for (int s = 0; s < kSchemeChoiceCount; ++s) text += (s ? ", " : "") + std::string(schemeChoiceLabel(SchemeChoice(s)));
+  for (int s = 0; s < kSchemeChoiceCount; ++s)
+    text += (s ? ", " : "") + std::string(schemeChoiceLabel(SchemeChoice(s)));
   return text;
 }
 
@@ -67,10 +68,13 @@ class Rows {
 };
 
 void addFileCommands(Rows rows) {
-  rows.add("file.open", "Open (Enter)", {}, "open the path typed in the File panel (Enter there; the model stays on failure)",
+  rows.add("file.open", "Open (Enter)", {},
+           "open the path typed in the File panel (Enter there; the model stays on failure)",
            [](Session& s) { s.document().requestLoad(s.state().file.pathField); });
-  rows.add("file.reload", "Reload", {key('R', kControl)}, "reload the model file", [](Session& s) { s.document().reloadModel(); });
-  rows.add("file.default", "Default model", {}, "the built-in default model", [](Session& s) { s.document().loadDefaultModel(); });
+  rows.add("file.reload", "Reload", {key('R', kControl)}, "reload the model file",
+           [](Session& s) { s.document().reloadModel(); });
+  rows.add("file.default", "Default model", {}, "the built-in default model",
+           [](Session& s) { s.document().loadDefaultModel(); });
   rows.add("file.previous-model", "Previous model", {}, "the model the last Open / Default model / drop replaced",
            [](Session& s) { s.document().undoModelReplacement(); });
   // PageDown / PageUp step through dropped files when there are several, else they step the level.
@@ -93,20 +97,26 @@ void addEditCommands(Rows rows) {
            [](Session& s) { s.document().redo(); });
   rows.add("edit.reset", "Reset", {}, "every control vertex back where the file had it",
            [](Session& s) { s.document().resetEdits(); });
-  rows.add("edit.save", "Save OBJ", {key('S', kControl)}, "save the edited control mesh as OBJ (path in the Edit panel)",
+  rows.add("edit.save", "Save OBJ", {key('S', kControl)},
+           "save the edited control mesh as OBJ (path in the Edit panel)",
            [](Session& s) { s.document().saveEditedMesh(); });
-  rows.add("export.surface", "Export surface", {}, "the active view's limit surface (.bv; the format from the Edit panel's path)",
+  rows.add("export.surface", "Export surface", {},
+           "the active view's limit surface (.bv; the format from the Edit panel's path)",
            [](Session& s) { s.document().startExport(SurfaceExport::LimitSurface, s.activeSurface()); });
-  rows.add("export.refined-obj", "Export refined OBJ", {}, "the active view's control mesh refined to its level, as OBJ",
+  rows.add("export.refined-obj", "Export refined OBJ", {},
+           "the active view's control mesh refined to its level, as OBJ",
            [](Session& s) { s.document().startExport(SurfaceExport::RefinedMesh, s.activeSurface()); });
 }
 
 void addModelCommands(Rows rows) {
-  rows.add("model.ev-to-polar", "EVs to poles (Fig. 14a)", {}, "extraordinary vertices become polar configurations (paper Fig. 14a)",
+  rows.add("model.ev-to-polar", "EVs to poles (Fig. 14a)", {},
+           "extraordinary vertices become polar configurations (paper Fig. 14a)",
            [](Session& s) { s.document().convertToPolar(false); });
-  rows.add("model.ev-to-polar-pentagons", "with pentagons (14c)", {}, "extraordinary vertices become poles ringed by pentagons (Fig. 14c)",
+  rows.add("model.ev-to-polar-pentagons", "with pentagons (14c)", {},
+           "extraordinary vertices become poles ringed by pentagons (Fig. 14c)",
            [](Session& s) { s.document().convertToPolar(true); });
-  rows.add("model.ngon-to-fan", "N-gons to triangle fans", {}, "faces of 5 or more sides become triangle fans around their centroids",
+  rows.add("model.ngon-to-fan", "N-gons to triangle fans", {},
+           "faces of 5 or more sides become triangle fans around their centroids",
            [](Session& s) { s.document().convertToFans(); });
   rows.add("model.eigenvector", "Show v_k as the model", {}, "the Spectrum panel's eigenvector net as the model",
            [](Session& s) { s.document().showEigenvector(); });
@@ -157,7 +167,8 @@ void addLevelCommands(Rows rows) {
   }
   rows.withArgument("level", "Level", std::move(digits),
                     "subdivision level N (all views when levels are linked, else the active one)",
-                    CommandArgument{"N", 0, kMaxLevel, {}}, [](ViewerState& state, int level) { requestLevel(state, level); });
+                    CommandArgument{"N", 0, kMaxLevel, {}},
+                    [](ViewerState& state, int level) { requestLevel(state, level); });
   // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
   for (const int step : {1, -1}) {
     const bool deeper = step > 0;
@@ -225,7 +236,8 @@ void addWindowCommands(Rows rows) {
            [](Session& s) { s.window().takeScreenshot(); });
   rows.state("panels", "Panels", {key(keys::kTab)}, "hide / show the panels",
              [](ViewerState& state) { state.showPanels = !state.showPanels; });
-  rows.state("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help", [](ViewerState& state) { state.showHelp = !state.showHelp; });
+  rows.state("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help",
+             [](ViewerState& state) { state.showHelp = !state.showHelp; });
   rows.state("poles.inspect", "Inspect poles", {}, "open the Poles panel",
              [](ViewerState& state) { state.poleInspector.openRequested = true; });
 }
@@ -275,7 +287,8 @@ std::string CommandArgument::accepted() const {
 
 std::optional<int> CommandArgument::parse(std::string_view text) const {
   if (choices.empty()) {
-    if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+    if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string_view::npos)
+      return std::nullopt;
     const int value = std::stoi(std::string(text));
     if (value < min || value > max) return std::nullopt;
     return value;
@@ -300,9 +313,11 @@ const std::vector<GestureHelp>& gestureHelp() {
       {"Right / middle drag, Shift+left drag", "pan"},
       {"Wheel", "zoom towards the point under the cursor"},
       {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
-      {"Left drag on a control vertex", "with the control net shown (N): move the vertex in the view plane; every view follows"},
+      {"Left drag on a control vertex",
+       "with the control net shown (N): move the vertex in the view plane; every view follows"},
       {"Double-click", "set the pivot to the surface point under the cursor (and read it, as Alt+click)"},
-      {"Alt+click", "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
+      {"Alt+click",
+       "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
       {"Drop files", "open the first dropped .obj, list the others"},
   };
   return gestures;
@@ -414,7 +429,8 @@ void CommandTable::runQueued(Session& session) const {
 std::vector<HelpSection> CommandTable::helpSections() const {
   std::vector<HelpSection> sections;
   for (const Command& command : commands_) {
-    auto section = std::find_if(sections.begin(), sections.end(), [&](const HelpSection& s) { return s.title == command.group; });
+    auto section =
+        std::find_if(sections.begin(), sections.end(), [&](const HelpSection& s) { return s.title == command.group; });
     if (section == sections.end()) section = sections.insert(sections.end(), HelpSection{command.group, {}});
     section->commands.push_back(&command);
   }
@@ -449,7 +465,8 @@ std::string CommandTable::buttonLabel(const CommandCall& call) {
   const CommandArgument& argument = command.argument;
   std::string label = command.label;
   if (argument.taken())
-    label = argument.choices.empty() ? command.label + " " + argument.text(call.argument) : argument.choices[size_t(call.argument)].label;
+    label = argument.choices.empty() ? command.label + " " + argument.text(call.argument)
+                                     : argument.choices[size_t(call.argument)].label;
   const KeyChord* chord = keyFor(command, call.argument);
   return chord ? label + " (" + keyName(*chord) + ")" : label;
 }

@@ -54,7 +54,8 @@ std::string parsed(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("command table: ids are unique, every row has an action, a help line and a group, and no chord runs two commands") {
+TEST_CASE(
+    "command table: ids are unique, every row has an action, a help line and a group, and no chord runs two commands") {
   const CommandTable& table = viewerCommands();
   std::set<std::string> ids;
   std::set<std::tuple<int, int, char32_t, bool>> chords;
@@ -73,7 +74,8 @@ TEST_CASE("command table: ids are unique, every row has an action, a help line a
     // dropped files when there are several, else the level).
     for (const KeyChord& chord : command.keys) {
       CHECK(chords.insert({chord.key, chord.mods, chord.character, bool(command.enabled)}).second);
-      if (command.argument.taken()) CHECK(command.argument.parse(command.argument.text(chord.argument)) == chord.argument);
+      if (command.argument.taken())
+        CHECK(command.argument.parse(command.argument.text(chord.argument)) == chord.argument);
     }
   }
   CHECK(table.find("shade") != nullptr);
@@ -150,7 +152,8 @@ TEST_CASE("command table: bad arguments are refused with one line naming what is
   for (size_t i = 0; i < modes.choices.size(); ++i) CHECK(modes.choices[i].name == shadingModes()[i].name);
 }
 
-TEST_CASE("command table: commands change the state as the keys always did, and ask the document and window for the rest") {
+TEST_CASE(
+    "command table: commands change the state as the keys always did, and ask the document and window for the rest") {
   RecordingWindow window;
   Session session(quiet(), window);
   ViewerState& state = session.state();
@@ -245,7 +248,8 @@ TEST_CASE("command table: help lists every row once, under its group's heading")
   }
   REQUIRE(listed.size() == table.commands().size());
   for (size_t i = 0; i < listed.size(); ++i) CHECK(listed[i] == &table.commands()[i]);
-  for (const char* group : {"file", "edit", "camera", "level", "views", "shading", "display"}) CHECK(titles.count(group));
+  for (const char* group : {"file", "edit", "camera", "level", "views", "shading", "display"})
+    CHECK(titles.count(group));
   // `polarview help keys`: every row by its usage and keys, a named argument's choices as the
   // dotted ids scripts use (tests/cli/viewer_do.sh reads "shade.gaussian  G").
   const std::string text = commandListText();
