@@ -189,22 +189,18 @@ void addViewCommands(Rows rows) {
              [](ViewerState& state) { state.viewCount = state.viewCount % kMaxViews + 1; });
 }
 
-// The shading modes as an argument: their names, aliases and labels from the modes' table
-// (pipeline/shading.h), the value an index into it.
-CommandArgument shadingModeArgument() {
-  CommandArgument argument{"MODE", 0, int(shadingModes().size()) - 1, {}};
-  for (const ShadingModeInfo& mode : shadingModes()) argument.choices.push_back({mode.name, mode.alias, mode.label});
-  return argument;
-}
-
 void addShadingCommands(Rows rows) {
+  // The modes' table (pipeline/shading.h) gives the argument's names, aliases and labels and the
+  // keys; the argument's value is an index into it.
+  CommandArgument modes{"MODE", 0, int(shadingModes().size()) - 1, {}};
   std::vector<KeyChord> modeKeys;
   std::string labels;
-  for (size_t i = 0; i < shadingModes().size(); ++i) {
-    modeKeys.push_back(KeyChord{shadingModes()[i].key, 0, 0, int(i)});
-    labels += (i ? " / " : "") + std::string(shadingModes()[i].label);
+  for (const ShadingModeInfo& mode : shadingModes()) {
+    modeKeys.push_back(KeyChord{mode.key, 0, 0, int(modes.choices.size())});
+    modes.choices.push_back({mode.name, mode.alias, mode.label});
+    labels += (labels.empty() ? "" : " / ") + std::string(mode.label);
   }
-  rows.withArgument("shade", "Shading", std::move(modeKeys), "shading: " + labels, shadingModeArgument(),
+  rows.withArgument("shade", "Shading", std::move(modeKeys), "shading: " + labels, std::move(modes),
                     [](ViewerState& state, int mode) { state.shading.mode = shadingModes()[size_t(mode)].mode; });
   rows.state("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",
              [](ViewerState& state) {
@@ -346,26 +342,26 @@ const Command& CommandTable::at(std::string_view id) const {
   throw std::out_of_range("no viewer command '" + std::string(id) + "' in the command table");
 }
 
+std::pair<std::string_view, std::string_view> CommandTable::split(std::string_view text) const {
+  text = trimmed(text);
+  const size_t space = text.find(' ');
+  if (space != std::string_view::npos) return {text.substr(0, space), trimmed(text.substr(space))};
+  // "level.7": the id before arguments, the argument after its last dot.
+  const size_t dot = text.rfind('.');
+  if (find(text) || dot == std::string_view::npos) return {text, {}};
+  const Command* prefix = find(text.substr(0, dot));
+  if (!prefix || !prefix->argument.taken()) return {text, {}};
+  return {text.substr(0, dot), text.substr(dot + 1)};
+}
+
 std::optional<CommandCall> CommandTable::parse(std::string_view text, std::string* error) const {
   const auto fail = [error](std::string message) -> std::optional<CommandCall> {
     if (error) *error = std::move(message);
     return std::nullopt;
   };
-  text = trimmed(text);
-  const size_t space = text.find(' ');
-  std::string_view id = text.substr(0, space);
-  std::string_view argument = space == std::string_view::npos ? std::string_view() : trimmed(text.substr(space));
-  // "level.7": the id before arguments, the argument after its last dot.
-  const size_t dot = id.rfind('.');
-  if (!find(id) && argument.empty() && dot != std::string_view::npos) {
-    const Command* prefix = find(id.substr(0, dot));
-    if (prefix && prefix->argument.taken()) {
-      argument = id.substr(dot + 1);
-      id = id.substr(0, dot);
-    }
-  }
+  const auto [id, argument] = split(text);
   const Command* command = find(id);
-  if (!command) return fail("unknown viewer command '" + std::string(text) + "'");
+  if (!command) return fail("unknown viewer command '" + std::string(trimmed(text)) + "'");
   const CommandArgument& accepts = command->argument;
   if (!accepts.taken()) {
     if (!argument.empty()) return fail(command->id + " takes no argument, got '" + std::string(argument) + "'");

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "session/viewer_state.h"
@@ -122,6 +123,10 @@ class CommandTable {
   static std::string usage(const Command& command);
 
  private:
+  // The id and the argument text: "level 7" and "level.7" give ("level", "7"); "camera.frame"
+  // gives ("camera.frame", "").
+  std::pair<std::string_view, std::string_view> split(std::string_view text) const;
+
   std::vector<Command> commands_;
 };
 
