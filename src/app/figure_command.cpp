@@ -258,7 +258,7 @@ PolyMesh rowModel(const Row& row) {
 
 // Shows `mesh` in the app (which frames it); throws with the app's message when it is not usable.
 void showModel(ViewerApp& app, PolyMesh mesh, const std::string& name) {
-  if (!app.loadMesh(std::move(mesh), name)) throw std::runtime_error(app.state().file.error);
+  if (!app.document().loadMesh(std::move(mesh), name)) throw std::runtime_error(app.state().file.error);
 }
 
 // Refines every view, then renders them in their styles; throws a view's refusal or error, naming
@@ -418,7 +418,7 @@ int renderFigures(FigureRequest& r) {
   options.prepareNextLevel = false;  // still pictures: no level steps to come
   ViewerApp app(options);
   std::string error;
-  app.loadDefaultModel();
+  app.document().loadDefaultModel();
   if (!app.init(&error)) throw std::runtime_error(error);
   app.state().showPanels = false;
   app.state().linkCameras = true;

@@ -89,17 +89,6 @@ std::string helpText() {
   return text + "\n" + schemeNote();
 }
 
-// `polarview help keys`: the viewer's command table (session/command_table.h), a row a command.
-std::string keysText() {
-  std::string text = "the viewer's commands: id, keys, what it does (`view --do ID[,ID...]` runs them)\n";
-  for (const polarview::Command& c : viewerCommands().commands()) {
-    const std::string keys = CommandTable::keysText(c);
-    text += "  " + c.id + std::string(c.id.size() < 28 ? 28 - c.id.size() : 1, ' ') + keys +
-            std::string(keys.size() < 24 ? 24 - keys.size() : 1, ' ') + (c.help.empty() ? c.label : c.help) + "\n";
-  }
-  return text;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,7 +96,7 @@ int main(int argc, char** argv) {
   const Args args(argv + (argc > 1 ? 2 : argc), argv + argc);
   if (name == "-h" || name == "--help" || name == "help") {
     const CliCommand* about = args.empty() ? nullptr : findCommand(args[0]);
-    if (!args.empty() && args[0] == "keys") std::cout << keysText();
+    if (!args.empty() && args[0] == "keys") std::cout << commandListText();
     else if (about && about->parser) std::cout << "usage: " << commandHelp(about->name, about->parser().table());
     else std::cout << helpText();
     return 0;

@@ -129,12 +129,13 @@ bool ViewerApp::init(std::string* error) {
     return false;
   }
   state_.glInfo = currentGlVersion();
-  for (const std::string& id : options_.scriptedCommands) {
-    if (!viewerCommands().find(id)) {
-      if (error) *error = "unknown viewer command '" + id + "' (polarview help keys lists them)";
+  for (const std::string& command : options_.scriptedCommands) {
+    std::string refusal;
+    if (!viewerCommands().parse(command, &refusal)) {
+      if (error) *error = refusal + " (polarview help keys lists the commands)";
       return false;
     }
-    queueCommand(state_, id);
+    queueCommand(state_, command);
   }
   if (options_.persistRecent) document().loadRecent();
   return true;
@@ -209,7 +210,7 @@ void ViewerApp::frameModel(const ScreenRect* viewRect) {
   auto frameCamera = [&](OrbitCamera& camera) {
     if (!zoomed.empty()) camera.framePoints(zoomed.data(), zoomed.size(), aspect, heightFraction);
     else if (model().mesh) camera.framePoints(model().mesh->points.data(), model().mesh->points.size(), aspect, heightFraction);
-    else camera.frame(modelMin(), modelMax(), aspect);
+    else camera.frame(document().modelMin(), document().modelMax(), aspect);
   };
   if (state_.linkCameras) {
     frameCamera(state_.sharedCamera);
@@ -263,8 +264,8 @@ void ViewerApp::waitUntilIdle() {
 
 ViewTransform ViewerApp::viewTransform(int v, const ScreenRect& rect) const {
   // The matrices drawViews gives the renderer (near and far from the model's box).
-  const glm::dvec3 centre = 0.5 * (modelMin() + modelMax());
-  const double radius = 0.5 * glm::length(modelMax() - modelMin());
+  const glm::dvec3 centre = 0.5 * (document().modelMin() + document().modelMax());
+  const double radius = 0.5 * glm::length(document().modelMax() - document().modelMin());
   const OrbitCamera& camera = state_.camera(v);
   ViewTransform transform;
   transform.rect = rect;
@@ -338,8 +339,8 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
   }
   const ScreenRect& r = rects[size_t(pick.view)];
   OrbitCamera& camera = state_.camera(pick.view);
-  glm::dvec3 centre = 0.5 * (modelMin() + modelMax());
-  double radius = 0.5 * glm::length(modelMax() - modelMin());
+  glm::dvec3 centre = 0.5 * (document().modelMin() + document().modelMax());
+  double radius = 0.5 * glm::length(document().modelMax() - document().modelMin());
   const glm::dvec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale,
                            r.h * pixelScale);
   const glm::dvec3 world =

@@ -58,7 +58,8 @@ struct ViewerOptions {
   // every view draws the level it shows (render --full-draw, comparisons).
   bool levelOfDetail = true;
   double levelOfDetailPixels = 3.0;
-  // Viewer commands (ids of session/command_table.h) run in the first frame, in order: `view --do`.
+  // Viewer commands ("level 7", "camera.frame": session/command_table.h) run in the first frame, in
+  // order: `view --do`.
   std::vector<std::string> scriptedCommands;
 };
 
@@ -77,20 +78,9 @@ class ViewerApp : public WindowServices {
   const ViewerState& state() const { return session_.state(); }
   Document& document() { return session_.document(); }
   const Document& document() const { return session_.document(); }
-  // The document's operations, as the command line and tests use them (document.h).
-  bool loadFile(const std::string& path) { return document().loadFile(path); }
-  void requestLoad(const std::string& path) { document().requestLoad(path); }
-  bool loading() const { return document().loading(); }
-  bool loadMesh(PolyMesh mesh, const std::string& name, const std::string& path = "") {
-    return document().loadMesh(std::move(mesh), name, path);
-  }
-  void loadDefaultModel() { document().loadDefaultModel(); }
-  const ControlMeshEditor& editor() const { return document().editor(); }
-  const std::vector<EditCost>& editCosts() const { return document().editCosts(); }
+  // What the views show (the document's operations: document(), document.h).
   const Model& model() const { return session_.model(); }
   uint64_t modelGeneration() const { return model().generation; }
-  glm::dvec3 modelMin() const { return document().modelMin(); }
-  glm::dvec3 modelMax() const { return document().modelMax(); }
   // Which surface view v shows now (model generation, scheme, level); nullptr before the first.
   const BuiltSurface* shownSurface(int v) const { return session_.surfaces().shown(v).get(); }
   // The pole markers the last frame drew (overlay coordinates), for tests.

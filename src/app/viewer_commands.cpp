@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "app/viewer_app.h"
+#include "session/command_ids.h"
 #include "session/command_table.h"
 #include "app/viewer_commands.h"
 #include "app/command_args.h"
@@ -316,8 +317,8 @@ void checkRenderRequest(const RenderRequest& r) {
 // fails with its one-line error before any window or output exists.
 bool openModelAndWindow(ViewerApp& app, const std::string& input) {
   if (input.empty()) {
-    app.loadDefaultModel();
-  } else if (!app.loadFile(input)) {
+    app.document().loadDefaultModel();
+  } else if (!app.document().loadFile(input)) {
     std::cerr << "polarview: " << app.state().file.error << "\n";
     return false;
   }
@@ -454,7 +455,7 @@ struct ViewRequest {
   bool levelSteps = false;  // first view: level L-1, then L (deeper), L-1, L again, each step timed
   bool inspectPoles = false;  // open the "Poles" section
   std::string capture;  // after the frames: the whole window, panels included, as a PNG
-  std::vector<std::string> commands;  // --do: viewer command ids, run once the model is loaded
+  std::vector<std::string> commands;  // --do: viewer commands ("level 7"), run once the model is loaded
 };
 
 OptionTable viewTable(ViewRequest& r) {
@@ -474,7 +475,9 @@ OptionTable viewTable(ViewRequest& r) {
           flagOption({"--show-help"}, "open the help window", &r.showHelp),
           flagOption({"--inspect-poles"}, "open the Poles section", &r.inspectPoles),
           listOption({"--do"}, "CMD[,CMD...]",
-                     "run these viewer commands (their ids: `polarview help keys`) after the model loads", &r.commands)};
+                     "run these viewer commands after the model loads: an id and its argument, if any ('level 7', "
+                     "'shade gaussian', 'camera.frame'; `polarview help keys` lists them)",
+                     &r.commands)};
 }
 
 // The combinations the table cannot refuse.
@@ -482,8 +485,10 @@ void checkViewRequest(const ViewRequest& r) {
   if (r.edit && r.frames == 0) throw UsageError("--edit needs --frames N");
   if (r.levelSteps && (r.frames == 0 || !r.level || *r.level < 1))
     throw UsageError("--level-steps needs --frames N and --level L >= 1");
-  for (const std::string& id : r.commands)
-    if (!viewerCommands().find(id)) throw UsageError("--do: unknown viewer command '" + id + "' (polarview help keys lists them)");
+  for (const std::string& command : r.commands) {
+    std::string error;
+    if (!viewerCommands().parse(command, &error)) throw UsageError("--do: " + error + " (polarview help keys lists the commands)");
+  }
 }
 
 // --level-steps: the first view steps L-1 -> L -> L-1 -> L as a user pressing ] and [ does (each
@@ -532,7 +537,7 @@ std::string runLevelSteps(ViewerApp& app, int level) {
 // view's centre (in front when several do); -1 when none is on screen.
 int centralVertex(const ViewerApp& app) {
   const ViewTransform view = app.viewTransform(0);
-  const std::vector<Point>& points = app.editor().points();
+  const std::vector<Point>& points = app.document().editor().points();
   const float cx = view.rect.x + 0.5f * view.rect.w, cy = view.rect.y + 0.5f * view.rect.h;
   int best = -1;
   double bestDistance = 1e300;
@@ -557,7 +562,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   app.runFrame();
   const int vertex = centralVertex(app);
   if (vertex < 0) throw std::runtime_error("view --edit: no control vertex on screen to drag");
-  const std::optional<glm::dvec3> at = app.viewTransform(0).project(app.editor().points()[size_t(vertex)]);
+  const std::optional<glm::dvec3> at = app.viewTransform(0).project(app.document().editor().points()[size_t(vertex)]);
   const float x0 = float(at->x), y0 = float(at->y);
   app.overridePointer(PointerState{x0, y0, false});
   app.runFrame();
@@ -576,7 +581,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
   app.overridePointer(PointerState{x, y, false});  // released where it is: one undo step
   app.runFrame();
   app.overridePointer(std::nullopt);
-  if (app.editCosts().empty()) throw std::runtime_error("view --edit: the drag moved no control vertex");
+  if (app.document().editCosts().empty()) throw std::runtime_error("view --edit: the drag moved no control vertex");
   return frameMs;
 }
 
@@ -603,7 +608,7 @@ int viewWithApp(ViewRequest& r) {
   app.frameModel();
   if (r.shade) state.shading.mode = *r.shade;
   state.showHelp = r.showHelp;
-  if (r.inspectPoles) queueCommand(state, "poles.inspect");
+  if (r.inspectPoles) queueCommand(state, command_ids::kPolesInspect);
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();
@@ -630,7 +635,7 @@ int viewWithApp(ViewRequest& r) {
     app.runFrame();
   }
   if (r.stats)
-    std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.editCosts() : nullptr, levelSteps) << "\n";
+    std::cout << frameStatsJson(app, frameMs, r.width, r.height, r.edit ? &app.document().editCosts() : nullptr, levelSteps) << "\n";
   return 0;
 }
 

@@ -2,9 +2,12 @@
 #include "session/command_table.h"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
+#include <stdexcept>
 
 #include "session/keys.h"
+#include "session/session.h"
 
 namespace polarview {
 namespace {
@@ -12,155 +15,202 @@ namespace {
 using keys::kControl;
 using keys::kShift;
 
-KeyChord key(int code, int mods = 0) { return KeyChord{code, mods, 0}; }
+KeyChord key(int code, int mods = 0) { return KeyChord{code, mods, 0, 0}; }
 
 // "CC, C2PS, C2PS-U, RTS, RTS-U, BPS": the order S steps through.
 std::string schemeLabels() {
   std::string text;
-  for (int s = 0; s < kSchemeChoiceCount; ++s) text += (s ? ", " : "") + std::string(schemeChoiceLabel(SchemeChoice(s)));
+  for (int s = 0; s < kSchemeChoiceCount; ++s)
+    text += (s ? ", " : "") + std::string(schemeChoiceLabel(SchemeChoice(s)));
   return text;
 }
 
-
-// The rows that set a state field or flip a flag, as (id, label, key, help, setter).
-Command stateCommand(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
-                     std::function<void(ViewerState&)> set) {
-  Command command{std::move(id), std::move(label), std::move(chords), std::move(help), {}, nullptr, nullptr};
-  command.action = [set = std::move(set)](ViewerState& state, CommandHost&) { set(state); };
-  return command;
+std::string lowercase(std::string_view text) {
+  std::string lower(text);
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return lower;
 }
 
-Command hostCommand(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
-                    std::function<void(CommandHost&)> run) {
-  Command command{std::move(id), std::move(label), std::move(chords), std::move(help), {}, nullptr, nullptr};
-  command.action = [run = std::move(run)](ViewerState&, CommandHost& host) { run(host); };
-  return command;
-}
+// Adds the rows of one help heading.
+class Rows {
+ public:
+  Rows(std::vector<Command>& rows, std::string group) : rows_(rows), group_(std::move(group)) {}
 
-void addFileCommands(std::vector<Command>& rows) {
-  rows.push_back(Command{"file.open", "Open (Enter)", {}, "", {}, nullptr,
-                         [](ViewerState& state, CommandHost& host) { host.openFile(state.file.pathField); }});
-  rows.push_back(hostCommand("file.reload", "Reload", {key('R', kControl)}, "reload the model file",
-                             [](CommandHost& host) { host.reloadModel(); }));
-  rows.push_back(hostCommand("file.default", "Default model", {}, "", [](CommandHost& host) { host.loadDefaultModel(); }));
-  rows.push_back(hostCommand("file.previous-model", "Previous model", {}, "",
-                             [](CommandHost& host) { host.undoModelReplacement(); }));
+  // A row acting on the session.
+  Command& add(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+               std::function<void(Session&)> run) {
+    return push(std::move(id), std::move(label), std::move(chords), std::move(help), {},
+                [run = std::move(run)](Session& session, int) { run(session); });
+  }
+  // A row that sets a state field or flips a flag.
+  Command& state(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                 std::function<void(ViewerState&)> set) {
+    return add(std::move(id), std::move(label), std::move(chords), std::move(help),
+               [set = std::move(set)](Session& session) { set(session.state()); });
+  }
+  // A row taking `argument`, acting on the state with its value.
+  Command& withArgument(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                        CommandArgument argument, std::function<void(ViewerState&, int)> set) {
+    return push(std::move(id), std::move(label), std::move(chords), std::move(help), std::move(argument),
+                [set = std::move(set)](Session& session, int value) { set(session.state(), value); });
+  }
+
+ private:
+  Command& push(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                CommandArgument argument, std::function<void(Session&, int)> action) {
+    rows_.push_back(Command{std::move(id), std::move(label), std::move(chords), std::move(help), group_,
+                            std::move(argument), nullptr, std::move(action)});
+    return rows_.back();
+  }
+
+  std::vector<Command>& rows_;
+  std::string group_;
+};
+
+void addFileCommands(Rows rows) {
+  rows.add("file.open", "Open (Enter)", {},
+           "open the path typed in the File panel (Enter there; the model stays on failure)",
+           [](Session& s) { s.document().requestLoad(s.state().file.pathField); });
+  rows.add("file.reload", "Reload", {key('R', kControl)}, "reload the model file",
+           [](Session& s) { s.document().reloadModel(); });
+  rows.add("file.default", "Default model", {}, "the built-in default model",
+           [](Session& s) { s.document().loadDefaultModel(); });
+  rows.add("file.previous-model", "Previous model", {}, "the model the last Open / Default model / drop replaced",
+           [](Session& s) { s.document().undoModelReplacement(); });
   // PageDown / PageUp step through dropped files when there are several, else they step the level.
   auto hasPlaylist = [](const ViewerState& state) { return state.file.playlist.size() > 1; };
-  Command next{"file.next", "Next file", {key(keys::kPageDown)}, "next / previous of several dropped files",
-               "PageDown / PageUp", hasPlaylist, [](ViewerState& state, CommandHost& host) {
-                 host.openPlaylistEntry(state.file.playlistIndex + 1);
-               }};
-  Command previous{"file.previous", "Previous file", {key(keys::kPageUp)}, "", {}, hasPlaylist,
-                   [](ViewerState& state, CommandHost& host) { host.openPlaylistEntry(state.file.playlistIndex - 1); }};
-  rows.push_back(std::move(next));
-  rows.push_back(std::move(previous));
+  for (const int step : {1, -1}) {
+    const bool next = step > 0;
+    rows.add(next ? "file.next" : "file.previous", next ? "Next file" : "Previous file",
+             {key(next ? keys::kPageDown : keys::kPageUp)},
+             std::string(next ? "next" : "previous") + " of several dropped files (else the key steps the level)",
+             [step](Session& s) { s.document().openPlaylistEntry(s.state().file.playlistIndex + step); })
+        .enabled = hasPlaylist;
+  }
 }
 
-void addEditCommands(std::vector<Command>& rows) {
-  rows.push_back(hostCommand("edit.undo", "Undo", {key('Z', kControl)},
-                             "undo the last vertex drag; with none left, back to the previous model (after Open, "
-                             "Default model, a drop)",
-                             [](CommandHost& host) { host.undo(); }));
-  rows.push_back(hostCommand("edit.redo", "Redo", {key('Z', kControl | kShift), key('Y', kControl)},
-                             "redo the vertex drag undone last", [](CommandHost& host) { host.redo(); }));
-  rows.push_back(hostCommand("edit.reset", "Reset", {}, "", [](CommandHost& host) { host.resetEdits(); }));
-  rows.push_back(hostCommand("edit.save", "Save OBJ", {key('S', kControl)},
-                             "save the edited control mesh as OBJ (path in the Edit panel)",
-                             [](CommandHost& host) { host.saveEditedMesh(); }));
-  rows.push_back(hostCommand("export.surface", "Export surface", {}, "", [](CommandHost& host) { host.exportSurface(true); }));
-  rows.push_back(hostCommand("export.refined-obj", "Export refined OBJ", {}, "",
-                             [](CommandHost& host) { host.exportSurface(false); }));
-  rows.push_back(hostCommand("model.ev-to-polar", "EVs to poles (Fig. 14a)", {}, "",
-                             [](CommandHost& host) { host.convertToPolar(false); }));
-  rows.push_back(hostCommand("model.ev-to-polar-pentagons", "with pentagons (14c)", {}, "",
-                             [](CommandHost& host) { host.convertToPolar(true); }));
-  rows.push_back(hostCommand("model.ngon-to-fan", "N-gons to triangle fans", {}, "",
-                             [](CommandHost& host) { host.convertToFans(); }));
-  rows.push_back(hostCommand("model.eigenvector", "Show v_k as the model", {}, "",
-                             [](CommandHost& host) { host.showEigenvector(); }));
+void addEditCommands(Rows rows) {
+  rows.add("edit.undo", "Undo", {key('Z', kControl)},
+           "undo the last vertex drag; with none left, back to the previous model (after Open, Default model, a drop)",
+           [](Session& s) { s.document().undo(); });
+  rows.add("edit.redo", "Redo", {key('Z', kControl | kShift), key('Y', kControl)}, "redo the vertex drag undone last",
+           [](Session& s) { s.document().redo(); });
+  rows.add("edit.reset", "Reset", {}, "every control vertex back where the file had it",
+           [](Session& s) { s.document().resetEdits(); });
+  rows.add("edit.save", "Save OBJ", {key('S', kControl)},
+           "save the edited control mesh as OBJ (path in the Edit panel)",
+           [](Session& s) { s.document().saveEditedMesh(); });
+  rows.add("export.surface", "Export surface", {},
+           "the active view's limit surface (.bv; the format from the Edit panel's path)",
+           [](Session& s) { s.document().startExport(SurfaceExport::LimitSurface, s.activeSurface()); });
+  rows.add("export.refined-obj", "Export refined OBJ", {},
+           "the active view's control mesh refined to its level, as OBJ",
+           [](Session& s) { s.document().startExport(SurfaceExport::RefinedMesh, s.activeSurface()); });
 }
 
-void addCameraCommands(std::vector<Command>& rows) {
-  rows.push_back(hostCommand("camera.frame", "Frame model", {key('F')}, "frame the model",
-                             [](CommandHost& host) { host.frameModel(); }));
-  const std::pair<const char*, ViewPreset> presets[] = {
-      {"front", ViewPreset::Front}, {"top", ViewPreset::Top}, {"side", ViewPreset::Side}, {"iso", ViewPreset::Iso}};
+void addModelCommands(Rows rows) {
+  rows.add("model.ev-to-polar", "EVs to poles (Fig. 14a)", {},
+           "extraordinary vertices become polar configurations (paper Fig. 14a)",
+           [](Session& s) { s.document().convertToPolar(false); });
+  rows.add("model.ev-to-polar-pentagons", "with pentagons (14c)", {},
+           "extraordinary vertices become poles ringed by pentagons (Fig. 14c)",
+           [](Session& s) { s.document().convertToPolar(true); });
+  rows.add("model.ngon-to-fan", "N-gons to triangle fans", {},
+           "faces of 5 or more sides become triangle fans around their centroids",
+           [](Session& s) { s.document().convertToFans(); });
+  rows.add("model.eigenvector", "Show v_k as the model", {}, "the Spectrum panel's eigenvector net as the model",
+           [](Session& s) { s.document().showEigenvector(); });
+}
+
+void addCameraCommands(Rows rows) {
+  rows.add("camera.frame", "Frame model", {key('F')}, "frame the model", [](Session& s) { s.window().frameModel(); });
+  const ViewPreset presets[] = {ViewPreset::Front, ViewPreset::Top, ViewPreset::Side, ViewPreset::Iso};
   for (int i = 0; i < 4; ++i) {
-    std::string label = presets[i].first;
-    label[0] = char(label[0] - 'a' + 'A');
-    const ViewPreset preset = presets[i].second;
-    rows.push_back(Command{std::string("camera.") + presets[i].first, label, {key(keys::kF1 + i)},
-                           i == 0 ? "view preset front / top / side / iso" : "", i == 0 ? "F1 / F2 / F3 / F4" : "",
-                           nullptr, [preset](ViewerState& state, CommandHost& host) {
-                             // A preset turns the cameras and shows the whole model again (from a close-up too).
-                             for (int v = 0; v < kMaxViews; ++v) state.camera(v).applyPreset(preset);
-                             host.frameModel();
-                           }});
+    const ViewPreset preset = presets[i];
+    std::string label = viewPresetName(preset);
+    label[0] = char(std::toupper(static_cast<unsigned char>(label[0])));
+    rows.add(std::string("camera.") + viewPresetName(preset), label, {key(keys::kF1 + i)},
+             std::string("view preset ") + viewPresetName(preset) + " (the model framed again)", [preset](Session& s) {
+               // A preset turns the cameras and shows the whole model again (from a close-up too).
+               for (int v = 0; v < kMaxViews; ++v) s.state().camera(v).applyPreset(preset);
+               s.window().frameModel();
+             });
   }
-  rows.push_back(Command{"camera.copy", "Copy", {key('C', kControl)}, "copy / paste the camera as JSON",
-                         "Ctrl+C / Ctrl+V", nullptr, [](ViewerState& state, CommandHost& host) {
-                           const std::string json = cameraToJson(state.camera(state.activeView));
-                           host.setClipboard(json);
-                           state.notice = "camera copied: " + json;
-                         }});
-  rows.push_back(Command{"camera.paste", "Paste", {key('V', kControl)}, "", {}, nullptr,
-                         [](ViewerState& state, CommandHost& host) {
-                           OrbitCamera& active = state.camera(state.activeView);
-                           std::string error;
-                           if (std::optional<OrbitCamera> camera = cameraFromJson(host.clipboard(), active, &error)) {
-                             active = *camera;
-                             state.notice = "camera pasted";
-                           } else {
-                             state.notice = error;
-                           }
-                         }});
-  rows.push_back(stateCommand("camera.orthographic", "Orthographic", {key('O')}, "orthographic / perspective projection",
-                              [](ViewerState& state) { setOrthographic(state, !state.camera(state.activeView).orthographic); }));
-  rows.push_back(stateCommand("camera.link", "Link cameras", {key('K')}, "link / unlink the cameras of the views",
-                              [](ViewerState& state) { state.linkCameras = !state.linkCameras; }));
+  rows.add("camera.copy", "Copy", {key('C', kControl)}, "copy the camera as JSON", [](Session& s) {
+    ViewerState& state = s.state();
+    const std::string json = cameraToJson(state.camera(state.activeView));
+    s.window().setClipboard(json);
+    state.notice = "camera copied: " + json;
+  });
+  rows.add("camera.paste", "Paste", {key('V', kControl)}, "paste a camera copied as JSON", [](Session& s) {
+    OrbitCamera& active = s.state().camera(s.state().activeView);
+    std::string error;
+    if (std::optional<OrbitCamera> camera = cameraFromJson(s.window().clipboard(), active, &error)) {
+      active = *camera;
+      s.state().notice = "camera pasted";
+    } else {
+      s.state().notice = error;
+    }
+  });
+  rows.state("camera.orthographic", "Orthographic", {key('O')}, "orthographic / perspective projection",
+             [](ViewerState& state) { setOrthographic(state, !state.camera(state.activeView).orthographic); });
+  rows.state("camera.link", "Link cameras", {key('K')}, "link / unlink the cameras of the views",
+             [](ViewerState& state) { state.linkCameras = !state.linkCameras; });
 }
 
-void addLevelCommands(std::vector<Command>& rows) {
-  for (int level = 0; level <= 9; ++level)
-    rows.push_back(stateCommand("level." + std::to_string(level), "Level " + std::to_string(level),
-                                {key('0' + level), key(keys::kKeypad0 + level)},
-                                level == 0 ? "subdivision level (all views when levels are linked, else the active one)" : "",
-                                [level](ViewerState& state) { requestLevel(state, level); }));
-  rows[rows.size() - 10].helpKeys = "0 - 9";
+void addLevelCommands(Rows rows) {
+  // Keys 0-9 (and the keypad's) give levels 0-9; deeper ones are typed or stepped to.
+  std::vector<KeyChord> digits;
+  for (int level = 0; level <= 9; ++level) {
+    digits.push_back(KeyChord{'0' + level, 0, 0, level});
+    digits.push_back(KeyChord{keys::kKeypad0 + level, 0, 0, level});
+  }
+  rows.withArgument("level", "Level", std::move(digits),
+                    "subdivision level N (all views when levels are linked, else the active one)",
+                    CommandArgument{"N", 0, kMaxLevel, {}},
+                    [](ViewerState& state, int level) { requestLevel(state, level); });
   // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
-  rows.push_back(stateCommand("level.deeper", "Deeper", {key(']'), key(keys::kPageUp), key(keys::kKeypadAdd)},
-                              "one level deeper / shallower (levels past 9, to the model's limit)", [](ViewerState& state) {
-                                requestLevel(state, state.views[size_t(state.activeView)].level + 1);
-                              }));
-  rows.back().helpKeys = "] [  PgUp PgDn";
-  rows.push_back(stateCommand("level.shallower", "Shallower", {key('['), key(keys::kPageDown), key(keys::kKeypadSubtract)}, "",
-                              [](ViewerState& state) { requestLevel(state, state.views[size_t(state.activeView)].level - 1); }));
-  rows.push_back(stateCommand("scheme.next", "Next scheme", {key('S')},
-                              "next / previous scheme of the active view (" + schemeLabels() + ")",
-                              [](ViewerState& state) { cycleScheme(state, state.activeView, 1); }));
-  rows.back().helpKeys = "S / Shift+S";
-  rows.push_back(stateCommand("scheme.previous", "Previous scheme", {key('S', kShift)}, "",
-                              [](ViewerState& state) { cycleScheme(state, state.activeView, -1); }));
-  rows.push_back(stateCommand("views.cycle", "Views", {key('V')}, "number of views 1..4",
-                              [](ViewerState& state) { state.viewCount = state.viewCount % kMaxViews + 1; }));
+  for (const int step : {1, -1}) {
+    const bool deeper = step > 0;
+    rows.state(deeper ? "level.deeper" : "level.shallower", deeper ? "Deeper" : "Shallower",
+               deeper ? std::vector<KeyChord>{key(']'), key(keys::kPageUp), key(keys::kKeypadAdd)}
+                      : std::vector<KeyChord>{key('['), key(keys::kPageDown), key(keys::kKeypadSubtract)},
+               deeper ? "one level deeper (past 9 too, to the model's limit)" : "one level shallower",
+               [step](ViewerState& state) { requestLevel(state, state.views[size_t(state.activeView)].level + step); });
+  }
 }
 
-void addShadingCommands(std::vector<Command>& rows) {
+void addViewCommands(Rows rows) {
+  rows.state("scheme.next", "Next scheme", {key('S')}, "next scheme of the active view (" + schemeLabels() + ")",
+             [](ViewerState& state) { cycleScheme(state, state.activeView, 1); });
+  rows.state("scheme.previous", "Previous scheme", {key('S', kShift)}, "previous scheme of the active view",
+             [](ViewerState& state) { cycleScheme(state, state.activeView, -1); });
+  rows.state("views.cycle", "Views", {key('V')}, "number of views 1..4",
+             [](ViewerState& state) { state.viewCount = state.viewCount % kMaxViews + 1; });
+}
+
+void addShadingCommands(Rows rows) {
+  // The modes' table (pipeline/shading.h) gives the argument's names, aliases and labels and the
+  // keys; the argument's value is an index into it.
+  CommandArgument modes{"MODE", 0, int(shadingModes().size()) - 1, {}};
+  std::vector<KeyChord> modeKeys;
+  std::string labels;
   for (const ShadingModeInfo& mode : shadingModes()) {
-    const ShadingParams::Mode value = mode.mode;
-    rows.push_back(stateCommand(shadingCommandId(value), mode.label, {key(mode.key)}, "",
-                                [value](ViewerState& state) { state.shading.mode = value; }));
+    modeKeys.push_back(KeyChord{mode.key, 0, 0, int(modes.choices.size())});
+    modes.choices.push_back({mode.name, mode.alias, mode.label});
+    labels += (labels.empty() ? "" : " / ") + std::string(mode.label);
   }
-  const size_t kModes = shadingModes().size();
-  rows[rows.size() - kModes].help = "lit / Gaussian / mean / highlight lines / reflection lines (zebra)";
-  rows[rows.size() - kModes].helpKeys = "L / G / M / H / Z";
-  rows.push_back(stateCommand("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",
-                              [](ViewerState& state) {
-                                state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
-                              }));
-  rows.push_back(stateCommand("colour.automatic", "Automatic range", {key('A')}, "automatic colour range on / off",
-                              [](ViewerState& state) { setAutomaticRange(state, !state.colour.automatic); }));
+  rows.withArgument("shade", "Shading", std::move(modeKeys), "shading: " + labels, std::move(modes),
+                    [](ViewerState& state, int mode) { state.shading.mode = shadingModes()[size_t(mode)].mode; });
+  rows.state("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",
+             [](ViewerState& state) {
+               state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
+             });
+  rows.state("colour.automatic", "Automatic range", {key('A')}, "automatic colour range on / off",
+             [](ViewerState& state) { setAutomaticRange(state, !state.colour.automatic); });
+}
+
+void addDisplayCommands(Rows rows) {
   struct Toggle {
     const char* id;
     const char* label;
@@ -173,22 +223,19 @@ void addShadingCommands(std::vector<Command>& rows) {
                             {"show.poles", "Pole markers", 'P', &DisplayFlags::poleMarkers},
                             {"show.wireframe", "Wireframe", 'W', &DisplayFlags::wireframe}};
   for (const Toggle& toggle : toggles)
-    rows.push_back(stateCommand(toggle.id, toggle.label, {key(toggle.key)}, "",
-                                [flag = toggle.flag](ViewerState& state) { state.display.*flag = !(state.display.*flag); }));
-  rows[rows.size() - 5].help = "limit surface / control net / patch boundaries / pole markers / wireframe";
-  rows[rows.size() - 5].helpKeys = "U / N / B / P / W";
+    rows.state(toggle.id, toggle.label, {key(toggle.key)}, lowercase(toggle.label) + " on / off",
+               [flag = toggle.flag](ViewerState& state) { state.display.*flag = !(state.display.*flag); });
 }
 
-void addWindowCommands(std::vector<Command>& rows) {
-  rows.push_back(hostCommand("screenshot", "Screenshot", {key('X')},
-                             "screenshot polarview_NNNN.png (colour bar and labels included)",
-                             [](CommandHost& host) { host.takeScreenshot(); }));
-  rows.push_back(stateCommand("panels", "Panels", {key(keys::kTab)}, "hide / show the panels",
-                              [](ViewerState& state) { state.showPanels = !state.showPanels; }));
-  rows.push_back(stateCommand("help", "Help", {KeyChord{0, 0, U'?'}}, "this help",
-                              [](ViewerState& state) { state.showHelp = !state.showHelp; }));
-  rows.push_back(stateCommand("poles.inspect", "Inspect poles", {}, "",
-                              [](ViewerState& state) { state.poleInspector.openRequested = true; }));
+void addWindowCommands(Rows rows) {
+  rows.add("screenshot", "Screenshot", {key('X')}, "screenshot polarview_NNNN.png (colour bar and labels included)",
+           [](Session& s) { s.window().takeScreenshot(); });
+  rows.state("panels", "Panels", {key(keys::kTab)}, "hide / show the panels",
+             [](ViewerState& state) { state.showPanels = !state.showPanels; });
+  rows.state("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help",
+             [](ViewerState& state) { state.showHelp = !state.showHelp; });
+  rows.state("poles.inspect", "Inspect poles", {}, "open the Poles panel",
+             [](ViewerState& state) { state.poleInspector.openRequested = true; });
 }
 
 std::string keyName(const KeyChord& chord) {
@@ -208,9 +255,53 @@ std::string keyName(const KeyChord& chord) {
   return name + char(k);
 }
 
+bool keypadTwin(const KeyChord& chord) { return chord.key >= keys::kKeypad0 && chord.key <= keys::kKeypadAdd; }
+
 bool enabledIn(const Command& command, const ViewerState& state) { return !command.enabled || command.enabled(state); }
 
+// The key of `command` that gives `argument` (its first key for a row without one); nullptr: none.
+const KeyChord* keyFor(const Command& command, int argument) {
+  for (const KeyChord& chord : command.keys)
+    if (!command.argument.taken() || chord.argument == argument) return &chord;
+  return nullptr;
+}
+
+std::string_view trimmed(std::string_view text) {
+  const size_t first = text.find_first_not_of(' ');
+  if (first == std::string_view::npos) return {};
+  return text.substr(first, text.find_last_not_of(' ') - first + 1);
+}
+
 }  // namespace
+
+std::string CommandArgument::accepted() const {
+  if (choices.empty()) return std::to_string(min) + ".." + std::to_string(max);
+  std::string names;
+  for (const ArgumentChoice& choice : choices) names += (names.empty() ? "" : "|") + choice.name;
+  return names;
+}
+
+std::optional<int> CommandArgument::parse(std::string_view text) const {
+  if (choices.empty()) {
+    if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string_view::npos)
+      return std::nullopt;
+    const int value = std::stoi(std::string(text));
+    if (value < min || value > max) return std::nullopt;
+    return value;
+  }
+  const std::string name = lowercase(text);
+  for (size_t i = 0; i < choices.size(); ++i)
+    if (!name.empty() && (name == choices[i].name || name == choices[i].alias)) return int(i);
+  return std::nullopt;
+}
+
+std::string CommandArgument::text(int value) const {
+  return choices.empty() ? std::to_string(value) : choices[size_t(value)].name;
+}
+
+std::string CommandCall::text() const {
+  return command->argument.taken() ? command->id + " " + command->argument.text(argument) : command->id;
+}
 
 const std::vector<GestureHelp>& gestureHelp() {
   static const std::vector<GestureHelp> gestures = {
@@ -218,21 +309,26 @@ const std::vector<GestureHelp>& gestureHelp() {
       {"Right / middle drag, Shift+left drag", "pan"},
       {"Wheel", "zoom towards the point under the cursor"},
       {"Ctrl+left drag", "move the light (lit: key light; highlight / zebra: the light lines)"},
-      {"Left drag on a control vertex", "with the control net shown (N): move the vertex in the view plane; every view follows"},
+      {"Left drag on a control vertex",
+       "with the control net shown (N): move the vertex in the view plane; every view follows"},
       {"Double-click", "set the pivot to the surface point under the cursor (and read it, as Alt+click)"},
-      {"Alt+click", "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
+      {"Alt+click",
+       "read the surface point under the cursor: position, K, H, principal curvatures, patch (panel Point)"},
       {"Drop files", "open the first dropped .obj, list the others"},
   };
   return gestures;
 }
 
 CommandTable::CommandTable() {
-  addFileCommands(commands_);
-  addEditCommands(commands_);
-  addCameraCommands(commands_);
-  addLevelCommands(commands_);
-  addShadingCommands(commands_);
-  addWindowCommands(commands_);
+  addFileCommands(Rows(commands_, "file"));
+  addEditCommands(Rows(commands_, "edit"));
+  addModelCommands(Rows(commands_, "model"));
+  addCameraCommands(Rows(commands_, "camera"));
+  addLevelCommands(Rows(commands_, "level"));
+  addViewCommands(Rows(commands_, "views"));
+  addShadingCommands(Rows(commands_, "shading"));
+  addDisplayCommands(Rows(commands_, "display"));
+  addWindowCommands(Rows(commands_, "window"));
 }
 
 const Command* CommandTable::find(std::string_view id) const {
@@ -241,72 +337,168 @@ const Command* CommandTable::find(std::string_view id) const {
   return nullptr;
 }
 
-const Command* CommandTable::forKey(int code, int mods, const ViewerState& state) const {
+const Command& CommandTable::at(std::string_view id) const {
+  if (const Command* command = find(id)) return *command;
+  throw std::out_of_range("no viewer command '" + std::string(id) + "' in the command table");
+}
+
+std::pair<std::string_view, std::string_view> CommandTable::split(std::string_view text) const {
+  text = trimmed(text);
+  const size_t space = text.find(' ');
+  if (space != std::string_view::npos) return {text.substr(0, space), trimmed(text.substr(space))};
+  // "level.7": the id before arguments, the argument after its last dot.
+  const size_t dot = text.rfind('.');
+  if (find(text) || dot == std::string_view::npos) return {text, {}};
+  const Command* prefix = find(text.substr(0, dot));
+  if (!prefix || !prefix->argument.taken()) return {text, {}};
+  return {text.substr(0, dot), text.substr(dot + 1)};
+}
+
+std::optional<CommandCall> CommandTable::parse(std::string_view text, std::string* error) const {
+  const auto fail = [error](std::string message) -> std::optional<CommandCall> {
+    if (error) *error = std::move(message);
+    return std::nullopt;
+  };
+  const auto [id, argument] = split(text);
+  const Command* command = find(id);
+  if (!command) return fail("unknown viewer command '" + std::string(trimmed(text)) + "'");
+  const CommandArgument& accepts = command->argument;
+  if (!accepts.taken()) {
+    if (!argument.empty()) return fail(command->id + " takes no argument, got '" + std::string(argument) + "'");
+    return CommandCall{command, 0};
+  }
+  const std::optional<int> value = accepts.parse(argument);
+  if (!value)
+    return fail(usage(*command) + ": " + accepts.placeholder + " is " + accepts.accepted() +
+                (argument.empty() ? ", missing" : ", not '" + std::string(argument) + "'"));
+  return CommandCall{command, *value};
+}
+
+std::optional<CommandCall> CommandTable::forKey(int code, int mods, const ViewerState& state) const {
   mods &= kShift | kControl | keys::kAlt;
   for (const int wanted : {mods, mods & ~kShift}) {
     for (const Command& command : commands_)
       for (const KeyChord& chord : command.keys)
-        if (!chord.character && chord.key == code && chord.mods == wanted && enabledIn(command, state)) return &command;
+        if (!chord.character && chord.key == code && chord.mods == wanted && enabledIn(command, state))
+          return CommandCall{&command, chord.argument};
     if (wanted == (mods & ~kShift)) break;
   }
-  return nullptr;
+  return std::nullopt;
 }
 
-const Command* CommandTable::forCharacter(char32_t character, const ViewerState& state) const {
+std::optional<CommandCall> CommandTable::forCharacter(char32_t character, const ViewerState& state) const {
   for (const Command& command : commands_)
     for (const KeyChord& chord : command.keys)
-      if (chord.character == character && enabledIn(command, state)) return &command;
-  return nullptr;
+      if (chord.character == character && enabledIn(command, state)) return CommandCall{&command, chord.argument};
+  return std::nullopt;
 }
 
-bool CommandTable::run(std::string_view id, ViewerState& state, CommandHost& host) const {
-  const Command* command = find(id);
-  if (!command) {
-    state.notice = "unknown command '" + std::string(id) + "'";
+bool CommandTable::run(std::string_view text, Session& session) const {
+  std::string error;
+  const std::optional<CommandCall> call = parse(text, &error);
+  if (!call) {
+    session.state().notice = error;
     return false;
   }
-  if (!enabledIn(*command, state)) {
-    state.notice = command->label + ": not available now";
+  return run(*call, session);
+}
+
+bool CommandTable::run(const CommandCall& call, Session& session) const {
+  if (!enabledIn(*call.command, session.state())) {
+    session.state().notice = call.command->label + ": not available now";
     return false;
   }
-  command->action(state, host);
+  call.command->action(session, call.argument);
   return true;
 }
 
-void CommandTable::runQueued(ViewerState& state, CommandHost& host) const {
+void CommandTable::runQueued(Session& session) const {
   // A command may queue another (it runs in the same pass).
-  for (size_t i = 0; i < state.queuedCommands.size(); ++i) {
-    const std::string id = state.queuedCommands[i];
-    run(id, state, host);
+  std::vector<std::string>& queued = session.state().queuedCommands;
+  for (size_t i = 0; i < queued.size(); ++i) {
+    const std::string text = queued[i];
+    run(text, session);
   }
-  state.queuedCommands.clear();
+  queued.clear();
 }
 
-std::string CommandTable::helpKeysText(const Command& command) {
-  return command.helpKeys.empty() ? keysText(command) : command.helpKeys;
+std::vector<HelpSection> CommandTable::helpSections() const {
+  std::vector<HelpSection> sections;
+  for (const Command& command : commands_) {
+    auto section =
+        std::find_if(sections.begin(), sections.end(), [&](const HelpSection& s) { return s.title == command.group; });
+    if (section == sections.end()) section = sections.insert(sections.end(), HelpSection{command.group, {}});
+    section->commands.push_back(&command);
+  }
+  return sections;
 }
 
 std::string CommandTable::keysText(const Command& command) {
   std::string text;
+  const KeyChord* runStart = nullptr;  // a run of digit keys 0, 1, 2, ... reads "0 - 9"
+  const KeyChord* previous = nullptr;
+  auto closeRun = [&] {
+    if (runStart && previous != runStart) text += " - " + keyName(*previous);
+  };
   for (const KeyChord& chord : command.keys) {
-    if (chord.key >= keys::kKeypad0 && chord.key <= keys::kKeypadAdd) continue;  // the keypad twins
+    if (keypadTwin(chord)) continue;
+    const bool digit = !chord.character && chord.key >= '0' && chord.key <= '9';
+    if (digit && previous && runStart && chord.key == previous->key + 1 && chord.mods == previous->mods) {
+      previous = &chord;
+      continue;
+    }
+    closeRun();
     text += (text.empty() ? "" : " / ") + keyName(chord);
+    runStart = digit ? &chord : nullptr;
+    previous = &chord;
   }
+  closeRun();
   return text;
 }
 
-std::string CommandTable::buttonLabel(const Command& command) {
-  if (command.keys.empty()) return command.label;
-  return command.label + " (" + keyName(command.keys.front()) + ")";
+std::string CommandTable::buttonLabel(const CommandCall& call) {
+  const Command& command = *call.command;
+  const CommandArgument& argument = command.argument;
+  std::string label = command.label;
+  if (argument.taken())
+    label = argument.choices.empty() ? command.label + " " + argument.text(call.argument)
+                                     : argument.choices[size_t(call.argument)].label;
+  const KeyChord* chord = keyFor(command, call.argument);
+  return chord ? label + " (" + keyName(*chord) + ")" : label;
 }
 
-std::string shadingCommandId(ShadingParams::Mode mode) { return std::string("shade.") + shadeModeName(mode); }
+std::string CommandTable::usage(const Command& command) {
+  return command.argument.taken() ? command.id + " " + command.argument.placeholder : command.id;
+}
 
 const CommandTable& viewerCommands() {
   static const CommandTable table;
   return table;
 }
 
-void queueCommand(ViewerState& state, std::string id) { state.queuedCommands.push_back(std::move(id)); }
+std::string commandListText() {
+  std::string text =
+      "the viewer's commands by heading: id (and argument), keys, what it does; `view --do CMD[,CMD...]` runs them\n"
+      "(an argument after a space or a dot: `level 7` or `level.7`, `shade gaussian` or `shade.gaussian`)\n";
+  auto line = [&text](const std::string& name, const std::string& keys, const std::string& help) {
+    text += "  " + name + std::string(name.size() < 28 ? 28 - name.size() : 1, ' ') + keys +
+            std::string(keys.size() < 24 ? 24 - keys.size() : 1, ' ') + help + "\n";
+  };
+  for (const HelpSection& section : viewerCommands().helpSections()) {
+    text += section.title + ":\n";
+    for (const Command* command : section.commands) {
+      const CommandArgument& argument = command->argument;
+      line(CommandTable::usage(*command), CommandTable::keysText(*command),
+           command->help + (argument.taken() ? " (" + argument.placeholder + ": " + argument.accepted() + ")" : ""));
+      for (size_t i = 0; i < argument.choices.size(); ++i) {
+        const KeyChord* chord = keyFor(*command, int(i));
+        line(command->id + "." + argument.choices[i].name, chord ? keyName(*chord) : "", argument.choices[i].label);
+      }
+    }
+  }
+  return text;
+}
+
+void queueCommand(ViewerState& state, std::string_view text) { state.queuedCommands.emplace_back(text); }
 
 }  // namespace polarview

@@ -342,7 +342,7 @@ void Document::saveEditedMesh() {
                   (keptSource ? "; every other line as in the file" : "") + ")";
 }
 
-void Document::startExport(bool bezierView, const BuiltSurface* shown) {
+void Document::startExport(SurfaceExport what, const BuiltSurface* shown) {
   if (!model_.mesh) return;
   if (exportJob_.running()) {
     state_.notice = "still writing " + exportTarget_;
@@ -360,7 +360,7 @@ void Document::startExport(bool bezierView, const BuiltSurface* shown) {
   const RefineOptions options = refineOptionsFor(scheme, level);
   const Model model = model_;  // the mesh is immutable: the worker keeps this version
   std::string path;
-  if (bezierView) {
+  if (what == SurfaceExport::LimitSurface) {
     path = state_.edit.surfacePath.empty() ? state_.edit.defaultSurfacePath : state_.edit.surfacePath;
     // The format from the file's extension, as `polarview export` chooses it.
     const ExportFormat* format = exportFormatForPath(path);

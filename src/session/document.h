@@ -24,6 +24,10 @@
 
 namespace polarview {
 
+// What Export writes of the active view: its limit surface (.bv and the other formats of
+// surface_export.h) or its control mesh refined uniformly to its level (OBJ).
+enum class SurfaceExport { LimitSurface, RefinedMesh };
+
 // ~/.config/polarview/recent.txt (empty without $HOME): the recent files; the window keeps its
 // layout beside it.
 std::string recentFilePath();
@@ -86,9 +90,9 @@ class Document {
   // read from a file is written into the file's text as loaded, only moved vertices' coordinates
   // replaced (obj_io.h saveObjEdited); a generated one as plain v/f lines.
   void saveEditedMesh();
-  // What `shown` (the active view's surface) is, as .bv or its refined control mesh, written on a
-  // worker thread (pollExport takes the result).
-  void startExport(bool bezierView, const BuiltSurface* shown);
+  // What `shown` (the active view's surface) is, as its limit surface or its refined control mesh,
+  // written on a worker thread (pollExport takes the result).
+  void startExport(SurfaceExport what, const BuiltSurface* shown);
   bool exporting() const { return exportJob_.running(); }
   void pollExport();
   // state.edit: selection, history, default output paths (named after `shown`, the active view's).

@@ -22,7 +22,8 @@
 
 namespace polarview {
 
-// What only the window can do for a command.
+// What only the window can do for a command (session/command_table.h): the rest of what commands
+// do acts on the session's state and document directly.
 class WindowServices {
  public:
   virtual ~WindowServices() = default;
@@ -38,7 +39,7 @@ struct SessionOptions {
   bool persistRecent = true;     // keep recent files in ~/.config/polarview/recent.txt
 };
 
-class Session : public CommandHost {
+class Session {
  public:
   Session(const SessionOptions& options, WindowServices& window);
   Session(const Session&) = delete;
@@ -53,7 +54,7 @@ class Session : public CommandHost {
   const Model& model() const { return document_.model(); }
 
   // Runs the commands queued this frame (panels, keys, `view --do`) through the command table.
-  void runCommands() { viewerCommands().runQueued(state_, *this); }
+  void runCommands() { viewerCommands().runQueued(*this); }
   // Finished loads and exports, then the surfaces (SurfaceCache::update): this frame's cost of
   // positions-only updates when points moved (the window adds its upload and records it).
   std::optional<EditCost> updateModelAndSurfaces();
@@ -66,27 +67,12 @@ class Session : public CommandHost {
   // The automatic colour range and histogram of what the views show now.
   void updateColourRange();
 
-  // [CommandHost]
-  void openFile(const std::string& path) override { document_.requestLoad(path); }
-  void reloadModel() override { document_.reloadModel(); }
-  void loadDefaultModel() override { document_.loadDefaultModel(); }
-  void undoModelReplacement() override { document_.undoModelReplacement(); }
-  void undo() override { document_.undo(); }
-  void redo() override { document_.redo(); }
-  void resetEdits() override { document_.resetEdits(); }
-  void saveEditedMesh() override { document_.saveEditedMesh(); }
-  void exportSurface(bool bezierView) override { document_.startExport(bezierView, activeSurface()); }
-  void openPlaylistEntry(int index) override { document_.openPlaylistEntry(index); }
-  void convertToPolar(bool pentagons) override { document_.convertToPolar(pentagons); }
-  void convertToFans() override { document_.convertToFans(); }
-  void showEigenvector() override { document_.showEigenvector(); }
-  void frameModel() override { window_.frameModel(); }
-  void setClipboard(const std::string& text) override { window_.setClipboard(text); }
-  std::string clipboard() override { return window_.clipboard(); }
-  void takeScreenshot() override { window_.takeScreenshot(); }
+  // What only the window does (the commands' clipboard, framing and screenshots).
+  WindowServices& window() { return window_; }
+  // The surface the active view shows (what the exports write); nullptr before its first.
+  const BuiltSurface* activeSurface() const;
 
  private:
-  const BuiltSurface* activeSurface() const;
   void collectColourSamples();
   void updateSpectrum();
   void updatePoleInspector();

@@ -212,8 +212,8 @@ struct ViewerState {
   PoleInspectorSettings poleInspector;
   ReadoutSettings readout;
   SpectrumSettings spectrum;
-  // Commands asked for by panels, keys and `view --do` (ids of session/command_table.h), run in
-  // order by the app once a frame.
+  // Commands asked for by panels, keys and `view --do`, as text ("level 7", "camera.frame":
+  // session/command_table.h), run in order by the app once a frame.
   std::vector<std::string> queuedCommands;
 
   bool showPanels = true;      // Tab

@@ -7,10 +7,12 @@
 
 #include <imgui.h>
 
+#include "session/command_ids.h"
 #include "session/command_table.h"
 #include "ui/viewer_panels.h"
 
 namespace polarview {
+namespace ids = command_ids;
 namespace {
 
 // One line of a plot: its colour and points (x, y); non-finite y are gaps.
@@ -106,7 +108,7 @@ void drawNoPoles(ViewerState& state) {
   ImGui::TextWrapped("%d %s 5 or more sides: as triangle fans around their centres (Blender's triangle fan cap fill), "
                      "caps ringed by quads become poles.",
                      survey.fanFaces, survey.fanFaces == 1 ? "face has" : "faces have");
-  commandButton(state, "model.ngon-to-fan");
+  commandButton(state, ids::kModelNgonToFan);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a new vertex at each such face's centroid, the face a fan of triangles around it (Ctrl+Z returns)");
 }
 
@@ -207,7 +209,7 @@ void drawSpectrumPanel(ViewerState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Fig. 1 d-f: the net after that many C2PS steps (valence x 2 each), magnified back by 2 a step\n"
                       "and its heights by 1 / lambda a step: Lemma 5's scaling shows as equal heights");
-  if (ImGui::Button("Show v_k as the model")) queueCommand(state, "model.eigenvector");
+  commandButton(state, ids::kModelEigenvector);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the net (v1, v2, v_k) over the characteristic map; the views draw its eigenspline (Ctrl+Z returns)");
 }

@@ -16,8 +16,10 @@
 #include <imgui_stdlib.h>
 
 #include "pipeline/surface_export.h"
+#include "session/command_ids.h"
 
 namespace polarview {
+namespace ids = command_ids;
 namespace {
 
 // [SECTION] Helpers
@@ -89,9 +91,9 @@ std::string formatTick(double value, double scale) {
 
 }  // namespace
 
-void commandButton(ViewerState& state, const char* id) {
-  const Command* command = viewerCommands().find(id);
-  if (command && ImGui::Button(CommandTable::buttonLabel(*command).c_str())) queueCommand(state, id);
+void commandButton(ViewerState& state, std::string_view id) {
+  const CommandCall call{&viewerCommands().at(id), 0};  // an id not in the table throws
+  if (ImGui::Button(CommandTable::buttonLabel(call).c_str())) queueCommand(state, call.text());
 }
 
 namespace {
@@ -102,16 +104,16 @@ void drawFilePanel(ViewerState& state) {
   // errors, the loading line) goes below them, so a click never lands on a button that moved.
   const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("Open (Enter)").x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
-  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) queueCommand(state, "file.open");
+  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) queueCommand(state, ids::kFileOpen);
   ImGui::SameLine();
-  commandButton(state, "file.open");
-  commandButton(state, "file.reload");
+  commandButton(state, ids::kFileOpen);
+  commandButton(state, ids::kFileReload);
   ImGui::SameLine();
-  commandButton(state, "file.default");
+  commandButton(state, ids::kFileDefault);
   ImGui::SameLine();
   const bool canUndo = !file.previousModelName.empty();
   if (!canUndo) ImGui::BeginDisabled();
-  commandButton(state, "file.previous-model");
+  commandButton(state, ids::kFilePreviousModel);
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("back to %s (also Ctrl+Z when no vertex drag is left to undo)", file.previousModelName.c_str());
@@ -132,7 +134,7 @@ void drawFilePanel(ViewerState& state) {
       if (ImGui::Selectable(file.playlist[i].c_str(), int(i) == file.playlistIndex)) {
         file.playlistIndex = int(i);
         file.pathField = file.playlist[i];
-        queueCommand(state, "file.open");
+        queueCommand(state, ids::kFileOpen);
       }
       ImGui::PopID();
     }
@@ -142,7 +144,7 @@ void drawFilePanel(ViewerState& state) {
     for (const std::string& path : file.recent) {
       if (ImGui::Selectable(path.c_str())) {
         file.pathField = path;
-        queueCommand(state, "file.open");
+        queueCommand(state, ids::kFileOpen);
       }
     }
     ImGui::TreePop();
@@ -151,8 +153,8 @@ void drawFilePanel(ViewerState& state) {
 
 // A path field whose empty value stands for `fallback` (shown greyed as the hint), and the button of
 // command `command`; true when either asks for it.
-bool pathFieldAndButton(const char* id, std::string& path, const std::string& fallback, const char* command) {
-  const std::string label = CommandTable::buttonLabel(*viewerCommands().find(command));
+bool pathFieldAndButton(const char* id, std::string& path, const std::string& fallback, std::string_view command) {
+  const std::string label = CommandTable::buttonLabel(CommandCall{&viewerCommands().at(command), 0});
   const char* button = label.c_str();
   const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::SetNextItemWidth(-(ImGui::CalcTextSize(button).x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
@@ -185,39 +187,40 @@ void drawEditPanel(ViewerState& state) {
   // Buttons first, at fixed places; text that changes length below them.
   const bool canUndo = edit.undoSteps > 0, canRedo = edit.redoSteps > 0;
   if (!canUndo) ImGui::BeginDisabled();
-  commandButton(state, "edit.undo");
+  commandButton(state, ids::kEditUndo);
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered()) ImGui::SetTooltip("undo: %s", edit.undoLabel.c_str());
   ImGui::SameLine();
   if (!canRedo) ImGui::BeginDisabled();
-  commandButton(state, "edit.redo");
+  commandButton(state, ids::kEditRedo);
   if (!canRedo) ImGui::EndDisabled();
   if (canRedo && ImGui::IsItemHovered()) ImGui::SetTooltip("redo: %s", edit.redoLabel.c_str());
   ImGui::SameLine();
   const bool edited = edit.movedVertices > 0;
   if (!edited) ImGui::BeginDisabled();
-  commandButton(state, "edit.reset");
+  commandButton(state, ids::kEditReset);
   if (!edited) ImGui::EndDisabled();
   if (edited && ImGui::IsItemHovered()) ImGui::SetTooltip("every control vertex back where the file had it (Ctrl+Z undoes it)");
-  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, "edit.save")) queueCommand(state, "edit.save");
+  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, ids::kEditSave))
+    queueCommand(state, ids::kEditSave);
   drawSurfaceFormatChoice(edit);
   ImGui::SameLine();
-  if (pathFieldAndButton("##surfacePath", edit.surfacePath, edit.defaultSurfacePath, "export.surface"))
-    queueCommand(state, "export.surface");
+  if (pathFieldAndButton("##surfacePath", edit.surfacePath, edit.defaultSurfacePath, ids::kExportSurface))
+    queueCommand(state, ids::kExportSurface);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive); the format from the "
                       "extension: %s", exportFormatExtensions().c_str());
-  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, "export.refined-obj"))
-    queueCommand(state, "export.refined-obj");
+  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, ids::kExportRefinedObj))
+    queueCommand(state, ids::kExportRefinedObj);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");
   // Fig. 14: extraordinary vertices to polar configurations (the model is replaced; Ctrl+Z returns).
-  commandButton(state, "model.ev-to-polar");
+  commandButton(state, ids::kModelEvToPolar);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each n-valent extraordinary vertex becomes a 2n-valent polar configuration with n 5-valent vertices");
   ImGui::SameLine();
-  commandButton(state, "model.ev-to-polar-pentagons");
+  commandButton(state, ids::kModelEvToPolarPentagons);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
-  commandButton(state, "model.ngon-to-fan");
+  commandButton(state, ids::kModelNgonToFan);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each face of 5 or more sides becomes a fan of triangles around its centroid: n-gon caps ringed by "
                       "quads (a cylinder's) become poles");
@@ -299,9 +302,11 @@ void drawDisplayPanel(ViewerState& state) {
 
 void drawShadingPanel(ViewerState& state) {
   ShadingParams& s = state.shading;
-  for (const ShadingModeInfo& mode : shadingModes()) {
-    const Command& command = *viewerCommands().find(shadingCommandId(mode.mode));
-    if (ImGui::RadioButton(CommandTable::buttonLabel(command).c_str(), s.mode == mode.mode)) s.mode = mode.mode;
+  // The shade command's choices are the modes' table (pipeline/shading.h), in its order.
+  const Command& shade = viewerCommands().at(ids::kShade);
+  for (size_t i = 0; i < shadingModes().size(); ++i) {
+    const ShadingParams::Mode mode = shadingModes()[i].mode;
+    if (ImGui::RadioButton(CommandTable::buttonLabel(CommandCall{&shade, int(i)}).c_str(), s.mode == mode)) s.mode = mode;
   }
   if (shadingModeInfo(s.mode).lightLines) {
     if (ImGui::SliderFloat3("Light dir.", &s.highlightDir.x, -1.0f, 1.0f, "%.2f")) normaliseDirection(s.highlightDir);
@@ -377,15 +382,15 @@ void drawColourPanel(ViewerState& state) {
 }
 
 void drawCameraPanel(ViewerState& state) {
-  for (const char* id : {"camera.front", "camera.top", "camera.side", "camera.iso"}) {
+  for (const std::string_view id : {ids::kCameraFront, ids::kCameraTop, ids::kCameraSide, ids::kCameraIso}) {
     commandButton(state, id);
-    if (std::string_view(id) != "camera.iso") ImGui::SameLine();
+    if (id != ids::kCameraIso) ImGui::SameLine();
   }
-  commandButton(state, "camera.frame");
+  commandButton(state, ids::kCameraFrame);
   ImGui::SameLine();
-  commandButton(state, "camera.copy");
+  commandButton(state, ids::kCameraCopy);
   ImGui::SameLine();
-  commandButton(state, "camera.paste");
+  commandButton(state, ids::kCameraPaste);
   bool ortho = state.camera(state.activeView).orthographic;
   if (ImGui::Checkbox("Orthographic (O)", &ortho)) setOrthographic(state, ortho);
   float fov = float(state.camera(state.activeView).fovDeg);
@@ -397,7 +402,7 @@ void drawCameraPanel(ViewerState& state) {
 }
 
 void drawScreenshotPanel(ViewerState& state) {
-  commandButton(state, "screenshot");
+  commandButton(state, ids::kScreenshot);
   ImGui::SameLine();
   ImGui::RadioButton("1x", &state.screenshot.supersample, 1);
   ImGui::SameLine();
@@ -536,9 +541,11 @@ void drawNotice(const ViewerState& state) {
 void drawHelpWindow(ViewerState& state) {
   if (!state.showHelp) return;
   ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
+  // At most the window's height (the list scrolls): a row a key, under its heading, is long.
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(ImGui::GetIO().DisplaySize.y - 60.0f, 200.0f)));
   if (ImGui::Begin("Controls (?)", &state.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
     // The mouse gestures, then every command with a help line: the command table's rows.
-    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+    if (ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
       auto row = [](const std::string& keys, const std::string& action) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);
@@ -546,11 +553,28 @@ void drawHelpWindow(ViewerState& state) {
         ImGui::TableSetColumnIndex(1);
         ImGui::TextUnformatted(action.c_str());
       };
+      auto heading = [](const std::string& title) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextDisabled("%s", title.c_str());
+      };
+      heading("mouse");
       for (const GestureHelp& gesture : gestureHelp()) row(gesture.gesture, gesture.action);
-      for (const Command& command : viewerCommands().commands())
-        if (!command.help.empty()) row(CommandTable::helpKeysText(command), command.help);
+      // The command table's rows that have keys, under their headings (the third column: what
+      // `view --do` calls them); the panels' buttons show the others.
+      for (const HelpSection& section : viewerCommands().helpSections()) {
+        bool headed = false;
+        for (const Command* command : section.commands) {
+          if (command->keys.empty()) continue;
+          if (!std::exchange(headed, true)) heading(section.title);
+          row(CommandTable::keysText(*command), command->help);
+          ImGui::TableSetColumnIndex(2);
+          ImGui::TextDisabled("%s", CommandTable::usage(*command).c_str());
+        }
+      }
       ImGui::EndTable();
     }
+    ImGui::TextDisabled("Every command, buttons' too, with its `view --do` name: polarview help keys");
   }
   ImGui::End();
 }
@@ -892,9 +916,9 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   if (!io.WantCaptureKeyboard) {
     const CommandTable& commands = viewerCommands();
     for (ImWchar c : io.InputQueueCharacters)
-      if (const Command* command = commands.forCharacter(c, state)) queueCommand(state, command->id);
+      if (const std::optional<CommandCall> call = commands.forCharacter(c, state)) queueCommand(state, call->text());
     for (const auto& [key, mods] : pendingKeys_)
-      if (const Command* command = commands.forKey(key, mods, state)) queueCommand(state, command->id);
+      if (const std::optional<CommandCall> call = commands.forKey(key, mods, state)) queueCommand(state, call->text());
   }
   pendingKeys_.clear();
   state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);

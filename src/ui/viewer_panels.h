@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pipeline/screen_rect.h"
@@ -33,8 +34,9 @@ float colourBarReserve(const ViewerState& state, float scale);
 // larger), above a strip of `bottomReserve`. [O(count)]
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve);
 
-// A button that queues command `id`, labelled from the command table ("Frame model (F)").
-void commandButton(ViewerState& state, const char* id);
+// A button that queues command `id`, labelled from the command table ("Frame model (F)"); an id
+// that is no row of the table throws (session/command_ids.h names those the panels use).
+void commandButton(ViewerState& state, std::string_view id);
 // The "Poles" section: pole list, K and H at the pole per scheme shown, the rings' approach to it
 // (log scale) and K around ring m (pole_inspector_panel.cpp). Marks the inspector open.
 void drawPoleInspectorPanel(ViewerState& state);

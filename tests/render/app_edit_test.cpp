@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 // The default model at `level`, control net shown, panels hidden (the views fill the window).
 std::unique_ptr<ViewerApp> makeEditingApp(int level, int views = 1) {
   auto app = makeHiddenApp(800, 600);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.showPanels = false;
   state.display.controlNet = true;
@@ -74,7 +74,7 @@ ScreenVertex centralVertex(const ViewerApp& app, int view = 0) {
   const float cx = transform.rect.x + 0.5f * transform.rect.w, cy = transform.rect.y + 0.5f * transform.rect.h;
   ScreenVertex best;
   double bestDistance = std::numeric_limits<double>::infinity();
-  const std::vector<Point>& points = app.editor().points();
+  const std::vector<Point>& points = app.document().editor().points();
   for (size_t i = 0; i < points.size(); ++i) {
     const auto at = transform.project(points[i]);
     if (!at) continue;
@@ -119,8 +119,8 @@ TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on e
   const ViewTransform transform = app->viewTransform(0);
   int expected = -1;
   double nearest = 2.0;
-  for (size_t i = 0; i < app->editor().points().size(); ++i) {
-    const auto at = transform.project(app->editor().points()[i]);
+  for (size_t i = 0; i < app->document().editor().points().size(); ++i) {
+    const auto at = transform.project(app->document().editor().points()[i]);
     if (at && std::hypot(at->x - clickX, at->y - clickY) <= 8.0 && at->z < nearest) {
       nearest = at->z;
       expected = int(i);
@@ -130,33 +130,33 @@ TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on e
   const OrbitCamera before = state.sharedCamera;
   pointer(*app, clickX, clickY, false);
   pointer(*app, clickX, clickY, true);
-  CHECK(app->editor().selected() == expected);
+  CHECK(app->document().editor().selected() == expected);
   CHECK(state.edit.selectedVertex == expected);
   pointer(*app, clickX, clickY, false);
-  CHECK(app->editor().selected() == expected);
-  CHECK(app->editor().undoCount() == 0);  // a click without motion moves nothing
+  CHECK(app->document().editor().selected() == expected);
+  CHECK(app->document().editor().undoCount() == 0);  // a click without motion moves nothing
   CHECK(cameraToJson(state.sharedCamera) == cameraToJson(before));
 
   // A drag from a spot far from every vertex orbits, and keeps the selection.
   const float emptyX = transform.rect.x + 12.0f, emptyY = transform.rect.y + transform.rect.h - 12.0f;
-  REQUIRE(pickVertex(app->editor().points(), transform, emptyX, emptyY) == -1);
+  REQUIRE(pickVertex(app->document().editor().points(), transform, emptyX, emptyY) == -1);
   drag(*app, emptyX, emptyY, emptyX + 60.0f, emptyY - 20.0f);
   CHECK(state.sharedCamera.yawDeg != doctest::Approx(before.yawDeg));
-  CHECK(app->editor().selected() == expected);
-  CHECK(app->editor().points() == app->editor().loadedPoints());
+  CHECK(app->document().editor().selected() == expected);
+  CHECK(app->document().editor().points() == app->document().editor().loadedPoints());
   // A click (no drag) there clears the selection; with the net hidden a press never picks.
   const ViewTransform turned = app->viewTransform(0);
-  REQUIRE(pickVertex(app->editor().points(), turned, emptyX + 40.0f, emptyY - 40.0f) == -1);
+  REQUIRE(pickVertex(app->document().editor().points(), turned, emptyX + 40.0f, emptyY - 40.0f) == -1);
   pointer(*app, emptyX + 40.0f, emptyY - 40.0f, false);
   pointer(*app, emptyX + 40.0f, emptyY - 40.0f, true);
   pointer(*app, emptyX + 40.0f, emptyY - 40.0f, false);
-  CHECK(app->editor().selected() == -1);
+  CHECK(app->document().editor().selected() == -1);
   state.display.controlNet = false;
   const ScreenVertex again = centralVertex(*app);
   pointer(*app, again.x, again.y, false);
   pointer(*app, again.x, again.y, true);
   pointer(*app, again.x, again.y, false);
-  CHECK(app->editor().selected() == -1);
+  CHECK(app->document().editor().selected() == -1);
 }
 
 TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the cursor, the topology is never rebuilt") {
@@ -178,7 +178,7 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
   // Press on the vertex, then move frame by frame: every frame each view shows the new points.
   pointer(*app, target.x, target.y, false);
   pointer(*app, target.x, target.y, true);
-  REQUIRE(app->editor().dragging());
+  REQUIRE(app->document().editor().dragging());
   for (int step = 1; step <= 5; ++step) {
     const float x = target.x + 6.0f * float(step), y = target.y + 4.0f * float(step);
     pointer(*app, x, y, true);
@@ -200,14 +200,14 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
     }
   }
   pointer(*app, target.x + 30.0f, target.y + 20.0f, false);
-  CHECK_FALSE(app->editor().dragging());
-  CHECK(app->editor().undoCount() == 1);
+  CHECK_FALSE(app->document().editor().dragging());
+  CHECK(app->document().editor().undoCount() == 1);
   // Only that vertex moved; faces, model generation and face counts are as loaded.
   for (size_t i = 0; i < loaded.size(); ++i)
     if (int(i) != target.vertex) CHECK(app->model().mesh->points[i] == loaded[i]);
   CHECK(app->model().mesh->faceVerts == faces);
   CHECK(app->modelGeneration() == generation);
-  CHECK(app->editCosts().size() >= 5);
+  CHECK(app->document().editCosts().size() >= 5);
   CHECK(state.edit.updatedViews == 2);
   // After the release the curvature samples are retaken for the new points.
   app->waitUntilIdle();
@@ -232,8 +232,8 @@ TEST_CASE("vertex editing: a press and a quick move within one frame still grab 
   button(app->window(), GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0);
   cursor(app->window(), x1, y1);
   pointer(*app, x1, y1, true);
-  CHECK(app->editor().dragging());
-  CHECK(app->editor().selected() == target.vertex);
+  CHECK(app->document().editor().dragging());
+  CHECK(app->document().editor().selected() == target.vertex);
   pointer(*app, x1, y1, true);
   const auto at = app->viewTransform(0).project(app->model().mesh->points[size_t(target.vertex)]);
   REQUIRE(at);
@@ -241,8 +241,8 @@ TEST_CASE("vertex editing: a press and a quick move within one frame still grab 
   CHECK(at->y == doctest::Approx(y1).epsilon(1e-6));
   button(app->window(), GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0);
   pointer(*app, x1, y1, false);
-  CHECK_FALSE(app->editor().dragging());
-  CHECK(app->editor().undoCount() == 1);
+  CHECK_FALSE(app->document().editor().dragging());
+  CHECK(app->document().editor().undoCount() == 1);
 }
 
 TEST_CASE("vertex editing: after a drag every view's patches equal a fresh build of the edited mesh") {
@@ -260,8 +260,8 @@ TEST_CASE("vertex editing: after a drag every view's patches equal a fresh build
   REQUIRE(other.vertex >= 0);
   drag(*app, other.x, other.y, other.x + 10.0f, other.y - 30.0f);
   app->waitUntilIdle();
-  REQUIRE(app->editor().undoCount() == 2);
-  const double scale = glm::length(app->modelMax() - app->modelMin());
+  REQUIRE(app->document().editor().undoCount() == 2);
+  const double scale = glm::length(app->document().modelMax() - app->document().modelMin());
   for (int v = 0; v < 3; ++v) {
     CAPTURE(v);
     const BuiltSurface* shown = app->shownSurface(v);
@@ -294,7 +294,7 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   const std::vector<Point> afterSecond = app->model().mesh->points;
   REQUIRE(afterFirst != loaded);
   REQUIRE(afterSecond != afterFirst);
-  CHECK(app->editor().undoCount() == 2);
+  CHECK(app->document().editor().undoCount() == 2);
 
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
   CHECK(app->model().mesh->points == afterFirst);
@@ -302,12 +302,12 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   CHECK(app->model().mesh->points == loaded);
   CHECK(state.edit.movedVertices == 0);
   app->waitUntilIdle();
-  checkSamePatches(app->shownSurface(0)->patches, loadedPatches, 1e-13 * glm::length(app->modelMax() - app->modelMin()));
+  checkSamePatches(app->shownSurface(0)->patches, loadedPatches, 1e-13 * glm::length(app->document().modelMax() - app->document().modelMin()));
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
   CHECK(app->model().mesh->points == afterFirst);
   press(GLFW_KEY_Y, GLFW_MOD_CONTROL);
   CHECK(app->model().mesh->points == afterSecond);
-  CHECK(app->editor().redoCount() == 0);
+  CHECK(app->document().editor().redoCount() == 0);
   CHECK(state.edit.movedVertices == 1);
 
   // Reset (the panel's button): back to the file's points, itself undoable.
@@ -318,10 +318,10 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   CHECK(app->model().mesh->points == afterSecond);
   // A new drag after an undo drops the redo steps.
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
-  REQUIRE(app->editor().redoCount() > 0);
+  REQUIRE(app->document().editor().redoCount() > 0);
   const ScreenVertex again = centralVertex(*app);
   drag(*app, again.x, again.y, again.x - 15.0f, again.y);
-  CHECK(app->editor().redoCount() == 0);
+  CHECK(app->document().editor().redoCount() == 0);
 }
 
 TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back to the edited points, a failed save leaves nothing") {
@@ -330,7 +330,7 @@ TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back t
   CHECK(state.edit.defaultSavePath == "default_edited.obj");  // the built-in model: the current directory
   const ScreenVertex target = centralVertex(*app);
   drag(*app, target.x, target.y, target.x + 17.0f, target.y + 9.0f);
-  REQUIRE(app->editor().undoCount() == 1);
+  REQUIRE(app->document().editor().undoCount() == 1);
 
   const fs::path dir = fs::temp_directory_path() / "polarview_edit_save";
   fs::remove_all(dir);
@@ -359,10 +359,10 @@ TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back t
 
   // A model opened from a file saves beside it.
   saveObj((dir / "cage.obj").string(), *app->model().mesh);
-  REQUIRE(app->loadFile((dir / "cage.obj").string()));
+  REQUIRE(app->document().loadFile((dir / "cage.obj").string()));
   app->runFrame();
   CHECK(state.edit.defaultSavePath == (dir / "cage_edited.obj").string());
-  CHECK(app->editor().undoCount() == 0);  // a new model starts a new history
+  CHECK(app->document().editor().undoCount() == 0);  // a new model starts a new history
   fs::remove_all(dir);
 }
 
@@ -426,7 +426,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
 TEST_CASE("export from the viewer: a refined control mesh over the budget is refused with a message and writes nothing") {
   const size_t budget = 20000;  // adaptive faces; the uniform budget is 20000 * 450 / 300
   auto app = makeHiddenApp(640, 400, budget);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.showPanels = false;
   const int deepest = deepestLevel(app->model(), SchemeChoice::C2PS, budget);
@@ -486,12 +486,12 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   REQUIRE(target.vertex >= 0);
   drag(*app, target.x, target.y, target.x + 20.0f, target.y - 15.0f);
   app->waitUntilIdle();
-  REQUIRE(app->editor().undoCount() == 1);
+  REQUIRE(app->document().editor().undoCount() == 1);
   toggle(SchemeChoice::C2PS);
   const BuiltSurface* edited = app->shownSurface(0);
   CHECK_FALSE(state.views[0].status.unparked);
   CHECK(edited->key.points == app->model().points);
-  const double scale = glm::length(app->modelMax() - app->modelMin());
+  const double scale = glm::length(app->document().modelMax() - app->document().modelMin());
   checkSamePatches(edited->patches, buildSurface(app->model(), edited->key, kDefaultFaceBudget)->patches, 1e-12 * scale);
 }
 
@@ -499,11 +499,11 @@ TEST_CASE("scheme toggles: a parked surface counts every level its refinement ho
   // A budget for one C2PS level 8 and a half: a parked C2PS surface shown at level 4 still holds
   // level 8 (stepped down from it), so C2PS-U 8 beside it would not fit: the parked one goes.
   std::unique_ptr<ViewerApp> probe = makeHiddenApp(400, 300);
-  probe->loadDefaultModel();
+  probe->document().loadDefaultModel();
   const size_t level8 = estimatedLevelFaces(probe->model(), SchemeChoice::C2PS, 8);
   probe.reset();
   auto app = makeHiddenApp(400, 300, level8 + level8 / 2);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   auto show = [&](SchemeChoice scheme, int level) {
     state.views[0].scheme = scheme;

@@ -51,7 +51,7 @@ int writeSaddleObj(const fs::path& path, int n, int links) {
 
 TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file leaves it and shows why") {
   auto app = makeHiddenApp(480, 320);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   const uint64_t start = app->modelGeneration();
 
@@ -92,7 +92,7 @@ TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file l
 
 TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again the replaced one)") {
   auto app = makeHiddenApp(480, 320);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   const std::string defaultName = app->model().name;
   const int defaultFaces = app->state().file.modelFaces;
@@ -100,7 +100,7 @@ TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again t
 
   fs::path saddle = fs::temp_directory_path() / "polarview_undo_saddle.obj";
   const int faces = writeSaddleObj(saddle, 6, 3);
-  app->requestLoad(saddle.string());
+  app->document().requestLoad(saddle.string());
   app->waitUntilIdle();
   REQUIRE(app->state().file.modelFaces == faces);
   CHECK(app->state().file.previousModelName == defaultName);
@@ -128,7 +128,7 @@ TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again t
 
 TEST_CASE("several dropped files: the first opens, the others are listed and PageDown / PageUp step through them") {
   auto app = makeHiddenApp(480, 320);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   std::vector<std::string> paths;
   std::vector<int> faces;
@@ -166,7 +166,7 @@ TEST_CASE("several dropped files: the first opens, the others are listed and Pag
 
 TEST_CASE("background loading: frames keep coming while a large OBJ loads, and the model changes only when it is ready") {
   auto app = makeHiddenApp(480, 320);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   const uint64_t start = app->modelGeneration();
   const BuiltSurface* before = app->shownSurface(0);
@@ -174,11 +174,11 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
   // 160k faces (some 10 MB): long enough to read that several frames pass meanwhile.
   fs::path big = fs::temp_directory_path() / "polarview_big_saddle.obj";
   const int faces = writeSaddleObj(big, 800, 200);
-  app->requestLoad(big.string());
+  app->document().requestLoad(big.string());
   int framesWhileLoading = 0;
-  while (app->loading()) {
+  while (app->document().loading()) {
     app->runFrame();
-    if (!app->loading()) break;
+    if (!app->document().loading()) break;
     ++framesWhileLoading;
     // Meanwhile the old model stays and the overlay says what is loading.
     CHECK(app->modelGeneration() == start);
@@ -194,9 +194,9 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
   // Requests while one runs: the last one wins.
   fs::path small = fs::temp_directory_path() / "polarview_small_saddle.obj";
   const int smallFaces = writeSaddleObj(small, 8, 2);
-  app->requestLoad(big.string());
-  app->requestLoad((fs::temp_directory_path() / "polarview_no_such.obj").string());
-  app->requestLoad(small.string());
+  app->document().requestLoad(big.string());
+  app->document().requestLoad((fs::temp_directory_path() / "polarview_no_such.obj").string());
+  app->document().requestLoad(small.string());
   app->waitUntilIdle();
   CHECK(app->state().file.loadedPath == small.string());
   CHECK(app->state().file.modelFaces == smallFaces);
@@ -207,7 +207,7 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
 
 TEST_CASE("asymmetric colour range: each side from its own percentile, switching automatic off keeps both") {
   auto app = makeHiddenApp(480, 320);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.shading.mode = ShadingParams::Mode::Gaussian;
   state.colour.symmetric = false;
@@ -227,7 +227,7 @@ TEST_CASE("asymmetric colour range: each side from its own percentile, switching
 
 TEST_CASE("pole rings: drawn around a visible pole without covering its colour, not drawn when the surface hides it") {
   auto app = makeHiddenApp(400, 400);
-  app->loadDefaultModel();  // the mushroom: one pole on top of the cap
+  app->document().loadDefaultModel();  // the mushroom: one pole on top of the cap
   ViewerState& state = app->state();
   state.showPanels = false;
   state.shading.mode = ShadingParams::Mode::Gaussian;

@@ -97,7 +97,7 @@ const PointReadout& altClickReadout(ViewerApp& app, float fx, float fy, const st
 
 TEST_CASE("viewer app: a file that fails to load leaves the model shown and the error in the state") {
   auto app = makeHiddenApp();
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   REQUIRE(showsWanted(*app, 0));
   const uint64_t generation = app->modelGeneration();
@@ -105,7 +105,7 @@ TEST_CASE("viewer app: a file that fails to load leaves the model shown and the 
 
   fs::path bad = fs::temp_directory_path() / "polarview_app_test_bad.obj";
   std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
-  CHECK_FALSE(app->loadFile(bad.string()));
+  CHECK_FALSE(app->document().loadFile(bad.string()));
   CHECK(app->state().file.error.find("polarview_app_test_bad.obj:4:") != std::string::npos);
 
   // The same through the file panel's request, with a file that does not exist.
@@ -122,7 +122,7 @@ TEST_CASE("viewer app: a file that fails to load leaves the model shown and the 
 
 TEST_CASE("viewer app: after many quick scheme and level changes every view shows the last request") {
   auto app = makeHiddenApp();
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 3;
   state.linkLevels = false;
@@ -151,7 +151,7 @@ TEST_CASE("viewer app: after many quick scheme and level changes every view show
 
 TEST_CASE("viewer app: resizing the window keeps every view drawn at the new size") {
   auto app = makeHiddenApp(640, 400);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->state().viewCount = 2;
   app->waitUntilIdle();
   for (auto [w, h] : {std::pair{800, 300}, std::pair{300, 500}, std::pair{1000, 700}, std::pair{200, 150}}) {
@@ -176,7 +176,7 @@ TEST_CASE("viewer app: resizing the window keeps every view drawn at the new siz
 
 TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps running") {
   auto app = makeHiddenApp();
-  REQUIRE(app->loadMesh(fanWithOneRing(1024), "fan-1024"));
+  REQUIRE(app->document().loadMesh(fanWithOneRing(1024), "fan-1024"));
   ViewerState& state = app->state();
   state.viewCount = 2;
   state.views[1].scheme = SchemeChoice::CatmullClark;
@@ -196,7 +196,7 @@ TEST_CASE("viewer app: a valence-1024 pole is refined, drawn and the app keeps r
 
 TEST_CASE("viewer app: a level over the face budget is refused with a message and the view keeps its level") {
   auto app = makeHiddenApp(640, 400, 20000);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   requestLevel(app->state(), 1);
   app->waitUntilIdle();
   REQUIRE(showsWanted(*app, 0));
@@ -224,7 +224,7 @@ TEST_CASE("viewer app: a level over the face budget is refused with a message an
 
 TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with labels and the colour bar") {
   auto app = makeHiddenApp(720, 360);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 2;
   state.views[1].scheme = SchemeChoice::CatmullClark;
@@ -273,7 +273,7 @@ TEST_CASE("viewer app: screenshots are numbered PNGs of the view area with label
 
 TEST_CASE("viewer app: the X screenshot shows the views exactly as the window does (4 views in a 2 x 2 grid)") {
   auto app = makeHiddenApp(1280, 720);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 4;
   state.views[1].scheme = SchemeChoice::RTS;
@@ -325,7 +325,7 @@ TEST_CASE("viewer app: the X screenshot shows the views exactly as the window do
 
 TEST_CASE("viewer app: every key press counts, even several within one frame") {
   auto app = makeHiddenApp(640, 400);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   runFrames(*app, 2);
   // The callback GLFW calls on a key event (ImGui's, which chains to the app's).
@@ -372,7 +372,7 @@ TEST_CASE("viewer app: every key press counts, even several within one frame") {
 
 TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stats that Catmull-Clark refined it") {
   auto app = makeHiddenApp(640, 400);
-  REQUIRE(app->loadMesh(fanWithOneRing(4), "valence-4 fan"));
+  REQUIRE(app->document().loadMesh(fanWithOneRing(4), "valence-4 fan"));
   ViewerState& state = app->state();
   state.viewCount = 3;
   state.views[0].scheme = SchemeChoice::RTS;
@@ -394,7 +394,7 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
   CHECK(state.views[2].status.polesByCatmullClark == 0);
   CHECK(viewTitle(state.views[2].status) == "C2PS \xC2\xB7 2");
   // Valence 6: RTS refines it.
-  REQUIRE(app->loadMesh(fanWithOneRing(6), "valence-6 fan"));
+  REQUIRE(app->document().loadMesh(fanWithOneRing(6), "valence-6 fan"));
   app->waitUntilIdle();
   runFrames(*app, 1);
   CHECK(state.views[0].status.polesByScheme == 1);
@@ -403,7 +403,7 @@ TEST_CASE("viewer app: RTS and BPS at a valence-4 pole say in the title and stat
 
 TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a preset shows the whole model again") {
   auto app = makeHiddenApp(1280, 720);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   runFrames(*app, 1);
   ViewerState& state = app->state();
@@ -428,7 +428,7 @@ TEST_CASE("viewer app: adding views, hiding the panels or resizing re-frames, a 
 
 TEST_CASE("viewer app: F during a pole zoom frames the zoomed rings, and they are drawn") {
   auto app = makeHiddenApp(800, 600);
-  REQUIRE(app->loadMesh(shapes::globe(8, 5), "globe"));
+  REQUIRE(app->document().loadMesh(shapes::globe(8, 5), "globe"));
   ViewerState& state = app->state();
   state.views[0].level = 3;
   app->waitUntilIdle();
@@ -458,7 +458,7 @@ TEST_CASE("viewer app: F during a pole zoom frames the zoomed rings, and they ar
 
 TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON and back") {
   auto app = makeHiddenApp();
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   ViewerState& state = app->state();
   state.sharedCamera.yawDeg = 33.25;
@@ -479,7 +479,7 @@ TEST_CASE("viewer app: Ctrl+C / Ctrl+V copy the camera to the clipboard as JSON 
 TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and keeps the eye") {
   auto app = makeHiddenApp(600, 600);
   app->state().showPanels = false;
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   runFrames(*app, 2);
   const glm::dvec3 eye = app->state().sharedCamera.eye();
@@ -493,8 +493,8 @@ TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and
   CHECK(glm::length(camera.target - oldTarget) > 1e-3);
   // The new pivot is a surface point: inside the model's box (up to the limit surface's shrinkage).
   for (int axis = 0; axis < 3; ++axis) {
-    CHECK(camera.target[axis] >= app->modelMin()[axis] - 1e-3);
-    CHECK(camera.target[axis] <= app->modelMax()[axis] + 1e-3);
+    CHECK(camera.target[axis] >= app->document().modelMin()[axis] - 1e-3);
+    CHECK(camera.target[axis] <= app->document().modelMax()[axis] + 1e-3);
   }
   // Background under the cursor leaves the camera alone.
   const OrbitCamera before = camera;
@@ -506,7 +506,7 @@ TEST_CASE("viewer app: a double-click on the surface moves the pivot onto it and
 
 TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's limit") {
   auto app = makeHiddenApp();
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   app->waitUntilIdle();
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
   glfwSetKeyCallback(app->window(), key);
@@ -534,7 +534,7 @@ TEST_CASE("level keys: ] and [ step the level past 9 and stop at the model's lim
 
 TEST_CASE("viewer app: level steps reuse the view's refinement, the next level is made ahead, and what is shown equals a fresh build") {
   auto app = makeHiddenApp(640, 400, kDefaultFaceBudget, /*prepareNextLevel=*/true);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 2;
   state.linkLevels = false;
@@ -578,7 +578,7 @@ TEST_CASE("viewer app: level steps reuse the view's refinement, the next level i
 
 TEST_CASE("viewer app: a step back to the level shown before shows its surface again, nothing built; not across a scheme change") {
   auto app = makeHiddenApp(640, 400, kDefaultFaceBudget, /*prepareNextLevel=*/true);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.views[0].scheme = SchemeChoice::C2PS;
   auto step = [&](int level) {
@@ -614,7 +614,7 @@ TEST_CASE("viewer app: a step back to the level shown before shows its surface a
 
 TEST_CASE("viewer app: a pivot picked at a deep pole, seen from 1e-6 of the model, lands on the surface point there") {
   auto app = makeHiddenApp(480, 360);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 1;
   state.showPanels = false;
@@ -649,7 +649,7 @@ TEST_CASE("viewer app: a pivot picked at a deep pole, seen from 1e-6 of the mode
 
 TEST_CASE("pole inspector: open, it lists the model's pole and computes it for each scheme shown, in the background") {
   auto app = makeHiddenApp(900, 600);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 3;
   state.linkLevels = false;
@@ -686,7 +686,7 @@ TEST_CASE("pole inspector: open, it lists the model's pole and computes it for e
 
 TEST_CASE("point readout: Alt+click reads the surface point under the cursor without moving the camera") {
   auto app = makeHiddenApp(640, 480);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.views[0].scheme = SchemeChoice::C2PS;
   state.views[0].level = 3;
@@ -704,7 +704,7 @@ TEST_CASE("point readout: Alt+click reads the surface point under the cursor wit
 
 TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refines, Ctrl+Z brings the cube back") {
   auto app = makeHiddenApp(640, 480);
-  REQUIRE(app->loadMesh(shapes::cube(), "cube"));
+  REQUIRE(app->document().loadMesh(shapes::cube(), "cube"));
   ViewerState& state = app->state();
   state.views[0].scheme = SchemeChoice::C2PS;
   state.views[0].level = 2;
@@ -730,7 +730,7 @@ TEST_CASE("Fig. 14 from the viewer: a cube's corners become poles that C2PS refi
 
 TEST_CASE("Spectrum panel: RTS's Table 1 at the chosen valence, and v_k shown as the model (its net and eigenspline)") {
   auto app = makeHiddenApp(640, 480);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.spectrum.valence = 7;
   state.spectrum.open = true;  // as the panel marks it while the section is open
@@ -756,7 +756,7 @@ TEST_CASE("Spectrum panel: RTS's Table 1 at the chosen valence, and v_k shown as
 
 TEST_CASE("pole zoom: the views draw rings m..m+2 of the pole scaled by 2^m, and the whole surface again when it is off") {
   auto app = makeHiddenApp(800, 500);
-  app->loadDefaultModel();
+  app->document().loadDefaultModel();
   ViewerState& state = app->state();
   state.viewCount = 2;
   state.views[0].scheme = SchemeChoice::C2PS;
@@ -788,7 +788,7 @@ TEST_CASE("pole zoom: the views draw rings m..m+2 of the pole scaled by 2^m, and
 
 TEST_CASE("pole zoom: only the zoomed pole is marked, and Alt+click reads the surface itself at the point drawn") {
   auto app = makeHiddenApp(640, 480);
-  REQUIRE(app->loadMesh(shapes::globe(8, 6), "globe"));
+  REQUIRE(app->document().loadMesh(shapes::globe(8, 6), "globe"));
   ViewerState& state = app->state();
   state.views[0].scheme = SchemeChoice::C2PS;
   state.views[0].level = 7;
