@@ -46,14 +46,10 @@ std::vector<SchemeChoice> parseSchemes(const std::string& text) {
   return schemes;
 }
 
-// The shading modes in the order usage lists them.
-constexpr ShadingParams::Mode kShadeModes[] = {ShadingParams::Mode::Gaussian, ShadingParams::Mode::Mean,
-                                               ShadingParams::Mode::Highlight, ShadingParams::Mode::Reflection,
-                                               ShadingParams::Mode::Shaded};
-
+// The shading modes' names, from the shading-mode table (shading.h), for usage and errors.
 std::string shadeModeNames(const char* separator) {
   std::string names;
-  for (ShadingParams::Mode mode : kShadeModes) names += (names.empty() ? "" : separator) + std::string(shadeModeName(mode));
+  for (const ShadingModeInfo& info : shadingModes()) names += (names.empty() ? "" : separator) + std::string(info.name);
   return names;
 }
 
