@@ -45,13 +45,12 @@ BudgetRefusal budgetRefusal(const std::string& source, int level, bool requested
 
 // Faces cost kBytesPerUniformFace (uniform) or kBytesPerAdaptiveFace (level_limits.h, measured).
 size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
-                         bool adaptive, const PreparedBase* prepared) {
+                         bool adaptive) {
   const size_t budget = memoryBudgetBytes(requested);
   auto refusal = [&](const std::string& needed, int fits) {
     return budgetRefusal(source, options.levels, requested > 0, budget, needed, fits);
   };
-  // (refinesRadially checks the mesh for either path where nothing is prepared)
-  const bool radial = prepared ? refinesRadially(*prepared, options.scheme) : refinesRadially(mesh, options.scheme);
+  const bool radial = refinesRadially(mesh, options.scheme);  // (checks the mesh for either path)
   if (!adaptive) {
     const UniformLevelEstimate e = estimateUniformLevel(mesh, options, radial, budget / kBytesPerUniformFace);
     if (!e.fits) throw refusal("about " + gigabytes(double(e.faces) * kBytesPerUniformFace), e.deepestFitting);
@@ -59,8 +58,7 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, con
   }
   // The feature-adaptive estimate stops past the budget: "more than" the budget there.
   const size_t budgetFaces = budget / kBytesPerAdaptiveFace;
-  const std::vector<size_t> faces = prepared ? estimateAdaptiveFaceCounts(mesh, *prepared, options, budgetFaces)
-                                             : estimateAdaptiveFaceCounts(mesh, options, budgetFaces);
+  const std::vector<size_t> faces = estimateAdaptiveFaceCounts(mesh, options, budgetFaces);
   auto bytesAt = [&](int level) { return double(faces[size_t(level)]) * kBytesPerAdaptiveFace; };
   if (bytesAt(options.levels) > double(budget)) {
     int fits = options.levels;

@@ -8,7 +8,6 @@
 
 #include "core/mesh/input_error.h"
 #include "core/mesh/poly_mesh.h"
-#include "core/subdiv/refined_level.h"
 #include "core/subdiv/scheme.h"
 
 namespace polarview {
@@ -27,10 +26,9 @@ size_t memoryBudgetBytes(size_t requested);
 // Refuses at once (BudgetRefusal naming `source`), before any allocation, a level whose estimated
 // memory exceeds the budget (`requested` as memoryBudgetBytes takes it), and names the deepest level
 // that fits. Returns the budget as a face count for the refiner: uniform (Refinement) or
-// feature-adaptive (`adaptive`, AdaptiveRefinement), the latter from `prepared` when given (no
-// tables built again). [O(levels x mesh)]
+// feature-adaptive (`adaptive`, AdaptiveRefinement). [O(levels x mesh)]
 size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
-                         bool adaptive = false, const PreparedBase* prepared = nullptr);
+                         bool adaptive = false);
 
 // A uniform refinement's size against a face budget, before any allocation: the faces of the
 // finest level (estimateFaceCount; `radial` where RTS/BPS refine the whole mesh radially) and the

@@ -4,7 +4,6 @@
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
 #include "pipeline/memory_budget.h"
-#include "pipeline/model_analysis.h"
 
 namespace polarview {
 
@@ -23,17 +22,6 @@ size_t faceLimit(const PolyMesh& mesh, const std::string& source, const RefineRe
 }  // namespace
 
 PatchSet makePatchSet(const PolyMesh& mesh, const std::string& source, const RefineRequest& request) {
-  if (!request.uniform) {
-    // One analysis (tables, polar configurations) for the budget's estimate and the refinement. A
-    // mesh it cannot refine goes the plain way below, which throws the refiner's own error.
-    const ModelAnalysis analysis(mesh, source);
-    if (analysis.error().empty()) {
-      const PreparedBase base = analysis.preparedBase(mesh);
-      const size_t faces = request.faceBudget > 0 ? request.faceBudget
-                                                  : checkMemoryBudget(mesh, request.options, source, request.memoryBudget, true, &base);
-      return extractPatches(AdaptiveRefinement(mesh, base, request.options, source, 2 * faces));
-    }
-  }
   const bool adaptive = !request.uniform;
   const size_t maxFaces = faceLimit(mesh, source, request, adaptive) * (adaptive ? 2 : 1);
   return exportPatchSet(mesh, request.options, source, request.uniform, maxFaces);

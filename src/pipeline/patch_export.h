@@ -27,9 +27,8 @@ struct RefineRequest {
 
 // The patches of `request`: refused (BudgetRefusal, naming `source` and the deepest level that fits)
 // before any allocation when over the memory budget; the feature-adaptive path's hard limit is twice
-// its estimate (an extrapolation past level 6); the feature-adaptive path analyses the mesh once for
-// both (model_analysis.h). `export`, `continuity`, limit_patches() and the viewer's Export surface.
-// [O(output)]
+// its estimate (an extrapolation past level 6). `export`, `continuity`, limit_patches() and the
+// viewer's Export surface. [O(output)]
 PatchSet makePatchSet(const PolyMesh& mesh, const std::string& source, const RefineRequest& request);
 
 // The control mesh after options.levels uniform steps (a non-manifold input was refined split: its
