@@ -540,18 +540,25 @@ void drawNotice(const ViewerState& state) {
 
 void drawHelpWindow(ViewerState& state) {
   if (!state.showHelp) return;
+  // Within the window (a row a key, under its heading, is a long list): the list scrolls and the
+  // help column wraps, so the id column stays in view at any window size.
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
-  // At most the window's height (the list scrolls): a row a key, under its heading, is long.
-  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(ImGui::GetIO().DisplaySize.y - 60.0f, 200.0f)));
-  if (ImGui::Begin("Controls (?)", &state.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
+  ImGui::SetNextWindowSize(ImVec2(std::max(std::min(display.x - 400.0f, 1100.0f), 400.0f), std::max(display.y - 60.0f, 200.0f)),
+                           ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Controls (?)", &state.showHelp)) {
     // The mouse gestures, then every command with a help line: the command table's rows.
-    if (ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+    if (ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_ScrollY,
+                          ImVec2(0.0f, -ImGui::GetTextLineHeightWithSpacing()))) {
+      ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed);
+      ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch);
+      ImGui::TableSetupColumn("command", ImGuiTableColumnFlags_WidthFixed);
       auto row = [](const std::string& keys, const std::string& action) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);
         ImGui::TextUnformatted(keys.c_str());
         ImGui::TableSetColumnIndex(1);
-        ImGui::TextUnformatted(action.c_str());
+        ImGui::TextWrapped("%s", action.c_str());
       };
       auto heading = [](const std::string& title) {
         ImGui::TableNextRow();
