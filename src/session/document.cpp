@@ -94,6 +94,11 @@ DocumentResult Document::loadFile(const std::string& path, const std::string& na
 }
 
 DocumentResult Document::requestLoad(const std::string& path) {
+  // A file of the dropped list, however asked for (PageDown, a click on the list): the list marks it.
+  const std::vector<std::string>& list = file_.playlist;
+  const bool marked = file_.playlistIndex >= 0 && size_t(file_.playlistIndex) < list.size() && list[size_t(file_.playlistIndex)] == path;
+  if (const auto entry = std::find(list.begin(), list.end(), path); !marked && entry != list.end())
+    file_.playlistIndex = int(entry - list.begin());
   if (loadJob_.running()) {
     queuedLoad_ = path;  // started when the running one is done; its result is then dropped
   } else {
