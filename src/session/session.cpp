@@ -34,10 +34,11 @@ Session::Session(const SessionOptions& options, WindowServices& window)
 
 const BuiltSurface* Session::activeSurface() const { return surfaces_.shown(settings_.clampedActiveView()).get(); }
 
-void Session::apply(DocumentResult result) {
+bool Session::apply(DocumentResult result) {
   if (result.notice) notices_.post(std::move(*result.notice));
   if (result.pathField) settings_.file.pathField = std::move(*result.pathField);
   status_.file = document_.fileStatus();
+  return result.ok;
 }
 
 std::optional<EditCost> Session::updateModelAndSurfaces() {

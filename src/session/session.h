@@ -63,7 +63,8 @@ class Session {
   CommandQueue& commandQueue() { return commandQueue_; }
   void queueCommand(std::string_view text) { commandQueue_.push(text); }
   // Shows what a document operation reports: its notice, the File panel's path, the file status.
-  void apply(DocumentResult result);
+  // Returns whether the operation did what it was asked (DocumentResult::ok).
+  bool apply(DocumentResult result);
   Document& document() { return document_; }
   const Document& document() const { return document_; }
   SurfaceCache& surfaces() { return surfaces_; }
