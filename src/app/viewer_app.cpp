@@ -419,7 +419,7 @@ void ViewerApp::runFrame() {
   // This frame's keys and commands reach the surfaces before the panels are drawn, so the Stats
   // panel shows the status the views' titles show (it lagged them by a frame); what a panel
   // changes is taken up next frame.
-  session_.runCommands();
+  viewerCommands().runQueued(session_);
   session_.expireNotice();
   updateSurfaces();
   session_.updatePanels();

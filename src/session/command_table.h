@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "session/command_queue.h"
 #include "session/viewer_status.h"
 
 namespace polarview {
@@ -110,7 +111,8 @@ class CommandTable {
   // a bad argument, or disabled.
   bool run(std::string_view text, Session& session) const;
   bool run(const CommandCall& call, Session& session) const;
-  // Runs and clears the commands queued in the session (panels, keys, `view --do`), in order.
+  // Runs and clears the commands queued in the session (panels, keys, `view --do`), in order: once
+  // a frame, by the frame loop (the session does not call the table, which acts on it).
   void runQueued(Session& session) const;
   // The rows under their help headings, the headings in the order the table first uses them.
   std::vector<HelpSection> helpSections() const;
@@ -136,20 +138,5 @@ const CommandTable& viewerCommands();
 // `polarview help keys`: every row under its heading (id, keys, help), and a line per named
 // argument's choice ("shade.gaussian  G  Gaussian K").
 std::string commandListText();
-
-// Commands asked for by panels, keys and `view --do`, as text ("level 7", "camera.frame"), run in
-// order by the session once a frame (this frame's run, when asked before it).
-class CommandQueue {
- public:
-  void push(std::string_view text) { texts_.emplace_back(text); }
-  bool empty() const { return texts_.empty(); }
-  // The commands queued so far, in order; the queue is empty after.
-  std::vector<std::string> take() { return std::exchange(texts_, {}); }
-
- private:
-  std::vector<std::string> texts_;
-};
-
-inline void queueCommand(CommandQueue& queue, std::string_view text) { queue.push(text); }
 
 }  // namespace polarview

@@ -38,6 +38,7 @@ bool Session::apply(DocumentResult result) {
   if (result.notice) notices_.post(std::move(*result.notice));
   if (result.pathField) settings_.file.pathField = std::move(*result.pathField);
   status_.file = document_.fileStatus();
+  document_.reportEdit(activeSurface(), settings_, status_.edit);  // a failed save or export shows at once
   return result.ok;
 }
 

@@ -18,7 +18,7 @@
 #include "pipeline/level_limits.h"
 #include "pipeline/model.h"
 #include "pipeline/surface_build.h"
-#include "session/command_table.h"
+#include "session/command_queue.h"
 #include "session/document.h"
 #include "session/surface_cache.h"
 #include "session/notices.h"
@@ -62,7 +62,8 @@ class Session {
   // Commands asked for by panels, keys and `view --do`, run by runCommands.
   CommandQueue& commandQueue() { return commandQueue_; }
   void queueCommand(std::string_view text) { commandQueue_.push(text); }
-  // Shows what a document operation reports: its notice, the File panel's path, the file status.
+  // Shows what a document operation reports: its notice, the File panel's path, the file and edit
+  // status.
   // Returns whether the operation did what it was asked (DocumentResult::ok).
   bool apply(DocumentResult result);
   Document& document() { return document_; }
@@ -71,8 +72,6 @@ class Session {
   const SurfaceCache& surfaces() const { return surfaces_; }
   const Model& model() const { return document_.model(); }
 
-  // Runs the commands queued this frame (panels, keys, `view --do`) through the command table.
-  void runCommands() { viewerCommands().runQueued(*this); }
   // Finished loads and exports, then the surfaces (SurfaceCache::update): this frame's cost of
   // positions-only updates when points moved (the window adds its upload and records it).
   std::optional<EditCost> updateModelAndSurfaces();

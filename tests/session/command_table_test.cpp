@@ -215,11 +215,11 @@ TEST_CASE("command table: queued commands run once, in order") {
   session.queueCommand("shade gaussian");
   session.queueCommand("shade.highlight");
   session.queueCommand("screenshot");
-  session.runCommands();
+  viewerCommands().runQueued(session);
   CHECK(settings.shading.mode == ShadingParams::Mode::Highlight);
   CHECK(window.calls == std::vector<std::string>{"screenshot"});
   CHECK(session.commandQueue().empty());
-  session.runCommands();
+  viewerCommands().runQueued(session);
   CHECK(window.calls.size() == 1);
 }
 

@@ -19,6 +19,7 @@
 #include "core/mesh/constants.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
+#include "session/command_table.h"
 #include "session/session.h"
 #include "session/settings_rules.h"
 
@@ -39,7 +40,7 @@ struct FakeWindow : WindowServices {
 // The frame loop's session part, until nothing is left to do.
 void settle(Session& session) {
   do {
-    session.runCommands();
+    viewerCommands().runQueued(session);
     session.updateModelAndSurfaces();
     session.updatePanels();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
