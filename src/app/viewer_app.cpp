@@ -18,6 +18,7 @@
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
 #include "pipeline/surface_build.h"
+#include "session/command_table.h"
 
 namespace polarview {
 namespace {
