@@ -1,4 +1,6 @@
 #include "app/figure_command.h"
+
+#include "session/settings_rules.h"
 #include "app/command_args.h"
 
 #include <algorithm>
@@ -258,7 +260,9 @@ PolyMesh rowModel(const Row& row) {
 
 // Shows `mesh` in the app (which frames it); throws with the app's message when it is not usable.
 void showModel(ViewerApp& app, PolyMesh mesh, const std::string& name) {
-  if (!app.document().loadMesh(std::move(mesh), name)) throw std::runtime_error(app.state().file.error);
+  DocumentResult shown = app.document().loadMesh(std::move(mesh), name);
+  if (!shown.ok) throw std::runtime_error(app.document().fileStatus().error);
+  app.session().apply(std::move(shown));
 }
 
 // Refines every view, then renders them in their styles; throws a view's refusal or error, naming
@@ -266,10 +270,11 @@ void showModel(ViewerApp& app, PolyMesh mesh, const std::string& name) {
 RgbaImage renderViews(ViewerApp& app, int width, int height, int supersample) {
   app.runFrame();
   app.waitUntilIdle();
-  const ViewerState& state = app.state();
+  const ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
   const std::string& file = app.model().name;
-  for (int v = 0; v < state.viewCount; ++v) {
-    const std::string& message = state.views[size_t(v)].status.message;
+  for (int v = 0; v < settings.viewCount; ++v) {
+    const std::string& message = status.views[size_t(v)].message;
     if (!message.empty()) throw std::runtime_error(message.rfind(file + ":", 0) == 0 ? message : file + ": " + message);
   }
   return renderStyledImage(app, width, height, supersample, false);
@@ -284,11 +289,12 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
   const std::string name = row.eigenValence > 0 ? "RTS eigenvectors, valence " + std::to_string(row.eigenValence)
                                                 : assetPath(row.model);
   showModel(app, row.eigenValence > 0 ? eigenNet(row.eigenValence, 4, row.panels.front().c2psSteps) : model, name);
-  ViewerState& state = app.state();
-  state.viewCount = int(row.panels.size());
+  ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
+  settings.viewCount = int(row.panels.size());
   for (size_t v = 0; v < row.panels.size(); ++v) {
     const Panel& panel = row.panels[v];
-    View& view = state.views[v];
+    View& view = settings.views[v];
     const bool net = panel.draw == Draw::Net || panel.draw == Draw::RefinedNet;
     view.scheme = panel.scheme;
     // A refined net is the level-0 net of the refined mesh, drawn in the second pass below.
@@ -307,31 +313,31 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     display.poleMarkers = false;
     view.display = display;
   }
-  state.shading.colormap = figure.colormap;
+  settings.shading.colormap = figure.colormap;
   const ShadingParams viewerDefaults;
-  state.shading.highlightSpacing = figure.highlightSpacing > 0 ? figure.highlightSpacing : viewerDefaults.highlightSpacing;
-  state.shading.highlightWidth = figure.highlightWidth > 0 ? figure.highlightWidth : viewerDefaults.highlightWidth;
+  settings.shading.highlightSpacing = figure.highlightSpacing > 0 ? figure.highlightSpacing : viewerDefaults.highlightSpacing;
+  settings.shading.highlightWidth = figure.highlightWidth > 0 ? figure.highlightWidth : viewerDefaults.highlightWidth;
   const std::optional<float> typed = row.range ? row.range : *range;
-  state.colour.automatic = !typed;
-  if (typed) state.colour.typedRange = *typed;
+  settings.colour.automatic = !typed;
+  if (typed) settings.colour.typedRange = *typed;
 
   // The camera's direction, then framing on the net in the first view's shape.
-  const int height = figure.panelHeight + int(colourBarReserve(state, 1.0f));
+  const int height = figure.panelHeight + int(colourBarReserve(settings, 1.0f));
   const ScreenRect frame{0, 0, float(width), float(height)};
-  const std::vector<ScreenRect> rects = layoutViews(state.viewCount, frame, colourBarReserve(state, 1.0f));
-  state.sharedCamera.yawDeg = figure.yaw;
-  state.sharedCamera.pitchDeg = figure.pitch;
+  const std::vector<ScreenRect> rects = layoutViews(settings.viewCount, frame, colourBarReserve(settings, 1.0f));
+  settings.sharedCamera.yawDeg = figure.yaw;
+  settings.sharedCamera.pitchDeg = figure.pitch;
   app.frameModel(&rects.front());
-  state.sharedCamera.distance /= row.zoom;
-  if (row.atPole) state.sharedCamera.target = glm::dvec3(model.points.front());
-  const OrbitCamera camera = state.sharedCamera;
+  settings.sharedCamera.distance /= row.zoom;
+  if (row.atPole) settings.sharedCamera.target = glm::dvec3(model.points.front());
+  const OrbitCamera camera = settings.sharedCamera;
   if (row.eigenValence > 0) {
     showModel(app, model, name);
-    state.sharedCamera = camera;
+    settings.sharedCamera = camera;
   }
   RgbaImage image = renderViews(app, width, height, supersample);
-  if (figure.sharedRange && !*range && state.showsColourBar())
-    *range = float(std::max(-state.colourInterval().low, state.colourInterval().high));
+  if (figure.sharedRange && !*range && settings.showsColourBar())
+    *range = float(std::max(-colourInterval(settings, status).low, colourInterval(settings, status).high));
 
   // Panels with a model of their own, drawn through the same camera into their place: refined nets
   // (the model refined uniformly, core Refinement) and Fig. 1's eigenvector nets after the first.
@@ -340,15 +346,15 @@ RgbaImage renderRow(ViewerApp& app, const Figure& figure, const Row& row, int wi
     if (panel.draw == Draw::RefinedNet) {
       const Refinement refined(model, refineOptionsFor(panel.scheme, panel.level), row.model);
       showModel(app, refined.finest().mesh, assetPath(row.model) + " refined");
-      for (int w = 0; w < state.viewCount; ++w) state.views[size_t(w)].level = 0;  // only this panel is kept
-      state.views[v].level = kNetSurfaceLevel;
-      state.views[v].display->surface = true;
+      for (int w = 0; w < settings.viewCount; ++w) settings.views[size_t(w)].level = 0;  // only this panel is kept
+      settings.views[v].level = kNetSurfaceLevel;
+      settings.views[v].display->surface = true;
     } else if (panel.eigenvector >= 0 && v > 0) {
       showModel(app, eigenNet(row.eigenValence, panel.eigenvector, panel.c2psSteps), name);
     } else {
       continue;
     }
-    state.sharedCamera = camera;
+    settings.sharedCamera = camera;
     copyImageRect(image, renderViews(app, width, height, supersample), rects[v]);
   }
   return image;
@@ -418,10 +424,10 @@ int renderFigures(FigureRequest& r) {
   options.prepareNextLevel = false;  // still pictures: no level steps to come
   ViewerApp app(options);
   std::string error;
-  app.document().loadDefaultModel();
+  app.session().apply(app.document().loadDefaultModel());
   if (!app.init(&error)) throw std::runtime_error(error);
-  app.state().showPanels = false;
-  app.state().linkCameras = true;
+  app.settings().showPanels = false;
+  app.settings().linkCameras = true;
 
   std::ostringstream gallery;
   gallery << "# Gallery\n\nThe paper's figures as polarview draws them, written by `polarview figure all -o "

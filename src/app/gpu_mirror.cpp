@@ -1,6 +1,8 @@
 // The window's GPU copy of the session's surfaces (gpu_mirror.h).
 #include "app/gpu_mirror.h"
 
+#include "session/settings_rules.h"
+
 #include "pipeline/stopwatch.h"
 #include "pipeline/model.h"
 #include "pipeline/surface_build.h"
@@ -75,14 +77,14 @@ std::unique_ptr<PatchRenderer> GpuMirror::makeRenderer() const {
   return renderer;
 }
 
-GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, const ViewerState& state) {
+GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, const ViewerSettings& settings) {
   GpuSlot& slot = views_[size_t(v)].shown;
   // A level step on the same hierarchy keeps the patches both levels share on the GPU.
   const auto start = std::chrono::steady_clock::now();
-  const int zoom = surface.poles.empty() ? -1 : state.poleInspector.zoomRing;
+  const int zoom = surface.poles.empty() ? -1 : settings.poleInspector.zoomRing;
   if (zoom >= 0) {
     // Pole zoom: the rings of the inspected pole, scaled in double (a new upload: no stable prefix).
-    const int pole = std::clamp(state.poleInspector.pole, 0, int(surface.poles.size()) - 1);
+    const int pole = std::clamp(settings.poleInspector.pole, 0, int(surface.poles.size()) - 1);
     slot.renderer->setPatches(zoomAboutPole(surface.patches, pole, zoom, 3, surface.poles[size_t(pole)]));
   } else {
     slot.renderer->setPatches(surface.patches, surface.stamp, surface.regularCount);
@@ -91,7 +93,8 @@ GpuMirror::UploadCost GpuMirror::upload(int v, const BuiltSurface& surface, cons
   return {millisecondsSince(start), slot.renderer->lastReusedPatches()};
 }
 
-double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model, double firstPixelsHigh) {
+double GpuMirror::sync(int v, SurfaceCache& surfaces, const ViewerSettings& settings, ViewerStatus& status,
+                       const Model& model, double firstPixelsHigh) {
   GpuView& gpu = views_[size_t(v)];
   const std::shared_ptr<const BuiltSurface>& shown = surfaces.shown(v);
   const std::shared_ptr<const BuiltSurface>& parked = surfaces.parked(v);
@@ -117,16 +120,16 @@ double GpuMirror::sync(int v, SurfaceCache& surfaces, ViewerState& state, const 
     gpu.uploadMs = millisecondsSince(swapStart);
     gpu.keptPatches = shown->patches.size();
   }
-  const int zoom = !shown || shown->poles.empty() ? -1 : state.poleInspector.zoomRing;
+  const int zoom = !shown || shown->poles.empty() ? -1 : settings.poleInspector.zoomRing;
   if (!shown || (gpu.shown.surface == shown && gpu.shown.zoom == zoom)) return 0.0;
   // What the level of detail draws of it goes up (all of it where it picks the surface's level).
   std::shared_ptr<const BuiltSurface> drawn;
   const double pixelsHigh = gpu.pixelsHigh > 0.0 ? gpu.pixelsHigh : firstPixelsHigh;
   if (pixelsHigh > 0.0 && zoom < 0) {
-    const int wanted = levelOfDetail(v, *shown, pixelsHigh, state, model);
+    const int wanted = levelOfDetail(v, *shown, pixelsHigh, settings, status, model);
     if (wanted < shown->patchLevel) drawn = drawnSurface(*shown, model, wanted);
   }
-  const UploadCost cost = upload(v, drawn ? *drawn : *shown, state);
+  const UploadCost cost = upload(v, drawn ? *drawn : *shown, settings);
   gpu.uploadMs = cost.milliseconds;  // the Stats panel's: a later level-of-detail switch does not count
   gpu.keptPatches = surfaces.refreshed(v) ? 0 : cost.keptPatches;  // moved points: no patch stayed
   gpu.shown.surface = shown;
@@ -147,44 +150,46 @@ void GpuMirror::report(int v, ViewStatus& status) const {
   }
 }
 
-int GpuMirror::levelOfDetail(int v, const BuiltSurface& shown, double pixelsHigh, const ViewerState& state,
+int GpuMirror::levelOfDetail(int v, const BuiltSurface& shown, double pixelsHigh, const ViewerSettings& settings,
+                             const ViewerStatus& status,
                              const Model& model) const {
   // While a drag moves points every frame the full set is drawn (each new set would be assembled anew).
-  if (!levelOfDetail_.enabled || state.edit.dragging || shown.key.points != model.points) return shown.patchLevel;
-  return levelToDraw(shown.detail, shown.patchLevel, state.camera(v), pixelsHigh, levelOfDetail_.pixels);
+  if (!levelOfDetail_.enabled || status.edit.dragging || shown.key.points != model.points) return shown.patchLevel;
+  return levelToDraw(shown.detail, shown.patchLevel, settings.camera(v), pixelsHigh, levelOfDetail_.pixels);
 }
 
-void GpuMirror::updateDrawnLevel(int v, double pixelsHigh, ViewerState& state, const Model& model) {
+void GpuMirror::updateDrawnLevel(int v, double pixelsHigh, const ViewerSettings& settings, ViewerStatus& status,
+                                 const Model& model) {
   GpuSlot& slot = views_[size_t(v)].shown;
   const BuiltSurface* shown = slot.surface.get();
   if (!shown || slot.zoom >= 0) return;
-  const int wanted = levelOfDetail(v, *shown, pixelsHigh, state, model);
+  const int wanted = levelOfDetail(v, *shown, pixelsHigh, settings, status, model);
   const int drawnNow = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
   if (wanted != drawnNow) {
     std::shared_ptr<const BuiltSurface> drawn = wanted < shown->patchLevel ? drawnSurface(*shown, model, wanted) : nullptr;
     if (wanted >= shown->patchLevel || drawn) {  // else not available now (an edit is applied): keep
-      upload(v, drawn ? *drawn : *shown, state);
+      upload(v, drawn ? *drawn : *shown, settings);
       slot.drawn = std::move(drawn);
     }
   }
-  ViewStatus& status = state.views[size_t(v)].status;
-  status.drawnLevel = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
-  status.drawnPatches = int(slot.drawn ? slot.drawn->patches.size() : shown->patches.size());
+  ViewStatus& reported = status.views[size_t(v)];
+  reported.drawnLevel = slot.drawn ? slot.drawn->patchLevel : shown->patchLevel;
+  reported.drawnPatches = int(slot.drawn ? slot.drawn->patches.size() : shown->patches.size());
 }
 
 std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight,
-                                        ViewerState& state, const Document& document) {
+                                        const ViewerSettings& settings, ViewerStatus& status, const Document& document) {
   const glm::dvec3 centre = 0.5 * (document.modelMin() + document.modelMax());
   const double radius = 0.5 * glm::length(document.modelMax() - document.modelMin());
-  ShadingParams shading = state.shading;
+  ShadingParams shading = settings.shading;
   std::vector<PoleMarker> markers;
   for (size_t v = 0; v < rects.size(); ++v) {
     const GpuSlot& gpu = views_[v].shown;
     if (!gpu.surface) continue;
     // Each view in its own style where it has one (render --shade a,b; figures), else the shared one.
-    shading.mode = state.viewShade(int(v));
+    shading.mode = settings.viewShade(int(v));
     // A pole zoom by s = 2^m scales K by 1 / s^2 and H by 1 / s: the range alike, so colours keep values.
-    shading.range = state.colourInterval();
+    shading.range = colourInterval(settings, status);
     if (gpu.zoom >= 0) {
       const float s = std::ldexp(1.0f, gpu.zoom);
       const float scale = shading.mode == ShadingParams::Mode::Gaussian ? 1.0f / (s * s) : 1.0f / s;
@@ -192,13 +197,13 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     }
     // Poles are marked by rings in the overlay, not by the renderer's filled discs (which read
     // like a curvature feature right at the pole).
-    DisplayFlags display = state.viewDisplay(int(v));
+    DisplayFlags display = settings.viewDisplay(int(v));
     const bool markPoles = display.poleMarkers;
     display.poleMarkers = false;
     const ScreenRect& r = rects[v];
-    const OrbitCamera& camera = state.camera(int(v));
+    const OrbitCamera& camera = settings.camera(int(v));
     views_[v].pixelsHigh = double(r.h) * pixelScale;
-    updateDrawnLevel(int(v), views_[v].pixelsHigh, state, document.model());
+    updateDrawnLevel(int(v), views_[v].pixelsHigh, settings, status, document.model());
     ViewParams params;
     params.viewport = glm::ivec4(int(r.x * pixelScale), framebufferHeight - int((r.y + r.h) * pixelScale),
                                  int(r.w * pixelScale), int(r.h * pixelScale));
@@ -212,16 +217,16 @@ std::vector<PoleMarker> GpuMirror::draw(const std::vector<ScreenRect>& rects, fl
     if (netAfter) first.controlNet = false;
     gpu.renderer->draw(params, shading, first);
     const DrawStats& drew = gpu.renderer->lastDrawStats();
-    ViewStatus& status = state.views[v].status;
-    status.drawnPrimitives = int(drew.drawnPrimitives);
-    status.visiblePatches = int(drew.drawnPatches);
-    status.culledPatches = int(drew.culledPatches);
-    status.drawMs = drew.wallMilliseconds;
+    ViewStatus& reported = status.views[v];
+    reported.drawnPrimitives = int(drew.drawnPrimitives);
+    reported.visiblePatches = int(drew.drawnPatches);
+    reported.culledPatches = int(drew.culledPatches);
+    reported.drawMs = drew.wallMilliseconds;
     // A pole zoom draws that pole's rings scaled about it: its marker stays, the others are not there.
     if (markPoles) {
       std::vector<Point> poles = gpu.surface->poles;
       if (gpu.zoom >= 0 && !poles.empty())
-        poles = {poles[size_t(std::clamp(state.poleInspector.pole, 0, int(poles.size()) - 1))]};
+        poles = {poles[size_t(std::clamp(settings.poleInspector.pole, 0, int(poles.size()) - 1))]};
       visiblePoles(poles, params, camera.eye(), 0.02 * radius, pixelScale, framebufferHeight, &markers);
     }
     if (netAfter) gpu.renderer->drawControlNetOver(params);

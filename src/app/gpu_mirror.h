@@ -41,13 +41,14 @@ class GpuMirror {
   // A new surface goes up as the level of detail would draw it at the view's camera and last size
   // (`firstPixelsHigh` before its first draw): its shallower set where deeper rings are below a
   // pixel (the first C2PS 12 build uploads the 3,800-8,000 patches drawn, not all 246,000).
-  double sync(int v, SurfaceCache& surfaces, ViewerState& state, const Model& model, double firstPixelsHigh);
+  double sync(int v, SurfaceCache& surfaces, const ViewerSettings& settings, ViewerStatus& status, const Model& model,
+              double firstPixelsHigh);
   // The GPU's part of view v's status: upload time, patches kept, pole zoom, level drawn.
   void report(int v, ViewStatus& status) const;
   // Draws the views into the bound framebuffer; returns the pole markers the surfaces leave visible
   // (overlay coordinates: framebuffer pixels / pixelScale, y down).
   std::vector<PoleMarker> draw(const std::vector<ScreenRect>& rects, float pixelScale, int framebufferHeight,
-                               ViewerState& state, const Document& document);
+                               const ViewerSettings& settings, ViewerStatus& status, const Document& document);
   // View v's renderer of the shown surface (what is on the GPU), for tests.
   const PatchRenderer& renderer(int v) const { return *views_[size_t(v)].shown.renderer; }
 
@@ -71,13 +72,14 @@ class GpuMirror {
   };
   std::unique_ptr<PatchRenderer> makeRenderer() const;
   // Uploads `surface`'s patches to view v's shown renderer (a pole zoom: its zoomed rings).
-  UploadCost upload(int v, const BuiltSurface& surface, const ViewerState& state);
+  UploadCost upload(int v, const BuiltSurface& surface, const ViewerSettings& settings);
   // Draws the level levelToDraw picks for the view's camera (viewport `pixelsHigh` high): switches
   // `drawn` when it changes. [O(features) a frame; O(patches of the set) on a switch]
-  void updateDrawnLevel(int v, double pixelsHigh, ViewerState& state, const Model& model);
+  void updateDrawnLevel(int v, double pixelsHigh, const ViewerSettings& settings, ViewerStatus& status, const Model& model);
   // The level levelToDraw picks for `shown` in view v now (its level when the level of detail is off,
   // a drag is on or the points moved).
-  int levelOfDetail(int v, const BuiltSurface& shown, double pixelsHigh, const ViewerState& state, const Model& model) const;
+  int levelOfDetail(int v, const BuiltSurface& shown, double pixelsHigh, const ViewerSettings& settings,
+                    const ViewerStatus& status, const Model& model) const;
 
   std::shared_ptr<ShaderLibrary> shaders_;
   LevelOfDetail levelOfDetail_;

@@ -18,6 +18,7 @@
 #include "render/patch_renderer.h"
 #include "render/shader_library.h"
 #include "pipeline/surface_build.h"
+#include "session/command_table.h"
 
 namespace polarview {
 namespace {
@@ -33,7 +34,8 @@ constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.t
 ViewerApp::ViewerApp(const ViewerOptions& options)
     : options_(options),
       session_(SessionOptions{options.faceBudget, options.prepareNextLevel, options.persistRecent}, *this),
-      state_(session_.state()) {}
+      settings_(session_.settings()),
+      status_(session_.status()) {}
 
 ViewerApp::~ViewerApp() {
   // Jobs finish first (their futures block), then GL objects go while the context still exists.
@@ -128,14 +130,14 @@ bool ViewerApp::init(std::string* error) {
     if (error) *error = e.what();
     return false;
   }
-  state_.glInfo = currentGlVersion();
+  status_.glInfo = currentGlVersion();
   for (const std::string& command : options_.scriptedCommands) {
     std::string refusal;
     if (!viewerCommands().parse(command, &refusal)) {
       if (error) *error = refusal + " (polarview help keys lists the commands)";
       return false;
     }
-    queueCommand(state_, command);
+    session_.queueCommand(command);
   }
   if (options_.persistRecent) document().loadRecent();
   return true;
@@ -170,23 +172,23 @@ void ViewerApp::replayInputEvents() {
 
 void ViewerApp::onDrop(GLFWwindow* window, int count, const char** paths) {
   auto* app = static_cast<ViewerApp*>(glfwGetWindowUserPointer(window));
-  if (app) app->document().dropFiles(count, paths);
+  if (app) app->session_.apply(app->document().dropFiles(count, paths));
 }
 
 ScreenRect ViewerApp::viewArea() const {
   int width = options_.width, height = options_.height;
   if (window_) glfwGetWindowSize(window_, &width, &height);
-  const float panel = std::min(panelColumnWidth(state_), float(width) * 0.5f);
+  const float panel = std::min(panelColumnWidth(settings_), float(width) * 0.5f);
   return ScreenRect{panel, 0, std::max(float(width) - panel, 1.0f), std::max(float(height), 1.0f)};
 }
 
 std::vector<glm::dvec3> ViewerApp::zoomedRingPoints() const {
   // The control points of the zoomed rings (their hull holds the surface) of the first view that
   // has them, as GpuMirror::upload zooms them; empty without a pole zoom.
-  const PoleInspectorSettings& inspector = state_.poleInspector;
+  const PoleInspectorSettings& inspector = settings_.poleInspector;
   std::vector<glm::dvec3> points;
   if (inspector.zoomRing < 0) return points;
-  for (int v = 0; v < state_.viewCount && points.empty(); ++v) {
+  for (int v = 0; v < settings_.viewCount && points.empty(); ++v) {
     const BuiltSurface* shown = session_.surfaces().shown(v).get();
     if (!shown || shown->poles.empty()) continue;
     const int pole = std::clamp(inspector.pole, 0, int(shown->poles.size()) - 1);
@@ -201,7 +203,7 @@ std::vector<glm::dvec3> ViewerApp::zoomedRingPoints() const {
 
 void ViewerApp::frameModel(const ScreenRect* viewRect) {
   const ScreenRect view =
-      viewRect ? *viewRect : layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f)).front();
+      viewRect ? *viewRect : layoutViews(settings_.viewCount, viewArea(), colourBarReserve(settings_, 1.0f)).front();
   const double aspect = double(view.w) / std::max(double(view.h), 1.0);
   // Keep the model out from under the view's title (a strip at the top; symmetric, so centred).
   const double heightFraction = std::max(0.5, 1.0 - 2.0 * double(viewTitleHeight(1.0f)) / std::max(double(view.h), 1.0));
@@ -212,14 +214,14 @@ void ViewerApp::frameModel(const ScreenRect* viewRect) {
     else if (model().mesh) camera.framePoints(model().mesh->points.data(), model().mesh->points.size(), aspect, heightFraction);
     else camera.frame(document().modelMin(), document().modelMax(), aspect);
   };
-  if (state_.linkCameras) {
-    frameCamera(state_.sharedCamera);
+  if (settings_.linkCameras) {
+    frameCamera(settings_.sharedCamera);
   } else {
-    for (View& view : state_.views) frameCamera(view.camera);
+    for (View& view : settings_.views) frameCamera(view.camera);
   }
   framedOnce_ = true;
-  framedViewCount_ = state_.viewCount;
-  framedWithPanels_ = state_.showPanels;
+  framedViewCount_ = settings_.viewCount;
+  framedWithPanels_ = settings_.showPanels;
   const ScreenRect area = viewArea();
   framedAreaSize_ = {area.w, area.h};
 }
@@ -238,15 +240,15 @@ std::string ViewerApp::clipboard() {
 void ViewerApp::updateSurfaces() {
   std::optional<EditCost> cost = session_.updateModelAndSurfaces();
   // A view not drawn yet uploads for its height in the window (GpuMirror::sync).
-  const std::vector<ScreenRect> rects = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f));
+  const std::vector<ScreenRect> rects = layoutViews(settings_.viewCount, viewArea(), colourBarReserve(settings_, 1.0f));
   for (int v = 0; v < kMaxViews; ++v) {
     const double firstHigh = v < int(rects.size()) ? double(rects[size_t(v)].h) : 0.0;
-    const double uploadMs = gpu_->sync(v, session_.surfaces(), state_, document().model(), firstHigh);
+    const double uploadMs = gpu_->sync(v, session_.surfaces(), settings_, status_, document().model(), firstHigh);
     if (cost && session_.surfaces().refreshed(v)) {  // the upload is part of an edit's cost
       cost->uploadMs += uploadMs;
       cost->totalMs += uploadMs;
     }
-    gpu_->report(v, state_.views[size_t(v)].status);
+    gpu_->report(v, status_.views[size_t(v)]);
   }
   if (cost) document().recordEditCost(*cost);
 }
@@ -266,7 +268,7 @@ ViewTransform ViewerApp::viewTransform(int v, const ScreenRect& rect) const {
   // The matrices drawViews gives the renderer (near and far from the model's box).
   const glm::dvec3 centre = 0.5 * (document().modelMin() + document().modelMax());
   const double radius = 0.5 * glm::length(document().modelMax() - document().modelMin());
-  const OrbitCamera& camera = state_.camera(v);
+  const OrbitCamera& camera = settings_.camera(v);
   ViewTransform transform;
   transform.rect = rect;
   // The view matrix in double (OrbitCamera::viewMatrix's lookAt before its cast to float), so a
@@ -278,7 +280,7 @@ ViewTransform ViewerApp::viewTransform(int v, const ScreenRect& rect) const {
 }
 
 ViewTransform ViewerApp::viewTransform(int v) const {
-  const std::vector<ScreenRect> rects = layoutViews(state_.viewCount, viewArea(), colourBarReserve(state_, 1.0f));
+  const std::vector<ScreenRect> rects = layoutViews(settings_.viewCount, viewArea(), colourBarReserve(settings_, 1.0f));
   return viewTransform(v, rects[size_t(std::clamp(v, 0, int(rects.size()) - 1))]);
 }
 
@@ -287,7 +289,7 @@ bool ViewerApp::beginVertexDrag(int v, const ScreenRect& rect, float x, float y)
   const ViewTransform transform = viewTransform(v, rect);
   const int vertex = pickVertex(document().editor().points(), transform, x, y);
   if (vertex < 0) return false;
-  return document().editor().beginDrag(vertex, transform, state_.camera(v).forward(), x, y);
+  return document().editor().beginDrag(vertex, transform, settings_.camera(v).forward(), x, y);
 }
 
 void ViewerApp::applyVertexDrag(const VertexDragEvent& drag, const std::vector<ScreenRect>& rects) {
@@ -299,7 +301,7 @@ void ViewerApp::applyVertexDrag(const VertexDragEvent& drag, const std::vector<S
 
 std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>& rects) const {
   std::vector<VertexMarker> markers;
-  if (!state_.display.controlNet || !model().mesh) return markers;
+  if (!settings_.display.controlNet || !model().mesh) return markers;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (size_t v = 0; v < rects.size(); ++v) {
     if (!session_.surfaces().shown(int(v))) continue;
@@ -310,15 +312,15 @@ std::vector<VertexMarker> ViewerApp::vertexMarkers(const std::vector<ScreenRect>
       if (at && rects[v].contains(float(at->x), float(at->y))) markers.push_back({float(at->x), float(at->y), selected});
     };
     mark(document().editor().selected(), true);
-    if (rects[v].contains(mouse.x, mouse.y)) mark(state_.edit.hoveredVertex, false);
+    if (rects[v].contains(mouse.x, mouse.y)) mark(status_.edit.hoveredVertex, false);
   }
   return markers;
 }
 
 std::vector<PointMarker> ViewerApp::pointMarkers(const std::vector<ScreenRect>& rects) const {
   // The Point panel's surface point where its view shows it now (the camera may have moved since).
-  const ReadoutSettings& readout = state_.readout;
-  if (!readout.valid || readout.view >= int(rects.size()) || state_.poleInspector.zoomRing >= 0) return {};
+  const ReadoutStatus& readout = status_.readout;
+  if (!readout.valid || readout.view >= int(rects.size()) || settings_.poleInspector.zoomRing >= 0) return {};
   const ScreenRect& rect = rects[size_t(readout.view)];
   const std::optional<glm::dvec3> at = viewTransform(readout.view, rect).project(readout.readout.point.position);
   if (!at || !rect.contains(float(at->x), float(at->y))) return {};
@@ -333,12 +335,12 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
   int x = int(pick.x * pixelScale), y = framebufferHeight - 1 - int(pick.y * pixelScale);
   const float depth = readDepthAt(x, y);
   if (depth >= 1.0f) {
-    if (pick.zoomNotches != 0.0f) zoomTowardsCursor(state_, rects[size_t(pick.view)], pick.view, pick.zoomNotches);
-    else state_.notice = "no surface under the cursor";
+    if (pick.zoomNotches != 0.0f) zoomTowardsCursor(settings_, rects[size_t(pick.view)], pick.view, pick.zoomNotches);
+    else session_.notices().post(info("no surface under the cursor"));
     return;
   }
   const ScreenRect& r = rects[size_t(pick.view)];
-  OrbitCamera& camera = state_.camera(pick.view);
+  OrbitCamera& camera = settings_.camera(pick.view);
   glm::dvec3 centre = 0.5 * (document().modelMin() + document().modelMax());
   double radius = 0.5 * glm::length(document().modelMax() - document().modelMin());
   const glm::dvec4 viewport(r.x * pixelScale, float(framebufferHeight) - (r.y + r.h) * pixelScale, r.w * pixelScale,
@@ -357,21 +359,21 @@ void ViewerApp::resolvePivot(const PivotPick& pick, const std::vector<ScreenRect
     glm::dvec3 onSurface = world;
     // A pole zoom draws the rings scaled by 2^m about the pole (zoomAboutPole): the point picked is
     // that of the surface itself scaled back.
-    const int zoom = state_.poleInspector.zoomRing;
+    const int zoom = settings_.poleInspector.zoomRing;
     if (zoom >= 0 && !shown.poles.empty()) {
-      const Point& pole = shown.poles[size_t(std::clamp(state_.poleInspector.pole, 0, int(shown.poles.size()) - 1))];
+      const Point& pole = shown.poles[size_t(std::clamp(settings_.poleInspector.pole, 0, int(shown.poles.size()) - 1))];
       onSurface = pole + std::ldexp(1.0, -zoom) * (world - pole);
       tolerance = std::ldexp(tolerance, -zoom);
     }
     if (const auto readout = readSurfacePoint(shown.patches, onSurface, tolerance)) {
-      state_.readout = ReadoutSettings{true, pick.view, *readout, readout->text()};
-      state_.notice = "K " + std::to_string(readout->point.gaussian) + ", H " + std::to_string(readout->point.mean) +
-                      " (panel Point; Copy)";
+      status_.readout = ReadoutStatus{true, pick.view, *readout, readout->text()};
+      session_.notices().post(info("K " + std::to_string(readout->point.gaussian) + ", H " + std::to_string(readout->point.mean) +
+                                   " (panel Point; Copy)"));
     }
   }
   if (!pick.movePivot) return;
   camera.setPivotKeepingEye(glm::dvec3(world));
-  if (!pick.readout) state_.notice = "pivot set";
+  if (!pick.readout) session_.notices().post(info("pivot set"));
 }
 
 void ViewerApp::runFrame() {
@@ -399,16 +401,17 @@ void ViewerApp::runFrame() {
   glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
   float pixelScale = io.DisplaySize.x > 0 ? float(fbWidth) / io.DisplaySize.x : 1.0f;
   ScreenRect frame = viewArea();
-  std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
-  const InputResult input = input_.handle(state_, rects, [this, &rects](int v, float x, float y) {
+  std::vector<ScreenRect> rects = layoutViews(settings_.viewCount, frame, colourBarReserve(settings_, 1.0f));
+  PanelContext panels{settings_, status_, session_.notices(), session_.commandQueue()};
+  const InputResult input = input_.handle(panels, rects, [this, &rects](int v, float x, float y) {
     return beginVertexDrag(v, rects[size_t(v)], x, y);
   });
   if (input.vertexDrag) applyVertexDrag(*input.vertexDrag, rects);
   if (input.deselect) document().editor().select(-1);
   // The vertex a click would pick: ringed while the net is shown and nothing is dragged.
-  state_.edit.hoveredVertex = -1;
-  if (state_.display.controlNet && !document().editor().dragging() && input.hoveredView >= 0 && model().mesh) {
-    state_.edit.hoveredVertex = pickVertex(document().editor().points(), viewTransform(input.hoveredView, rects[size_t(input.hoveredView)]),
+  status_.edit.hoveredVertex = -1;
+  if (settings_.display.controlNet && !document().editor().dragging() && input.hoveredView >= 0 && model().mesh) {
+    status_.edit.hoveredVertex = pickVertex(document().editor().points(), viewTransform(input.hoveredView, rects[size_t(input.hoveredView)]),
                                            io.MousePos.x, io.MousePos.y);
   }
   std::optional<PivotPick> pick = input.pivot;
@@ -417,17 +420,17 @@ void ViewerApp::runFrame() {
   // This frame's keys and commands reach the surfaces before the panels are drawn, so the Stats
   // panel shows the status the views' titles show (it lagged them by a frame); what a panel
   // changes is taken up next frame.
-  session_.runCommands();
+  viewerCommands().runQueued(session_);
   session_.expireNotice();
   updateSurfaces();
   session_.updatePanels();
-  drawViewerPanels(state_);
+  drawViewerPanels(panels);
   frame = viewArea();
-  rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, 1.0f));
+  rects = layoutViews(settings_.viewCount, frame, colourBarReserve(settings_, 1.0f));
   // More or fewer views, or the panels shown or hidden, change every view's shape: re-frame.
   // (a resized window too: its views change shape)
   const ScreenRect area = viewArea();
-  if (framedOnce_ && (state_.viewCount != framedViewCount_ || state_.showPanels != framedWithPanels_ ||
+  if (framedOnce_ && (settings_.viewCount != framedViewCount_ || settings_.showPanels != framedWithPanels_ ||
                       std::pair{area.w, area.h} != framedAreaSize_))
     frameModel();
 
@@ -435,16 +438,16 @@ void ViewerApp::runFrame() {
   clearFramebuffer(fbWidth, fbHeight, kBackground);
   std::vector<PoleMarker> poles;
   if (fbWidth > 0 && fbHeight > 0) {
-    poles = gpu_->draw(rects, pixelScale, fbHeight, state_, document());
+    poles = gpu_->draw(rects, pixelScale, fbHeight, settings_, status_, document());
     if (pick) resolvePivot(*pick, rects, pixelScale, fbHeight);
   }
   lastPoleMarkers_ = poles;
-  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), state_, rects, frame, 1.0f, poles,
+  drawViewOverlay(ImGui::GetBackgroundDrawList(), ImGui::GetFont(), settings_, status_, rects, frame, 1.0f, poles,
                   vertexMarkers(rects), pointMarkers(rects));
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   finishGpuWork();  // frame time includes the GPU work (not the swap's wait for vsync)
-  state_.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+  status_.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
   if (!windowCapturePath_.empty()) {
     try {
       writePngAtomic(windowCapturePath_, readFramebuffer(0, 0, fbWidth, fbHeight));
@@ -472,15 +475,15 @@ RgbaImage ViewerApp::renderImage(int width, int height, int supersample, bool tr
   // Same layout as on screen, in render pixels, without the panels.
   const float scale = float(target.supersample());
   ScreenRect frame{0, 0, float(target.renderWidth()), float(target.renderHeight())};
-  std::vector<ScreenRect> rects = layoutViews(state_.viewCount, frame, colourBarReserve(state_, scale));
-  std::vector<PoleMarker> poles = gpu_->draw(rects, 1.0f, target.renderHeight(), state_, document());
+  std::vector<ScreenRect> rects = layoutViews(settings_.viewCount, frame, colourBarReserve(settings_, scale));
+  std::vector<PoleMarker> poles = gpu_->draw(rects, 1.0f, target.renderHeight(), settings_, status_, document());
 
   // Labels and colour bar: a private ImGui draw list rendered by the OpenGL3 backend.
   ImDrawList list(ImGui::GetDrawListSharedData());
   list._ResetForNewFrame();
   list.PushTextureID(ImGui::GetIO().Fonts->TexID);
   list.PushClipRect(ImVec2(0, 0), ImVec2(frame.w, frame.h));
-  drawViewOverlay(&list, ImGui::GetIO().Fonts->Fonts[0], state_, rects, frame, scale, poles);
+  drawViewOverlay(&list, ImGui::GetIO().Fonts->Fonts[0], settings_, status_, rects, frame, scale, poles);
   ImDrawList* lists[] = {&list};
   ImDrawData data;
   data.Valid = true;
@@ -517,18 +520,18 @@ std::string ViewerApp::saveScreenshot() {
     const ScreenRect area = viewArea();
     const double pixelScale = windowWidth > 0 ? double(width) / windowWidth : 1.0;
     RgbaImage image = renderImage(std::max(int(std::lround(area.w * pixelScale)), 1),
-                                  std::max(int(std::lround(area.h * pixelScale)), 1), state_.screenshot.supersample,
-                                  state_.screenshot.transparent);
+                                  std::max(int(std::lround(area.h * pixelScale)), 1), settings_.screenshot.supersample,
+                                  settings_.screenshot.transparent);
     writePngAtomic(path, image);
   } catch (const std::exception& e) {
-    state_.notice = std::string("screenshot failed: ") + e.what();
+    session_.notices().post(error(std::string("screenshot failed: ") + e.what()));
     return {};
   }
   std::string absolute = fs::absolute(path).string();
   std::printf("%s\n", absolute.c_str());
   std::fflush(stdout);
-  state_.screenshot.lastPath = absolute;
-  state_.notice = "wrote " + absolute;
+  status_.lastScreenshot = absolute;
+  session_.notices().post(info("wrote " + absolute));
   return absolute;
 }
 

@@ -74,8 +74,13 @@ class ViewerApp : public WindowServices {
   bool init(std::string* error);
 
   // The session and its parts (what the window shows; tests and commands drive it).
-  ViewerState& state() { return session_.state(); }
-  const ViewerState& state() const { return session_.state(); }
+  Session& session() { return session_; }
+  ViewerSettings& settings() { return session_.settings(); }
+  const ViewerSettings& settings() const { return session_.settings(); }
+  ViewerStatus& status() { return session_.status(); }
+  const ViewerStatus& status() const { return session_.status(); }
+  Notices& notices() { return session_.notices(); }
+  const Notices& notices() const { return session_.notices(); }
   Document& document() { return session_.document(); }
   const Document& document() const { return session_.document(); }
   // What the views show (the document's operations: document(), document.h).
@@ -147,7 +152,8 @@ class ViewerApp : public WindowServices {
 
   ViewerOptions options_;
   Session session_;
-  ViewerState& state_;  // session_'s
+  ViewerSettings& settings_;  // session_'s
+  ViewerStatus& status_;      // session_'s: the window adds the GPU's part, frame time, screenshots, picks
   ViewerInput input_;
   InputEventQueue inputEvents_;
   GLFWwindow* window_ = nullptr;

@@ -14,6 +14,8 @@
 #include "session/command_ids.h"
 #include "session/command_table.h"
 #include "app/viewer_commands.h"
+
+#include "session/settings_rules.h"
 #include "app/command_args.h"
 #include "core/mesh/constants.h"
 #include "app/viewer_styles.h"
@@ -86,25 +88,26 @@ OptionRow sizeRow(int* width, int* height, const std::string& help) {
 }
 
 // Puts one view per scheme, all at `level`.
-void setViews(ViewerState& state, const std::vector<SchemeChoice>& schemes, int level) {
-  state.viewCount = int(schemes.size());
+void setViews(ViewerSettings& settings, const std::vector<SchemeChoice>& schemes, int level) {
+  settings.viewCount = int(schemes.size());
   for (size_t v = 0; v < schemes.size(); ++v) {
-    state.views[v].scheme = schemes[v];
-    state.views[v].level = level;
+    settings.views[v].scheme = schemes[v];
+    settings.views[v].level = level;
   }
 }
 
 // Prints the first refusal or refinement error of the visible views (a view that does not show
 // what was asked for); true if there was one.
 bool reportViewErrors(const ViewerApp& app) {
-  const ViewerState& state = app.state();
-  for (int v = 0; v < state.viewCount; ++v) {
+  const ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
+  for (int v = 0; v < settings.viewCount; ++v) {
     const BuiltSurface* shown = app.shownSurface(v);
-    const View& wanted = state.views[size_t(v)];
+    const View& wanted = settings.views[size_t(v)];
     bool showsWanted = shown && shown->key.model == app.modelGeneration() && shown->key.scheme == wanted.scheme &&
                        shown->key.level == wanted.level;
-    if (!showsWanted || !state.views[size_t(v)].status.message.empty()) {
-      std::string message = state.views[size_t(v)].status.message;
+    if (!showsWanted || !status.views[size_t(v)].message.empty()) {
+      std::string message = status.views[size_t(v)].message;
       if (message.empty()) message = "view " + std::to_string(v + 1) + " could not be built";
       // Name the model file, as every input error does (refinement errors already start with it).
       const std::string& file = app.model().name;
@@ -140,15 +143,16 @@ std::string editStatsJson(const std::vector<EditCost>& costs) {
 // with `edit` "edit":{...} (editStatsJson).
 std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& frameMs, int width, int height,
                            const std::vector<EditCost>* edit = nullptr, const std::string& levelSteps = {}) {
-  const ViewerState& state = app.state();
+  const ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
   std::ostringstream json;
-  json << "{\"frames\":" << frameMs.size() << ",\"views\":" << state.viewCount << ",\"schemes\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(state.views[size_t(v)].scheme) << '"';
-  json << "],\"level\":" << state.views[0].level << ",\"size\":[" << width << "," << height << "]";
+  json << "{\"frames\":" << frameMs.size() << ",\"views\":" << settings.viewCount << ",\"schemes\":[";
+  for (int v = 0; v < settings.viewCount; ++v) json << (v ? "," : "") << '"' << schemeChoiceCliName(settings.views[size_t(v)].scheme) << '"';
+  json << "],\"level\":" << settings.views[0].level << ",\"size\":[" << width << "," << height << "]";
   // Per view, one number of its status: "KEY":[view 0, view 1, ...].
   const auto perView = [&](const char* key, int ViewStatus::*field) {
     json << ",\"" << key << "\":[";
-    for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << state.views[size_t(v)].status.*field;
+    for (int v = 0; v < settings.viewCount; ++v) json << (v ? "," : "") << status.views[size_t(v)].*field;
     json << "]";
   };
   perView("patches", &ViewStatus::patchCount);
@@ -162,7 +166,7 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   perView("culled_patches", &ViewStatus::culledPatches);
   // Per view the last frame's draw of it, finished, ms.
   json << ",\"view_ms\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << std::round(state.views[size_t(v)].status.drawMs * 100.0) / 100.0;
+  for (int v = 0; v < settings.viewCount; ++v) json << (v ? "," : "") << std::round(status.views[size_t(v)].drawMs * 100.0) / 100.0;
   json << "]";
   // Poles the scheme refined and poles left to Catmull-Clark (RTS / BPS below valence 5).
   perView("poles_by_scheme", &ViewStatus::polesByScheme);
@@ -170,8 +174,8 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   // The deepest level the view's memory budget admits for its scheme on this model.
   perView("deepest_levels", &ViewStatus::deepestLevel);
   json << ",\"titles\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(state.views[size_t(v)].status) << '"';
-  const ColourInterval range = state.colourInterval();
+  for (int v = 0; v < settings.viewCount; ++v) json << (v ? "," : "") << '"' << viewTitle(status.views[size_t(v)]) << '"';
+  const ColourInterval range = colourInterval(settings, status);
   const double medianMs = median(frameMs);
   const double minMs = frameMs.empty() ? 0.0 : *std::min_element(frameMs.begin(), frameMs.end());
   const double maxMs = frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end());
@@ -179,8 +183,8 @@ std::string frameStatsJson(const ViewerApp& app, const std::vector<double>& fram
   for (double number : {range.low, range.high, medianMs, minMs, maxMs})
     if (!std::isfinite(number))
       throw InputError(app.model().name, 0, "the statistics have a non-finite number: the input's coordinates are too large, too small or degenerate");
-  json << "],\"shade\":\"" << shadeModeName(state.shading.mode) << "\",\"shades\":[";
-  for (int v = 0; v < state.viewCount; ++v) json << (v ? "," : "") << '"' << shadeModeName(state.viewShade(v)) << '"';
+  json << "],\"shade\":\"" << shadeModeName(settings.shading.mode) << "\",\"shades\":[";
+  for (int v = 0; v < settings.viewCount; ++v) json << (v ? "," : "") << '"' << shadeModeName(settings.viewShade(v)) << '"';
   // "range": the symmetric R (the larger side); "one_sided": the range does not hold zero.
   json << "],\"range\":" << std::max(-range.low, range.high) << ",\"range_min\":" << range.low
        << ",\"range_max\":" << range.high << ",\"one_sided\":" << (range.oneSided() ? "true" : "false");
@@ -312,14 +316,15 @@ void checkRenderRequest(const RenderRequest& r) {
 // Loads the model (the default one when `input` is empty), then opens the window: a bad file
 // fails with its one-line error before any window or output exists.
 bool openModelAndWindow(ViewerApp& app, const std::string& input) {
-  if (input.empty()) {
-    app.document().loadDefaultModel();
-  } else if (!app.document().loadFile(input)) {
-    std::cerr << "polarview: " << app.state().file.error << "\n";
+  DocumentResult loaded = input.empty() ? app.document().loadDefaultModel() : app.document().loadFile(input);
+  const bool failed = !input.empty() && !loaded.ok;
+  app.session().apply(std::move(loaded));
+  if (failed) {
+    std::cerr << "polarview: " << app.status().file.error << "\n";
     return false;
   }
   // The reader's findings, as the other commands print them (cli_commands.cpp, loadInput).
-  for (const std::string& warning : app.state().file.warnings) std::cerr << "polarview: warning: " << input << ": " << warning << "\n";
+  for (const std::string& warning : app.status().file.warnings) std::cerr << "polarview: warning: " << input << ": " << warning << "\n";
   std::string error;
   if (!app.init(&error)) {
     std::cerr << "polarview: " << error << "\n";
@@ -331,9 +336,9 @@ bool openModelAndWindow(ViewerApp& app, const std::string& input) {
 // Each visible view whose level is past the deepest its scheme makes on this model within the
 // budget takes that deepest level, said on stderr ("... within the memory budget (`why`)").
 void clampToDeepestLevels(ViewerApp& app, const std::string& input, size_t faceBudget, const std::string& why) {
-  ViewerState& state = app.state();
-  for (int v = 0; v < state.viewCount; ++v) {
-    View& view = state.views[size_t(v)];
+  ViewerSettings& settings = app.settings();
+  for (int v = 0; v < settings.viewCount; ++v) {
+    View& view = settings.views[size_t(v)];
     const int deepest = deepestLevel(app.model(), view.scheme, faceBudget);
     if (deepest >= view.level) continue;
     std::cerr << "polarview: " << input << ": " << schemeChoiceLabel(view.scheme) << " at level " << deepest
@@ -346,43 +351,43 @@ void clampToDeepestLevels(ViewerApp& app, const std::string& input, size_t faceB
 // makes on this model within the budget (said on stderr): a level asked for and over the budget is
 // refused when the views are built.
 void setRenderViews(ViewerApp& app, const RenderRequest& r, size_t faceBudget) {
-  setViews(app.state(), r.schemes, r.level.value_or(kDefaultRenderLevel));
+  setViews(app.settings(), r.schemes, r.level.value_or(kDefaultRenderLevel));
   if (!r.level) clampToDeepestLevels(app, r.input, faceBudget, "the default is " + std::to_string(kDefaultRenderLevel));
 }
 
 // Shading, colour range and what is drawn, as asked.
-void setRenderStyle(ViewerState& state, const RenderRequest& r) {
-  state.linkCameras = true;
-  state.showPanels = false;
-  state.shading.mode = r.shades.front();
+void setRenderStyle(ViewerSettings& settings, const RenderRequest& r) {
+  settings.linkCameras = true;
+  settings.showPanels = false;
+  settings.shading.mode = r.shades.front();
   if (r.shades.size() > 1)
-    for (size_t v = 0; v < r.shades.size(); ++v) state.views[v].shade = r.shades[v];
-  if (r.colormap) state.shading.colormap = *r.colormap;
-  if (r.percentile) state.colour.quantile = *r.percentile / 100.0f;
-  if (r.range || r.rangeApart) state.colour.automatic = false;
-  if (r.range) state.colour.typedRange = *r.range;
-  if (r.rangeApart) state.colour.typedApart = *r.rangeApart;
-  if (r.rangeApart || r.asymmetric) state.colour.symmetric = false;
-  state.display.surface = r.surface;
+    for (size_t v = 0; v < r.shades.size(); ++v) settings.views[v].shade = r.shades[v];
+  if (r.colormap) settings.shading.colormap = *r.colormap;
+  if (r.percentile) settings.colour.quantile = *r.percentile / 100.0f;
+  if (r.range || r.rangeApart) settings.colour.automatic = false;
+  if (r.range) settings.colour.typedRange = *r.range;
+  if (r.rangeApart) settings.colour.typedApart = *r.rangeApart;
+  if (r.rangeApart || r.asymmetric) settings.colour.symmetric = false;
+  settings.display.surface = r.surface;
   // Net only: --no-surface shows the control net unless wireframe or boundaries stand in for it.
-  state.display.controlNet = r.controlNet || (!r.surface && !r.wireframe && !r.boundaries);
-  state.display.patchBoundaries = r.boundaries;
-  state.display.wireframe = r.wireframe;
-  state.display.poleMarkers = r.poles;
+  settings.display.controlNet = r.controlNet || (!r.surface && !r.wireframe && !r.boundaries);
+  settings.display.patchBoundaries = r.boundaries;
+  settings.display.wireframe = r.wireframe;
+  settings.display.poleMarkers = r.poles;
 }
 
 // The camera: framed on the model in the first view's shape (after --preset's direction), or --camera.
 void setRenderCamera(ViewerApp& app, const RenderRequest& r) {
-  ViewerState& state = app.state();
+  ViewerSettings& settings = app.settings();
   ScreenRect imageRect{0, 0, float(r.width), float(r.height)};
-  ScreenRect firstView = layoutViews(state.viewCount, imageRect, colourBarReserve(state, 1.0f)).front();
-  if (r.preset) state.sharedCamera.applyPreset(*r.preset);  // the direction, then framing along it
+  ScreenRect firstView = layoutViews(settings.viewCount, imageRect, colourBarReserve(settings, 1.0f)).front();
+  if (r.preset) settings.sharedCamera.applyPreset(*r.preset);  // the direction, then framing along it
   app.frameModel(&firstView);
   if (r.cameraJson.empty()) return;
   std::string error;
-  std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, state.sharedCamera, &error);
+  std::optional<OrbitCamera> camera = cameraFromJson(r.cameraJson, settings.sharedCamera, &error);
   if (!camera) throw UsageError("--camera: " + error);
-  state.sharedCamera = *camera;
+  settings.sharedCamera = *camera;
 }
 
 // Renders the image (--time: N times), then writes it, or prints the frame times.
@@ -428,7 +433,7 @@ int renderWithApp(RenderRequest& r) {
     return 2;
   }
   setRenderViews(app, r, options.faceBudget);
-  setRenderStyle(app.state(), r);
+  setRenderStyle(app.settings(), r);
   setRenderCamera(app, r);
   // Refine every view (a refused level or a refinement error is bad input: exit 1, no file).
   app.runFrame();
@@ -494,11 +499,12 @@ void checkViewRequest(const ViewRequest& r) {
 // stayed on the GPU, and the first frame's time (upload and draw).
 // As JSON: [{"from":..,"to":..,"scheme":..,"refine_ms":..,...}, ...].
 std::string runLevelSteps(ViewerApp& app, int level) {
-  ViewerState& state = app.state();
+  ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
   std::ostringstream json;
   json << "[";
-  int from = state.views[0].level;
-  const SchemeChoice scheme = state.views[0].scheme;
+  int from = settings.views[0].level;
+  const SchemeChoice scheme = settings.views[0].scheme;
   // The scheme toggled to: Catmull-Clark, or C2PS from Catmull-Clark (its first visit is the
   // first build of the C2PS level).
   const SchemeChoice other = scheme == SchemeChoice::CatmullClark ? SchemeChoice::C2PS : SchemeChoice::CatmullClark;
@@ -509,19 +515,19 @@ std::string runLevelSteps(ViewerApp& app, int level) {
   const Step steps[] = {{level, scheme}, {level - 1, scheme}, {level, scheme}, {level, other},
                         {level, scheme}, {level, other},     {level, scheme}};
   for (size_t k = 0; k < std::size(steps); ++k) {
-    requestLevel(state, steps[k].level);
-    state.views[0].scheme = steps[k].scheme;
+    requestLevel(settings, status, app.notices(), steps[k].level);
+    settings.views[0].scheme = steps[k].scheme;
     app.runFrame();  // starts the job
     app.waitUntilIdle();
     app.runFrame();  // shows it: upload + draw
-    const ViewStatus& status = state.views[0].status;
+    const ViewStatus& shown = app.status().views[0];
     char entry[480];
     std::snprintf(entry, sizeof entry,
                   "%s{\"from\":%d,\"to\":%d,\"scheme\":\"%s\",\"shown\":%d,\"refine_ms\":%.2f,\"patches_ms\":%.2f,"
                   "\"samples_ms\":%.2f,\"upload_ms\":%.2f,\"cpu_ms\":%.2f,\"kept_patches\":%d,\"patches\":%d,\"frame_ms\":%.2f}",
-                  k ? "," : "", from, steps[k].level, schemeChoiceCliName(steps[k].scheme), status.shownLevel, status.refineOnlyMs,
-                  status.patchesMs, status.samplesMs, status.uploadMs, status.refineMs + status.uploadMs, status.keptPatches,
-                  status.patchCount, state.frameMs);
+                  k ? "," : "", from, steps[k].level, schemeChoiceCliName(steps[k].scheme), shown.shownLevel, shown.refineOnlyMs,
+                  shown.patchesMs, shown.samplesMs, shown.uploadMs, shown.refineMs + shown.uploadMs, shown.keptPatches,
+                  shown.patchCount, status.frameMs);
     json << entry;
     from = steps[k].level;
   }
@@ -553,8 +559,9 @@ int centralVertex(const ViewerApp& app) {
 // (pick, drag in the view plane, positions-only update of every view, upload); returns the frame
 // times. The vertex goes round a circle of radius 12 pixels and is released where it ends.
 std::vector<double> runEditFrames(ViewerApp& app, int frames) {
-  ViewerState& state = app.state();
-  state.display.controlNet = true;
+  ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
+  settings.display.controlNet = true;
   app.runFrame();
   const int vertex = centralVertex(app);
   if (vertex < 0) throw std::runtime_error("view --edit: no control vertex on screen to drag");
@@ -572,7 +579,7 @@ std::vector<double> runEditFrames(ViewerApp& app, int frames) {
     y = y0 - 12.0f * float(1.0 - std::cos(angle));
     app.overridePointer(PointerState{x, y, true});
     app.runFrame();
-    frameMs.push_back(state.frameMs);
+    frameMs.push_back(status.frameMs);
   }
   app.overridePointer(PointerState{x, y, false});  // released where it is: one undo step
   app.runFrame();
@@ -592,19 +599,20 @@ int viewWithApp(ViewRequest& r) {
   options.vsync = r.frames == 0;
   options.scriptedCommands = r.commands;
   ViewerApp app(options);
-  ViewerState& state = app.state();
+  ViewerSettings& settings = app.settings();
+  const ViewerStatus& status = app.status();
   if (!openModelAndWindow(app, r.input)) return 1;
   // --level-steps starts one level above the one it steps to.
   const std::optional<int> firstLevel = r.levelSteps ? std::optional<int>(*r.level - 1) : r.level;
-  if (!r.schemes.empty()) setViews(state, r.schemes, firstLevel.value_or(state.views[0].level));
-  else if (firstLevel) requestLevel(state, *firstLevel);
+  if (!r.schemes.empty()) setViews(settings, r.schemes, firstLevel.value_or(settings.views[0].level));
+  else if (firstLevel) requestLevel(settings, status, app.notices(), *firstLevel);
   // A window shows the deepest level a view can make rather than an empty view (render refuses).
   if (firstLevel) clampToDeepestLevels(app, r.input.empty() ? "default model" : r.input, options.faceBudget,
                                        "--level " + std::to_string(*firstLevel) + " asked");
   app.frameModel();
-  if (r.shade) state.shading.mode = *r.shade;
-  state.showHelp = r.showHelp;
-  if (r.inspectPoles) queueCommand(state, command_ids::kPolesInspect);
+  if (r.shade) settings.shading.mode = *r.shade;
+  settings.showHelp = r.showHelp;
+  if (r.inspectPoles) app.session().queueCommand(command_ids::kPolesInspect);
 
   if (r.frames == 0) {
     while (!app.shouldClose()) app.runFrame();
@@ -623,7 +631,7 @@ int viewWithApp(ViewRequest& r) {
   } else {
     for (int f = 0; f < r.frames && !app.shouldClose(); ++f) {
       app.runFrame();
-      frameMs.push_back(state.frameMs);
+      frameMs.push_back(status.frameMs);
     }
   }
   if (!r.capture.empty()) {

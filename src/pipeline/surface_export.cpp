@@ -32,7 +32,7 @@ ExportStats writeBv(std::ostream& out, const PatchSet& set, const ExportSettings
 // [SECTION] tessellations (PLY, glb): the core writes, the colours come from here
 
 // The viewer's default automatic range takes the 10th and 90th percentiles of K by area
-// (ColourRangeSettings::quantile, session/viewer_state.h).
+// (ColourRangeSettings::quantile, session/viewer_settings.h).
 constexpr float kColourQuantile = 0.90f;
 
 // K per vertex with the area it stands for (a third of its triangles'), end caps left out where

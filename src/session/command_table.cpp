@@ -8,6 +8,7 @@
 
 #include "session/keys.h"
 #include "session/session.h"
+#include "session/settings_rules.h"
 
 namespace polarview {
 namespace {
@@ -42,17 +43,23 @@ class Rows {
     return push(std::move(id), std::move(label), std::move(chords), std::move(help), {},
                 [run = std::move(run)](Session& session, int) { run(session); });
   }
-  // A row that sets a state field or flips a flag.
-  Command& state(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
-                 std::function<void(ViewerState&)> set) {
+  // A row acting on the document: the session shows what the operation reports.
+  Command& document(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                    std::function<DocumentResult(Session&)> run) {
     return add(std::move(id), std::move(label), std::move(chords), std::move(help),
-               [set = std::move(set)](Session& session) { set(session.state()); });
+               [run = std::move(run)](Session& session) { session.apply(run(session)); });
   }
-  // A row taking `argument`, acting on the state with its value.
+  // A row that sets a setting or flips a flag.
+  Command& setting(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
+                   std::function<void(ViewerSettings&)> set) {
+    return add(std::move(id), std::move(label), std::move(chords), std::move(help),
+               [set = std::move(set)](Session& session) { set(session.settings()); });
+  }
+  // A row taking `argument`, acting on the session with its value.
   Command& withArgument(std::string id, std::string label, std::vector<KeyChord> chords, std::string help,
-                        CommandArgument argument, std::function<void(ViewerState&, int)> set) {
+                        CommandArgument argument, std::function<void(Session&, int)> run) {
     return push(std::move(id), std::move(label), std::move(chords), std::move(help), std::move(argument),
-                [set = std::move(set)](Session& session, int value) { set(session.state(), value); });
+                std::move(run));
   }
 
  private:
@@ -68,58 +75,58 @@ class Rows {
 };
 
 void addFileCommands(Rows rows) {
-  rows.add("file.open", "Open (Enter)", {},
+  rows.document("file.open", "Open (Enter)", {},
            "open the path typed in the File panel (Enter there; the model stays on failure)",
-           [](Session& s) { s.document().requestLoad(s.state().file.pathField); });
-  rows.add("file.reload", "Reload", {key('R', kControl)}, "reload the model file",
-           [](Session& s) { s.document().reloadModel(); });
-  rows.add("file.default", "Default model", {}, "the built-in default model",
-           [](Session& s) { s.document().loadDefaultModel(); });
-  rows.add("file.previous-model", "Previous model", {}, "the model the last Open / Default model / drop replaced",
-           [](Session& s) { s.document().undoModelReplacement(); });
+           [](Session& s) { return s.document().requestLoad(s.settings().file.pathField); });
+  rows.document("file.reload", "Reload", {key('R', kControl)}, "reload the model file",
+           [](Session& s) { return s.document().reloadModel(); });
+  rows.document("file.default", "Default model", {}, "the built-in default model",
+           [](Session& s) { return s.document().loadDefaultModel(); });
+  rows.document("file.previous-model", "Previous model", {}, "the model the last Open / Default model / drop replaced",
+           [](Session& s) { return s.document().undoModelReplacement(); });
   // PageDown / PageUp step through dropped files when there are several, else they step the level.
-  auto hasPlaylist = [](const ViewerState& state) { return state.file.playlist.size() > 1; };
+  auto hasPlaylist = [](const ViewerStatus& status) { return status.file.playlist.size() > 1; };
   for (const int step : {1, -1}) {
     const bool next = step > 0;
     rows.add(next ? "file.next" : "file.previous", next ? "Next file" : "Previous file",
              {key(next ? keys::kPageDown : keys::kPageUp)},
              std::string(next ? "next" : "previous") + " of several dropped files (else the key steps the level)",
-             [step](Session& s) { s.document().openPlaylistEntry(s.state().file.playlistIndex + step); })
+             [step](Session& s) { return s.document().openPlaylistEntry(s.status().file.playlistIndex + step); })
         .enabled = hasPlaylist;
   }
 }
 
 void addEditCommands(Rows rows) {
-  rows.add("edit.undo", "Undo", {key('Z', kControl)},
+  rows.document("edit.undo", "Undo", {key('Z', kControl)},
            "undo the last vertex drag; with none left, back to the previous model (after Open, Default model, a drop)",
-           [](Session& s) { s.document().undo(); });
-  rows.add("edit.redo", "Redo", {key('Z', kControl | kShift), key('Y', kControl)}, "redo the vertex drag undone last",
-           [](Session& s) { s.document().redo(); });
-  rows.add("edit.reset", "Reset", {}, "every control vertex back where the file had it",
-           [](Session& s) { s.document().resetEdits(); });
-  rows.add("edit.save", "Save OBJ", {key('S', kControl)},
+           [](Session& s) { return s.document().undo(); });
+  rows.document("edit.redo", "Redo", {key('Z', kControl | kShift), key('Y', kControl)}, "redo the vertex drag undone last",
+           [](Session& s) { return s.document().redo(); });
+  rows.document("edit.reset", "Reset", {}, "every control vertex back where the file had it",
+           [](Session& s) { return s.document().resetEdits(); });
+  rows.document("edit.save", "Save OBJ", {key('S', kControl)},
            "save the edited control mesh as OBJ (path in the Edit panel)",
-           [](Session& s) { s.document().saveEditedMesh(); });
-  rows.add("export.surface", "Export surface", {},
+           [](Session& s) { return s.document().saveEditedMesh(s.settings().edit); });
+  rows.document("export.surface", "Export surface", {},
            "the active view's limit surface (.bv; the format from the Edit panel's path)",
-           [](Session& s) { s.document().startExport(SurfaceExport::LimitSurface, s.activeSurface()); });
-  rows.add("export.refined-obj", "Export refined OBJ", {},
+           [](Session& s) { return s.document().startExport(SurfaceExport::LimitSurface, s.activeSurface(), s.settings()); });
+  rows.document("export.refined-obj", "Export refined OBJ", {},
            "the active view's control mesh refined to its level, as OBJ",
-           [](Session& s) { s.document().startExport(SurfaceExport::RefinedMesh, s.activeSurface()); });
+           [](Session& s) { return s.document().startExport(SurfaceExport::RefinedMesh, s.activeSurface(), s.settings()); });
 }
 
 void addModelCommands(Rows rows) {
-  rows.add("model.ev-to-polar", "EVs to poles (Fig. 14a)", {},
+  rows.document("model.ev-to-polar", "EVs to poles (Fig. 14a)", {},
            "extraordinary vertices become polar configurations (paper Fig. 14a)",
-           [](Session& s) { s.document().convertToPolar(false); });
-  rows.add("model.ev-to-polar-pentagons", "with pentagons (14c)", {},
+           [](Session& s) { return s.document().convertToPolar(false); });
+  rows.document("model.ev-to-polar-pentagons", "with pentagons (14c)", {},
            "extraordinary vertices become poles ringed by pentagons (Fig. 14c)",
-           [](Session& s) { s.document().convertToPolar(true); });
-  rows.add("model.ngon-to-fan", "N-gons to triangle fans", {},
+           [](Session& s) { return s.document().convertToPolar(true); });
+  rows.document("model.ngon-to-fan", "N-gons to triangle fans", {},
            "faces of 5 or more sides become triangle fans around their centroids",
-           [](Session& s) { s.document().convertToFans(); });
-  rows.add("model.eigenvector", "Show v_k as the model", {}, "the Spectrum panel's eigenvector net as the model",
-           [](Session& s) { s.document().showEigenvector(); });
+           [](Session& s) { return s.document().convertToFans(); });
+  rows.document("model.eigenvector", "Show v_k as the model", {}, "the Spectrum panel's eigenvector net as the model",
+           [](Session& s) { return s.document().showEigenvector(s.settings().spectrum); });
 }
 
 void addCameraCommands(Rows rows) {
@@ -132,30 +139,30 @@ void addCameraCommands(Rows rows) {
     rows.add(std::string("camera.") + viewPresetName(preset), label, {key(keys::kF1 + i)},
              std::string("view preset ") + viewPresetName(preset) + " (the model framed again)", [preset](Session& s) {
                // A preset turns the cameras and shows the whole model again (from a close-up too).
-               for (int v = 0; v < kMaxViews; ++v) s.state().camera(v).applyPreset(preset);
+               for (int v = 0; v < kMaxViews; ++v) s.settings().camera(v).applyPreset(preset);
                s.window().frameModel();
              });
   }
   rows.add("camera.copy", "Copy", {key('C', kControl)}, "copy the camera as JSON", [](Session& s) {
-    ViewerState& state = s.state();
-    const std::string json = cameraToJson(state.camera(state.activeView));
+    const ViewerSettings& settings = s.settings();
+    const std::string json = cameraToJson(settings.camera(settings.activeView));
     s.window().setClipboard(json);
-    state.notice = "camera copied: " + json;
+    s.notices().post(info("camera copied: " + json));
   });
   rows.add("camera.paste", "Paste", {key('V', kControl)}, "paste a camera copied as JSON", [](Session& s) {
-    OrbitCamera& active = s.state().camera(s.state().activeView);
-    std::string error;
-    if (std::optional<OrbitCamera> camera = cameraFromJson(s.window().clipboard(), active, &error)) {
+    OrbitCamera& active = s.settings().camera(s.settings().activeView);
+    std::string why;
+    if (std::optional<OrbitCamera> camera = cameraFromJson(s.window().clipboard(), active, &why)) {
       active = *camera;
-      s.state().notice = "camera pasted";
+      s.notices().post(info("camera pasted"));
     } else {
-      s.state().notice = error;
+      s.notices().post(error(why));
     }
   });
-  rows.state("camera.orthographic", "Orthographic", {key('O')}, "orthographic / perspective projection",
-             [](ViewerState& state) { setOrthographic(state, !state.camera(state.activeView).orthographic); });
-  rows.state("camera.link", "Link cameras", {key('K')}, "link / unlink the cameras of the views",
-             [](ViewerState& state) { state.linkCameras = !state.linkCameras; });
+  rows.setting("camera.orthographic", "Orthographic", {key('O')}, "orthographic / perspective projection",
+             [](ViewerSettings& settings) { setOrthographic(settings, !settings.camera(settings.activeView).orthographic); });
+  rows.setting("camera.link", "Link cameras", {key('K')}, "link / unlink the cameras of the views",
+             [](ViewerSettings& settings) { settings.linkCameras = !settings.linkCameras; });
 }
 
 void addLevelCommands(Rows rows) {
@@ -168,25 +175,28 @@ void addLevelCommands(Rows rows) {
   rows.withArgument("level", "Level", std::move(digits),
                     "subdivision level N (all views when levels are linked, else the active one)",
                     CommandArgument{"N", 0, kMaxLevel, {}},
-                    [](ViewerState& state, int level) { requestLevel(state, level); });
+                    [](Session& s, int level) { requestLevel(s.settings(), s.status(), s.notices(), level); });
   // Levels past 9 (feature-adaptive refinement goes to 24): one level deeper / shallower.
   for (const int step : {1, -1}) {
     const bool deeper = step > 0;
-    rows.state(deeper ? "level.deeper" : "level.shallower", deeper ? "Deeper" : "Shallower",
-               deeper ? std::vector<KeyChord>{key(']'), key(keys::kPageUp), key(keys::kKeypadAdd)}
-                      : std::vector<KeyChord>{key('['), key(keys::kPageDown), key(keys::kKeypadSubtract)},
-               deeper ? "one level deeper (past 9 too, to the model's limit)" : "one level shallower",
-               [step](ViewerState& state) { requestLevel(state, state.views[size_t(state.activeView)].level + step); });
+    rows.add(deeper ? "level.deeper" : "level.shallower", deeper ? "Deeper" : "Shallower",
+             deeper ? std::vector<KeyChord>{key(']'), key(keys::kPageUp), key(keys::kKeypadAdd)}
+                    : std::vector<KeyChord>{key('['), key(keys::kPageDown), key(keys::kKeypadSubtract)},
+             deeper ? "one level deeper (past 9 too, to the model's limit)" : "one level shallower",
+             [step](Session& s) {
+               ViewerSettings& settings = s.settings();
+               requestLevel(settings, s.status(), s.notices(), settings.views[size_t(settings.activeView)].level + step);
+             });
   }
 }
 
 void addViewCommands(Rows rows) {
-  rows.state("scheme.next", "Next scheme", {key('S')}, "next scheme of the active view (" + schemeLabels() + ")",
-             [](ViewerState& state) { cycleScheme(state, state.activeView, 1); });
-  rows.state("scheme.previous", "Previous scheme", {key('S', kShift)}, "previous scheme of the active view",
-             [](ViewerState& state) { cycleScheme(state, state.activeView, -1); });
-  rows.state("views.cycle", "Views", {key('V')}, "number of views 1..4",
-             [](ViewerState& state) { state.viewCount = state.viewCount % kMaxViews + 1; });
+  rows.setting("scheme.next", "Next scheme", {key('S')}, "next scheme of the active view (" + schemeLabels() + ")",
+             [](ViewerSettings& settings) { cycleScheme(settings, settings.activeView, 1); });
+  rows.setting("scheme.previous", "Previous scheme", {key('S', kShift)}, "previous scheme of the active view",
+             [](ViewerSettings& settings) { cycleScheme(settings, settings.activeView, -1); });
+  rows.setting("views.cycle", "Views", {key('V')}, "number of views 1..4",
+             [](ViewerSettings& settings) { settings.viewCount = settings.viewCount % kMaxViews + 1; });
 }
 
 void addShadingCommands(Rows rows) {
@@ -201,13 +211,13 @@ void addShadingCommands(Rows rows) {
     labels += (labels.empty() ? "" : " / ") + std::string(mode.label);
   }
   rows.withArgument("shade", "Shading", std::move(modeKeys), "shading: " + labels, std::move(modes),
-                    [](ViewerState& state, int mode) { state.shading.mode = shadingModes()[size_t(mode)].mode; });
-  rows.state("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",
-             [](ViewerState& state) {
-               state.shading.colormap = static_cast<ShadingParams::ColorMap>((int(state.shading.colormap) + 1) % 4);
+                    [](Session& s, int mode) { s.settings().shading.mode = shadingModes()[size_t(mode)].mode; });
+  rows.setting("colour.map", "Next colour map", {key('C')}, "next colour map (paper, coolwarm, viridis, magnitude)",
+             [](ViewerSettings& settings) {
+               settings.shading.colormap = static_cast<ShadingParams::ColorMap>((int(settings.shading.colormap) + 1) % 4);
              });
-  rows.state("colour.automatic", "Automatic range", {key('A')}, "automatic colour range on / off",
-             [](ViewerState& state) { setAutomaticRange(state, !state.colour.automatic); });
+  rows.add("colour.automatic", "Automatic range", {key('A')}, "automatic colour range on / off",
+             [](Session& s) { setAutomaticRange(s.settings(), s.status(), !s.settings().colour.automatic); });
 }
 
 void addDisplayCommands(Rows rows) {
@@ -223,19 +233,19 @@ void addDisplayCommands(Rows rows) {
                             {"show.poles", "Pole markers", 'P', &DisplayFlags::poleMarkers},
                             {"show.wireframe", "Wireframe", 'W', &DisplayFlags::wireframe}};
   for (const Toggle& toggle : toggles)
-    rows.state(toggle.id, toggle.label, {key(toggle.key)}, lowercase(toggle.label) + " on / off",
-               [flag = toggle.flag](ViewerState& state) { state.display.*flag = !(state.display.*flag); });
+    rows.setting(toggle.id, toggle.label, {key(toggle.key)}, lowercase(toggle.label) + " on / off",
+               [flag = toggle.flag](ViewerSettings& settings) { settings.display.*flag = !(settings.display.*flag); });
 }
 
 void addWindowCommands(Rows rows) {
   rows.add("screenshot", "Screenshot", {key('X')}, "screenshot polarview_NNNN.png (colour bar and labels included)",
            [](Session& s) { s.window().takeScreenshot(); });
-  rows.state("panels", "Panels", {key(keys::kTab)}, "hide / show the panels",
-             [](ViewerState& state) { state.showPanels = !state.showPanels; });
-  rows.state("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help",
-             [](ViewerState& state) { state.showHelp = !state.showHelp; });
-  rows.state("poles.inspect", "Inspect poles", {}, "open the Poles panel",
-             [](ViewerState& state) { state.poleInspector.openRequested = true; });
+  rows.setting("panels", "Panels", {key(keys::kTab)}, "hide / show the panels",
+             [](ViewerSettings& settings) { settings.showPanels = !settings.showPanels; });
+  rows.setting("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help",
+             [](ViewerSettings& settings) { settings.showHelp = !settings.showHelp; });
+  rows.setting("poles.inspect", "Inspect poles", {}, "open the Poles panel",
+             [](ViewerSettings& settings) { settings.poleInspector.openRequested = true; });
 }
 
 std::string keyName(const KeyChord& chord) {
@@ -257,7 +267,7 @@ std::string keyName(const KeyChord& chord) {
 
 bool keypadTwin(const KeyChord& chord) { return chord.key >= keys::kKeypad0 && chord.key <= keys::kKeypadAdd; }
 
-bool enabledIn(const Command& command, const ViewerState& state) { return !command.enabled || command.enabled(state); }
+bool enabledIn(const Command& command, const ViewerStatus& status) { return !command.enabled || command.enabled(status); }
 
 // The key of `command` that gives `argument` (its first key for a row without one); nullptr: none.
 const KeyChord* keyFor(const Command& command, int argument) {
@@ -374,22 +384,22 @@ std::optional<CommandCall> CommandTable::parse(std::string_view text, std::strin
   return CommandCall{command, *value};
 }
 
-std::optional<CommandCall> CommandTable::forKey(int code, int mods, const ViewerState& state) const {
+std::optional<CommandCall> CommandTable::forKey(int code, int mods, const ViewerStatus& status) const {
   mods &= kShift | kControl | keys::kAlt;
   for (const int wanted : {mods, mods & ~kShift}) {
     for (const Command& command : commands_)
       for (const KeyChord& chord : command.keys)
-        if (!chord.character && chord.key == code && chord.mods == wanted && enabledIn(command, state))
+        if (!chord.character && chord.key == code && chord.mods == wanted && enabledIn(command, status))
           return CommandCall{&command, chord.argument};
     if (wanted == (mods & ~kShift)) break;
   }
   return std::nullopt;
 }
 
-std::optional<CommandCall> CommandTable::forCharacter(char32_t character, const ViewerState& state) const {
+std::optional<CommandCall> CommandTable::forCharacter(char32_t character, const ViewerStatus& status) const {
   for (const Command& command : commands_)
     for (const KeyChord& chord : command.keys)
-      if (chord.character == character && enabledIn(command, state)) return CommandCall{&command, chord.argument};
+      if (chord.character == character && enabledIn(command, status)) return CommandCall{&command, chord.argument};
   return std::nullopt;
 }
 
@@ -397,15 +407,15 @@ bool CommandTable::run(std::string_view text, Session& session) const {
   std::string error;
   const std::optional<CommandCall> call = parse(text, &error);
   if (!call) {
-    session.state().notice = error;
+    session.notices().post(polarview::error(error));
     return false;
   }
   return run(*call, session);
 }
 
 bool CommandTable::run(const CommandCall& call, Session& session) const {
-  if (!enabledIn(*call.command, session.state())) {
-    session.state().notice = call.command->label + ": not available now";
+  if (!enabledIn(*call.command, session.status())) {
+    session.notices().post(info(call.command->label + ": not available now"));
     return false;
   }
   call.command->action(session, call.argument);
@@ -413,13 +423,9 @@ bool CommandTable::run(const CommandCall& call, Session& session) const {
 }
 
 void CommandTable::runQueued(Session& session) const {
-  // A command may queue another (it runs in the same pass).
-  std::vector<std::string>& queued = session.state().queuedCommands;
-  for (size_t i = 0; i < queued.size(); ++i) {
-    const std::string text = queued[i];
-    run(text, session);
-  }
-  queued.clear();
+  // A command may queue another (it runs in the same pass, after those queued before it).
+  while (!session.commandQueue().empty())
+    for (const std::string& text : session.commandQueue().take()) run(text, session);
 }
 
 std::vector<HelpSection> CommandTable::helpSections() const {
@@ -499,6 +505,5 @@ std::string commandListText() {
   return text;
 }
 
-void queueCommand(ViewerState& state, std::string_view text) { state.queuedCommands.emplace_back(text); }
 
 }  // namespace polarview

@@ -7,7 +7,7 @@
 // gaussian"); "level.7" and "shade.gaussian", the ids before arguments, are the same commands.
 // Keys bind to a row with a fixed argument (7: level 7, G: shade gaussian).
 //
-// Commands act on a Session (session.h): its state, its document (files, edits, exports) and,
+// Commands act on a Session (session.h): its settings, its document (files, edits, exports) and,
 // for what needs the window (clipboard, framing in the view's shape, screenshots), its
 // WindowServices. No command needs a method of its own on an interface.
 #pragma once
@@ -19,7 +19,8 @@
 #include <utility>
 #include <vector>
 
-#include "session/viewer_state.h"
+#include "session/command_queue.h"
+#include "session/viewer_status.h"
 
 namespace polarview {
 
@@ -65,7 +66,7 @@ struct Command {
   std::string help;   // its line in the help window and `polarview help keys`
   std::string group;  // the help's heading it is listed under ("file", "camera", "level", ...)
   CommandArgument argument;
-  std::function<bool(const ViewerState&)> enabled;  // null: always
+  std::function<bool(const ViewerStatus&)> enabled;  // null: always (else by what the session reports)
   std::function<void(Session&, int argument)> action;
 };
 
@@ -104,13 +105,14 @@ class CommandTable {
   std::optional<CommandCall> parse(std::string_view text, std::string* error = nullptr) const;
   // The first enabled command bound to `key` with exactly `mods` (Shift, Control, Alt); failing
   // that, to `key` with the same mods but Shift (Shift+G is G).
-  std::optional<CommandCall> forKey(int key, int mods, const ViewerState& state) const;
-  std::optional<CommandCall> forCharacter(char32_t character, const ViewerState& state) const;
+  std::optional<CommandCall> forKey(int key, int mods, const ViewerStatus& status) const;
+  std::optional<CommandCall> forCharacter(char32_t character, const ViewerStatus& status) const;
   // Runs the command `text` names when it is enabled; else the notice says why. False: unknown,
   // a bad argument, or disabled.
   bool run(std::string_view text, Session& session) const;
   bool run(const CommandCall& call, Session& session) const;
-  // Runs and clears the commands queued in the session's state (panels, keys, `view --do`), in order.
+  // Runs and clears the commands queued in the session (panels, keys, `view --do`), in order: once
+  // a frame, by the frame loop (the session does not call the table, which acts on it).
   void runQueued(Session& session) const;
   // The rows under their help headings, the headings in the order the table first uses them.
   std::vector<HelpSection> helpSections() const;
@@ -136,9 +138,5 @@ const CommandTable& viewerCommands();
 // `polarview help keys`: every row under its heading (id, keys, help), and a line per named
 // argument's choice ("shade.gaussian  G  Gaussian K").
 std::string commandListText();
-
-// Queues command `text` ("level 7", "camera.frame") for the app's next runQueued (this frame's,
-// when asked before it).
-void queueCommand(ViewerState& state, std::string_view text);
 
 }  // namespace polarview

@@ -43,6 +43,11 @@ std::string absolutePath(const std::string& path) {
 
 std::string defaultModelAsset() { return std::string(POLARVIEW_ASSET_DIR) + "/default.obj"; }
 
+// "_c2ps_4": what the default export paths add for the view's scheme and level.
+std::string outputTag(SchemeChoice scheme, int level) {
+  return std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
+}
+
 }  // namespace
 
 std::string recentFilePath() {
@@ -51,8 +56,21 @@ std::string recentFilePath() {
   return std::string(home) + "/.config/polarview/recent.txt";
 }
 
-Document::Document(ViewerState& state, size_t faceBudget, bool persistRecent)
-    : state_(state), faceBudget_(faceBudget), persistRecent_(persistRecent) {}
+DocumentResult& DocumentResult::then(DocumentResult later) {
+  ok = later.ok;
+  if (later.notice) notice = std::move(later.notice);
+  if (later.pathField) pathField = std::move(later.pathField);
+  return *this;
+}
+
+namespace {
+
+DocumentResult withNotice(Notice notice, bool ok = true) { return DocumentResult{ok, std::move(notice), {}}; }
+DocumentResult failed() { return DocumentResult{false, {}, {}}; }
+
+}  // namespace
+
+Document::Document(size_t faceBudget, bool persistRecent) : faceBudget_(faceBudget), persistRecent_(persistRecent) {}
 
 Document::~Document() {
   loadJob_.join();
@@ -62,149 +80,146 @@ Document::~Document() {
 void Document::recordEditCost(const EditCost& cost) {
   if (editCosts_.size() >= kMaxEditCosts) editCosts_.erase(editCosts_.begin());
   editCosts_.push_back(cost);
-  state_.edit.positionsMs = cost.positionsMs;
-  state_.edit.patchesMs = cost.patchesMs;
-  state_.edit.uploadMs = cost.uploadMs;
-  state_.edit.totalMs = cost.totalMs;
-  state_.edit.updatedViews = cost.views;
+  lastEditCost_ = cost;
 }
 
-bool Document::loadFile(const std::string& path, const std::string& name) {
-  state_.file.pathField = path;
+DocumentResult Document::loadFile(const std::string& path, const std::string& name) {
+  DocumentResult result{true, {}, path};
   LoadedModel loaded = readModelFile(path);
-  if (!loaded.error.empty()) {
-    loadFailed(path, loaded.error);
-    return false;
-  }
+  if (!loaded.error.empty()) return result.then(loadFailed(path, loaded.error));
   if (!name.empty()) loaded.model.name = name;
-  adoptModel(std::move(loaded.model), path);
-  state_.file.warnings = std::move(loaded.warnings);
-  return true;
+  result.then(adoptModel(std::move(loaded.model), path));
+  file_.warnings = std::move(loaded.warnings);
+  return result;
 }
 
-void Document::requestLoad(const std::string& path) {
-  state_.file.pathField = path;
+DocumentResult Document::requestLoad(const std::string& path) {
+  // A file of the dropped list, however asked for (PageDown, a click on the list): the list marks it.
+  const std::vector<std::string>& list = file_.playlist;
+  const bool marked = file_.playlistIndex >= 0 && size_t(file_.playlistIndex) < list.size() && list[size_t(file_.playlistIndex)] == path;
+  if (const auto entry = std::find(list.begin(), list.end(), path); !marked && entry != list.end())
+    file_.playlistIndex = int(entry - list.begin());
   if (loadJob_.running()) {
     queuedLoad_ = path;  // started when the running one is done; its result is then dropped
-    return;
+  } else {
+    file_.loading = true;
+    file_.loadingPath = path;
+    loadJob_.start([path] { return readModelFile(path); });
   }
-  state_.file.loading = true;
-  state_.file.loadingPath = path;
-  loadJob_.start([path] { return readModelFile(path); });
+  return DocumentResult{true, {}, path};
 }
 
-void Document::pollLoad() {
+DocumentResult Document::pollLoad() {
   std::optional<LoadedModel> done = loadJob_.poll();  // readModelFile never throws
-  if (!done) return;
+  if (!done) return {};
   LoadedModel loaded = std::move(*done);
-  state_.file.loading = false;
-  state_.file.loadingPath.clear();
+  file_.loading = false;
+  file_.loadingPath.clear();
   if (queuedLoad_) {
     std::string next = std::move(*queuedLoad_);
     queuedLoad_.reset();
-    requestLoad(next);
-    return;
+    return requestLoad(next);
   }
-  if (!loaded.error.empty()) {
-    loadFailed(loaded.path, loaded.error);
-    return;
-  }
-  adoptModel(std::move(loaded.model), loaded.path);
-  state_.file.warnings = std::move(loaded.warnings);
-  state_.notice = "opened " + loaded.path;
+  if (!loaded.error.empty()) return loadFailed(loaded.path, loaded.error);
+  DocumentResult result = adoptModel(std::move(loaded.model), loaded.path);
+  file_.warnings = std::move(loaded.warnings);
+  result.notice = info("opened " + loaded.path);
+  return result;
 }
 
-void Document::loadFailed(const std::string& path, const std::string& error) {
-  state_.file.error = error;
-  state_.notice = "could not open " + path + " (the current model stays)";
+DocumentResult Document::loadFailed(const std::string& path, const std::string& error) {
+  file_.error = error;
+  return withNotice(polarview::error("could not open " + path + " (the current model stays)"), false);
 }
 
-void Document::dropFiles(int count, const char* const* paths) {
-  if (count < 1 || !paths || !paths[0]) return;
+DocumentResult Document::dropFiles(int count, const char* const* paths) {
+  if (count < 1 || !paths || !paths[0]) return {};
+  DocumentResult result;
   if (count > 1) {
     // Several files: open the first, keep all of them as a list to step through.
-    state_.file.playlist.clear();
+    file_.playlist.clear();
     for (int i = 0; i < count; ++i)
-      if (paths[i]) state_.file.playlist.emplace_back(paths[i]);
-    state_.file.playlistIndex = 0;
-    state_.notice = "opening the first of " + std::to_string(count) + " dropped files (PageDown / PageUp for the others)";
+      if (paths[i]) file_.playlist.emplace_back(paths[i]);
+    file_.playlistIndex = 0;
+    result.notice = info("opening the first of " + std::to_string(count) + " dropped files (PageDown / PageUp for the others)");
   }
-  requestLoad(paths[0]);
+  return result.then(requestLoad(paths[0]));
 }
 
-void Document::openPlaylistEntry(int index) {
-  const std::vector<std::string>& list = state_.file.playlist;
-  if (list.empty()) return;
+DocumentResult Document::openPlaylistEntry(int index) {
+  const std::vector<std::string>& list = file_.playlist;
+  if (list.empty()) return {};
   index = (index % int(list.size()) + int(list.size())) % int(list.size());
-  state_.file.playlistIndex = index;
-  requestLoad(list[size_t(index)]);
+  file_.playlistIndex = index;
+  return requestLoad(list[size_t(index)]);
 }
 
-void Document::undoModelReplacement() {
-  if (!previousModel_.mesh) {
-    state_.notice = "nothing to undo";
-    return;
-  }
+DocumentResult Document::undoModelReplacement() {
+  if (!previousModel_.mesh) return withNotice(info("nothing to undo"));
   // Swap back (a second Ctrl+Z redoes): the previous model is shown as a new model generation,
   // with its analysis (the faces are the same: nothing to analyse again).
   Model previous = previousModel_;
   previous.points = 0;
   const std::string previousPath = previousPath_;
-  adoptModel(std::move(previous), previousPath);
-  state_.notice = "back to " + model_.name;
+  DocumentResult result = adoptModel(std::move(previous), previousPath);
+  result.notice = info("back to " + model_.name);
+  return result;
 }
 
-bool Document::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
+DocumentResult Document::loadMesh(PolyMesh mesh, const std::string& name, const std::string& path) {
   Model model = makeModel(std::make_shared<const PolyMesh>(std::move(mesh)), name, 0);  // checked by its analysis
   if (std::string error = checkModel(model); !error.empty()) {
-    state_.file.error = error;
-    return false;
+    file_.error = error;
+    return failed();
   }
-  adoptModel(std::move(model), path);
-  return true;
+  return adoptModel(std::move(model), path);
 }
 
-void Document::adoptModel(Model model, const std::string& path) {
+DocumentResult Document::adoptModel(Model model, const std::string& path) {
   const PolyMesh& mesh = *model.mesh;
   modelMin_ = modelMax_ = mesh.points.front();
   for (const Point& p : mesh.points) {
     modelMin_ = glm::min(modelMin_, p);
     modelMax_ = glm::max(modelMax_, p);
   }
-  state_.file.modelVertices = mesh.vertexCount();
-  state_.file.modelFaces = mesh.faceCount();
+  file_.modelVertices = mesh.vertexCount();
+  file_.modelFaces = mesh.faceCount();
   model.generation = model_.generation + 1;
   if (model_.mesh) {  // what Ctrl+Z returns to
     previousModel_ = model_;
-    previousPath_ = state_.file.loadedPath;
-    state_.file.previousModelName = model_.name;
+    previousPath_ = file_.loadedPath;
+    file_.previousModelName = model_.name;
   }
   model_ = std::move(model);
-  const std::string& name = model_.name;
   // Editing starts over: the loaded points are what Reset returns to.
   editor_.start(model_.mesh->points);
   movedVertices_ = 0;
   editCosts_.clear();
-  state_.edit.error.clear();
-  state_.file.modelName = name;
-  state_.file.loadedPath = path;
-  if (!path.empty()) state_.file.pathField = path;  // the field names what is shown (after Ctrl+Z too)
-  state_.file.error.clear();
-  state_.file.warnings.clear();
+  editError_.clear();
+  file_.modelName = model_.name;
+  file_.loadedPath = path;
+  file_.error.clear();
+  file_.warnings.clear();
   if (!path.empty()) rememberRecent(path);
   if (onModelReplaced) onModelReplaced();
+  DocumentResult result;
+  if (!path.empty()) result.pathField = path;  // the field names what is shown (after Ctrl+Z too)
+  return result;
 }
 
-void Document::loadDefaultModel() {
-  std::string asset = std::string(POLARVIEW_ASSET_DIR) + "/default.obj";
+DocumentResult Document::loadDefaultModel() {
+  std::string asset = defaultModelAsset();
   // Named as the default model from the start, so Ctrl+Z back to it still names it so (outputs
   // default_edited.obj, not model_edited.obj).
-  if (std::filesystem::exists(asset) && loadFile(asset, "default: " + asset)) return;
-  loadMesh(shapes::mushroom(12), "default: mushroom (generated, n = 12)");
+  if (std::filesystem::exists(asset)) {
+    DocumentResult result = loadFile(asset, "default: " + asset);
+    if (result.ok) return result;
+  }
+  return loadMesh(shapes::mushroom(12), "default: mushroom (generated, n = 12)");
 }
 
 void Document::rememberRecent(const std::string& path) {
-  std::vector<std::string>& recent = state_.file.recent;
+  std::vector<std::string>& recent = file_.recent;
   std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
   recent.erase(std::remove(recent.begin(), recent.end(), absolute), recent.end());
   recent.insert(recent.begin(), absolute);
@@ -221,60 +236,60 @@ void Document::rememberRecent(const std::string& path) {
 void Document::loadRecent() {
   std::ifstream in(recentFilePath());
   std::string line;
-  while (std::getline(in, line) && state_.file.recent.size() < kMaxRecentFiles) {
-    if (!line.empty()) state_.file.recent.push_back(line);
+  while (std::getline(in, line) && file_.recent.size() < kMaxRecentFiles) {
+    if (!line.empty()) file_.recent.push_back(line);
   }
 }
 
-void Document::undo() {
+DocumentResult Document::undo() {
   // Ctrl+Z undoes vertex drags first; with none left it goes back to the previous model.
-  if (editor_.undoCount() > 0) undoEdit();
-  else undoModelReplacement();
+  if (editor_.undoCount() > 0) return undoEdit();
+  return undoModelReplacement();
 }
 
-void Document::reloadModel() {
-  if (state_.file.loadedPath.empty()) loadDefaultModel();
-  else requestLoad(state_.file.loadedPath);
+DocumentResult Document::reloadModel() {
+  if (file_.loadedPath.empty()) return loadDefaultModel();
+  return requestLoad(file_.loadedPath);
 }
 
-void Document::showEigenvector() {
-  const SpectrumSettings& spectrum = state_.spectrum;
+DocumentResult Document::showEigenvector(const SpectrumSettings& spectrum) {
   try {
     const std::string name = "RTS eigenvector v" + std::to_string(spectrum.k) + ", valence " + std::to_string(spectrum.valence) +
                              (spectrum.c2psSteps > 0 ? ", " + std::to_string(spectrum.c2psSteps) + " C2PS steps" : "");
-    if (loadMesh(eigenNet(spectrum.valence, spectrum.k, spectrum.c2psSteps), name, "")) state_.notice = name + " (Ctrl+Z returns)";
+    DocumentResult result = loadMesh(eigenNet(spectrum.valence, spectrum.k, spectrum.c2psSteps), name, "");
+    if (result.ok) result.notice = info(name + " (Ctrl+Z returns)");
+    return result;
   } catch (const std::exception& e) {
-    state_.notice = std::string("eigenvector: ") + e.what();
+    return withNotice(error(std::string("eigenvector: ") + e.what()), false);
   }
 }
 
-void Document::convertToPolar(bool pentagons) {
-  if (!model_.mesh) return;
+DocumentResult Document::convertToPolar(bool pentagons) {
+  if (!model_.mesh) return {};
   try {
     PolarConversion conversion = convertExtraordinaryToPolar(*model_.mesh, pentagons, model_.name);
-    if (conversion.converted.empty()) {
-      state_.notice = "no extraordinary vertex to convert (interior, all quads around it, valence != 4)";
-      return;
-    }
+    if (conversion.converted.empty())
+      return withNotice(info("no extraordinary vertex to convert (interior, all quads around it, valence != 4)"));
     const size_t count = conversion.converted.size();
     const std::string name = "converted (Fig. 14" + std::string(pentagons ? "c" : "a") + "): " + model_.name;
-    if (loadMesh(std::move(conversion.mesh), name, ""))
-      state_.notice = std::to_string(count) + " extraordinary vertices made poles (Ctrl+Z returns)";
+    DocumentResult result = loadMesh(std::move(conversion.mesh), name, "");
+    if (result.ok) result.notice = info(std::to_string(count) + " extraordinary vertices made poles (Ctrl+Z returns)");
+    return result;
   } catch (const std::exception& e) {
-    state_.notice = std::string("conversion failed: ") + e.what();
+    return withNotice(error(std::string("conversion failed: ") + e.what()), false);
   }
 }
 
-void Document::convertToFans() {
-  if (!model_.mesh) return;
+DocumentResult Document::convertToFans() {
+  if (!model_.mesh) return {};
   FanConversion conversion = convertNgonsToFans(*model_.mesh);
-  if (conversion.faces.empty()) {
-    state_.notice = "no face with " + std::to_string(kMinFanSides) + " or more sides to make a triangle fan";
-    return;
-  }
+  if (conversion.faces.empty())
+    return withNotice(info("no face with " + std::to_string(kMinFanSides) + " or more sides to make a triangle fan"));
   const size_t count = conversion.faces.size();
-  if (loadMesh(std::move(conversion.mesh), "triangle fans: " + model_.name, ""))
-    state_.notice = std::to_string(count) + (count == 1 ? " face" : " faces") + " made triangle fans (Ctrl+Z returns)";
+  DocumentResult result = loadMesh(std::move(conversion.mesh), "triangle fans: " + model_.name, "");
+  if (result.ok)
+    result.notice = info(std::to_string(count) + (count == 1 ? " face" : " faces") + " made triangle fans (Ctrl+Z returns)");
+  return result;
 }
 
 void Document::commitEditedPoints() {
@@ -292,110 +307,91 @@ void Document::commitEditedPoints() {
   movedVertices_ = editor_.movedVertexCount();
 }
 
-void Document::undoEdit() {
+DocumentResult Document::undoEdit() {
   const std::string what = editor_.undoLabel();
-  if (!editor_.undo()) {
-    state_.notice = "nothing to undo";
-    return;
-  }
+  if (!editor_.undo()) return withNotice(info("nothing to undo"));
   commitEditedPoints();
-  state_.notice = "undone: " + what;
+  return withNotice(info("undone: " + what));
 }
 
-void Document::redoEdit() {
+DocumentResult Document::redoEdit() {
   const std::string what = editor_.redoLabel();
-  if (!editor_.redo()) {
-    state_.notice = "nothing to redo";
-    return;
-  }
+  if (!editor_.redo()) return withNotice(info("nothing to redo"));
   commitEditedPoints();
-  state_.notice = "redone: " + what;
+  return withNotice(info("redone: " + what));
 }
 
-void Document::resetEdits() {
-  if (!editor_.resetToLoaded()) {
-    state_.notice = "no control vertex has moved";
-    return;
-  }
+DocumentResult Document::resetEdits() {
+  if (!editor_.resetToLoaded()) return withNotice(info("no control vertex has moved"));
   commitEditedPoints();
-  state_.notice = "every control vertex is back where the file had it (Ctrl+Z undoes the reset)";
+  return withNotice(info("every control vertex is back where the file had it (Ctrl+Z undoes the reset)"));
 }
 
-void Document::saveEditedMesh() {
-  if (!model_.mesh) return;
-  // A save before the panels' first update (view --do edit.save) still has its default path.
-  if (state_.edit.defaultSavePath.empty()) updateEditState(nullptr);
-  const std::string path = state_.edit.savePath.empty() ? state_.edit.defaultSavePath : state_.edit.savePath;
+DocumentResult Document::editFailed(std::string message) {
+  editError_ = std::move(message);
+  return withNotice(error(editError_), false);
+}
+
+DocumentResult Document::saveEditedMesh(const EditSettings& paths) {
+  if (!model_.mesh) return {};
+  const std::string path = paths.savePath.empty() ? defaultSavePath() : paths.savePath;
   bool keptSource = false;
   try {
     // Atomic: a failure leaves no file. A conversion's model has no source text (other faces).
     if (model_.sourceText) keptSource = saveObjEdited(path, *model_.mesh, *model_.sourceText, model_.name);
     else saveObj(path, *model_.mesh, model_.name);
   } catch (const std::exception& e) {
-    state_.edit.error = oneLine(std::string("could not save: ") + e.what());
-    state_.notice = state_.edit.error;
-    return;
+    return editFailed(oneLine(std::string("could not save: ") + e.what()));
   }
-  state_.edit.error.clear();
-  state_.notice = "saved the edited mesh to " + absolutePath(path) + " (" + std::to_string(movedVertices_) +
-                  (movedVertices_ == 1 ? " vertex" : " vertices") + " moved" +
-                  (keptSource ? "; every other line as in the file" : "") + ")";
+  editError_.clear();
+  return withNotice(info("saved the edited mesh to " + absolutePath(path) + " (" + std::to_string(movedVertices_) +
+                         (movedVertices_ == 1 ? " vertex" : " vertices") + " moved" +
+                         (keptSource ? "; every other line as in the file" : "") + ")"));
 }
 
-void Document::startExport(SurfaceExport what, const BuiltSurface* shown) {
-  if (!model_.mesh) return;
-  if (exportJob_.running()) {
-    state_.notice = "still writing " + exportTarget_;
-    return;
-  }
+DocumentResult Document::startExport(SurfaceExport what, const BuiltSurface* shown, const ViewerSettings& settings) {
+  if (!model_.mesh) return {};
+  if (exportJob_.running()) return withNotice(info("still writing " + exportTarget_), false);
   // What the active view shows: its scheme and level, on the model's current points.
-  const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
-  if (!shown || shown->key.model != model_.generation) {
-    state_.edit.error = "view " + std::to_string(v + 1) + " shows no surface of this model yet";
-    state_.notice = state_.edit.error;
-    return;
-  }
+  const int v = settings.clampedActiveView();
+  if (!shown || shown->key.model != model_.generation)
+    return editFailed("view " + std::to_string(v + 1) + " shows no surface of this model yet");
   const SchemeChoice scheme = shown->key.scheme;
   const int level = shown->key.level;
   const RefineOptions options = refineOptionsFor(scheme, level);
   const Model model = model_;  // the mesh is immutable: the worker keeps this version
   std::string path;
   if (what == SurfaceExport::LimitSurface) {
-    path = state_.edit.surfacePath.empty() ? state_.edit.defaultSurfacePath : state_.edit.surfacePath;
+    const EditSettings& paths = settings.edit;
+    path = paths.surfacePath.empty() ? defaultSurfacePath(scheme, level, paths.surfaceFormat) : paths.surfacePath;
     // The format from the file's extension, as `polarview export` chooses it.
     const ExportFormat* format = exportFormatForPath(path);
-    if (!format) {
-      state_.edit.error = "cannot tell the format of " + path + ": name it " + exportFormatExtensions();
-      state_.notice = state_.edit.error;
-      return;
-    }
-    ExportSettings settings;
-    settings.source = model.name;
-    settings.schemeLabel = schemeChoiceLabel(scheme);
-    settings.level = level;
+    if (!format) return editFailed("cannot tell the format of " + path + ": name it " + exportFormatExtensions());
+    ExportSettings written;
+    written.source = model.name;
+    written.schemeLabel = schemeChoiceLabel(scheme);
+    written.level = level;
     // The view's own refinement path and limit (the shown level is within it).
     const RefineRequest request{options, false, 0, faceBudget_};
-    exportJob_.start([model, request, path, scheme, level, format, settings] {
+    exportJob_.start([model, request, path, scheme, level, format, written] {
       const PatchSet set = makePatchSet(*model.mesh, model.name, request);
-      const std::string summary = exportSummary(writeSurfaceFile(path, set, *format, settings));
+      const std::string summary = exportSummary(writeSurfaceFile(path, set, *format, written));
       return "wrote " + absolutePath(path) + ": " + summary + " (" + schemeChoiceLabel(scheme) + " level " +
              std::to_string(level) + ", feature-adaptive)";
     });
   } else {
-    path = state_.edit.refinedObjPath.empty() ? state_.edit.defaultRefinedObjPath : state_.edit.refinedObjPath;
+    const std::string& typed = settings.edit.refinedObjPath;
+    path = typed.empty() ? (outputFolder() / (outputStem() + outputTag(scheme, level) + "_refined.obj")).string() : typed;
     // Uniform refinement: every face x4 a level (x2 where RTS/BPS refine radially); refused at once
     // when its estimate exceeds what a view may take.
     const size_t budget = faceBudget_ * kBytesPerAdaptiveFace / kBytesPerUniformFace;
-    const bool radial = model.radialForRtsBps && (options.scheme == Scheme::RTS || options.scheme == Scheme::BPS);
+    const bool radial = model.radialForRtsBps && schemeTraits(options.scheme).keepsValence;
     const UniformLevelEstimate estimate = estimateUniformLevel(*model.mesh, options, radial, budget);
-    if (!estimate.fits) {
-      state_.edit.error = std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
+    if (!estimate.fits)
+      return editFailed(std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
                           std::to_string(level) + " would have about " + std::to_string(estimate.faces) +
                           " faces, over the budget of " + std::to_string(budget) + " (level " +
-                          std::to_string(estimate.deepestFitting) + " fits)";
-      state_.notice = state_.edit.error;
-      return;
-    }
+                          std::to_string(estimate.deepestFitting) + " fits)");
     exportJob_.start([model, options, path, budget, scheme, level] {
       std::string done;
       {
@@ -411,24 +407,45 @@ void Document::startExport(SurfaceExport what, const BuiltSurface* shown) {
     });
   }
   exportTarget_ = path;
-  state_.notice = "writing " + path + "...";
+  return withNotice(info("writing " + path + "..."));
 }
 
-void Document::pollExport() {
-  if (!exportJob_.finished()) return;
+DocumentResult Document::pollExport() {
+  if (!exportJob_.finished()) return {};
+  DocumentResult result;
   try {
-    state_.notice = *exportJob_.poll();
-    state_.edit.error.clear();
+    result.notice = info(*exportJob_.poll());
+    editError_.clear();
   } catch (const std::exception& e) {
     // Bad levels, a full disk, an unwritable folder: the atomic writers left nothing behind.
-    state_.edit.error = oneLine(std::string("could not write ") + exportTarget_ + ": " + e.what());
-    state_.notice = state_.edit.error;
+    result = editFailed(oneLine(std::string("could not write ") + exportTarget_ + ": " + e.what()));
   }
   exportTarget_.clear();
+  return result;
 }
 
-void Document::updateEditState(const BuiltSurface* shown) {
-  EditSettings& edit = state_.edit;
+std::filesystem::path Document::outputFolder() const {
+  // Beside the model file, or in the current directory for the built-in model.
+  const std::string& loaded = file_.loadedPath;
+  const bool builtIn = loaded.empty() || loaded == defaultModelAsset();
+  return builtIn ? std::filesystem::path() : std::filesystem::path(loaded).parent_path();
+}
+
+std::string Document::outputStem() const {
+  // The file's own name (the built-in model opened by its path too: "default"), else a generated one's.
+  const std::string& loaded = file_.loadedPath;
+  if (!loaded.empty()) return std::filesystem::path(loaded).stem().string();
+  return file_.modelName.rfind("default", 0) == 0 ? "default" : "model";
+}
+
+std::string Document::defaultSavePath() const { return (outputFolder() / (outputStem() + "_edited.obj")).string(); }
+
+std::string Document::defaultSurfacePath(SchemeChoice scheme, int level, const std::string& formatName) const {
+  const ExportFormat* format = exportFormatNamed(formatName);
+  return (outputFolder() / (outputStem() + outputTag(scheme, level) + (format ? format->extensions.front() : ".bv"))).string();
+}
+
+void Document::reportEdit(const BuiltSurface* shown, const ViewerSettings& settings, EditStatus& edit) const {
   edit.selectedVertex = editor_.selected();
   if (edit.selectedVertex >= 0) edit.selectedPosition = editor_.points()[size_t(edit.selectedVertex)];
   edit.dragging = editor_.dragging();
@@ -438,24 +455,19 @@ void Document::updateEditState(const BuiltSurface* shown) {
   edit.redoLabel = editor_.redoLabel();
   edit.movedVertices = movedVertices_;
   edit.exporting = exportJob_.running() ? exportTarget_ : std::string();
-
-  // Default outputs: beside the model file, or in the current directory for the built-in model.
-  namespace fs = std::filesystem;
-  const std::string& loaded = state_.file.loadedPath;
-  const bool builtIn = loaded.empty() || loaded == defaultModelAsset();
-  const fs::path folder = builtIn ? fs::path() : fs::path(loaded).parent_path();
-  // The file's own name (the built-in model opened by its path too: "default"), else a generated one's.
-  const std::string stem = !loaded.empty() ? fs::path(loaded).stem().string()
-                                           : (state_.file.modelName.rfind("default", 0) == 0 ? "default" : "model");
-  edit.defaultSavePath = (folder / (stem + "_edited.obj")).string();
+  edit.error = editError_;
+  edit.positionsMs = lastEditCost_.positionsMs;
+  edit.patchesMs = lastEditCost_.patchesMs;
+  edit.uploadMs = lastEditCost_.uploadMs;
+  edit.totalMs = lastEditCost_.totalMs;
+  edit.updatedViews = lastEditCost_.views;
   // The exports write what the active view shows (its settings until it shows something).
-  const int v = std::clamp(state_.activeView, 0, state_.viewCount - 1);
-  const SchemeChoice scheme = shown ? shown->key.scheme : state_.views[size_t(v)].scheme;
-  const int level = shown ? shown->key.level : state_.views[size_t(v)].level;
-  const std::string tag = std::string("_") + schemeChoiceCliName(scheme) + "_" + std::to_string(level);
-  const ExportFormat* format = exportFormatNamed(edit.surfaceFormat);
-  edit.defaultSurfacePath = (folder / (stem + tag + (format ? format->extensions.front() : ".bv"))).string();
-  edit.defaultRefinedObjPath = (folder / (stem + tag + "_refined.obj")).string();
+  const View& active = settings.views[size_t(settings.clampedActiveView())];
+  const SchemeChoice scheme = shown ? shown->key.scheme : active.scheme;
+  const int level = shown ? shown->key.level : active.level;
+  edit.defaultSavePath = defaultSavePath();
+  edit.defaultSurfacePath = defaultSurfacePath(scheme, level, settings.edit.surfaceFormat);
+  edit.defaultRefinedObjPath = (outputFolder() / (outputStem() + outputTag(scheme, level) + "_refined.obj")).string();
 }
 
 }  // namespace polarview

@@ -1,6 +1,9 @@
-// The viewer without its window: the state the panels edit, the document, the surface cache and
-// the analysis panels' data (pole inspector, spectrum, colour statistics), and what each frame
-// does with them apart from drawing. The window application (app/viewer_app.h) owns one Session,
+// The viewer without its window: the settings the panels and commands edit, the status it
+// publishes for them each frame, the notices, the command queue, the document, the surface cache
+// and the analysis panels' data (pole inspector, spectrum, colour statistics), and what each frame
+// does with them apart from drawing. The session is the one owner of all of these: the document
+// and the cache return results, which it applies to the status, the notices and (a refused level
+// reverts, the path field follows the model) the settings. The window application (app/viewer_app.h) owns one Session,
 // runs ImGui and mirrors the surfaces on the GPU. No GL, ImGui or GLFW: tests drive a Session
 // without a display (tests/session/).
 #pragma once
@@ -15,10 +18,12 @@
 #include "pipeline/level_limits.h"
 #include "pipeline/model.h"
 #include "pipeline/surface_build.h"
-#include "session/command_table.h"
+#include "session/command_queue.h"
 #include "session/document.h"
 #include "session/surface_cache.h"
-#include "session/viewer_state.h"
+#include "session/notices.h"
+#include "session/viewer_settings.h"
+#include "session/viewer_status.h"
 
 namespace polarview {
 
@@ -45,16 +50,28 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  ViewerState& state() { return state_; }
-  const ViewerState& state() const { return state_; }
+  // What the user asked for: commands and panels edit it.
+  ViewerSettings& settings() { return settings_; }
+  const ViewerSettings& settings() const { return settings_; }
+  // What the session reports (panels read it const); the window adds its part (GPU, frame time,
+  // screenshots, picks).
+  ViewerStatus& status() { return status_; }
+  const ViewerStatus& status() const { return status_; }
+  Notices& notices() { return notices_; }
+  const Notices& notices() const { return notices_; }
+  // Commands asked for by panels, keys and `view --do`, run by runCommands.
+  CommandQueue& commandQueue() { return commandQueue_; }
+  void queueCommand(std::string_view text) { commandQueue_.push(text); }
+  // Shows what a document operation reports: its notice, the File panel's path, the file and edit
+  // status.
+  // Returns whether the operation did what it was asked (DocumentResult::ok).
+  bool apply(DocumentResult result);
   Document& document() { return document_; }
   const Document& document() const { return document_; }
   SurfaceCache& surfaces() { return surfaces_; }
   const SurfaceCache& surfaces() const { return surfaces_; }
   const Model& model() const { return document_.model(); }
 
-  // Runs the commands queued this frame (panels, keys, `view --do`) through the command table.
-  void runCommands() { viewerCommands().runQueued(*this); }
   // Finished loads and exports, then the surfaces (SurfaceCache::update): this frame's cost of
   // positions-only updates when points moved (the window adds its upload and records it).
   std::optional<EditCost> updateModelAndSurfaces();
@@ -62,8 +79,8 @@ class Session {
   void updatePanels();
   // True while a file loads, an export runs, a refinement runs or a view waits for one.
   bool busy() const;
-  // Clears a notice kNoticeLifetime after it appeared (a newer one restarts the clock).
-  void expireNotice();
+  // Clears a notice Notices::kLifetime after it appeared (a newer one restarts the clock).
+  void expireNotice() { notices_.expire(); }
   // The automatic colour range and histogram of what the views show now.
   void updateColourRange();
 
@@ -77,9 +94,14 @@ class Session {
   void updateSpectrum();
   void updatePoleInspector();
   void updatePoleZoom();
+  void raiseLevelsForZoom(const std::vector<int>& shortViews, int needed);
+  SurfaceRequest surfaceRequest() const { return polarview::surfaceRequest(settings_, document_.model()); }
 
   WindowServices& window_;
-  ViewerState state_;
+  ViewerSettings settings_;
+  ViewerStatus status_;
+  Notices notices_;
+  CommandQueue commandQueue_;
   Document document_;
   SurfaceCache surfaces_;
   // Colour statistics: the samples of the shown views by area, and what they were taken of.
@@ -91,9 +113,6 @@ class Session {
   BackgroundJob<std::vector<PoleInspection>> inspectJob_;
   std::string inspectRunning_, inspectShown_;
   uint64_t inspectPolesOf_ = 0;
-  static constexpr std::chrono::seconds kNoticeLifetime{8};
-  std::string shownNotice_;
-  std::chrono::steady_clock::time_point noticeSince_;
 };
 
 }  // namespace polarview

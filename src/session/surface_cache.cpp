@@ -20,9 +20,16 @@ bool sameModelAndPoints(const SurfaceKey& a, const SurfaceKey& b) { return a.mod
 
 }  // namespace
 
-SurfaceKey wantedKey(const ViewerState& state, const Model& model, int v) {
-  const View& view = state.views[size_t(v)];
-  return SurfaceKey{model.generation, view.scheme, view.level, model.points};
+SurfaceRequest surfaceRequest(const ViewerSettings& settings, const Model& model) {
+  SurfaceRequest request;
+  for (int v = 0; v < kMaxViews; ++v) {
+    const View& view = settings.views[size_t(v)];
+    request.wanted[size_t(v)] = SurfaceKey{model.generation, view.scheme, view.level, model.points};
+  }
+  request.viewCount = settings.viewCount;
+  request.activeView = settings.clampedActiveView();
+  request.zoomed = settings.poleInspector.zoomRing >= 0;
+  return request;
 }
 
 SurfaceCache::~SurfaceCache() {
@@ -36,7 +43,7 @@ size_t SurfaceCache::levelFaces(const Model& model, SchemeChoice scheme, int lev
   return estimatedLevelFaces(model, scheme, level, faceBudget_);
 }
 
-size_t SurfaceCache::facesHeld(const ViewerState& state, const Model& model, bool wantedLevels) const {
+size_t SurfaceCache::facesHeld(const SurfaceRequest& request, const Model& model, bool wantedLevels) const {
   size_t faces = 0;
   for (const ViewSurfaces& view : views_) {
     // A parked surface keeps its whole hierarchy: every level made, ahead ones too.
@@ -47,10 +54,10 @@ size_t SurfaceCache::facesHeld(const ViewerState& state, const Model& model, boo
     if (const BuiltSurface* previous = view.previousLevel.get())
       faces += levelFaces(model, previous->key.scheme, previous->patchLevel);
   }
-  for (int v = 0; v < state.viewCount; ++v) {
+  for (int v = 0; v < request.viewCount; ++v) {
     if (wantedLevels) {
-      const View& settings = state.views[size_t(v)];
-      faces += levelFaces(model, settings.scheme, patchLevelFor(model, settings.scheme, settings.level, faceBudget_));
+      const SurfaceKey& wanted = request.wanted[size_t(v)];
+      faces += levelFaces(model, wanted.scheme, patchLevelFor(model, wanted.scheme, wanted.level, faceBudget_));
     } else if (const BuiltSurface* shown = views_[size_t(v)].shown.get()) {
       faces += levelFaces(model, shown->key.scheme, shown->patchLevel);
     }
@@ -64,31 +71,34 @@ void SurfaceCache::show(int v, std::shared_ptr<const BuiltSurface> surface) {
   view.unparked = view.reshown = view.refreshed = false;
 }
 
-void SurfaceCache::modelChanged(ViewerState& state) {
-  for (ViewSurfaces& view : views_) view.failed.reset();
-  for (View& view : state.views) view.status.message.clear();
+void SurfaceCache::modelChanged() {
+  for (ViewSurfaces& view : views_) {
+    view.failed.reset();
+    view.message.clear();
+  }
 }
 
-std::optional<EditCost> SurfaceCache::update(ViewerState& state, const Model& model, bool dragging) {
-  if (!model.mesh) return std::nullopt;
-  std::optional<EditCost> cost = refreshEditedViews(state, model, dragging);
+SurfaceUpdate SurfaceCache::update(SurfaceRequest request, const Model& model, bool dragging) {
+  SurfaceUpdate result;
+  if (!model.mesh) return result;
+  result.editCost = refreshEditedViews(request, model, dragging);
   for (int v = 0; v < kMaxViews; ++v) {
-    takeFinishedJob(v, state, model);
+    takeFinishedJob(v, request, model);
     // A refused or failed key reverts the view to what it shows, so the controls tell the truth.
     ViewSurfaces& view = views_[size_t(v)];
-    SurfaceKey wanted = wantedKey(state, model, v);
+    SurfaceKey& wanted = request.wanted[size_t(v)];
     if (view.failed && *view.failed == wanted && view.shown && view.shown->key.model == wanted.model) {
-      state.views[size_t(v)].scheme = view.shown->key.scheme;
-      state.views[size_t(v)].level = view.shown->key.level;
-      wanted = wantedKey(state, model, v);
+      wanted.scheme = view.shown->key.scheme;
+      wanted.level = view.shown->key.level;
+      result.reverted[size_t(v)] = wanted;
     }
-    dropStale(v, state, model);
+    dropStale(v, request, model);
     // A surface of this topology at older points waits for its positions-only update instead.
     const bool refreshable = view.shown && view.shown->refinement && view.shown->key.sameTopology(wanted) &&
                              !(view.refreshFailed && *view.refreshFailed == wanted);
-    const bool dirty = v < state.viewCount && (!view.shown || view.shown->key != wanted) && !refreshable &&
+    const bool dirty = v < request.viewCount && (!view.shown || view.shown->key != wanted) && !refreshable &&
                        !(view.failed && *view.failed == wanted);
-    if (dirty && !view.job.running()) satisfy(v, state, model, wanted);
+    if (dirty && !view.job.running()) satisfy(v, request, model, wanted);
     const bool waiting = view.job.running() && (!view.shown || view.shown->key != wanted);
     if (!waiting) {
       view.waitingFor.reset();
@@ -96,21 +106,21 @@ std::optional<EditCost> SurfaceCache::update(ViewerState& state, const Model& mo
       view.waitingFor = wanted;
       view.waitingSince = std::chrono::steady_clock::now();
     }
-    state.views[size_t(v)].status.deepestLevel = deepestLevel(model, state.views[size_t(v)].scheme, faceBudget_);
-    prepareNextLevel(v, state, model, wanted, dragging);
-    report(v, state, model);
+    view.scheme = wanted.scheme;
+    view.deepestLevel = deepestLevel(model, wanted.scheme, faceBudget_);
+    prepareNextLevel(v, request, model, wanted, dragging);
   }
-  return cost;
+  return result;
 }
 
-std::optional<EditCost> SurfaceCache::refreshEditedViews(ViewerState& state, const Model& model, bool dragging) {
+std::optional<EditCost> SurfaceCache::refreshEditedViews(const SurfaceRequest& request, const Model& model, bool dragging) {
   EditCost cost;
   bool positionsMoved = false;
   // Each stale surface is refreshed once; views that shared it share the refreshed one.
   std::vector<std::pair<const BuiltSurface*, std::shared_ptr<const BuiltSurface>>> refreshed;
-  for (int v = 0; v < state.viewCount; ++v) {
+  for (int v = 0; v < request.viewCount; ++v) {
     ViewSurfaces& view = views_[size_t(v)];
-    const SurfaceKey wanted = wantedKey(state, model, v);
+    const SurfaceKey& wanted = request.wanted[size_t(v)];
     if (!view.shown || !view.shown->refinement || !view.shown->key.sameTopology(wanted)) continue;
     if (view.refreshFailed && *view.refreshFailed == wanted) continue;
     const bool pointsStale = view.shown->key.points != wanted.points;
@@ -129,7 +139,7 @@ std::optional<EditCost> SurfaceCache::refreshEditedViews(ViewerState& state, con
       } catch (const std::exception& e) {
         // Not expected (the topology is the one it was built with); the view is rebuilt instead.
         view.refreshFailed = wanted;
-        state.views[size_t(v)].status.message = std::string("positions-only update failed (rebuilding): ") + e.what();
+        view.message = std::string("positions-only update failed (rebuilding): ") + e.what();
         continue;
       }
       refreshed.emplace_back(view.shown.get(), surface);
@@ -150,30 +160,29 @@ std::optional<EditCost> SurfaceCache::refreshEditedViews(ViewerState& state, con
   return cost;
 }
 
-void SurfaceCache::takeFinishedJob(int v, ViewerState& state, const Model& model) {
+void SurfaceCache::takeFinishedJob(int v, const SurfaceRequest& request, const Model& model) {
   // A finished job: shown if it is still wanted, else dropped (a newer request follows). One built
   // from points edited since is shown too, then brought up to date by a positions-only update
   // (the next refreshEditedViews), so a long build is not thrown away by a drag.
   ViewSurfaces& view = views_[size_t(v)];
   std::optional<SurfaceJob::Outcome> outcome = view.job.poll();
   if (!outcome) return;
-  ViewStatus& status = state.views[size_t(v)].status;
   if (!outcome->error.empty()) {
     view.failed = outcome->key;
-    status.message = outcome->error;
-  } else if (outcome->surface->key.sameTopology(wantedKey(state, model, v))) {
-    parkShown(v, state, model, *outcome->surface);
-    keepPreviousLevel(v, state, model, *outcome->surface);
+    view.message = outcome->error;
+  } else if (outcome->surface->key.sameTopology(request.wanted[size_t(v)])) {
+    parkShown(v, request, model, *outcome->surface);
+    keepPreviousLevel(v, request, model, *outcome->surface);
     show(v, outcome->surface);
-    status.message.clear();
+    view.message.clear();
   }
 }
 
-void SurfaceCache::dropStale(int v, const ViewerState& state, const Model& model) {
+void SurfaceCache::dropStale(int v, const SurfaceRequest& request, const Model& model) {
   // A parked surface of another model or older points, or of the scheme shown, is of no use; a
   // previous level likewise, or of another scheme than the one shown.
   ViewSurfaces& view = views_[size_t(v)];
-  const bool visible = v < state.viewCount;
+  const bool visible = v < request.viewCount;
   const SurfaceKey current{model.generation, SchemeChoice::C2PS, 0, model.points};
   if (view.parked && (!visible || !sameModelAndPoints(view.parked->key, current) ||
                       (view.shown && view.shown->key.scheme == view.parked->key.scheme)))
@@ -183,34 +192,33 @@ void SurfaceCache::dropStale(int v, const ViewerState& state, const Model& model
     view.previousLevel.reset();
 }
 
-void SurfaceCache::satisfy(int v, ViewerState& state, const Model& model, const SurfaceKey& wanted) {
+void SurfaceCache::satisfy(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted) {
   ViewSurfaces& view = views_[size_t(v)];
-  ViewStatus& status = state.views[size_t(v)].status;
-  const bool zoomed = state.poleInspector.zoomRing >= 0;
+  const bool zoomed = request.zoomed;
   std::shared_ptr<const BuiltSurface> twin;  // another view's surface of the same key
   for (const ViewSurfaces& other : views_)
     if (other.shown && other.shown->key == wanted) twin = other.shown;
-  if (unpark(v, state, wanted)) {
-    status.message.clear();
+  if (unpark(v, request, wanted)) {
+    view.message.clear();
   } else if (view.previousLevel && view.previousLevel->key == wanted && !zoomed) {
     // A step back to the level shown before: its surface again (the GPU keeps the shared patches).
     std::shared_ptr<const BuiltSurface> previous = std::move(view.previousLevel);
     view.previousLevel = view.shown;
     show(v, std::move(previous));
     view.reshown = true;
-    status.message.clear();
+    view.message.clear();
   } else if (twin) {
-    parkShown(v, state, model, *twin);
+    parkShown(v, request, model, *twin);
     show(v, twin);
   } else if (std::string refusal = checkFaceBudget(model, wanted, faceBudget_); !refusal.empty()) {
     view.failed = wanted;
-    status.message = refusal;
+    view.message = refusal;
   } else {
-    startBuild(v, state, model, wanted);
+    startBuild(v, request, model, wanted);
   }
 }
 
-void SurfaceCache::startBuild(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted) {
+void SurfaceCache::startBuild(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted) {
   // The view's own hierarchy (same model and scheme) is stepped to the new level; so is its parked
   // one's (the parked surface goes: its hierarchy will be at another level).
   ViewSurfaces& view = views_[size_t(v)];
@@ -223,7 +231,7 @@ void SurfaceCache::startBuild(int v, const ViewerState& state, const Model& mode
   if (view.parked && view.parked->hierarchy == reusable) view.parked.reset();
   // Kept surfaces give their memory to a new refinement that would not fit beside them.
   const size_t adding = levelFaces(model, wanted.scheme, patchLevelFor(model, wanted.scheme, wanted.level, faceBudget_));
-  if (facesHeld(state, model) + adding > faceBudget_)
+  if (facesHeld(request, model) + adding > faceBudget_)
     for (ViewSurfaces& other : views_) {
       other.parked.reset();
       other.previousLevel.reset();
@@ -231,22 +239,22 @@ void SurfaceCache::startBuild(int v, const ViewerState& state, const Model& mode
   view.job.start(model, wanted, faceBudget_, reusable);
 }
 
-void SurfaceCache::parkShown(int v, const ViewerState& state, const Model& model, const BuiltSurface& next) {
+void SurfaceCache::parkShown(int v, const SurfaceRequest& request, const Model& model, const BuiltSurface& next) {
   // Keeps the shown surface when `next` replaces it with another scheme's surface of the same model
   // and points, within the budget, so a toggle back is a swap.
   ViewSurfaces& view = views_[size_t(v)];
   if (!view.shown || !sameModelAndPoints(view.shown->key, next.key) || view.shown->key.scheme == next.key.scheme) return;
   view.parked.reset();  // the older parked surface goes first (also when this one cannot be parked)
   // A zoomed view holds other patches than the surface's on the GPU: nothing to swap back to.
-  if (state.poleInspector.zoomRing >= 0 ||
-      facesHeld(state, model) + levelFaces(model, next.key.scheme, next.patchLevel) > faceBudget_)
+  if (request.zoomed ||
+      facesHeld(request, model) + levelFaces(model, next.key.scheme, next.patchLevel) > faceBudget_)
     return;
   view.parked = std::move(view.shown);
 }
 
-bool SurfaceCache::unpark(int v, const ViewerState& state, const SurfaceKey& wanted) {
+bool SurfaceCache::unpark(int v, const SurfaceRequest& request, const SurfaceKey& wanted) {
   ViewSurfaces& view = views_[size_t(v)];
-  if (!view.parked || view.parked->key != wanted || state.poleInspector.zoomRing >= 0) return false;
+  if (!view.parked || view.parked->key != wanted || request.zoomed) return false;
   std::swap(view.shown, view.parked);  // the one shown so far is parked in turn
   if (view.parked && !sameModelAndPoints(view.parked->key, wanted)) view.parked.reset();
   view.unparked = true;
@@ -255,7 +263,7 @@ bool SurfaceCache::unpark(int v, const ViewerState& state, const SurfaceKey& wan
   return true;
 }
 
-void SurfaceCache::keepPreviousLevel(int v, const ViewerState& state, const Model& model, const BuiltSurface& next) {
+void SurfaceCache::keepPreviousLevel(int v, const SurfaceRequest& request, const Model& model, const BuiltSurface& next) {
   // Keeps the shown surface as the previous level when `next` is a level step of it (same model,
   // scheme and points), within the budget.
   ViewSurfaces& view = views_[size_t(v)];
@@ -264,11 +272,11 @@ void SurfaceCache::keepPreviousLevel(int v, const ViewerState& state, const Mode
                     shown->key.level != next.key.level;
   if (!step) return;
   view.previousLevel.reset();  // the older one goes first
-  if (facesHeld(state, model) + levelFaces(model, next.key.scheme, next.patchLevel) <= faceBudget_)
+  if (facesHeld(request, model) + levelFaces(model, next.key.scheme, next.patchLevel) <= faceBudget_)
     view.previousLevel = view.shown;
 }
 
-void SurfaceCache::prepareNextLevel(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted,
+void SurfaceCache::prepareNextLevel(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted,
                                     bool dragging) {
   ViewSurfaces& view = views_[size_t(v)];
   if (view.prepare.running()) {
@@ -280,15 +288,15 @@ void SurfaceCache::prepareNextLevel(int v, const ViewerState& state, const Model
       view.reservation = GpuReservation{view.shown->hierarchy->preparedRegular.load(), view.shown->hierarchy->preparedCaps.load()};
   }
   // Only the active view (the one the level keys step) is made ahead: memory for one surface more.
-  if (!prepareNextLevel_ || v >= state.viewCount || v != std::clamp(state.activeView, 0, state.viewCount - 1) ||
+  if (!prepareNextLevel_ || v >= request.viewCount || v != request.activeView ||
       view.job.running() || dragging || !view.shown || !view.shown->hierarchy || view.shown->key != wanted)
     return;
-  if (wanted.level + 1 > state.views[size_t(v)].status.deepestLevel) return;
+  if (wanted.level + 1 > view.deepestLevel) return;
   if (view.shown->hierarchy->aheadLevel.load() == wanted.level + 1) return;  // made already
   if (view.previousLevel && view.previousLevel->key.level == wanted.level + 1) return;  // kept from before
   // All views' levels and the one made ahead within one view's budget (memory stays bounded).
   const int next = patchLevelFor(model, wanted.scheme, wanted.level + 1, faceBudget_);
-  if (levelFaces(model, wanted.scheme, next) + facesHeld(state, model, true) > faceBudget_) return;
+  if (levelFaces(model, wanted.scheme, next) + facesHeld(request, model, true) > faceBudget_) return;
   SurfaceKey key = wanted;
   key.level = wanted.level + 1;
   if (view.prepareFailed && *view.prepareFailed == key) return;
@@ -307,10 +315,11 @@ void SurfaceCache::prepareNextLevel(int v, const ViewerState& state, const Model
   });
 }
 
-void SurfaceCache::report(int v, ViewerState& state, const Model& model) const {
+void SurfaceCache::report(int v, const Model& model, ViewStatus& status) const {
   const ViewSurfaces& view = views_[size_t(v)];
-  ViewStatus& status = state.views[size_t(v)].status;
-  status.levelLimit = levelRefusal(model, state.views[size_t(v)].scheme, status.deepestLevel + 1, faceBudget_);
+  status.message = view.message;
+  status.deepestLevel = view.deepestLevel;
+  status.levelLimit = model.mesh ? levelRefusal(model, view.scheme, view.deepestLevel + 1, faceBudget_) : std::string();
   status.refining = view.job.running();
   // Since the view asked for what it waits for (not since the running job, maybe an older one, began).
   status.refiningSeconds =
@@ -345,11 +354,11 @@ std::optional<GpuReservation> SurfaceCache::takeReservation(int v) {
   return reservation;
 }
 
-bool SurfaceCache::busy(const ViewerState& state, const Model& model, bool dragging) const {
-  for (int v = 0; v < state.viewCount; ++v) {
+bool SurfaceCache::busy(const SurfaceRequest& request, const Model& model, bool dragging) const {
+  for (int v = 0; v < request.viewCount; ++v) {
     const ViewSurfaces& view = views_[size_t(v)];
     if (view.job.running() || (view.prepare.running() && !view.prepare.finished())) return true;
-    const SurfaceKey wanted = wantedKey(state, model, v);
+    const SurfaceKey& wanted = request.wanted[size_t(v)];
     if (model.mesh && (!view.shown || view.shown->key != wanted) && !(view.failed && *view.failed == wanted)) return true;
     // Curvature samples still to be retaken after a drag.
     if (view.shown && view.shown->samples && view.shown->samples->points != model.points && !dragging &&

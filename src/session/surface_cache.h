@@ -21,7 +21,8 @@
 #include "pipeline/surface_build.h"
 #include "pipeline/surface_job.h"
 #include "pipeline/background_job.h"
-#include "session/viewer_state.h"
+#include "session/viewer_settings.h"
+#include "session/viewer_status.h"
 
 namespace polarview {
 
@@ -39,6 +40,25 @@ struct GpuReservation {
   size_t regularPatches = 0, capPatches = 0;
 };
 
+// What the views ask the cache for this frame (from ViewerSettings): each view's surface, how many
+// views are visible, the active one (its next level is made ahead), and whether a pole zoom is on
+// (zoomed views hold other patches on the GPU: nothing is parked or reshown).
+struct SurfaceRequest {
+  std::array<SurfaceKey, kMaxViews> wanted{};
+  int viewCount = 1;
+  int activeView = 0;
+  bool zoomed = false;
+};
+SurfaceRequest surfaceRequest(const ViewerSettings& settings, const Model& model);
+
+// What one frame of the cache did for the session: the cost of positions-only updates when points
+// moved, and the views whose refused or failed request reverts to what they show (so the controls
+// tell the truth: the session writes these back into the settings).
+struct SurfaceUpdate {
+  std::optional<EditCost> editCost;
+  std::array<std::optional<SurfaceKey>, kMaxViews> reverted{};
+};
+
 class SurfaceCache {
  public:
   SurfaceCache(size_t faceBudget, bool prepareNextLevel) : faceBudget_(faceBudget), prepareNextLevel_(prepareNextLevel) {}
@@ -48,14 +68,14 @@ class SurfaceCache {
 
   // One frame: positions-only updates of edited views, finished jobs shown, wanted surfaces taken
   // from what is kept or started in the background, kept surfaces dropped when stale or over the
-  // budget, the next level made ahead; writes each view's status (all but the GPU's fields).
-  // Returns the cost of this frame's positions-only updates when points moved. [O(views) a frame;
-  // O(faces of all levels) per edited view]
-  std::optional<EditCost> update(ViewerState& state, const Model& model, bool dragging);
+  // budget, the next level made ahead. [O(views) a frame; O(faces of all levels) per edited view]
+  SurfaceUpdate update(SurfaceRequest request, const Model& model, bool dragging);
+  // View v's part of its status (all but the GPU's fields), written into `status`.
+  void report(int v, const Model& model, ViewStatus& status) const;
   // A new model: failures of the old one are forgotten (surfaces go as they become stale).
-  void modelChanged(ViewerState& state);
+  void modelChanged();
   // True while a job runs or a visible view does not show what its settings ask for.
-  bool busy(const ViewerState& state, const Model& model, bool dragging) const;
+  bool busy(const SurfaceRequest& request, const Model& model, bool dragging) const;
   // Blocks briefly while jobs run (waitUntilIdle's loop).
   void pause() const;
 
@@ -77,7 +97,7 @@ class SurfaceCache {
   // The faces everything kept holds: each parked surface's hierarchy (every level it made), each
   // previous level, and each visible view's shown surface, or (`wantedLevels`) the level its
   // settings ask for; all against faceBudget(). The one sum the policy uses.
-  size_t facesHeld(const ViewerState& state, const Model& model, bool wantedLevels = false) const;
+  size_t facesHeld(const SurfaceRequest& request, const Model& model, bool wantedLevels = false) const;
   size_t faceBudget() const { return faceBudget_; }
 
  private:
@@ -95,28 +115,30 @@ class SurfaceCache {
     // (keys 9 then 10: 10 starts when 9 is done), so its own running time undercounts the wait.
     std::optional<SurfaceKey> waitingFor;
     std::chrono::steady_clock::time_point waitingSince;
+    // What the view's status reports: why its request was refused or failed, and how deep its
+    // scheme goes on this model.
+    std::string message;
+    int deepestLevel = kMaxLevel;
+    SchemeChoice scheme = SchemeChoice::C2PS;  // the scheme asked for (its next level's refusal is reported)
   };
 
   size_t levelFaces(const Model& model, SchemeChoice scheme, int level) const;
   void show(int v, std::shared_ptr<const BuiltSurface> surface);
-  std::optional<EditCost> refreshEditedViews(ViewerState& state, const Model& model, bool dragging);
-  void takeFinishedJob(int v, ViewerState& state, const Model& model);
-  void dropStale(int v, const ViewerState& state, const Model& model);
+  std::optional<EditCost> refreshEditedViews(const SurfaceRequest& request, const Model& model, bool dragging);
+  void takeFinishedJob(int v, const SurfaceRequest& request, const Model& model);
+  void dropStale(int v, const SurfaceRequest& request, const Model& model);
   // Shows what view v's settings ask for from what is kept, or starts building it.
-  void satisfy(int v, ViewerState& state, const Model& model, const SurfaceKey& wanted);
-  void startBuild(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted);
-  void parkShown(int v, const ViewerState& state, const Model& model, const BuiltSurface& next);
-  bool unpark(int v, const ViewerState& state, const SurfaceKey& wanted);
-  void keepPreviousLevel(int v, const ViewerState& state, const Model& model, const BuiltSurface& next);
-  void prepareNextLevel(int v, const ViewerState& state, const Model& model, const SurfaceKey& wanted, bool dragging);
-  void report(int v, ViewerState& state, const Model& model) const;
+  void satisfy(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted);
+  void startBuild(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted);
+  void parkShown(int v, const SurfaceRequest& request, const Model& model, const BuiltSurface& next);
+  bool unpark(int v, const SurfaceRequest& request, const SurfaceKey& wanted);
+  void keepPreviousLevel(int v, const SurfaceRequest& request, const Model& model, const BuiltSurface& next);
+  void prepareNextLevel(int v, const SurfaceRequest& request, const Model& model, const SurfaceKey& wanted, bool dragging);
 
   size_t faceBudget_;
   bool prepareNextLevel_;
   std::array<ViewSurfaces, kMaxViews> views_;
 };
 
-// What view v's settings ask for on `model`.
-SurfaceKey wantedKey(const ViewerState& state, const Model& model, int v);
 
 }  // namespace polarview

@@ -92,8 +92,8 @@ void drawRejectedCandidates(const PoleSurvey& survey) {
 }
 
 // No pole: why not, and the conversion that makes poles of n-gon caps (a Blender cylinder's).
-void drawNoPoles(ViewerState& state) {
-  const PoleSurvey& survey = state.poleInspector.survey;
+void drawNoPoles(PanelContext& ui) {
+  const PoleSurvey& survey = ui.status.poleInspector.survey;
   ImGui::TextWrapped("The model has no polar configuration.");
   if (survey.rejectedCount > 0) {
     ImGui::TextWrapped("%d %s like a pole (a fan of triangles) but %s not; the nearest first:", survey.rejectedCount,
@@ -108,34 +108,35 @@ void drawNoPoles(ViewerState& state) {
   ImGui::TextWrapped("%d %s 5 or more sides: as triangle fans around their centres (Blender's triangle fan cap fill), "
                      "caps ringed by quads become poles.",
                      survey.fanFaces, survey.fanFaces == 1 ? "face has" : "faces have");
-  commandButton(state, ids::kModelNgonToFan);
+  commandButton(ui.commands, ids::kModelNgonToFan);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a new vertex at each such face's centroid, the face a fan of triangles around it (Ctrl+Z returns)");
 }
 
 }  // namespace
 
-void drawPoleInspectorPanel(ViewerState& state) {
-  PoleInspectorSettings& s = state.poleInspector;
-  s.open = true;  // the app computes while the section is open
-  if (s.poles.empty()) {
-    drawNoPoles(state);
+void drawPoleInspectorPanel(PanelContext& ui) {
+  PoleInspectorSettings& s = ui.settings.poleInspector;
+  const PoleInspectorStatus& shown = ui.status.poleInspector;
+  s.open = true;  // the session computes while the section is open
+  if (shown.poles.empty()) {
+    drawNoPoles(ui);
     return;
   }
-  s.pole = std::clamp(s.pole, 0, int(s.poles.size()) - 1);
-  const std::string current = "vertex " + std::to_string(s.poles[size_t(s.pole)]);
+  s.pole = std::clamp(s.pole, 0, int(shown.poles.size()) - 1);
+  const std::string current = "vertex " + std::to_string(shown.poles[size_t(s.pole)]);
   if (ImGui::BeginCombo("pole", current.c_str())) {
-    for (int k = 0; k < int(s.poles.size()); ++k)
-      if (ImGui::Selectable(("vertex " + std::to_string(s.poles[size_t(k)])).c_str(), k == s.pole)) s.pole = k;
+    for (int k = 0; k < int(shown.poles.size()); ++k)
+      if (ImGui::Selectable(("vertex " + std::to_string(shown.poles[size_t(k)])).c_str(), k == s.pole)) s.pole = k;
     ImGui::EndCombo();
   }
-  if (s.computing) ImGui::TextDisabled("computing the rings ...");
-  if (!s.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.4f, 1.0f), "%s", s.error.c_str());
-  if (s.inspections.empty()) return;
+  if (shown.computing) ImGui::TextDisabled("computing the rings ...");
+  if (!shown.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.4f, 1.0f), "%s", shown.error.c_str());
+  if (shown.inspections.empty()) return;
 
   // Per scheme: K and H at the pole, and what they mean.
   std::string copied;
-  for (size_t k = 0; k < s.inspections.size(); ++k) {
-    const PoleInspection& in = s.inspections[k];
+  for (size_t k = 0; k < shown.inspections.size(); ++k) {
+    const PoleInspection& in = shown.inspections[k];
     ImGui::TextColored(ImColor(seriesColour(int(k))).Value, "%s", schemeChoiceLabel(in.scheme));
     ImGui::SameLine();
     if (in.curvatureDefined) ImGui::Text("K %.6g  H %.6g%s", in.K, in.H, in.directional ? " (Taylor)" : "");
@@ -159,9 +160,9 @@ void drawPoleInspectorPanel(ViewerState& state) {
   // How K approaches the pole, ring by ring (log scale).
   std::vector<PlotSeries> convergence;
   int deepest = 1;
-  for (size_t k = 0; k < s.inspections.size(); ++k) {
+  for (size_t k = 0; k < shown.inspections.size(); ++k) {
     PlotSeries series{seriesColour(int(k)), {}, {}};
-    for (const PoleRingCurves& ring : s.inspections[k].rings) {
+    for (const PoleRingCurves& ring : shown.inspections[k].rings) {
       series.x.push_back(float(ring.m));
       series.y.push_back(ring.deviation > 0.0 ? float(std::log10(ring.deviation)) : NAN);
       deepest = std::max(deepest, ring.m);
@@ -175,9 +176,9 @@ void drawPoleInspectorPanel(ViewerState& state) {
   s.ring = std::clamp(s.ring, 1, deepest);
   ImGui::SliderInt("ring m", &s.ring, 1, deepest);
   std::vector<PlotSeries> around;
-  for (size_t k = 0; k < s.inspections.size(); ++k) {
+  for (size_t k = 0; k < shown.inspections.size(); ++k) {
     PlotSeries series{seriesColour(int(k)), {}, {}};
-    for (const PoleRingCurves& ring : s.inspections[k].rings)
+    for (const PoleRingCurves& ring : shown.inspections[k].rings)
       if (ring.m == s.ring)
         for (size_t a = 0; a < ring.kAlongAngle.size(); ++a) {
           series.x.push_back(360.0f * float(a) / float(ring.kAlongAngle.size()));
@@ -197,19 +198,20 @@ void drawPoleInspectorPanel(ViewerState& state) {
   if (zoom) s.zoomRing = s.ring;
 }
 
-void drawSpectrumPanel(ViewerState& state) {
-  SpectrumSettings& s = state.spectrum;
+void drawSpectrumPanel(PanelContext& ui) {
+  SpectrumSettings& s = ui.settings.spectrum;
+  const SpectrumStatus& shown = ui.status.spectrum;
   s.open = true;
   ImGui::SliderInt("valence n", &s.valence, 5, 24);
   ImGui::TextDisabled("RTS, matrix (13): k, eigenvalue, Fourier block, mode");
-  for (int k = 0; k < int(s.lines.size()); ++k)
-    if (ImGui::Selectable(s.lines[size_t(k)].c_str(), k == s.k)) s.k = k;
-  if (s.linesValence != s.valence) ImGui::TextDisabled("computing ...");
+  for (int k = 0; k < int(shown.lines.size()); ++k)
+    if (ImGui::Selectable(shown.lines[size_t(k)].c_str(), k == s.k)) s.k = k;
+  if (shown.linesValence != s.valence) ImGui::TextDisabled("computing ...");
   ImGui::SliderInt("C2PS steps", &s.c2psSteps, 0, 3);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Fig. 1 d-f: the net after that many C2PS steps (valence x 2 each), magnified back by 2 a step\n"
                       "and its heights by 1 / lambda a step: Lemma 5's scaling shows as equal heights");
-  commandButton(state, ids::kModelEigenvector);
+  commandButton(ui.commands, ids::kModelEigenvector);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the net (v1, v2, v_k) over the characteristic map; the views draw its eigenspline (Ctrl+Z returns)");
 }

@@ -1,4 +1,4 @@
-// Viewer panels, overlay and input (see viewer_panels.h). Edits ViewerState only.
+// Viewer panels, overlay and input (see viewer_panels.h): they edit settings, show status, queue commands.
 #include "ui/viewer_panels.h"
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 
 #include "pipeline/surface_export.h"
 #include "session/command_ids.h"
+#include "session/settings_rules.h"
 
 namespace polarview {
 namespace ids = command_ids;
@@ -91,29 +92,30 @@ std::string formatTick(double value, double scale) {
 
 }  // namespace
 
-void commandButton(ViewerState& state, std::string_view id) {
+void commandButton(CommandQueue& commands, std::string_view id) {
   const CommandCall call{&viewerCommands().at(id), 0};  // an id not in the table throws
-  if (ImGui::Button(CommandTable::buttonLabel(call).c_str())) queueCommand(state, call.text());
+  if (ImGui::Button(CommandTable::buttonLabel(call).c_str())) queueCommand(commands, call.text());
 }
 
 namespace {
 
-void drawFilePanel(ViewerState& state) {
-  FileSettings& file = state.file;
+void drawFilePanel(PanelContext& ui) {
+  const FileStatus& file = ui.status.file;
+  std::string& pathField = ui.settings.file.pathField;
   // The controls come first and keep their places: text whose height changes (the model's name,
   // errors, the loading line) goes below them, so a click never lands on a button that moved.
   const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("Open (Enter)").x + 2.0f * style.FramePadding.x + style.ItemSpacing.x));
-  if (ImGui::InputText("##path", &file.pathField, ImGuiInputTextFlags_EnterReturnsTrue)) queueCommand(state, ids::kFileOpen);
+  if (ImGui::InputText("##path", &pathField, ImGuiInputTextFlags_EnterReturnsTrue)) queueCommand(ui.commands, ids::kFileOpen);
   ImGui::SameLine();
-  commandButton(state, ids::kFileOpen);
-  commandButton(state, ids::kFileReload);
+  commandButton(ui.commands, ids::kFileOpen);
+  commandButton(ui.commands, ids::kFileReload);
   ImGui::SameLine();
-  commandButton(state, ids::kFileDefault);
+  commandButton(ui.commands, ids::kFileDefault);
   ImGui::SameLine();
   const bool canUndo = !file.previousModelName.empty();
   if (!canUndo) ImGui::BeginDisabled();
-  commandButton(state, ids::kFilePreviousModel);
+  commandButton(ui.commands, ids::kFilePreviousModel);
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("back to %s (also Ctrl+Z when no vertex drag is left to undo)", file.previousModelName.c_str());
@@ -132,9 +134,8 @@ void drawFilePanel(ViewerState& state) {
     for (size_t i = 0; i < file.playlist.size(); ++i) {
       ImGui::PushID(int(i));
       if (ImGui::Selectable(file.playlist[i].c_str(), int(i) == file.playlistIndex)) {
-        file.playlistIndex = int(i);
-        file.pathField = file.playlist[i];
-        queueCommand(state, ids::kFileOpen);
+        pathField = file.playlist[i];  // the document marks the entry when it opens it
+        queueCommand(ui.commands, ids::kFileOpen);
       }
       ImGui::PopID();
     }
@@ -143,8 +144,8 @@ void drawFilePanel(ViewerState& state) {
   if (!file.recent.empty() && ImGui::TreeNode("Recent files")) {
     for (const std::string& path : file.recent) {
       if (ImGui::Selectable(path.c_str())) {
-        file.pathField = path;
-        queueCommand(state, ids::kFileOpen);
+        pathField = path;
+        queueCommand(ui.commands, ids::kFileOpen);
       }
     }
     ImGui::TreePop();
@@ -182,50 +183,51 @@ void drawSurfaceFormatChoice(EditSettings& edit) {
   ImGui::EndCombo();
 }
 
-void drawEditPanel(ViewerState& state) {
-  EditSettings& edit = state.edit;
+void drawEditPanel(PanelContext& ui) {
+  EditSettings& paths = ui.settings.edit;
+  const EditStatus& edit = ui.status.edit;
   // Buttons first, at fixed places; text that changes length below them.
   const bool canUndo = edit.undoSteps > 0, canRedo = edit.redoSteps > 0;
   if (!canUndo) ImGui::BeginDisabled();
-  commandButton(state, ids::kEditUndo);
+  commandButton(ui.commands, ids::kEditUndo);
   if (!canUndo) ImGui::EndDisabled();
   if (canUndo && ImGui::IsItemHovered()) ImGui::SetTooltip("undo: %s", edit.undoLabel.c_str());
   ImGui::SameLine();
   if (!canRedo) ImGui::BeginDisabled();
-  commandButton(state, ids::kEditRedo);
+  commandButton(ui.commands, ids::kEditRedo);
   if (!canRedo) ImGui::EndDisabled();
   if (canRedo && ImGui::IsItemHovered()) ImGui::SetTooltip("redo: %s", edit.redoLabel.c_str());
   ImGui::SameLine();
   const bool edited = edit.movedVertices > 0;
   if (!edited) ImGui::BeginDisabled();
-  commandButton(state, ids::kEditReset);
+  commandButton(ui.commands, ids::kEditReset);
   if (!edited) ImGui::EndDisabled();
   if (edited && ImGui::IsItemHovered()) ImGui::SetTooltip("every control vertex back where the file had it (Ctrl+Z undoes it)");
-  if (pathFieldAndButton("##savePath", edit.savePath, edit.defaultSavePath, ids::kEditSave))
-    queueCommand(state, ids::kEditSave);
-  drawSurfaceFormatChoice(edit);
+  if (pathFieldAndButton("##savePath", paths.savePath, edit.defaultSavePath, ids::kEditSave))
+    queueCommand(ui.commands, ids::kEditSave);
+  drawSurfaceFormatChoice(paths);
   ImGui::SameLine();
-  if (pathFieldAndButton("##surfacePath", edit.surfacePath, edit.defaultSurfacePath, ids::kExportSurface))
-    queueCommand(state, ids::kExportSurface);
+  if (pathFieldAndButton("##surfacePath", paths.surfacePath, edit.defaultSurfacePath, ids::kExportSurface))
+    queueCommand(ui.commands, ids::kExportSurface);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the active view's limit surface (its scheme and level, feature-adaptive); the format from the "
                       "extension: %s", exportFormatExtensions().c_str());
-  if (pathFieldAndButton("##refinedPath", edit.refinedObjPath, edit.defaultRefinedObjPath, ids::kExportRefinedObj))
-    queueCommand(state, ids::kExportRefinedObj);
+  if (pathFieldAndButton("##refinedPath", paths.refinedObjPath, edit.defaultRefinedObjPath, ids::kExportRefinedObj))
+    queueCommand(ui.commands, ids::kExportRefinedObj);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the active view's control mesh refined uniformly to its level, as OBJ");
   // Fig. 14: extraordinary vertices to polar configurations (the model is replaced; Ctrl+Z returns).
-  commandButton(state, ids::kModelEvToPolar);
+  commandButton(ui.commands, ids::kModelEvToPolar);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each n-valent extraordinary vertex becomes a 2n-valent polar configuration with n 5-valent vertices");
   ImGui::SameLine();
-  commandButton(state, ids::kModelEvToPolarPentagons);
+  commandButton(ui.commands, ids::kModelEvToPolarPentagons);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("each n-valent extraordinary vertex becomes an n-valent pole ringed by n pentagons");
-  commandButton(state, ids::kModelNgonToFan);
+  commandButton(ui.commands, ids::kModelNgonToFan);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each face of 5 or more sides becomes a fan of triangles around its centroid: n-gon caps ringed by "
                       "quads (a cylinder's) become poles");
 
-  if (!state.display.controlNet) {
+  if (!ui.settings.display.controlNet) {
     ImGui::TextDisabled("Show the control net (N) to pick and drag its vertices.");
   } else if (edit.selectedVertex >= 0) {
     ImGui::Text("Vertex %d: (%.4g, %.4g, %.4g)%s", edit.selectedVertex, edit.selectedPosition.x, edit.selectedPosition.y,
@@ -240,18 +242,18 @@ void drawEditPanel(ViewerState& state) {
   if (!edit.error.empty()) wrappedColoredText(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), edit.error);
 }
 
-void drawViewsPanel(ViewerState& state) {
-  ImGui::SliderInt("Views (V)", &state.viewCount, 1, kMaxViews);
-  state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
-  ImGui::Checkbox("Link cameras (K)", &state.linkCameras);
+void drawViewsPanel(PanelContext& ui) {
+  ImGui::SliderInt("Views (V)", &ui.settings.viewCount, 1, kMaxViews);
+  ui.settings.viewCount = std::clamp(ui.settings.viewCount, 1, kMaxViews);
+  ImGui::Checkbox("Link cameras (K)", &ui.settings.linkCameras);
   ImGui::SameLine();
-  ImGui::Checkbox("Link levels", &state.linkLevels);
-  for (int v = 0; v < state.viewCount; ++v) {
+  ImGui::Checkbox("Link levels", &ui.settings.linkLevels);
+  for (int v = 0; v < ui.settings.viewCount; ++v) {
     ImGui::PushID(v);
-    View& view = state.views[v];
-    const ViewStatus& status = state.views[v].status;
+    View& view = ui.settings.views[v];
+    const ViewStatus& status = ui.status.views[size_t(v)];
     ImGui::Separator();
-    ImGui::Text("View %d%s", v + 1, v == state.activeView ? " (active)" : "");
+    ImGui::Text("View %d%s", v + 1, v == ui.settings.activeView ? " (active)" : "");
     int scheme = int(view.scheme);
     const char* names[kSchemeChoiceCount];
     for (int i = 0; i < kSchemeChoiceCount; ++i) names[i] = schemeChoiceLabel(static_cast<SchemeChoice>(i));
@@ -259,8 +261,8 @@ void drawViewsPanel(ViewerState& state) {
     int level = view.level;
     const std::string levelLabel = "Level (0-" + std::to_string(status.deepestLevel) + ")";
     if (ImGui::SliderInt(levelLabel.c_str(), &level, 0, status.deepestLevel)) {
-      state.activeView = v;
-      requestLevel(state, level);
+      ui.settings.activeView = v;
+      requestLevel(ui.settings, ui.status, ui.notices, level);
     }
     if (ImGui::IsItemHovered() && !status.levelLimit.empty()) ImGui::SetTooltip("%s", status.levelLimit.c_str());
     if (status.refining) {
@@ -272,8 +274,8 @@ void drawViewsPanel(ViewerState& state) {
   }
 }
 
-void drawDisplayPanel(ViewerState& state) {
-  DisplayFlags& d = state.display;
+void drawDisplayPanel(PanelContext& ui) {
+  DisplayFlags& d = ui.settings.display;
   ImGui::Checkbox("Limit surface (U)", &d.surface);
   ImGui::Checkbox("Control net of the level (N)", &d.controlNet);
   ImGui::Checkbox("Patch / ring boundaries (B)", &d.patchBoundaries);
@@ -297,11 +299,11 @@ void drawDisplayPanel(ViewerState& state) {
   }
   ImGui::Checkbox("Pole markers (P)", &d.poleMarkers);
   ImGui::Checkbox("Wireframe over surface (W)", &d.wireframe);
-  ImGui::SliderFloat("Edge length (px)", &state.shading.tessPixels, 2.0f, 40.0f, "%.0f");
+  ImGui::SliderFloat("Edge length (px)", &ui.settings.shading.tessPixels, 2.0f, 40.0f, "%.0f");
 }
 
-void drawShadingPanel(ViewerState& state) {
-  ShadingParams& s = state.shading;
+void drawShadingPanel(PanelContext& ui) {
+  ShadingParams& s = ui.settings.shading;
   // The shade command's choices are the modes' table (pipeline/shading.h), in its order.
   const Command& shade = viewerCommands().at(ids::kShade);
   for (size_t i = 0; i < shadingModes().size(); ++i) {
@@ -315,7 +317,7 @@ void drawShadingPanel(ViewerState& state) {
     // The light plane facing the active view (lines along screen y) puts stripes wherever the
     // viewer looks; the lines then stay fixed to the model while the camera moves on.
     if (ImGui::Button("Light plane facing the view")) {
-      const OrbitCamera& camera = state.camera(state.activeView);
+      const OrbitCamera& camera = ui.settings.camera(ui.settings.activeView);
       s.highlightPlaneNormal = glm::vec3(-camera.forward());
       s.highlightDir = glm::vec3(camera.up());
     }
@@ -325,55 +327,55 @@ void drawShadingPanel(ViewerState& state) {
       ImGui::SliderFloat("Period (turns)", &s.reflectionSpacing, 0.005f, 0.5f, "%.4f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("Line width", &s.highlightWidth, 0.02f, 0.98f, "%.2f");
   }
-  if (state.showsColourBar()) ImGui::SliderFloat("Lighting", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
+  if (ui.settings.showsColourBar()) ImGui::SliderFloat("Lighting", &s.curvatureLighting, 0.0f, 1.0f, "%.2f");
 }
 
-void drawColourPanel(ViewerState& state) {
-  ShadingParams& s = state.shading;
+void drawColourPanel(PanelContext& ui) {
+  ShadingParams& s = ui.settings.shading;
   int map = int(s.colormap);
   const char* maps[] = {"paper (Fig. 13)", "coolwarm", "viridis", "magnitude (Figs. 11-12)"};
   if (ImGui::Combo("Colour map (C)", &map, maps, 4)) s.colormap = static_cast<ShadingParams::ColorMap>(map);
-  bool automatic = state.colour.automatic;
-  if (ImGui::Checkbox("Automatic range (A)", &automatic)) setAutomaticRange(state, automatic);
-  if (state.colour.automatic) {
-    float percent = state.colour.quantile * 100.0f;
+  bool automatic = ui.settings.colour.automatic;
+  if (ImGui::Checkbox("Automatic range (A)", &automatic)) setAutomaticRange(ui.settings, ui.status, automatic);
+  if (ui.settings.colour.automatic) {
+    float percent = ui.settings.colour.quantile * 100.0f;
     if (ImGui::SliderFloat("Percentile", &percent, 50.0f, 100.0f, "%.1f")) {
-      state.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
+      ui.settings.colour.quantile = std::clamp(percent / 100.0f, 0.5f, 1.0f);
     }
-    const ColourInterval range = state.colourInterval();
-    if (!range.oneSided() && state.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", range.high);
+    const ColourInterval range = colourInterval(ui.settings, ui.status);
+    if (!range.oneSided() && ui.settings.colour.symmetric) ImGui::Text("Range: +-%.4g (shared by all views)", range.high);
     else ImGui::Text("Range: %.4g .. %.4g (shared by all views)", range.low, range.high);
     ImGui::PushTextWrapPos(0.0f);
-    if (state.colour.oneSign() != 0)
+    if (ui.status.colour.oneSign() != 0)
       ImGui::TextDisabled("P%.0f .. P%.0f over the half of the map of their sign; end caps at extraordinary vertices "
                           "are not counted.", 100.0f - percent, percent);
-    else if (state.colour.symmetric)
+    else if (ui.settings.colour.symmetric)
       ImGui::TextDisabled("+-max(-P%.0f, P%.0f); end caps at extraordinary vertices are not counted.",
                           100.0f - percent, percent);
     else
       ImGui::TextDisabled("-P%.0f .. P%.0f; end caps at extraordinary vertices are not counted.", 100.0f - percent, percent);
     ImGui::PopTextWrapPos();
-  } else if (state.colour.symmetric) {
-    if (ImGui::InputDouble("Range +-", &state.colour.typedRange, 0.0, 0.0, "%.6g")) {
-      state.colour.typedRange = std::max(std::abs(state.colour.typedRange), kSmallestRange);
+  } else if (ui.settings.colour.symmetric) {
+    if (ImGui::InputDouble("Range +-", &ui.settings.colour.typedRange, 0.0, 0.0, "%.6g")) {
+      ui.settings.colour.typedRange = std::max(std::abs(ui.settings.colour.typedRange), kSmallestRange);
     }
-    if (ImGui::Button("Use automatic value")) state.colour.typedRange = state.colour.sampled.symmetricRange;
+    if (ImGui::Button("Use automatic value")) ui.settings.colour.typedRange = ui.status.colour.sampled.symmetricRange;
   } else {
-    ColourInterval& typed = state.colour.typedApart;
+    ColourInterval& typed = ui.settings.colour.typedApart;
     // Min below max; zero between them keeps the map's middle, else the range is one-sided.
     if (ImGui::InputDouble("Min", &typed.low, 0.0, 0.0, "%.6g")) typed.low = std::min(typed.low, typed.high - kSmallestRange);
     if (ImGui::InputDouble("Max", &typed.high, 0.0, 0.0, "%.6g")) typed.high = std::max(typed.high, typed.low + kSmallestRange);
-    if (ImGui::Button("Use automatic values")) typed = state.colour.automaticInterval();
+    if (ImGui::Button("Use automatic values")) typed = automaticInterval(ui.settings.colour, ui.status.colour);
   }
-  if (const std::string note = colourRangeNote(state); !note.empty()) {
+  if (const std::string note = colourRangeNote(ui.settings, ui.status); !note.empty()) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.4f, 1.0f), "%s", note.c_str());
     ImGui::PopTextWrapPos();
   }
-  bool symmetric = state.colour.symmetric;
+  bool symmetric = ui.settings.colour.symmetric;
   if (ImGui::Checkbox("Symmetric (+-R); off: min and max apart", &symmetric)) {
-    if (!state.colour.automatic && !symmetric) state.colour.typedApart = ColourInterval::symmetric(state.colour.typedRange);
-    state.colour.symmetric = symmetric;
+    if (!ui.settings.colour.automatic && !symmetric) ui.settings.colour.typedApart = ColourInterval::symmetric(ui.settings.colour.typedRange);
+    ui.settings.colour.symmetric = symmetric;
   }
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("The histogram over the colour bar counts the area of the shown views' surfaces (what is on "
@@ -381,36 +383,36 @@ void drawColourPanel(ViewerState& state) {
   ImGui::PopTextWrapPos();
 }
 
-void drawCameraPanel(ViewerState& state) {
+void drawCameraPanel(PanelContext& ui) {
   for (const std::string_view id : {ids::kCameraFront, ids::kCameraTop, ids::kCameraSide, ids::kCameraIso}) {
-    commandButton(state, id);
+    commandButton(ui.commands, id);
     if (id != ids::kCameraIso) ImGui::SameLine();
   }
-  commandButton(state, ids::kCameraFrame);
+  commandButton(ui.commands, ids::kCameraFrame);
   ImGui::SameLine();
-  commandButton(state, ids::kCameraCopy);
+  commandButton(ui.commands, ids::kCameraCopy);
   ImGui::SameLine();
-  commandButton(state, ids::kCameraPaste);
-  bool ortho = state.camera(state.activeView).orthographic;
-  if (ImGui::Checkbox("Orthographic (O)", &ortho)) setOrthographic(state, ortho);
-  float fov = float(state.camera(state.activeView).fovDeg);
-  if (ImGui::SliderFloat("Field of view", &fov, 5.0f, 90.0f, "%.0f deg")) state.camera(state.activeView).fovDeg = fov;
+  commandButton(ui.commands, ids::kCameraPaste);
+  bool ortho = ui.settings.camera(ui.settings.activeView).orthographic;
+  if (ImGui::Checkbox("Orthographic (O)", &ortho)) setOrthographic(ui.settings, ortho);
+  float fov = float(ui.settings.camera(ui.settings.activeView).fovDeg);
+  if (ImGui::SliderFloat("Field of view", &fov, 5.0f, 90.0f, "%.0f deg")) ui.settings.camera(ui.settings.activeView).fovDeg = fov;
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Left drag orbits, right/middle drag pans, the wheel zooms towards the cursor, a "
                       "double-click sets the pivot, Ctrl+left drag moves the light.");
   ImGui::PopTextWrapPos();
 }
 
-void drawScreenshotPanel(ViewerState& state) {
-  commandButton(state, ids::kScreenshot);
+void drawScreenshotPanel(PanelContext& ui) {
+  commandButton(ui.commands, ids::kScreenshot);
   ImGui::SameLine();
-  ImGui::RadioButton("1x", &state.screenshot.supersample, 1);
+  ImGui::RadioButton("1x", &ui.settings.screenshot.supersample, 1);
   ImGui::SameLine();
-  ImGui::RadioButton("2x", &state.screenshot.supersample, 2);
+  ImGui::RadioButton("2x", &ui.settings.screenshot.supersample, 2);
   ImGui::SameLine();
-  ImGui::RadioButton("4x", &state.screenshot.supersample, 4);
-  ImGui::Checkbox("Transparent background", &state.screenshot.transparent);
-  if (!state.screenshot.lastPath.empty()) ImGui::TextWrapped("Last: %s", state.screenshot.lastPath.c_str());
+  ImGui::RadioButton("4x", &ui.settings.screenshot.supersample, 4);
+  ImGui::Checkbox("Transparent background", &ui.settings.screenshot.transparent);
+  if (!ui.status.lastScreenshot.empty()) ImGui::TextWrapped("Last: %s", ui.status.lastScreenshot.c_str());
 }
 
 // Numbers under their names, one column each, so a number is never cut at the panel's edge nor
@@ -429,7 +431,7 @@ void numberTable(const char* id, std::initializer_list<std::pair<const char*, do
 
 // One number a row under its name (a line of three was cut at the panel's edge, and ImGui wraps at
 // a '.' too, inside a number).
-void drawPointPanel(const ReadoutSettings& readout) {
+void drawPointPanel(const ReadoutStatus& readout) {
   const PointReadout& r = readout.readout;
   ImGui::Text("view %d (marked with a cross)", readout.view + 1);
   if (!ImGui::BeginTable("##point", 2, ImGuiTableFlags_SizingFixedFit)) return;
@@ -457,9 +459,9 @@ void drawPointPanel(const ReadoutSettings& readout) {
   ImGui::EndTable();
 }
 
-void drawStatsPanel(const ViewerState& state) {
-  ImGui::Text("Frame: %.1f ms", state.frameMs);
-  const EditSettings& edit = state.edit;
+void drawStatsPanel(const ViewerSettings& settings, const ViewerStatus& status) {
+  ImGui::Text("Frame: %.1f ms", status.frameMs);
+  const EditStatus& edit = status.edit;
   // The cost of the last positions-only update, while the model holds an edit (an undo back to the
   // file's points leaves nothing it describes).
   if (edit.updatedViews > 0 && (edit.undoSteps > 0 || edit.movedVertices > 0)) {
@@ -467,8 +469,8 @@ void drawStatsPanel(const ViewerState& state) {
     numberTable("##edit", {{"positions", edit.positionsMs}, {"patches", edit.patchesMs}, {"upload", edit.uploadMs},
                            {"all", edit.totalMs}}, "%.1f");
   }
-  for (int v = 0; v < state.viewCount; ++v) {
-    const ViewStatus& s = state.views[v].status;
+  for (int v = 0; v < settings.viewCount; ++v) {
+    const ViewStatus& s = status.views[size_t(v)];
     if (!s.hasSurface) {
       ImGui::Text("View %d: (nothing yet)", v + 1);
       continue;
@@ -514,15 +516,15 @@ void drawStatsPanel(const ViewerState& state) {
     ImGui::TextWrapped("%s", kinds.c_str());
     ImGui::Unindent();
   }
-  if (!state.glInfo.empty()) wrappedColoredText(ImGui::GetStyle().Colors[ImGuiCol_TextDisabled], state.glInfo);
+  if (!status.glInfo.empty()) wrappedColoredText(ImGui::GetStyle().Colors[ImGuiCol_TextDisabled], status.glInfo);
 }
 
 // The last notice, at the top of the view area where it is always in sight (the panel column may be
 // scrolled or hidden). An ImGui window: screenshots, which draw only the views' overlay, leave it out.
-void drawNotice(const ViewerState& state) {
-  if (state.notice.empty()) return;
+void drawNotice(const ViewerSettings& settings, const Notices& notices) {
+  if (notices.text().empty()) return;
   const ImGuiIO& io = ImGui::GetIO();
-  const float left = std::min(panelColumnWidth(state), io.DisplaySize.x * 0.5f);
+  const float left = std::min(panelColumnWidth(settings), io.DisplaySize.x * 0.5f);
   const float width = std::max(io.DisplaySize.x - left - 40.0f, 120.0f);
   ImGui::SetNextWindowPos(ImVec2(left + 20.0f, 40.0f), ImGuiCond_Always);
   ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(width, io.DisplaySize.y * 0.5f));
@@ -532,21 +534,21 @@ void drawNotice(const ViewerState& state) {
                                  ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoSavedSettings;
   if (ImGui::Begin("##notice", nullptr, flags)) {
     ImGui::PushTextWrapPos(width - 16.0f);
-    ImGui::TextUnformatted(state.notice.c_str());
+    ImGui::TextUnformatted(notices.text().c_str());
     ImGui::PopTextWrapPos();
   }
   ImGui::End();
 }
 
-void drawHelpWindow(ViewerState& state) {
-  if (!state.showHelp) return;
+void drawHelpWindow(PanelContext& ui) {
+  if (!ui.settings.showHelp) return;
   // Within the window (a row a key, under its heading, is a long list): the list scrolls and the
   // help column wraps, so the id column stays in view at any window size.
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(380, 40), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(std::max(std::min(display.x - 400.0f, 1100.0f), 400.0f), std::max(display.y - 60.0f, 200.0f)),
                            ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("Controls (?)", &state.showHelp)) {
+  if (ImGui::Begin("Controls (?)", &ui.settings.showHelp)) {
     // The mouse gestures, then every command with a help line: the command table's rows.
     if (ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_ScrollY,
                           ImVec2(0.0f, -ImGui::GetTextLineHeightWithSpacing()))) {
@@ -590,11 +592,11 @@ void drawHelpWindow(ViewerState& state) {
 // lines, so switching between them keeps the views' size and the model does not move; a line
 // legend alone sits in its middle, and above the colour bar when views show both.
 constexpr float kColourBarStrip = 64.0f + kHistogramHeight + 4.0f;
-float lineLegendReserve(const ViewerState& state, float scale) {
-  return state.lineShade() && state.showsColourBar() ? 30.0f * scale : 0.0f;
+float lineLegendReserve(const ViewerSettings& settings, float scale) {
+  return settings.lineShade() && settings.showsColourBar() ? 30.0f * scale : 0.0f;
 }
-float colourBarOnlyReserve(const ViewerState& state, float scale) {
-  return state.showsColourBar() || state.lineShade() ? kColourBarStrip * scale : 0.0f;
+float colourBarOnlyReserve(const ViewerSettings& settings, float scale) {
+  return settings.showsColourBar() || settings.lineShade() ? kColourBarStrip * scale : 0.0f;
 }
 
 // What the overlay draws with: the list, the font, its size and the scale (supersampled screenshots).
@@ -608,7 +610,7 @@ constexpr ImU32 kOverlayBox = IM_COL32(20, 20, 24, 190);
 
 // Labels "scheme · level" at the top of each view, centred, and the lines between views; returns
 // the labels' boxes (x0, y0, x1, y1).
-std::vector<ImVec4> drawViewLabels(const OverlayPen& pen, const ViewerState& state, const std::vector<ScreenRect>& views,
+std::vector<ImVec4> drawViewLabels(const OverlayPen& pen, const ViewerSettings& settings, const ViewerStatus& status, const std::vector<ScreenRect>& views,
                                    const ScreenRect& frame) {
   ImDrawList* list = pen.list;
   ImFont* font = pen.font;
@@ -616,16 +618,16 @@ std::vector<ImVec4> drawViewLabels(const OverlayPen& pen, const ViewerState& sta
   std::vector<ImVec4> labelBoxes;
   for (size_t v = 0; v < views.size(); ++v) {
     const ScreenRect& r = views[v];
-    const ViewStatus& status = state.views[v].status;
-    const View& wanted = state.views[v];
-    std::string label = viewTitle(status);
+    const ViewStatus& shown = status.views[v];
+    const View& wanted = settings.views[v];
+    std::string label = viewTitle(shown);
     if (!wanted.caption.empty()) label = wanted.caption;
     else if (wanted.shade) label += " \xC2\xB7 " + std::string(shadeModeName(*wanted.shade));
-    if (status.refining) {
+    if (shown.refining) {
       label += "   refining " + std::string(schemeChoiceLabel(wanted.scheme)) + " \xC2\xB7 " +
                std::to_string(wanted.level) + "...";
     }
-    if (v == 0 && state.file.loading) label += "   loading " + state.file.loadingPath + "...";
+    if (v == 0 && status.file.loading) label += "   loading " + status.file.loadingPath + "...";
     // Wraps in a narrow view instead of running past its sides.
     const float wrap = std::max(r.w - 24.0f * scale, 40.0f * scale);
     ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, wrap, label.c_str());
@@ -691,22 +693,22 @@ void drawVertexMarkers(const OverlayPen& pen, const std::vector<VertexMarker>& v
   }
 }
 
-void drawLineLegend(const OverlayPen& pen, const ViewerState& state, const ScreenRect& frame) {
+void drawLineLegend(const OverlayPen& pen, const ViewerSettings& settings, const ScreenRect& frame) {
   ImDrawList* list = pen.list;
   ImFont* font = pen.font;
   const float fontSize = pen.fontSize, scale = pen.scale;
   // Highlight / reflection modes: a one-line legend instead of the colour bar, so screenshots
   // still say what they show.
-  ShadingParams lines = state.shading;
-  lines.mode = state.lineShade().value_or(ShadingParams::Mode::Shaded);
+  ShadingParams lines = settings.shading;
+  lines.mode = settings.lineShade().value_or(ShadingParams::Mode::Shaded);
   if (std::string legend = lineLegend(lines); !legend.empty()) {
     const float legendSize = fontSize * 0.9f;
     // Wraps in a narrow window; extra lines grow the box upwards over the views' bottom edge.
     const float wrap = std::max(frame.w - 24.0f * scale, 60.0f * scale);
     ImVec2 size = font->CalcTextSizeA(legendSize, 1e9f, wrap, legend.c_str());
     const float oneLine = font->CalcTextSizeA(legendSize, 1e9f, 0.0f, "M").y;
-    const float strip = colourBarReserve(state, scale);
-    const float below = state.showsColourBar() ? 7.0f * scale : 0.5f * (strip - oneLine);  // from the strip's top
+    const float strip = colourBarReserve(settings, scale);
+    const float below = settings.showsColourBar() ? 7.0f * scale : 0.5f * (strip - oneLine);  // from the strip's top
     ImVec2 at(frame.x + 0.5f * (frame.w - size.x), frame.y + frame.h - strip + below - (size.y - oneLine));
     list->AddRectFilled(ImVec2(at.x - 8 * scale, at.y - 4 * scale), ImVec2(at.x + size.x + 8 * scale, at.y + size.y + 4 * scale),
                         kOverlayBox, 4.0f * scale);
@@ -714,28 +716,28 @@ void drawLineLegend(const OverlayPen& pen, const ViewerState& state, const Scree
   }
 }
 
-void drawColourBar(const OverlayPen& pen, const ViewerState& state, const ScreenRect& frame) {
+void drawColourBar(const OverlayPen& pen, const ViewerSettings& settings, const ViewerStatus& status, const ScreenRect& frame) {
   ImDrawList* list = pen.list;
   ImFont* font = pen.font;
   const float fontSize = pen.fontSize, scale = pen.scale;
   // Colour bar: one range for all views, ticks at its ends, middle and quarters (with zero inside
   // the range: -below, 0, above and halfway; one-sided: evenly from low to high).
-  const ColourInterval range = state.colourInterval();
+  const ColourInterval range = colourInterval(settings, status);
   const float barWidth = std::min(frame.w * 0.6f, 520.0f * scale);
   const float barHeight = 14.0f * scale;
-  const float reserve = colourBarOnlyReserve(state, scale);
+  const float reserve = colourBarOnlyReserve(settings, scale);
   const float left = frame.x + 0.5f * (frame.w - barWidth);
   const float top = frame.y + frame.h - reserve + (8.0f + kHistogramHeight + 4.0f) * scale;
-  const bool gaussian = state.curvatureShade() == ShadingParams::Mode::Gaussian;
+  const bool gaussian = settings.curvatureShade() == ShadingParams::Mode::Gaussian;
   std::string title = gaussian ? "Gaussian curvature K" : "mean curvature H";
-  const std::string note = colourRangeNote(state);  // "all K > 0: range 0.8 .. 1.2, one-sided"
-  const std::string fullTitle = title + "  (" + colourMapName(state.shading.colormap) + ", " +
+  const std::string note = colourRangeNote(settings, status);  // "all K > 0: range 0.8 .. 1.2, one-sided"
+  const std::string fullTitle = title + "  (" + colourMapName(settings.shading.colormap) + ", " +
                                 (note.empty() ? std::string("saturates beyond the ends") : note) + ")";
   ImVec2 titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, fullTitle.c_str());
   if (titleSize.x * 0.9f <= frame.w - 16.0f * scale) {
     title = fullTitle;
   } else {  // a narrow window: the short form fits on the one line the strip has
-    title = std::string(gaussian ? "K" : "H") + " (" + colourMapName(state.shading.colormap) +
+    title = std::string(gaussian ? "K" : "H") + " (" + colourMapName(settings.shading.colormap) +
             (range.oneSided() ? ", one-sided)" : ")");
     titleSize = font->CalcTextSizeA(fontSize, 1e9f, 0.0f, title.c_str());
   }
@@ -745,7 +747,7 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
   // The bar's position t in [-1, 1] -> value (two slopes around zero, or one-sided).
   auto valueAt = [&](double t) { return colourBarValue(0.5 * (t + 1.0), range); };
   // Histogram of the shown values above the bar: where the surface's curvature lies on the map.
-  const std::vector<float>& bins = state.colour.histogram;
+  const std::vector<float>& bins = status.colour.histogram;
   for (size_t b = 0; b < bins.size(); ++b) {
     const float x0 = left + barWidth * float(b) / float(bins.size()), x1 = left + barWidth * float(b + 1) / float(bins.size());
     const float h = std::sqrt(std::clamp(bins[b], 0.0f, 1.0f)) * histogramHeight;  // sqrt: small bins stay visible
@@ -755,8 +757,8 @@ void drawColourBar(const OverlayPen& pen, const ViewerState& state, const Screen
   const int segments = 96;
   for (int i = 0; i < segments; ++i) {
     const double v0 = valueAt(-1.0 + 2.0 * i / segments), v1 = valueAt(-1.0 + 2.0 * (i + 1) / segments);
-    ImU32 c0 = toImColour(colorMapCpu(state.shading.colormap, v0, range));
-    ImU32 c1 = toImColour(colorMapCpu(state.shading.colormap, v1, range));
+    ImU32 c0 = toImColour(colorMapCpu(settings.shading.colormap, v0, range));
+    ImU32 c1 = toImColour(colorMapCpu(settings.shading.colormap, v1, range));
     float x0 = left + barWidth * float(i) / segments, x1 = left + barWidth * float(i + 1) / segments;
     list->AddRectFilledMultiColor(ImVec2(x0, top), ImVec2(x1 + 0.5f, top + barHeight), c0, c1, c1, c0);
   }
@@ -799,11 +801,11 @@ std::string viewTitle(const ViewStatus& status) {
 
 float viewTitleHeight(float scale) { return 34.0f * scale; }
 
-float panelColumnWidth(const ViewerState& state) { return state.showPanels ? 370.0f : 0.0f; }
+float panelColumnWidth(const ViewerSettings& settings) { return settings.showPanels ? 370.0f : 0.0f; }
 
 
-float colourBarReserve(const ViewerState& state, float scale) {
-  return lineLegendReserve(state, scale) + colourBarOnlyReserve(state, scale);
+float colourBarReserve(const ViewerSettings& settings, float scale) {
+  return lineLegendReserve(settings, scale) + colourBarOnlyReserve(settings, scale);
 }
 
 std::string lineLegend(const ShadingParams& shading) {
@@ -852,70 +854,70 @@ std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bo
 
 
 
-void drawViewerPanels(ViewerState& state) {
-  drawHelpWindow(state);
-  drawNotice(state);
-  if (!state.showPanels) return;
+void drawViewerPanels(PanelContext& ui) {
+  drawHelpWindow(ui);
+  drawNotice(ui.settings, ui.notices);
+  if (!ui.settings.showPanels) return;
   // A fixed column on the left; the views share the rest of the window.
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(panelColumnWidth(state), ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(panelColumnWidth(ui.settings), ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
   if (ImGui::Begin("polarview (Tab hides, ? for help)", nullptr, flags)) {
     // Widgets leave a fixed 120 px to their labels, so the labels are not cut.
     ImGui::PushItemWidth(-120.0f);
-    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(state);
-    if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(state);
-    if (ImGui::CollapsingHeader("Edit and export")) drawEditPanel(state);
-    if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(state);
-    if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) drawShadingPanel(state);
-    if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(state);
-    if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(state);
-    if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(state);
-    if (state.poleInspector.openRequested) {
+    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) drawFilePanel(ui);
+    if (ImGui::CollapsingHeader("Views and subdivision", ImGuiTreeNodeFlags_DefaultOpen)) drawViewsPanel(ui);
+    if (ImGui::CollapsingHeader("Edit and export")) drawEditPanel(ui);
+    if (ImGui::CollapsingHeader("Display")) drawDisplayPanel(ui);
+    if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) drawShadingPanel(ui);
+    if (ImGui::CollapsingHeader("Colour scale")) drawColourPanel(ui);
+    if (ImGui::CollapsingHeader("Camera")) drawCameraPanel(ui);
+    if (ImGui::CollapsingHeader("Screenshot")) drawScreenshotPanel(ui);
+    if (ui.settings.poleInspector.openRequested) {
       ImGui::SetNextItemOpen(true);
-      state.poleInspector.scrollFrames = 120;
+      ui.settings.poleInspector.scrollFrames = 120;
     }
-    state.poleInspector.openRequested = false;
+    ui.settings.poleInspector.openRequested = false;
     if (ImGui::CollapsingHeader("Poles")) {
-      if (state.poleInspector.scrollFrames > 0) {
-        --state.poleInspector.scrollFrames;
+      if (ui.settings.poleInspector.scrollFrames > 0) {
+        --ui.settings.poleInspector.scrollFrames;
         ImGui::SetScrollHereY(0.0f);  // the header at the top of the column
       }
-      drawPoleInspectorPanel(state);
+      drawPoleInspectorPanel(ui);
     }
-    if (ImGui::CollapsingHeader("Spectrum (Fig. 1)")) drawSpectrumPanel(state);
-    if (state.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
-      drawPointPanel(state.readout);
-      if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(state.readout.text.c_str());
+    if (ImGui::CollapsingHeader("Spectrum (Fig. 1)")) drawSpectrumPanel(ui);
+    if (ui.status.readout.valid && ImGui::CollapsingHeader("Point (Alt+click)", ImGuiTreeNodeFlags_DefaultOpen)) {
+      drawPointPanel(ui.status.readout);
+      if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(ui.status.readout.text.c_str());
     }
-    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(state);
+    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(ui.settings, ui.status);
     ImGui::PopItemWidth();
   }
   ImGui::End();
 }
 
-void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
+void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerSettings& settings, const ViewerStatus& status, const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles,
                      const std::vector<VertexMarker>& vertices, const std::vector<PointMarker>& points) {
   const OverlayPen pen{list, font, 15.0f * scale, scale};
   // The pole rings leave the labels alone.
-  const std::vector<ImVec4> labelBoxes = drawViewLabels(pen, state, views, frame);
+  const std::vector<ImVec4> labelBoxes = drawViewLabels(pen, settings, status, views, frame);
   drawPoleRings(pen, poles, labelBoxes);
   drawVertexMarkers(pen, vertices);
   drawPointMarkers(pen, points);
-  drawLineLegend(pen, state, frame);
-  if (state.showsColourBar()) drawColourBar(pen, state, frame);
+  drawLineLegend(pen, settings, frame);
+  if (settings.showsColourBar()) drawColourBar(pen, settings, status, frame);
 }
 
-void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches) {
+void zoomTowardsCursor(ViewerSettings& settings, const ScreenRect& view, int v, float notches) {
   // Towards the point of the target's plane under the cursor, as map and CAD viewers zoom.
   const ImGuiIO& io = ImGui::GetIO();
   const double ndcX = 2.0 * (io.MousePos.x - view.x) / std::max(view.w, 1.0f) - 1.0;
   const double ndcY = 1.0 - 2.0 * (io.MousePos.y - view.y) / std::max(view.h, 1.0f);
-  state.camera(v).zoomAt(notches, ndcX, ndcY, double(view.w) / std::max(double(view.h), 1.0));
+  settings.camera(v).zoomAt(notches, ndcX, ndcY, double(view.w) / std::max(double(view.h), 1.0));
 }
 
-InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex) {
+InputResult ViewerInput::handle(PanelContext& ui, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex) {
   ImGuiIO& io = ImGui::GetIO();
   InputResult result;
   // Every press since the last frame, in order (a press shorter than a frame still counts); while
@@ -923,12 +925,12 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   if (!io.WantCaptureKeyboard) {
     const CommandTable& commands = viewerCommands();
     for (ImWchar c : io.InputQueueCharacters)
-      if (const std::optional<CommandCall> call = commands.forCharacter(c, state)) queueCommand(state, call->text());
+      if (const std::optional<CommandCall> call = commands.forCharacter(c, ui.status)) queueCommand(ui.commands, call->text());
     for (const auto& [key, mods] : pendingKeys_)
-      if (const std::optional<CommandCall> call = commands.forKey(key, mods, state)) queueCommand(state, call->text());
+      if (const std::optional<CommandCall> call = commands.forKey(key, mods, ui.status)) queueCommand(ui.commands, call->text());
   }
   pendingKeys_.clear();
-  state.viewCount = std::clamp(state.viewCount, 1, kMaxViews);
+  ui.settings.viewCount = std::clamp(ui.settings.viewCount, 1, kMaxViews);
 
   // A vertex drag follows the cursor wherever it goes until the left button comes up.
   if (vertexDrag_) {
@@ -959,10 +961,10 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   result.hoveredView = hovered;
   // A plain left press on a control vertex (net shown) edits it instead of orbiting.
   if (dragView_ < 0 && hovered >= 0 && ImGui::IsMouseClicked(0) && !io.KeyCtrl && !io.KeyShift) {
-    if (state.display.controlNet && pickVertex && pickVertex(hovered, io.MousePos.x, io.MousePos.y)) {
+    if (ui.settings.display.controlNet && pickVertex && pickVertex(hovered, io.MousePos.x, io.MousePos.y)) {
       vertexDrag_ = true;
       dragView_ = hovered;
-      state.activeView = hovered;
+      ui.settings.activeView = hovered;
       result.vertexDrag = VertexDragEvent{hovered, io.MousePos.x, io.MousePos.y, false};
       return result;
     }
@@ -971,19 +973,19 @@ InputResult ViewerInput::handle(ViewerState& state, const std::vector<ScreenRect
   if (dragView_ < 0 && hovered >= 0 && (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2))) {
     dragView_ = hovered;
   }
-  if (hovered >= 0 && !anyDown) state.activeView = hovered;
+  if (hovered >= 0 && !anyDown) ui.settings.activeView = hovered;
   if (dragView_ >= 0 && dragView_ < int(views.size())) {
-    OrbitCamera& camera = state.camera(dragView_);
+    OrbitCamera& camera = ui.settings.camera(dragView_);
     ImVec2 delta = io.MouseDelta;
     bool pan = ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
     if (delta.x != 0.0f || delta.y != 0.0f) {
-      if (ImGui::IsMouseDown(0) && io.KeyCtrl) moveLight(state.shading, camera, delta.x, delta.y);
+      if (ImGui::IsMouseDown(0) && io.KeyCtrl) moveLight(ui.settings.shading, camera, delta.x, delta.y);
       else if (pan) camera.pan(delta.x, delta.y, views[size_t(dragView_)].h);
       else if (ImGui::IsMouseDown(0)) camera.orbit(delta.x, delta.y);
     }
   }
   if (hovered >= 0 && ImGui::IsMouseDoubleClicked(0)) {
-    if (io.MouseWheel != 0.0f) zoomTowardsCursor(state, views[size_t(hovered)], hovered, io.MouseWheel);
+    if (io.MouseWheel != 0.0f) zoomTowardsCursor(ui.settings, views[size_t(hovered)], hovered, io.MouseWheel);
     result.pivot = PivotPick{hovered, io.MousePos.x, io.MousePos.y, 0.0f, true, true};
     return result;
   }

@@ -1,5 +1,6 @@
 // The viewer's ImGui panels, on-screen overlay (view labels, colour bar) and input handling.
-// They read and write a ViewerState only: no GL calls, no GPU objects.
+// They edit the ViewerSettings, show the ViewerStatus (const) and queue commands: no GL calls, no
+// GPU objects.
 #pragma once
 
 #include <functional>
@@ -10,15 +11,23 @@
 
 #include "pipeline/screen_rect.h"
 #include "session/command_table.h"
-#include "session/viewer_state.h"
+#include "session/notices.h"
+#include "session/viewer_settings.h"
+#include "session/viewer_status.h"
 
 struct ImDrawList;
 struct ImFont;
 
 namespace polarview {
 
-// A rectangle in window coordinates (top-left origin, y down), as ImGui uses.
-
+// What the panels work with: the settings they edit, the status they show, the notices (the
+// latest is shown; a refused level posts one) and the queue their buttons add commands to.
+struct PanelContext {
+  ViewerSettings& settings;
+  const ViewerStatus& status;
+  Notices& notices;
+  CommandQueue& commands;
+};
 
 // A view's title: "C2PS · 3", or "RTS · 3 · poles by CC (valence < 5)" when the scheme left its
 // poles to Catmull-Clark (RTS and BPS need valence >= 5).
@@ -26,27 +35,27 @@ std::string viewTitle(const ViewStatus& status);
 // Height of the strip at the top of each view that its title covers (framing keeps the model below).
 float viewTitleHeight(float scale);
 // Width of the panel column on the left of the window (0 when the panels are hidden).
-float panelColumnWidth(const ViewerState& state);
+float panelColumnWidth(const ViewerSettings& settings);
 // Height kept free under the views for the colour bar (curvature modes) or the line legend
 // (highlight / reflection lines); 0 for lit shading.
-float colourBarReserve(const ViewerState& state, float scale);
+float colourBarReserve(const ViewerSettings& settings, float scale);
 // `count` views side by side in `frame` (a full grid such as 2 x 2 when that makes each view clearly
 // larger), above a strip of `bottomReserve`. [O(count)]
 std::vector<ScreenRect> layoutViews(int count, const ScreenRect& frame, float bottomReserve);
 
 // A button that queues command `id`, labelled from the command table ("Frame model (F)"); an id
 // that is no row of the table throws (session/command_ids.h names those the panels use).
-void commandButton(ViewerState& state, std::string_view id);
+void commandButton(CommandQueue& commands, std::string_view id);
 // The "Poles" section: pole list, K and H at the pole per scheme shown, the rings' approach to it
 // (log scale) and K around ring m (pole_inspector_panel.cpp). Marks the inspector open.
-void drawPoleInspectorPanel(ViewerState& state);
+void drawPoleInspectorPanel(PanelContext& ui);
 // The "Spectrum (Fig. 1)" section: RTS's eigenvalues at a valence, and a button that shows an
 // eigenvector's net as the model (pole_inspector_panel.cpp). Marks the section open.
-void drawSpectrumPanel(ViewerState& state);
+void drawSpectrumPanel(PanelContext& ui);
 
 // All panels (file, views, display, shading, colour, camera, screenshot, stats) and the help
 // window. Call between ImGui::NewFrame and ImGui::Render.
-void drawViewerPanels(ViewerState& state);
+void drawViewerPanels(PanelContext& ui);
 
 // A visible pole of one view, in the overlay's coordinates (the app projects the poles and drops
 // those the surface hides).
@@ -72,7 +81,8 @@ struct PointMarker {
 // the colour bar with numeric ticks (curvature modes) or a legend of the light lines (highlight /
 // reflection modes), drawn into `list` (the background list on screen, a private list for
 // screenshots). `scale` multiplies sizes (supersampled screenshots).
-void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerState& state, const std::vector<ScreenRect>& views,
+void drawViewOverlay(ImDrawList* list, ImFont* font, const ViewerSettings& settings, const ViewerStatus& status,
+                     const std::vector<ScreenRect>& views,
                      const ScreenRect& frame, float scale, const std::vector<PoleMarker>& poles = {},
                      const std::vector<VertexMarker>& vertices = {}, const std::vector<PointMarker>& points = {});
 
@@ -86,7 +96,7 @@ struct PivotPick {
   int view = 0;
   float x = 0, y = 0;  // window coordinates
   float zoomNotches = 0.0f;
-  bool readout = false;     // also read the surface point there (ViewerState::readout)
+  bool readout = false;     // also read the surface point there (ViewerStatus::readout)
   bool movePivot = true;    // false: the readout only (Alt+click)
 };
 
@@ -117,7 +127,7 @@ class ViewerInput {
  public:
   // Call after ImGui::NewFrame. A left press on a control vertex (pickVertex says so) starts a
   // vertex drag; elsewhere left drags orbit as always.
-  InputResult handle(ViewerState& state, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex = {});
+  InputResult handle(PanelContext& ui, const std::vector<ScreenRect>& views, const VertexPicker& pickVertex = {});
   // A key press from the window's key callback (GLFW key and modifier bits); handle() applies the
   // presses queued since the last frame, so none is lost however short or slow the frame.
   void queueKeyPress(int key, int mods) { pendingKeys_.emplace_back(key, mods); }
@@ -131,7 +141,7 @@ class ViewerInput {
 
 // Wheel over a view where no surface is under the cursor: zooms towards the point of the camera
 // target's plane under it (OrbitCamera::zoomAt).
-void zoomTowardsCursor(ViewerState& state, const ScreenRect& view, int v, float notches);
+void zoomTowardsCursor(ViewerSettings& settings, const ScreenRect& view, int v, float notches);
 
 
 }  // namespace polarview

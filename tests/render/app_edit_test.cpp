@@ -9,6 +9,7 @@
 #include "core/spline/bezierview_export.h"
 #include "pipeline/patch_export.h"
 #include "app/viewer_app.h"
+#include "session/settings_rules.h"
 #include "pipeline/vertex_edit.h"
 #include "render/patch_renderer.h"
 #include "pipeline/level_limits.h"
@@ -35,12 +36,12 @@ namespace fs = std::filesystem;
 // The default model at `level`, control net shown, panels hidden (the views fill the window).
 std::unique_ptr<ViewerApp> makeEditingApp(int level, int views = 1) {
   auto app = makeHiddenApp(800, 600);
-  app->document().loadDefaultModel();
-  ViewerState& state = app->state();
-  state.showPanels = false;
-  state.display.controlNet = true;
-  state.viewCount = views;
-  requestLevel(state, level);
+  app->session().apply(app->document().loadDefaultModel());
+  ViewerSettings& settings = app->settings();
+  settings.showPanels = false;
+  settings.display.controlNet = true;
+  settings.viewCount = views;
+  requestLevel(settings, app->status(), app->notices(), level);
   app->waitUntilIdle();
   app->runFrame();
   app->waitUntilIdle();
@@ -111,7 +112,8 @@ bool noTemporariesIn(const fs::path& dir) {
 
 TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on empty space still orbits") {
   auto app = makeEditingApp(2);
-  ViewerState& state = app->state();
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
   const ScreenVertex target = centralVertex(*app);
   REQUIRE(target.vertex >= 0);
   // The expected pick: among the vertices within 8 px of the click, the one nearest the eye.
@@ -127,21 +129,21 @@ TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on e
     }
   }
   REQUIRE(expected >= 0);
-  const OrbitCamera before = state.sharedCamera;
+  const OrbitCamera before = settings.sharedCamera;
   pointer(*app, clickX, clickY, false);
   pointer(*app, clickX, clickY, true);
   CHECK(app->document().editor().selected() == expected);
-  CHECK(state.edit.selectedVertex == expected);
+  CHECK(status.edit.selectedVertex == expected);
   pointer(*app, clickX, clickY, false);
   CHECK(app->document().editor().selected() == expected);
   CHECK(app->document().editor().undoCount() == 0);  // a click without motion moves nothing
-  CHECK(cameraToJson(state.sharedCamera) == cameraToJson(before));
+  CHECK(cameraToJson(settings.sharedCamera) == cameraToJson(before));
 
   // A drag from a spot far from every vertex orbits, and keeps the selection.
   const float emptyX = transform.rect.x + 12.0f, emptyY = transform.rect.y + transform.rect.h - 12.0f;
   REQUIRE(pickVertex(app->document().editor().points(), transform, emptyX, emptyY) == -1);
   drag(*app, emptyX, emptyY, emptyX + 60.0f, emptyY - 20.0f);
-  CHECK(state.sharedCamera.yawDeg != doctest::Approx(before.yawDeg));
+  CHECK(settings.sharedCamera.yawDeg != doctest::Approx(before.yawDeg));
   CHECK(app->document().editor().selected() == expected);
   CHECK(app->document().editor().points() == app->document().editor().loadedPoints());
   // A click (no drag) there clears the selection; with the net hidden a press never picks.
@@ -151,7 +153,7 @@ TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on e
   pointer(*app, emptyX + 40.0f, emptyY - 40.0f, true);
   pointer(*app, emptyX + 40.0f, emptyY - 40.0f, false);
   CHECK(app->document().editor().selected() == -1);
-  state.display.controlNet = false;
+  settings.display.controlNet = false;
   const ScreenVertex again = centralVertex(*app);
   pointer(*app, again.x, again.y, false);
   pointer(*app, again.x, again.y, true);
@@ -161,8 +163,9 @@ TEST_CASE("vertex editing: a click near a control vertex selects it, a drag on e
 
 TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the cursor, the topology is never rebuilt") {
   auto app = makeEditingApp(3, 2);
-  ViewerState& state = app->state();
-  state.views[1].scheme = SchemeChoice::CatmullClark;
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
+  settings.views[1].scheme = SchemeChoice::CatmullClark;
   app->waitUntilIdle();
   app->runFrame();
   const ScreenVertex target = centralVertex(*app);
@@ -170,9 +173,9 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
   const Point start = app->model().mesh->points[size_t(target.vertex)];
   const std::vector<Index> faces = app->model().mesh->faceVerts;
   const std::vector<Point> loaded = app->model().mesh->points;
-  const glm::dvec3 forward = state.sharedCamera.forward();
+  const glm::dvec3 forward = settings.sharedCamera.forward();
   const AdaptiveRefinement* refinements[2] = {app->shownSurface(0)->refinement.get(), app->shownSurface(1)->refinement.get()};
-  const int patches[2] = {state.views[0].status.patchCount, state.views[1].status.patchCount};
+  const int patches[2] = {status.views[0].patchCount, status.views[1].patchCount};
   const uint64_t generation = app->modelGeneration();
 
   // Press on the vertex, then move frame by frame: every frame each view shows the new points.
@@ -196,7 +199,7 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
       CHECK(shown->refinement.get() == refinements[v]);  // same hierarchy: topology not rebuilt
       CHECK(int(shown->patches.size()) == patches[v]);
       CHECK(shown->controlMesh.points[size_t(target.vertex)] == moved);
-      CHECK(state.views[size_t(v)].status.patchCount == patches[v]);
+      CHECK(status.views[size_t(v)].patchCount == patches[v]);
     }
   }
   pointer(*app, target.x + 30.0f, target.y + 20.0f, false);
@@ -208,7 +211,7 @@ TEST_CASE("vertex editing: a drag moves the vertex in the view plane under the c
   CHECK(app->model().mesh->faceVerts == faces);
   CHECK(app->modelGeneration() == generation);
   CHECK(app->document().editCosts().size() >= 5);
-  CHECK(state.edit.updatedViews == 2);
+  CHECK(status.edit.updatedViews == 2);
   // After the release the curvature samples are retaken for the new points.
   app->waitUntilIdle();
   CHECK(app->shownSurface(0)->samples->points == app->model().points);
@@ -247,9 +250,9 @@ TEST_CASE("vertex editing: a press and a quick move within one frame still grab 
 
 TEST_CASE("vertex editing: after a drag every view's patches equal a fresh build of the edited mesh") {
   auto app = makeEditingApp(3, 3);
-  ViewerState& state = app->state();
-  state.views[1].scheme = SchemeChoice::CatmullClark;
-  state.views[2].scheme = SchemeChoice::BPS;
+  ViewerSettings& settings = app->settings();
+  settings.views[1].scheme = SchemeChoice::CatmullClark;
+  settings.views[2].scheme = SchemeChoice::BPS;
   app->waitUntilIdle();
   app->runFrame();
   const ScreenVertex target = centralVertex(*app);
@@ -275,7 +278,7 @@ TEST_CASE("vertex editing: after a drag every view's patches equal a fresh build
 
 TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reapplies, Reset returns to the file") {
   auto app = makeEditingApp(2);
-  ViewerState& state = app->state();
+  ViewerStatus& status = app->status();
   const std::vector<Point> loaded = app->model().mesh->points;
   const std::vector<Patch> loadedPatches = app->shownSurface(0)->patches;
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
@@ -300,7 +303,7 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   CHECK(app->model().mesh->points == afterFirst);
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
   CHECK(app->model().mesh->points == loaded);
-  CHECK(state.edit.movedVertices == 0);
+  CHECK(status.edit.movedVertices == 0);
   app->waitUntilIdle();
   checkSamePatches(app->shownSurface(0)->patches, loadedPatches, 1e-13 * glm::length(app->document().modelMax() - app->document().modelMin()));
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
@@ -308,10 +311,10 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
   press(GLFW_KEY_Y, GLFW_MOD_CONTROL);
   CHECK(app->model().mesh->points == afterSecond);
   CHECK(app->document().editor().redoCount() == 0);
-  CHECK(state.edit.movedVertices == 1);
+  CHECK(status.edit.movedVertices == 1);
 
   // Reset (the panel's button): back to the file's points, itself undoable.
-  queueCommand(state, "edit.reset");
+  app->session().queueCommand("edit.reset");
   app->runFrame();
   CHECK(app->model().mesh->points == loaded);
   press(GLFW_KEY_Z, GLFW_MOD_CONTROL);
@@ -326,8 +329,9 @@ TEST_CASE("vertex editing: undo restores the loaded points exactly, redo reappli
 
 TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back to the edited points, a failed save leaves nothing") {
   auto app = makeEditingApp(2);
-  ViewerState& state = app->state();
-  CHECK(state.edit.defaultSavePath == "default_edited.obj");  // the built-in model: the current directory
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
+  CHECK(status.edit.defaultSavePath == "default_edited.obj");  // the built-in model: the current directory
   const ScreenVertex target = centralVertex(*app);
   drag(*app, target.x, target.y, target.x + 17.0f, target.y + 9.0f);
   REQUIRE(app->document().editor().undoCount() == 1);
@@ -335,40 +339,41 @@ TEST_CASE("vertex editing: Ctrl+S saves the edited mesh as OBJ that loads back t
   const fs::path dir = fs::temp_directory_path() / "polarview_edit_save";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  state.edit.savePath = (dir / "edited.obj").string();
+  settings.edit.savePath = (dir / "edited.obj").string();
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
   glfwSetKeyCallback(app->window(), key);
   key(app->window(), GLFW_KEY_S, 0, GLFW_PRESS, GLFW_MOD_CONTROL);
   key(app->window(), GLFW_KEY_S, 0, GLFW_RELEASE, GLFW_MOD_CONTROL);
   app->runFrame();
-  CAPTURE(state.notice);
-  CHECK(state.edit.error.empty());
+  CAPTURE(app->notices().text());
+  CHECK(status.edit.error.empty());
   PolyMesh saved = loadObj((dir / "edited.obj").string());
   CHECK(saved.points == app->model().mesh->points);  // 17 significant digits: exact
   CHECK(saved.faceVerts == app->model().mesh->faceVerts);
   CHECK(saved.faceStart == app->model().mesh->faceStart);
 
   // A folder that does not exist: one line of error, no file, no temporary.
-  state.edit.savePath = (dir / "missing" / "edited.obj").string();
-  queueCommand(state, "edit.save");
+  settings.edit.savePath = (dir / "missing" / "edited.obj").string();
+  app->session().queueCommand("edit.save");
   app->runFrame();
-  CHECK_FALSE(state.edit.error.empty());
-  CHECK(state.edit.error.find('\n') == std::string::npos);
+  CHECK_FALSE(status.edit.error.empty());
+  CHECK(status.edit.error.find('\n') == std::string::npos);
   CHECK_FALSE(fs::exists(dir / "missing" / "edited.obj"));
   CHECK(noTemporariesIn(dir));
 
   // A model opened from a file saves beside it.
   saveObj((dir / "cage.obj").string(), *app->model().mesh);
-  REQUIRE(app->document().loadFile((dir / "cage.obj").string()));
+  REQUIRE(app->session().apply(app->document().loadFile((dir / "cage.obj").string())));
   app->runFrame();
-  CHECK(state.edit.defaultSavePath == (dir / "cage_edited.obj").string());
+  CHECK(status.edit.defaultSavePath == (dir / "cage_edited.obj").string());
   CHECK(app->document().editor().undoCount() == 0);  // a new model starts a new history
   fs::remove_all(dir);
 }
 
 TEST_CASE("export from the viewer: .bv of the shown surface as the export command writes it, the refined control mesh as OBJ") {
   auto app = makeEditingApp(2);
-  ViewerState& state = app->state();
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
   const ScreenVertex target = centralVertex(*app);
   drag(*app, target.x, target.y, target.x + 12.0f, target.y - 12.0f);
   app->waitUntilIdle();
@@ -377,13 +382,13 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   fs::create_directories(dir);
 
   // .bv: the same bytes as exportPatchSet + writeBezierView of the edited mesh.
-  CHECK(state.edit.defaultSurfacePath == "default_c2ps_2.bv");
-  state.edit.surfacePath = (dir / "view.bv").string();
-  queueCommand(state, "export.surface");
+  CHECK(status.edit.defaultSurfacePath == "default_c2ps_2.bv");
+  settings.edit.surfacePath = (dir / "view.bv").string();
+  app->session().queueCommand("export.surface");
   app->runFrame();
   app->waitUntilIdle();
-  CAPTURE(state.notice);
-  CHECK(state.edit.error.empty());
+  CAPTURE(app->notices().text());
+  CHECK(status.edit.error.empty());
   const RefineOptions options = refineOptionsFor(SchemeChoice::C2PS, 2);
   const PatchSet set = exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
   {
@@ -398,26 +403,26 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   };
   CHECK(bytes(dir / "view.bv").size() > 1000);
   CHECK(bytes(dir / "view.bv") == bytes(dir / "cli.bv"));
-  CHECK(state.notice.find("wrote ") == 0);
+  CHECK(app->notices().text().find("wrote ") == 0);
 
   // Refined control mesh: the uniform refinement's finest mesh of the edited points.
-  state.edit.refinedObjPath = (dir / "refined.obj").string();
-  queueCommand(state, "export.refined-obj");
+  settings.edit.refinedObjPath = (dir / "refined.obj").string();
+  app->session().queueCommand("export.refined-obj");
   app->runFrame();
   app->waitUntilIdle();
-  CHECK(state.edit.error.empty());
+  CHECK(status.edit.error.empty());
   const Refinement refinement(*app->model().mesh, options);
   const PolyMesh refined = loadObj((dir / "refined.obj").string());
   CHECK(refined.faceVerts == refinement.finest().mesh.faceVerts);
   CHECK(refined.points == refinement.finest().mesh.points);
 
   // An unwritable path: one line of error and no file.
-  state.edit.surfacePath = (dir / "missing" / "view.bv").string();
-  queueCommand(state, "export.surface");
+  settings.edit.surfacePath = (dir / "missing" / "view.bv").string();
+  app->session().queueCommand("export.surface");
   app->runFrame();
   app->waitUntilIdle();
-  CHECK_FALSE(state.edit.error.empty());
-  CHECK(state.edit.error.find('\n') == std::string::npos);
+  CHECK_FALSE(status.edit.error.empty());
+  CHECK(status.edit.error.find('\n') == std::string::npos);
   CHECK_FALSE(fs::exists(dir / "missing"));
   CHECK(noTemporariesIn(dir));
   fs::remove_all(dir);
@@ -426,11 +431,12 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
 TEST_CASE("export from the viewer: a refined control mesh over the budget is refused with a message and writes nothing") {
   const size_t budget = 20000;  // adaptive faces; the uniform budget is 20000 * 450 / 300
   auto app = makeHiddenApp(640, 400, budget);
-  app->document().loadDefaultModel();
-  ViewerState& state = app->state();
-  state.showPanels = false;
+  app->session().apply(app->document().loadDefaultModel());
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
+  settings.showPanels = false;
   const int deepest = deepestLevel(app->model(), SchemeChoice::C2PS, budget);
-  requestLevel(state, deepest);
+  requestLevel(settings, status, app->notices(), deepest);
   app->waitUntilIdle();
   app->runFrame();
   REQUIRE(app->shownSurface(0)->key.level == deepest);
@@ -438,27 +444,28 @@ TEST_CASE("export from the viewer: a refined control mesh over the budget is ref
   REQUIRE(estimateFaceCount(*app->model().mesh, refineOptionsFor(SchemeChoice::C2PS, deepest)) > uniformBudget);
   const fs::path out = fs::temp_directory_path() / "polarview_refused_refined.obj";
   fs::remove(out);
-  state.edit.refinedObjPath = out.string();
-  queueCommand(state, "export.refined-obj");
+  settings.edit.refinedObjPath = out.string();
+  app->session().queueCommand("export.refined-obj");
   app->runFrame();
   app->waitUntilIdle();
-  CAPTURE(state.edit.error);
-  CHECK(state.edit.error.find("refined control mesh refused: C2PS level " + std::to_string(deepest)) == 0);
-  CHECK(state.edit.error.find("over the budget of " + std::to_string(uniformBudget)) != std::string::npos);
+  CAPTURE(status.edit.error);
+  CHECK(status.edit.error.find("refined control mesh refused: C2PS level " + std::to_string(deepest)) == 0);
+  CHECK(status.edit.error.find("over the budget of " + std::to_string(uniformBudget)) != std::string::npos);
   CHECK_FALSE(fs::exists(out));
 }
 
 TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same surface and image), not after an edit") {
   auto app = makeEditingApp(4);
-  ViewerState& state = app->state();
-  state.views[0].scheme = SchemeChoice::C2PS;
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
+  settings.views[0].scheme = SchemeChoice::C2PS;
   app->waitUntilIdle();
   app->runFrame();
   const BuiltSurface* c2ps = app->shownSurface(0);
   const RgbaImage before = app->renderImage(400, 300, 1, false);
 
   auto toggle = [&](SchemeChoice scheme) {
-    state.views[0].scheme = scheme;
+    settings.views[0].scheme = scheme;
     app->runFrame();
     app->waitUntilIdle();
     app->runFrame();
@@ -467,19 +474,19 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   toggle(SchemeChoice::CatmullClark);
   const BuiltSurface* catmullClark = app->shownSurface(0);
   CHECK(catmullClark != c2ps);
-  CHECK_FALSE(state.views[0].status.unparked);
+  CHECK_FALSE(status.views[0].unparked);
   CHECK(app->renderer(0).patchCount() == int(catmullClark->patches.size()));
 
   toggle(SchemeChoice::C2PS);
   CHECK(app->shownSurface(0) == c2ps);  // not rebuilt
-  CHECK(state.views[0].status.unparked);
+  CHECK(status.views[0].unparked);
   CHECK(app->renderer(0).patchCount() == int(c2ps->patches.size()));
   const RgbaImage again = app->renderImage(400, 300, 1, false);
   CHECK(again.pixels == before.pixels);
 
   toggle(SchemeChoice::CatmullClark);  // and forth: the Catmull-Clark surface was parked in turn
   CHECK(app->shownSurface(0) == catmullClark);
-  CHECK(state.views[0].status.unparked);
+  CHECK(status.views[0].unparked);
 
   // Moved points: the parked C2PS surface is stale, toggling back builds the edited one.
   const ScreenVertex target = centralVertex(*app);
@@ -489,7 +496,7 @@ TEST_CASE("scheme toggles: back to the scheme shown before is a swap (the same s
   REQUIRE(app->document().editor().undoCount() == 1);
   toggle(SchemeChoice::C2PS);
   const BuiltSurface* edited = app->shownSurface(0);
-  CHECK_FALSE(state.views[0].status.unparked);
+  CHECK_FALSE(status.views[0].unparked);
   CHECK(edited->key.points == app->model().points);
   const double scale = glm::length(app->document().modelMax() - app->document().modelMin());
   checkSamePatches(edited->patches, buildSurface(app->model(), edited->key, kDefaultFaceBudget)->patches, 1e-12 * scale);
@@ -499,15 +506,15 @@ TEST_CASE("scheme toggles: a parked surface counts every level its refinement ho
   // A budget for one C2PS level 8 and a half: a parked C2PS surface shown at level 4 still holds
   // level 8 (stepped down from it), so C2PS-U 8 beside it would not fit: the parked one goes.
   std::unique_ptr<ViewerApp> probe = makeHiddenApp(400, 300);
-  probe->document().loadDefaultModel();
+  probe->session().apply(probe->document().loadDefaultModel());
   const size_t level8 = estimatedLevelFaces(probe->model(), SchemeChoice::C2PS, 8);
   probe.reset();
   auto app = makeHiddenApp(400, 300, level8 + level8 / 2);
-  app->document().loadDefaultModel();
-  ViewerState& state = app->state();
+  app->session().apply(app->document().loadDefaultModel());
+  ViewerSettings& settings = app->settings();
   auto show = [&](SchemeChoice scheme, int level) {
-    state.views[0].scheme = scheme;
-    state.views[0].level = level;
+    settings.views[0].scheme = scheme;
+    settings.views[0].level = level;
     app->runFrame();
     app->waitUntilIdle();
     app->runFrame();

@@ -6,6 +6,7 @@
 
 #include "app_test_support.h"
 #include "app/viewer_app.h"
+#include "session/settings_rules.h"
 #include "pipeline/surface_build.h"
 #include "ui/viewer_panels.h"
 #include "core/mesh/shapes.h"
@@ -51,7 +52,7 @@ int writeSaddleObj(const fs::path& path, int n, int links) {
 
 TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file leaves it and shows why") {
   auto app = makeHiddenApp(480, 320);
-  app->document().loadDefaultModel();
+  app->session().apply(app->document().loadDefaultModel());
   app->waitUntilIdle();
   const uint64_t start = app->modelGeneration();
 
@@ -67,9 +68,9 @@ TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file l
   drop(app->window(), 1, goodPaths);
   app->waitUntilIdle();
   CHECK(app->modelGeneration() == start + 1);
-  CHECK(app->state().file.loadedPath == goodPath);
-  CHECK(app->state().file.modelFaces == faces);
-  CHECK(app->state().file.error.empty());
+  CHECK(app->status().file.loadedPath == goodPath);
+  CHECK(app->status().file.modelFaces == faces);
+  CHECK(app->status().file.error.empty());
   REQUIRE(app->shownSurface(0) != nullptr);
   CHECK(app->shownSurface(0)->key.model == app->modelGeneration());
 
@@ -83,8 +84,8 @@ TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file l
   app->waitUntilIdle();
   app->runFrame();
   CHECK(app->modelGeneration() == start + 1);
-  CHECK(app->state().file.loadedPath == goodPath);
-  CHECK(app->state().file.error.find("polarview_drop_bad.obj:4:") != std::string::npos);
+  CHECK(app->status().file.loadedPath == goodPath);
+  CHECK(app->status().file.error.find("polarview_drop_bad.obj:4:") != std::string::npos);
   CHECK(app->shownSurface(0) == shown);
   fs::remove(good);
   fs::remove(bad);
@@ -92,18 +93,18 @@ TEST_CASE("drag and drop: a dropped OBJ replaces the model, a dropped bad file l
 
 TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again the replaced one)") {
   auto app = makeHiddenApp(480, 320);
-  app->document().loadDefaultModel();
+  app->session().apply(app->document().loadDefaultModel());
   app->waitUntilIdle();
   const std::string defaultName = app->model().name;
-  const int defaultFaces = app->state().file.modelFaces;
-  CHECK(app->state().file.previousModelName.empty());
+  const int defaultFaces = app->status().file.modelFaces;
+  CHECK(app->status().file.previousModelName.empty());
 
   fs::path saddle = fs::temp_directory_path() / "polarview_undo_saddle.obj";
   const int faces = writeSaddleObj(saddle, 6, 3);
-  app->document().requestLoad(saddle.string());
+  app->session().apply(app->document().requestLoad(saddle.string()));
   app->waitUntilIdle();
-  REQUIRE(app->state().file.modelFaces == faces);
-  CHECK(app->state().file.previousModelName == defaultName);
+  REQUIRE(app->status().file.modelFaces == faces);
+  CHECK(app->status().file.previousModelName == defaultName);
 
   // Ctrl+Z through the real key callback: the default model again, then the saddle (redo).
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
@@ -116,19 +117,19 @@ TEST_CASE("model replacement: Ctrl+Z brings the previous model back (and again t
     app->waitUntilIdle();
   };
   ctrlZ();
-  CHECK(app->state().file.modelFaces == defaultFaces);
+  CHECK(app->status().file.modelFaces == defaultFaces);
   CHECK(app->model().name == defaultName);
   REQUIRE(app->shownSurface(0) != nullptr);
   CHECK(app->shownSurface(0)->key.model == app->modelGeneration());
   ctrlZ();
-  CHECK(app->state().file.modelFaces == faces);
-  CHECK(app->state().file.loadedPath == saddle.string());
+  CHECK(app->status().file.modelFaces == faces);
+  CHECK(app->status().file.loadedPath == saddle.string());
   fs::remove(saddle);
 }
 
 TEST_CASE("several dropped files: the first opens, the others are listed and PageDown / PageUp step through them") {
   auto app = makeHiddenApp(480, 320);
-  app->document().loadDefaultModel();
+  app->session().apply(app->document().loadDefaultModel());
   app->waitUntilIdle();
   std::vector<std::string> paths;
   std::vector<int> faces;
@@ -142,8 +143,8 @@ TEST_CASE("several dropped files: the first opens, the others are listed and Pag
   glfwSetDropCallback(app->window(), drop);
   drop(app->window(), 3, raw);
   app->waitUntilIdle();
-  CHECK(app->state().file.playlist == paths);
-  CHECK(app->state().file.loadedPath == paths[0]);
+  CHECK(app->status().file.playlist == paths);
+  CHECK(app->status().file.loadedPath == paths[0]);
   GLFWkeyfun key = glfwSetKeyCallback(app->window(), nullptr);
   glfwSetKeyCallback(app->window(), key);
   auto tap = [&](int k) {
@@ -153,20 +154,20 @@ TEST_CASE("several dropped files: the first opens, the others are listed and Pag
     app->waitUntilIdle();
   };
   tap(GLFW_KEY_PAGE_DOWN);
-  CHECK(app->state().file.loadedPath == paths[1]);
-  CHECK(app->state().file.modelFaces == faces[1]);
+  CHECK(app->status().file.loadedPath == paths[1]);
+  CHECK(app->status().file.modelFaces == faces[1]);
   tap(GLFW_KEY_PAGE_DOWN);
-  CHECK(app->state().file.loadedPath == paths[2]);
+  CHECK(app->status().file.loadedPath == paths[2]);
   tap(GLFW_KEY_PAGE_DOWN);  // wraps around
-  CHECK(app->state().file.loadedPath == paths[0]);
+  CHECK(app->status().file.loadedPath == paths[0]);
   tap(GLFW_KEY_PAGE_UP);
-  CHECK(app->state().file.loadedPath == paths[2]);
+  CHECK(app->status().file.loadedPath == paths[2]);
   for (const std::string& p : paths) fs::remove(p);
 }
 
 TEST_CASE("background loading: frames keep coming while a large OBJ loads, and the model changes only when it is ready") {
   auto app = makeHiddenApp(480, 320);
-  app->document().loadDefaultModel();
+  app->session().apply(app->document().loadDefaultModel());
   app->waitUntilIdle();
   const uint64_t start = app->modelGeneration();
   const BuiltSurface* before = app->shownSurface(0);
@@ -174,7 +175,7 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
   // 160k faces (some 10 MB): long enough to read that several frames pass meanwhile.
   fs::path big = fs::temp_directory_path() / "polarview_big_saddle.obj";
   const int faces = writeSaddleObj(big, 800, 200);
-  app->document().requestLoad(big.string());
+  app->session().apply(app->document().requestLoad(big.string()));
   int framesWhileLoading = 0;
   while (app->document().loading()) {
     app->runFrame();
@@ -183,62 +184,63 @@ TEST_CASE("background loading: frames keep coming while a large OBJ loads, and t
     // Meanwhile the old model stays and the overlay says what is loading.
     CHECK(app->modelGeneration() == start);
     CHECK(app->shownSurface(0) == before);
-    CHECK(app->state().file.loading);
+    CHECK(app->status().file.loading);
   }
   MESSAGE("frames drawn while loading: " << framesWhileLoading);
   CHECK(framesWhileLoading >= 2);
   CHECK(app->modelGeneration() == start + 1);
-  CHECK(app->state().file.modelFaces == faces);
-  CHECK_FALSE(app->state().file.loading);
+  CHECK(app->status().file.modelFaces == faces);
+  CHECK_FALSE(app->status().file.loading);
 
   // Requests while one runs: the last one wins.
   fs::path small = fs::temp_directory_path() / "polarview_small_saddle.obj";
   const int smallFaces = writeSaddleObj(small, 8, 2);
-  app->document().requestLoad(big.string());
-  app->document().requestLoad((fs::temp_directory_path() / "polarview_no_such.obj").string());
-  app->document().requestLoad(small.string());
+  app->session().apply(app->document().requestLoad(big.string()));
+  app->session().apply(app->document().requestLoad((fs::temp_directory_path() / "polarview_no_such.obj").string()));
+  app->session().apply(app->document().requestLoad(small.string()));
   app->waitUntilIdle();
-  CHECK(app->state().file.loadedPath == small.string());
-  CHECK(app->state().file.modelFaces == smallFaces);
-  CHECK(app->state().file.error.empty());
+  CHECK(app->status().file.loadedPath == small.string());
+  CHECK(app->status().file.modelFaces == smallFaces);
+  CHECK(app->status().file.error.empty());
   fs::remove(big);
   fs::remove(small);
 }
 
 TEST_CASE("asymmetric colour range: each side from its own percentile, switching automatic off keeps both") {
   auto app = makeHiddenApp(480, 320);
-  app->document().loadDefaultModel();
-  ViewerState& state = app->state();
-  state.shading.mode = ShadingParams::Mode::Gaussian;
-  state.colour.symmetric = false;
+  app->session().apply(app->document().loadDefaultModel());
+  ViewerSettings& settings = app->settings();
+  ViewerStatus& status = app->status();
+  settings.shading.mode = ShadingParams::Mode::Gaussian;
+  settings.colour.symmetric = false;
   app->waitUntilIdle();
   app->runFrame();
   // The mushroom's K is mostly positive (cap) with a negative neck: two different sides.
-  const double below = -state.colourInterval().low, above = state.colourInterval().high;
+  const double below = -colourInterval(settings, status).low, above = colourInterval(settings, status).high;
   CHECK(below > 0.0);
   CHECK(above > 0.0);
   CHECK(std::abs(below - above) > 0.1 * above);
-  CHECK(std::max(below, above) == doctest::Approx(state.colour.sampled.symmetricRange));  // the symmetric one is the larger
-  CHECK(state.colour.histogram.size() == size_t(kHistogramBins));
-  CHECK(*std::max_element(state.colour.histogram.begin(), state.colour.histogram.end()) == 1.0f);
-  setAutomaticRange(state, false);
-  CHECK(state.colourInterval() == ColourInterval{-below, above});
+  CHECK(std::max(below, above) == doctest::Approx(status.colour.sampled.symmetricRange));  // the symmetric one is the larger
+  CHECK(status.colour.histogram.size() == size_t(kHistogramBins));
+  CHECK(*std::max_element(status.colour.histogram.begin(), status.colour.histogram.end()) == 1.0f);
+  setAutomaticRange(settings, status, false);
+  CHECK(colourInterval(settings, status) == ColourInterval{-below, above});
 }
 
 TEST_CASE("pole rings: drawn around a visible pole without covering its colour, not drawn when the surface hides it") {
   auto app = makeHiddenApp(400, 400);
-  app->document().loadDefaultModel();  // the mushroom: one pole on top of the cap
-  ViewerState& state = app->state();
-  state.showPanels = false;
-  state.shading.mode = ShadingParams::Mode::Gaussian;
+  app->session().apply(app->document().loadDefaultModel());  // the mushroom: one pole on top of the cap
+  ViewerSettings& settings = app->settings();
+  settings.showPanels = false;
+  settings.shading.mode = ShadingParams::Mode::Gaussian;
   app->waitUntilIdle();
   app->runFrame();
 
   auto differingPixels = [&](double pitch) {
-    state.sharedCamera.pitchDeg = pitch;
-    state.display.poleMarkers = true;
+    settings.sharedCamera.pitchDeg = pitch;
+    settings.display.poleMarkers = true;
     RgbaImage with = app->renderImage(400, 400, 1, false);
-    state.display.poleMarkers = false;
+    settings.display.poleMarkers = false;
     RgbaImage without = app->renderImage(400, 400, 1, false);
     std::vector<std::pair<int, int>> changed;
     for (int y = 0; y < 400; ++y) {

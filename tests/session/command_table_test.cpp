@@ -38,8 +38,8 @@ SessionOptions quiet() {
   return options;
 }
 
-std::string pressed(const ViewerState& state, int key, int mods = 0) {
-  const std::optional<CommandCall> call = viewerCommands().forKey(key, mods, state);
+std::string pressed(const ViewerStatus& status, int key, int mods = 0) {
+  const std::optional<CommandCall> call = viewerCommands().forKey(key, mods, status);
   REQUIRE(call.has_value());
   return call->text();
 }
@@ -93,28 +93,28 @@ TEST_CASE("command table: every id the panels, the input code and the app name i
 }
 
 TEST_CASE("command table: the viewer's keys reach their commands, with the argument the key gives") {
-  ViewerState state;
-  CHECK(pressed(state, 'G') == "shade gaussian");
-  CHECK(pressed(state, 'G', keys::kShift) == "shade gaussian");  // Shift alone does not change a key
-  CHECK(pressed(state, 'L') == "shade shaded");
-  CHECK(pressed(state, 'S') == "scheme.next");
-  CHECK(pressed(state, 'S', keys::kShift) == "scheme.previous");
-  CHECK(pressed(state, 'S', keys::kControl) == "edit.save");
-  CHECK(pressed(state, 'Z') == "shade reflection");
-  CHECK(pressed(state, 'Z', keys::kControl) == "edit.undo");
-  CHECK(pressed(state, 'Z', keys::kControl | keys::kShift) == "edit.redo");
-  CHECK(pressed(state, 'Y', keys::kControl) == "edit.redo");
-  CHECK(pressed(state, keys::kF2) == "camera.top");
-  CHECK(pressed(state, '7') == "level 7");
-  CHECK(pressed(state, '0') == "level 0");
-  CHECK(pressed(state, keys::kKeypad0 + 7) == "level 7");
-  CHECK_FALSE(viewerCommands().forKey('G', keys::kControl, state).has_value());  // Ctrl+G: nothing
-  CHECK(viewerCommands().forCharacter(U'?', state)->text() == "help");
+  ViewerStatus status;
+  CHECK(pressed(status, 'G') == "shade gaussian");
+  CHECK(pressed(status, 'G', keys::kShift) == "shade gaussian");  // Shift alone does not change a key
+  CHECK(pressed(status, 'L') == "shade shaded");
+  CHECK(pressed(status, 'S') == "scheme.next");
+  CHECK(pressed(status, 'S', keys::kShift) == "scheme.previous");
+  CHECK(pressed(status, 'S', keys::kControl) == "edit.save");
+  CHECK(pressed(status, 'Z') == "shade reflection");
+  CHECK(pressed(status, 'Z', keys::kControl) == "edit.undo");
+  CHECK(pressed(status, 'Z', keys::kControl | keys::kShift) == "edit.redo");
+  CHECK(pressed(status, 'Y', keys::kControl) == "edit.redo");
+  CHECK(pressed(status, keys::kF2) == "camera.top");
+  CHECK(pressed(status, '7') == "level 7");
+  CHECK(pressed(status, '0') == "level 0");
+  CHECK(pressed(status, keys::kKeypad0 + 7) == "level 7");
+  CHECK_FALSE(viewerCommands().forKey('G', keys::kControl, status).has_value());  // Ctrl+G: nothing
+  CHECK(viewerCommands().forCharacter(U'?', status)->text() == "help");
   // PageDown steps the level, or the dropped files when there are several.
-  CHECK(pressed(state, keys::kPageDown) == "level.shallower");
-  state.file.playlist = {"a.obj", "b.obj"};
-  CHECK(pressed(state, keys::kPageDown) == "file.next");
-  CHECK(pressed(state, keys::kPageUp) == "file.previous");
+  CHECK(pressed(status, keys::kPageDown) == "level.shallower");
+  status.file.playlist = {"a.obj", "b.obj"};
+  CHECK(pressed(status, keys::kPageDown) == "file.next");
+  CHECK(pressed(status, keys::kPageUp) == "file.previous");
 }
 
 TEST_CASE("command table: a command with an argument reads the same after a space or a dot") {
@@ -156,69 +156,70 @@ TEST_CASE(
     "command table: commands change the state as the keys always did, and ask the document and window for the rest") {
   RecordingWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
   const CommandTable& table = viewerCommands();
-  for (View& view : state.views) view.status.deepestLevel = 6;
+  for (ViewStatus& view : status.views) view.deepestLevel = 6;
   CHECK(table.run("shade mean", session));
-  CHECK(state.shading.mode == ShadingParams::Mode::Mean);
+  CHECK(settings.shading.mode == ShadingParams::Mode::Mean);
   CHECK(table.run("shade.highlight", session));
-  CHECK(state.shading.mode == ShadingParams::Mode::Highlight);
+  CHECK(settings.shading.mode == ShadingParams::Mode::Highlight);
   CHECK(table.run("level 5", session));
-  for (const View& view : state.views) CHECK(view.level == 5);  // levels linked
+  for (const View& view : settings.views) CHECK(view.level == 5);  // levels linked
   CHECK(table.run("level.4", session));
-  CHECK(state.views[0].level == 4);
+  CHECK(settings.views[0].level == 4);
   CHECK(table.run("level.deeper", session));
   CHECK(table.run("level.deeper", session));
-  CHECK(state.views[0].level == 6);
+  CHECK(settings.views[0].level == 6);
   CHECK(table.run("level.deeper", session));  // past the deepest level: refused, said
-  CHECK(state.views[0].level == 6);
-  CHECK(state.notice.find("level 7 refused") == 0);
+  CHECK(settings.views[0].level == 6);
+  CHECK(session.notices().text().find("level 7 refused") == 0);
   // A bad argument: the notice says why, nothing changes.
   CHECK_FALSE(table.run("level 30", session));
-  CHECK(state.notice == "level N: N is 0..24, not '30'");
-  CHECK(state.views[0].level == 6);
-  const SchemeChoice before = state.views[0].scheme;
+  CHECK(session.notices().text() == "level N: N is 0..24, not '30'");
+  CHECK(settings.views[0].level == 6);
+  const SchemeChoice before = settings.views[0].scheme;
   table.run("scheme.next", session);
   table.run("scheme.previous", session);
-  CHECK(state.views[0].scheme == before);
+  CHECK(settings.views[0].scheme == before);
   table.run("show.net", session);
-  CHECK(state.display.controlNet);
+  CHECK(settings.display.controlNet);
   table.run("views.cycle", session);
-  CHECK(state.viewCount == 2);
+  CHECK(settings.viewCount == 2);
 
   table.run("camera.copy", session);
   CHECK(window.clipboardText.find("\"target\"") != std::string::npos);
-  const OrbitCamera copied = state.camera(0);
-  state.camera(0).orbit(40.0f, 10.0f);
+  const OrbitCamera copied = settings.camera(0);
+  settings.camera(0).orbit(40.0f, 10.0f);
   table.run("camera.paste", session);
-  CHECK(state.camera(0).eye().x == doctest::Approx(copied.eye().x));
+  CHECK(settings.camera(0).eye().x == doctest::Approx(copied.eye().x));
   for (const char* command : {"camera.iso", "screenshot"}) table.run(command, session);
   CHECK(window.calls == std::vector<std::string>{"frame", "screenshot"});
 
   // The document's operations run on the session's document.
   CHECK(table.run("edit.undo", session));
-  CHECK(state.notice == "nothing to undo");
-  state.file.pathField = "no such model.obj";
+  CHECK(session.notices().text() == "nothing to undo");
+  settings.file.pathField = "no such model.obj";
   CHECK(table.run("file.open", session));
-  CHECK(state.file.loadingPath == "no such model.obj");
+  CHECK(status.file.loadingPath == "no such model.obj");
   // Disabled: stepping dropped files without a list.
   CHECK_FALSE(table.run("file.next", session));
   CHECK_FALSE(table.run("no.such.command", session));
-  CHECK(state.notice == "unknown viewer command 'no.such.command'");
+  CHECK(session.notices().text() == "unknown viewer command 'no.such.command'");
 }
 
 TEST_CASE("command table: queued commands run once, in order") {
   RecordingWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  queueCommand(state, "shade gaussian");
-  queueCommand(state, "shade.highlight");
-  queueCommand(state, "screenshot");
-  session.runCommands();
-  CHECK(state.shading.mode == ShadingParams::Mode::Highlight);
+  ViewerSettings& settings = session.settings();
+  session.queueCommand("shade gaussian");
+  session.queueCommand("shade.highlight");
+  session.queueCommand("screenshot");
+  viewerCommands().runQueued(session);
+  CHECK(settings.shading.mode == ShadingParams::Mode::Highlight);
   CHECK(window.calls == std::vector<std::string>{"screenshot"});
-  CHECK(state.queuedCommands.empty());
-  session.runCommands();
+  CHECK(session.commandQueue().empty());
+  viewerCommands().runQueued(session);
   CHECK(window.calls.size() == 1);
 }
 

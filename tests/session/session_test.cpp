@@ -19,7 +19,9 @@
 #include "core/mesh/constants.h"
 #include "core/mesh/obj_io.h"
 #include "core/mesh/shapes.h"
+#include "session/command_table.h"
 #include "session/session.h"
+#include "session/settings_rules.h"
 
 using namespace polarview;
 
@@ -38,11 +40,11 @@ struct FakeWindow : WindowServices {
 // The frame loop's session part, until nothing is left to do.
 void settle(Session& session) {
   do {
-    session.runCommands();
+    viewerCommands().runQueued(session);
     session.updateModelAndSurfaces();
     session.updatePanels();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  } while (session.busy() || !session.state().queuedCommands.empty());
+  } while (session.busy() || !session.commandQueue().empty());
 }
 
 std::filesystem::path freshDirectory() {
@@ -123,7 +125,7 @@ std::string blenderSphere(int segments, int rings) {
 std::string openWritten(Session& session, const std::filesystem::path& folder, const std::string& name, const std::string& text) {
   const std::string path = (folder / name).string();
   std::ofstream(path, std::ios::binary) << text;
-  REQUIRE(session.document().loadFile(path));
+  REQUIRE(session.apply(session.document().loadFile(path)));
   settle(session);
   return path;
 }
@@ -174,37 +176,37 @@ void checkOnlyVertexLineChanged(const std::string& original, const std::string& 
 TEST_CASE("session: the default model through a command, its surface, and a failed load that keeps it") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  queueCommand(state, "file.default");
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
+  session.queueCommand("file.default");
   settle(session);
   REQUIRE(session.model().mesh != nullptr);
   CHECK(window.framed == 1);
-  CHECK(state.file.modelName.rfind("default", 0) == 0);
+  CHECK(status.file.modelName.rfind("default", 0) == 0);
   REQUIRE(session.surfaces().shown(0) != nullptr);
-  CHECK(session.surfaces().shown(0)->key == wantedKey(state, session.model(), 0));
-  CHECK(state.views[0].status.patchCount > 0);
+  CHECK(session.surfaces().shown(0)->key == surfaceRequest(settings, session.model()).wanted[0]);
+  CHECK(status.views[0].patchCount > 0);
 
   const uint64_t generation = session.model().generation;
-  state.file.pathField = "/nonexistent/model.obj";
-  queueCommand(state, "file.open");
+  settings.file.pathField = "/nonexistent/model.obj";
+  session.queueCommand("file.open");
   settle(session);
   CHECK(session.model().generation == generation);  // the model stays
-  CHECK_FALSE(state.file.error.empty());
-  CHECK(state.notice.find("could not open /nonexistent/model.obj") == 0);
+  CHECK_FALSE(status.file.error.empty());
+  CHECK(session.notices().text().find("could not open /nonexistent/model.obj") == 0);
 }
 
 TEST_CASE("session: Ctrl+Z with no edit returns to the model replaced last, again to redo") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  REQUIRE(session.document().loadMesh(shapes::cube(), "cube"));
-  REQUIRE(session.document().loadMesh(shapes::mushroom(6), "mushroom"));
+  REQUIRE(session.apply(session.document().loadMesh(shapes::cube(), "cube")));
+  REQUIRE(session.apply(session.document().loadMesh(shapes::mushroom(6), "mushroom")));
   settle(session);
-  queueCommand(state, "edit.undo");
+  session.queueCommand("edit.undo");
   settle(session);
   CHECK(session.model().name == "cube");
   CHECK(session.surfaces().shown(0)->key.model == session.model().generation);
-  queueCommand(state, "edit.undo");
+  session.queueCommand("edit.undo");
   settle(session);
   CHECK(session.model().name == "mushroom");
 }
@@ -212,49 +214,50 @@ TEST_CASE("session: Ctrl+Z with no edit returns to the model replaced last, agai
 TEST_CASE("session: a cylinder's n-gon caps have no pole; N-gons to triangle fans makes two, Ctrl+Z returns") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
   const std::filesystem::path dir = freshDirectory();
   const std::string path = (dir / "cylinder.obj").string();
   saveObj(path, shapes::ngonCylinder(24));
-  state.file.pathField = path;
-  queueCommand(state, "file.open");
+  settings.file.pathField = path;
+  session.queueCommand("file.open");
   settle(session);
-  REQUIRE(state.file.loadedPath == path);
-  const PoleInspectorSettings& inspector = state.poleInspector;
+  REQUIRE(status.file.loadedPath == path);
+  const PoleInspectorStatus& inspector = status.poleInspector;
   CHECK(inspector.poles.empty());
   CHECK(inspector.survey.fanFaces == 2);  // what the Poles panel offers to convert
   CHECK(inspector.survey.rejectedCount == 0);
 
-  queueCommand(state, "model.ngon-to-fan");
+  session.queueCommand("model.ngon-to-fan");
   settle(session);
-  CHECK(state.file.modelFaces == 24 + 2 * 24);
+  CHECK(status.file.modelFaces == 24 + 2 * 24);
   REQUIRE(inspector.poles.size() == 2);
   CHECK(inspector.poles == std::vector<Index>{48, 49});
   CHECK(inspector.survey.fanFaces == 0);
-  CHECK(state.notice.find("2 faces made triangle fans") == 0);
+  CHECK(session.notices().text().find("2 faces made triangle fans") == 0);
   CHECK(session.surfaces().shown(0)->key.model == session.model().generation);
-  CHECK(state.views[0].status.polesByScheme == 2);  // C2PS refines both
+  CHECK(status.views[0].polesByScheme == 2);  // C2PS refines both
 
-  queueCommand(state, "edit.undo");
+  session.queueCommand("edit.undo");
   settle(session);
-  CHECK(state.file.modelFaces == 26);
+  CHECK(status.file.modelFaces == 26);
   CHECK(inspector.poles.empty());
   CHECK(inspector.survey.fanFaces == 2);
   // Nothing to convert: a notice, the model stays.
   const uint64_t generation = session.model().generation;
-  REQUIRE(session.document().loadMesh(shapes::globe(8, 3), "globe"));
+  REQUIRE(session.apply(session.document().loadMesh(shapes::globe(8, 3), "globe")));
   settle(session);
-  queueCommand(state, "model.ngon-to-fan");
+  session.queueCommand("model.ngon-to-fan");
   settle(session);
   CHECK(session.model().generation == generation + 1);
-  CHECK(state.notice.find("no face with 5 or more sides") == 0);
+  CHECK(session.notices().text().find("no face with 5 or more sides") == 0);
   std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("session: the Poles panel's candidates that are not poles, the nearest first, with reasons") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
+  ViewerStatus& status = session.status();
   // A cone without a base (its 16-valent fan's rim is a boundary) and, apart, an octahedron (six
   // 4-valent fans ringed by triangles, no quads).
   PolyMesh cone;
@@ -273,10 +276,10 @@ TEST_CASE("session: the Poles panel's candidates that are not poles, the nearest
     if (outward) cone.addFace({x, y, z});
     else cone.addFace({x, z, y});
   }
-  REQUIRE(session.document().loadMesh(cone, "cone"));
+  REQUIRE(session.apply(session.document().loadMesh(cone, "cone")));
   settle(session);
-  const PoleSurvey& survey = state.poleInspector.survey;
-  CHECK(state.poleInspector.poles.empty());
+  const PoleSurvey& survey = status.poleInspector.survey;
+  CHECK(status.poleInspector.poles.empty());
   REQUIRE(survey.rejected.size() == 2);
   CHECK(survey.rejectedCount == 1 + 6);
   CHECK(survey.rejected[0].words == "a 1-link vertex is on a boundary");
@@ -296,33 +299,35 @@ TEST_CASE("session: the Poles panel's candidates that are not poles, the nearest
 TEST_CASE("session: Save OBJ and Export .bv write what the model and the active view are") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  REQUIRE(session.document().loadMesh(shapes::mushroom(6), "mushroom"));
-  state.views[0].level = 2;
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
+  REQUIRE(session.apply(session.document().loadMesh(shapes::mushroom(6), "mushroom")));
+  settings.views[0].level = 2;
   settle(session);
   const std::filesystem::path folder = freshDirectory();
-  state.edit.savePath = (folder / "saved.obj").string();
-  state.edit.surfacePath = (folder / "surface.bv").string();
-  queueCommand(state, "edit.save");
-  queueCommand(state, "export.surface");
+  settings.edit.savePath = (folder / "saved.obj").string();
+  settings.edit.surfacePath = (folder / "surface.bv").string();
+  session.queueCommand("edit.save");
+  session.queueCommand("export.surface");
   settle(session);
-  CHECK(state.edit.error.empty());
-  const PolyMesh saved = loadObj(state.edit.savePath);
+  CHECK(status.edit.error.empty());
+  const PolyMesh saved = loadObj(settings.edit.savePath);
   CHECK(saved.faceCount() == session.model().mesh->faceCount());
   CHECK(saved.points == session.model().mesh->points);
   // BezierView's file: one record a patch, as many as the view's patches.
-  std::ifstream bv(state.edit.surfacePath);
+  std::ifstream bv(settings.edit.surfacePath);
   REQUIRE(bv.good());
-  CHECK(state.notice.find(std::to_string(session.surfaces().shown(0)->patches.size()) + " Bezier patches") != std::string::npos);
+  CHECK(session.notices().text().find(std::to_string(session.surfaces().shown(0)->patches.size()) + " Bezier patches") != std::string::npos);
   std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("session: Export surface writes the format of the path's extension, and refuses an unknown one") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  REQUIRE(session.document().loadMesh(shapes::mushroom(8), "mushroom"));
-  state.views[0].level = 1;
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
+  REQUIRE(session.apply(session.document().loadMesh(shapes::mushroom(8), "mushroom")));
+  settings.views[0].level = 1;
   settle(session);
   const std::filesystem::path folder = freshDirectory();
   const auto firstBytes = [](const std::filesystem::path& path, size_t count) {
@@ -332,52 +337,53 @@ TEST_CASE("session: Export surface writes the format of the path's extension, an
     return bytes;
   };
   const size_t patches = session.surfaces().shown(0)->patches.size();
-  state.edit.surfacePath = (folder / "surface.step").string();
-  queueCommand(state, "export.surface");
+  settings.edit.surfacePath = (folder / "surface.step").string();
+  session.queueCommand("export.surface");
   settle(session);
-  CHECK(state.edit.error.empty());
-  CHECK(firstBytes(state.edit.surfacePath, 13) == "ISO-10303-21;");
-  CHECK(state.notice.find(std::to_string(patches) + " B-spline surfaces") != std::string::npos);
-  state.edit.surfacePath = (folder / "surface.glb").string();
-  queueCommand(state, "export.surface");
+  CHECK(status.edit.error.empty());
+  CHECK(firstBytes(settings.edit.surfacePath, 13) == "ISO-10303-21;");
+  CHECK(session.notices().text().find(std::to_string(patches) + " B-spline surfaces") != std::string::npos);
+  settings.edit.surfacePath = (folder / "surface.glb").string();
+  session.queueCommand("export.surface");
   settle(session);
-  CHECK(firstBytes(state.edit.surfacePath, 4) == "glTF");
-  CHECK(state.notice.find("watertight") != std::string::npos);
+  CHECK(firstBytes(settings.edit.surfacePath, 4) == "glTF");
+  CHECK(session.notices().text().find("watertight") != std::string::npos);
   // An extension no format has: nothing written, the formats named.
-  state.edit.surfacePath = (folder / "surface.xyz").string();
-  queueCommand(state, "export.surface");
+  settings.edit.surfacePath = (folder / "surface.xyz").string();
+  session.queueCommand("export.surface");
   settle(session);
-  CHECK(state.edit.error.find(".step") != std::string::npos);
-  CHECK(!std::filesystem::exists(state.edit.surfacePath));
+  CHECK(status.edit.error.find(".step") != std::string::npos);
+  CHECK(!std::filesystem::exists(settings.edit.surfacePath));
   // The format box sets the default name's extension.
-  state.edit.surfaceFormat = "iges";
+  settings.edit.surfaceFormat = "iges";
   settle(session);
-  CHECK(state.edit.defaultSurfacePath.size() > 4);
-  CHECK(state.edit.defaultSurfacePath.substr(state.edit.defaultSurfacePath.size() - 4) == ".igs");
+  CHECK(status.edit.defaultSurfacePath.size() > 4);
+  CHECK(status.edit.defaultSurfacePath.substr(status.edit.defaultSurfacePath.size() - 4) == ".igs");
   std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("session: after an eigenvector net and Ctrl+Z, the outputs are named after the default model again") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  queueCommand(state, "file.default");
+  ViewerStatus& status = session.status();
+  session.queueCommand("file.default");
   settle(session);
-  CHECK(state.edit.defaultSavePath == "default_edited.obj");
-  queueCommand(state, "model.eigenvector");
+  CHECK(status.edit.defaultSavePath == "default_edited.obj");
+  session.queueCommand("model.eigenvector");
   settle(session);
-  CHECK(state.file.modelName.rfind("RTS eigenvector", 0) == 0);
-  queueCommand(state, "edit.undo");  // no vertex drag to undo: back to the default model
+  CHECK(status.file.modelName.rfind("RTS eigenvector", 0) == 0);
+  session.queueCommand("edit.undo");  // no vertex drag to undo: back to the default model
   settle(session);
-  CHECK(state.file.modelName.rfind("default: ", 0) == 0);
-  CHECK(state.edit.defaultSavePath == "default_edited.obj");
-  CHECK(state.edit.defaultSurfacePath.rfind("default_c2ps_", 0) == 0);
+  CHECK(status.file.modelName.rfind("default: ", 0) == 0);
+  CHECK(status.edit.defaultSavePath == "default_edited.obj");
+  CHECK(status.edit.defaultSurfacePath.rfind("default_c2ps_", 0) == 0);
 }
 
 TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it but the moved vertex's") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
   const std::filesystem::path folder = freshDirectory();
   const std::string original = blenderSphere(8, 6);
   const std::string input = openWritten(session, folder, "sphere.obj", original);
@@ -388,30 +394,30 @@ TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it bu
   dragVertex(session.document(), vertex, 20.0f);
   const Point moved = session.model().mesh->points[vertex];
   CHECK(moved != session.document().editor().loadedPoints()[vertex]);
-  state.edit.savePath = (folder / "sphere_edited.obj").string();
-  queueCommand(state, "edit.save");
+  settings.edit.savePath = (folder / "sphere_edited.obj").string();
+  session.queueCommand("edit.save");
   settle(session);
-  CHECK(state.edit.error.empty());
-  CHECK(state.notice.find("1 vertex moved; every other line as in the file") != std::string::npos);
-  const std::string saved = readText(state.edit.savePath);
+  CHECK(status.edit.error.empty());
+  CHECK(session.notices().text().find("1 vertex moved; every other line as in the file") != std::string::npos);
+  const std::string saved = readText(settings.edit.savePath);
   checkOnlyVertexLineChanged(original, saved, 4 + size_t(vertex), moved);
-  CHECK(loadObj(state.edit.savePath).points == session.model().mesh->points);
+  CHECK(loadObj(settings.edit.savePath).points == session.model().mesh->points);
 
   // A conversion's model (Fig. 14a on a cube file) has other faces: no file text to keep, plain
   // v/f lines of the model shown.
   openWritten(session, folder, "cube.obj",
               "o Cube\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0 0\n"
               "f 4/1 3/1 2/1 1/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\nf 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n");
-  queueCommand(state, "model.ev-to-polar");
+  session.queueCommand("model.ev-to-polar");
   settle(session);
   REQUIRE(session.model().mesh->faceCount() != 6);
-  queueCommand(state, "edit.save");
+  session.queueCommand("edit.save");
   settle(session);
-  CHECK(state.edit.error.empty());
-  CHECK(state.notice.find("every other line as in the file") == std::string::npos);
-  const std::string converted = readText(state.edit.savePath);
+  CHECK(status.edit.error.empty());
+  CHECK(session.notices().text().find("every other line as in the file") == std::string::npos);
+  const std::string converted = readText(settings.edit.savePath);
   CHECK(converted.find("vt ") == std::string::npos);
-  const PolyMesh back = loadObj(state.edit.savePath);
+  const PolyMesh back = loadObj(settings.edit.savePath);
   CHECK(back.faceVerts == session.model().mesh->faceVerts);
   CHECK(back.points == session.model().mesh->points);
   std::filesystem::remove_all(folder);
@@ -420,7 +426,8 @@ TEST_CASE("session: Save OBJ of an edited Blender file keeps every line of it bu
 TEST_CASE("session: Save OBJ of an edited non-manifold file writes it in the file's numbering") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
   const std::filesystem::path folder = freshDirectory();
   // Three quads on one edge (vertices 2 and 3): refined split along it (manifold_split.h).
   const std::string original =
@@ -429,27 +436,28 @@ TEST_CASE("session: Save OBJ of an edited non-manifold file writes it in the fil
   openWritten(session, folder, "fin.obj", original);
   REQUIRE(session.model().mesh->vertexCount() == 8);
   dragVertex(session.document(), 4, -16.0f);
-  state.edit.savePath = (folder / "fin_edited.obj").string();
-  queueCommand(state, "edit.save");
+  settings.edit.savePath = (folder / "fin_edited.obj").string();
+  session.queueCommand("edit.save");
   settle(session);
-  CHECK(state.edit.error.empty());
-  checkOnlyVertexLineChanged(original, readText(state.edit.savePath), 5, session.model().mesh->points[4]);
+  CHECK(status.edit.error.empty());
+  checkOnlyVertexLineChanged(original, readText(settings.edit.savePath), 5, session.model().mesh->points[4]);
   std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("session: a sphere's K (all > 0) gets a one-sided automatic range over its own values, not +-max") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  REQUIRE(session.document().loadMesh(shapes::globe(16, 7), "globe"));
-  state.views[0].level = 3;
-  state.shading.mode = ShadingParams::Mode::Gaussian;
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
+  REQUIRE(session.apply(session.document().loadMesh(shapes::globe(16, 7), "globe")));
+  settings.views[0].level = 3;
+  settings.shading.mode = ShadingParams::Mode::Gaussian;
   settle(session);
   REQUIRE(session.surfaces().shown(0) != nullptr);
   const std::vector<double>& k = session.surfaces().shown(0)->samples->gaussian;
   const double lowest = *std::min_element(k.begin(), k.end()), highest = *std::max_element(k.begin(), k.end());
   REQUIRE(lowest > 0.0);
-  const ColourInterval range = state.colourInterval();
+  const ColourInterval range = colourInterval(settings, status);
   CAPTURE(range.low);
   CAPTURE(range.high);
   // [P10, P90] of K: inside [min, max] (the old +-P90 reached down to -P90, all of K on the red end).
@@ -459,42 +467,43 @@ TEST_CASE("session: a sphere's K (all > 0) gets a one-sided automatic range over
   CHECK(range.low < range.high);
   // The map still varies over the sphere: its lowest and highest K differ in colour, and both are
   // on the positive half of the paper's map (not blue).
-  const glm::vec3 low = colorMapCpu(state.shading.colormap, lowest, range), high = colorMapCpu(state.shading.colormap, highest, range);
+  const glm::vec3 low = colorMapCpu(settings.shading.colormap, lowest, range), high = colorMapCpu(settings.shading.colormap, highest, range);
   CHECK(glm::length(low - high) > 0.5f);
   CHECK(low.z == 0.0f);
-  CHECK(colourRangeNote(state).find("all K > 0: range") == 0);
+  CHECK(colourRangeNote(settings, status).find("all K > 0: range") == 0);
   // Mixed signs keep the paper's map centred on zero: the mushroom's neck is negative.
-  REQUIRE(session.document().loadMesh(shapes::mushroom(6), "mushroom"));
+  REQUIRE(session.apply(session.document().loadMesh(shapes::mushroom(6), "mushroom")));
   settle(session);
-  CHECK_FALSE(state.colourInterval().oneSided());
-  CHECK(state.colourInterval().low == -state.colourInterval().high);
-  CHECK(colourRangeNote(state).empty());
+  CHECK_FALSE(colourInterval(settings, status).oneSided());
+  CHECK(colourInterval(settings, status).low == -colourInterval(settings, status).high);
+  CHECK(colourRangeNote(settings, status).empty());
 }
 
 TEST_CASE("session: a pole zoom to rings m..m+2 raises the views to level m+2, or is refused, and a lower level ends it") {
   FakeWindow window;
   Session session(quiet(), window);
-  ViewerState& state = session.state();
-  REQUIRE(session.document().loadMesh(shapes::globe(8, 5), "globe"));
-  state.views[0].level = 3;
+  ViewerSettings& settings = session.settings();
+  ViewerStatus& status = session.status();
+  REQUIRE(session.apply(session.document().loadMesh(shapes::globe(8, 5), "globe")));
+  settings.views[0].level = 3;
   settle(session);
   // Rings 4..6 at level 3 did not exist: the view went blank. Now the level goes to 6.
-  state.poleInspector.zoomRing = 4;
+  settings.poleInspector.zoomRing = 4;
   settle(session);
-  CHECK(state.poleInspector.zoomRing == 4);
-  CHECK(state.views[0].level == 6);
-  CHECK(state.views[0].status.shownLevel == 6);
-  CHECK(state.notice.find("level 6 for the pole zoom") == 0);
+  CHECK(settings.poleInspector.zoomRing == 4);
+  CHECK(settings.views[0].level == 6);
+  CHECK(status.views[0].shownLevel == 6);
+  CHECK(session.notices().text().find("level 6 for the pole zoom") == 0);
   // A level under the zoom's rings ends it, saying why.
-  state.views[0].level = 5;
+  settings.views[0].level = 5;
   settle(session);
-  CHECK(state.poleInspector.zoomRing == -1);
-  CHECK(state.notice.find("pole zoom off: rings 4-6 need level 6") == 0);
+  CHECK(settings.poleInspector.zoomRing == -1);
+  CHECK(session.notices().text().find("pole zoom off: rings 4-6 need level 6") == 0);
   // Deeper than the scheme goes on this model: refused, the level stays.
-  const int deepest = state.views[0].status.deepestLevel;
-  state.poleInspector.zoomRing = deepest;
+  const int deepest = status.views[0].deepestLevel;
+  settings.poleInspector.zoomRing = deepest;
   settle(session);
-  CHECK(state.poleInspector.zoomRing == -1);
-  CHECK(state.views[0].level == 5);
-  CHECK(state.notice.find("stops at level " + std::to_string(deepest)) != std::string::npos);
+  CHECK(settings.poleInspector.zoomRing == -1);
+  CHECK(settings.views[0].level == 5);
+  CHECK(session.notices().text().find("stops at level " + std::to_string(deepest)) != std::string::npos);
 }

@@ -25,27 +25,27 @@ TEST_CASE("view title: says in a word why every pole fell back to Catmull-Clark"
 }
 
 TEST_CASE("new views start on different schemes: C2PS, RTS, BPS, Catmull-Clark (several views are for comparing)") {
-  const ViewerState state;
-  CHECK(state.views[0].scheme == SchemeChoice::C2PS);
-  CHECK(state.views[1].scheme == SchemeChoice::RTS);
-  CHECK(state.views[2].scheme == SchemeChoice::BPS);
-  CHECK(state.views[3].scheme == SchemeChoice::CatmullClark);
-  for (const View& view : state.views) CHECK(view.level == 3);
+  const ViewerSettings settings;
+  CHECK(settings.views[0].scheme == SchemeChoice::C2PS);
+  CHECK(settings.views[1].scheme == SchemeChoice::RTS);
+  CHECK(settings.views[2].scheme == SchemeChoice::BPS);
+  CHECK(settings.views[3].scheme == SchemeChoice::CatmullClark);
+  for (const View& view : settings.views) CHECK(view.level == 3);
 }
 
 TEST_CASE("the strip under the views is as high for light lines as for a curvature map (the model does not move)") {
-  ViewerState state;
-  state.shading.mode = ShadingParams::Mode::Gaussian;
-  const float curvature = colourBarReserve(state, 1.0f);
+  ViewerSettings settings;
+  settings.shading.mode = ShadingParams::Mode::Gaussian;
+  const float curvature = colourBarReserve(settings, 1.0f);
   CHECK(curvature > 0.0f);
   for (ShadingParams::Mode lines : {ShadingParams::Mode::Highlight, ShadingParams::Mode::Reflection}) {
-    state.shading.mode = lines;
-    CHECK(colourBarReserve(state, 1.0f) == curvature);
+    settings.shading.mode = lines;
+    CHECK(colourBarReserve(settings, 1.0f) == curvature);
   }
   const ScreenRect frame{0.0f, 0.0f, 1200.0f, 800.0f};
-  state.shading.mode = ShadingParams::Mode::Gaussian;
-  const ScreenRect withBar = layoutViews(1, frame, colourBarReserve(state, 1.0f)).front();
-  state.shading.mode = ShadingParams::Mode::Reflection;
-  const ScreenRect withLegend = layoutViews(1, frame, colourBarReserve(state, 1.0f)).front();
+  settings.shading.mode = ShadingParams::Mode::Gaussian;
+  const ScreenRect withBar = layoutViews(1, frame, colourBarReserve(settings, 1.0f)).front();
+  settings.shading.mode = ShadingParams::Mode::Reflection;
+  const ScreenRect withLegend = layoutViews(1, frame, colourBarReserve(settings, 1.0f)).front();
   CHECK(withBar.h == withLegend.h);
 }
