@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <ctime>
 #include <limits>
+#include <memory>
 #include <ostream>
 
 #include <glm/common.hpp>
@@ -25,8 +26,12 @@ namespace polarview {
 
 namespace {
 
-ExportStats writeBv(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
-  return writeBezierView(out, set, BezierViewOptions{}, settings.source);
+// .bv: its stats come of writing it (the caps' pieces are fitted as they are written).
+ExportWriter prepareBv(const PatchSet& set, const ExportSettings& settings) {
+  checkFinitePatches(set, settings.source);
+  return [&set, source = settings.source](std::ostream& out) -> ExportStats {
+    return writeBezierView(out, set, BezierViewOptions{}, source);
+  };
 }
 
 // [SECTION] tessellations (PLY, glb): the core writes, the colours come from here
@@ -82,9 +87,10 @@ void checkTessellationBudget(const PatchSet& set, const ExportSettings& settings
   throw BudgetRefusal(settings.source, 0, text);
 }
 
-// Tessellates `set`, colours K as the viewer's default Gaussian view does and writes it with `write`.
-ExportStats writeTessellation(std::ostream& out, const PatchSet& set, const ExportSettings& settings,
-                              void (*write)(std::ostream&, const Tessellation&, const TessellationFileInfo&)) {
+// Tessellates `set`, colours K as the viewer's default Gaussian view does and makes the file's bytes
+// with `bytesOf` (which refuses non-finite values), all before the file is opened.
+ExportWriter prepareTessellation(const PatchSet& set, const ExportSettings& settings,
+                                 std::string (*bytesOf)(const Tessellation&, const TessellationFileInfo&)) {
   checkTessellationBudget(set, settings);
   const Tessellation mesh = tessellatePatchSet(set, settings.samples);
   std::vector<double> values, weights;
@@ -97,7 +103,7 @@ ExportStats writeTessellation(std::ostream& out, const PatchSet& set, const Expo
   char colouring[96];
   std::snprintf(colouring, sizeof colouring, "K through the paper colour map over [%.6g, %.6g]", range.low, range.high);
   info.colouring = colouring;
-  write(out, mesh, info);
+  std::string bytes = bytesOf(mesh, info);
 
   TessellationStats stats;
   stats.vertices = mesh.positions.size();
@@ -109,15 +115,18 @@ ExportStats writeTessellation(std::ostream& out, const PatchSet& set, const Expo
     stats.gaussianHigh = *highest;
   }
   stats.colours = range;
-  return stats;
+  return [bytes = std::move(bytes), stats](std::ostream& out) -> ExportStats {
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    return stats;
+  };
 }
 
-ExportStats writePlyFormat(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
-  return writeTessellation(out, set, settings, writePly);
+ExportWriter preparePly(const PatchSet& set, const ExportSettings& settings) {
+  return prepareTessellation(set, settings, plyBytes);
 }
 
-ExportStats writeGlbFormat(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
-  return writeTessellation(out, set, settings, writeGlb);
+ExportWriter prepareGlb(const PatchSet& set, const ExportSettings& settings) {
+  return prepareTessellation(set, settings, glbBytes);
 }
 
 // [SECTION] CAD files (STEP, IGES): B-spline surfaces, written by the core
@@ -144,18 +153,20 @@ CadFileInfo cadFileInfo(const ExportSettings& settings) {
   return info;
 }
 
-// A CAD row: the surfaces (refused before anything is written when not finite), then the file.
+// A CAD row: the surfaces (refused before the file is opened when not finite), then the file.
 template <void (*writeFile)(std::ostream&, const CadSurfaceSet&, const CadFileInfo&)>
-ExportStats writeCad(std::ostream& out, const PatchSet& set, const ExportSettings& settings) {
-  const CadSurfaceSet surfaces = cadSurfaces(set, settings.source);
-  writeFile(out, surfaces, cadFileInfo(settings));
+ExportWriter prepareCad(const PatchSet& set, const ExportSettings& settings) {
+  auto surfaces = std::make_shared<const CadSurfaceSet>(cadSurfaces(set, settings.source));
   CadStats stats;
-  stats.surfaces = surfaces.surfaces.size();
-  stats.written = surfaces.written;
-  stats.capSectors = surfaces.capSectors;
-  stats.capRelativeDeviation = surfaces.capRelativeDeviation();
+  stats.surfaces = surfaces->surfaces.size();
+  stats.written = surfaces->written;
+  stats.capSectors = surfaces->capSectors;
+  stats.capRelativeDeviation = surfaces->capRelativeDeviation();
   stats.units = settings.units;
-  return stats;
+  return [surfaces, info = cadFileInfo(settings), stats](std::ostream& out) -> ExportStats {
+    writeFile(out, *surfaces, info);
+    return stats;
+  };
 }
 
 // "(regular a, boundary b, polar-ring c, pole-cap d for e cap sectors, end-cap f)".
@@ -217,12 +228,12 @@ const std::vector<LengthUnitInfo>& lengthUnits() {
 
 const std::vector<ExportFormat>& exportFormats() {
   static const std::vector<ExportFormat> formats = {
-      {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", false, writeBv},
-      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, writePlyFormat},
-      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, writeGlbFormat},
-      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", false, writeCad<writeStep>},
+      {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", false, prepareBv},
+      {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, preparePly},
+      {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, prepareGlb},
+      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", false, prepareCad<writeStep>},
       {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)", false,
-       writeCad<writeIges>},
+       prepareCad<writeIges>},
   };
   return formats;
 }
@@ -248,8 +259,9 @@ std::string exportSummary(const ExportStats& stats) {
 
 ExportStats writeSurfaceFile(const std::string& path, const PatchSet& set, const ExportFormat& format, ExportSettings settings) {
   if (settings.fileName.empty()) settings.fileName = baseName(path);
+  const ExportWriter write = format.prepare(set, settings);  // refusals come before the file is opened
   ExportStats stats;
-  writeFileAtomically(path, [&](std::ostream& out) { stats = format.write(out, set, settings); });
+  writeFileAtomically(path, [&](std::ostream& out) { stats = write(out); });
   return stats;
 }
 

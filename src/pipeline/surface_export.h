@@ -1,10 +1,12 @@
 // The formats the limit surface is written in, one table: `polarview export` (format from the
 // output's extension, --format to override) and the viewer's "Edit and export" read it. Each row
-// writes a PatchSet to a stream and returns what it wrote; writeSurfaceFile makes the file
-// atomically (nothing is left behind on any error) and exportSummary says it in a line.
+// prepares a PatchSet's file (refusing bad data first) and writes it to a stream, saying what it
+// wrote; writeSurfaceFile makes the file atomically (nothing is left behind on any error) and
+// exportSummary says it in a line.
 #pragma once
 
 #include <array>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <variant>
@@ -57,20 +59,25 @@ struct CadStats {
 
 // What a format's writer wrote: .bv, a tessellation, or CAD surfaces.
 using ExportStats = std::variant<BezierViewStats, TessellationStats, CadStats>;
+// A prepared file's writer: writes its bytes to the stream and says what they hold. It refers to the
+// PatchSet it was prepared from, which must outlive it.
+using ExportWriter = std::function<ExportStats(std::ostream&)>;
 
 struct ExportFormat {
   const char* name;                     // --format NAME: "bv", "step", "iges", "ply", "glb"
   std::vector<std::string> extensions;  // ".bv"; ".step", ".stp"; ...
   const char* description;              // one line of help
   bool curvature;                       // holds curvature: the model must be at least kSmallestModelExtent
-  // Writes `set` to `out` and returns what it wrote. Throws InputError (bad data, named after
-  // settings.source) or std::ios_base::failure (I/O).
-  ExportStats (*write)(std::ostream& out, const PatchSet& set, const ExportSettings& settings);
+  // Makes what the file holds from `set`: refuses bad data (InputError named after settings.source)
+  // and tessellations over the memory budget (BudgetRefusal) before any file is opened, and returns
+  // the writer of its bytes to a stream (writeSurfaceFile runs it into the file).
+  ExportWriter (*prepare)(const PatchSet& set, const ExportSettings& settings);
 };
 const std::vector<ExportFormat>& exportFormats();
 
 // Writes `set` in `format` to `path` atomically (settings.fileName: the path's base name when
-// empty). Throws as the writer, or InputError(path, 0, ...) when the file cannot be made. [O(output)]
+// empty): prepared first, so a refusal leaves the path untouched; then InputError(path, 0, ...) when
+// the file cannot be made or written. [O(output)]
 ExportStats writeSurfaceFile(const std::string& path, const PatchSet& set, const ExportFormat& format, ExportSettings settings);
 // One line of what was written, for "wrote PATH: <summary>": "357 Bezier patches in 3 groups
 // (regular a, ...)", "12345 vertices, 24680 triangles, watertight, K in [a, b]; ...", "357 B-spline

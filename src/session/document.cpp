@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/mesh/atomic_file.h"
 #include "core/mesh/ev_to_polar.h"
 #include "core/mesh/ngon_to_fan.h"
 #include "core/mesh/obj_io.h"
@@ -229,8 +230,13 @@ void Document::rememberRecent(const std::string& path) {
   if (file.empty()) return;
   std::error_code ignored;
   std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ignored);
-  std::ofstream out(file);
-  for (const std::string& p : recent) out << p << '\n';
+  std::string text;
+  for (const std::string& p : recent) text += p + '\n';
+  try {
+    writeFileAtomically(file, text);  // two viewers at once: each list whole, never a torn one
+  } catch (const std::exception&) {
+    // An unwritable config folder costs the recent list only.
+  }
 }
 
 void Document::loadRecent() {

@@ -111,5 +111,20 @@ chmod 444 "$nodes/ro.obj"
 grep -q "ro.obj: cannot write: the file is read-only" "$tmp/err.txt" || fail "read-only output: $(cat "$tmp/err.txt")"
 [ "$(cat "$nodes/ro.obj")" = "mine" ] || fail "the read-only output changed"
 
+# Exports are made before the output is opened: a refusal (here a tessellation over the memory
+# budget) is what the user sees even where the path is bad too, and a FIFO or /dev/stdout with a
+# log behind it is never opened (it would block, or truncate the log) for a refused export.
+"$exe" shape globe -o "$tmp/globe.obj" || fail "shape globe"
+refused() { "$exe" export "$tmp/globe.obj" --scheme c2ps --level 3 --samples 64 --memory-budget 30M "$@"; }
+refused -o "$tmp/no/such/dir/out.ply" 2> "$tmp/err.txt"
+[ $? -eq 1 ] && grep -q "over the memory budget" "$tmp/err.txt" || fail "bad path and budget: $(cat "$tmp/err.txt")"
+mkfifo "$tmp/fifo.ply"
+timeout 20 "$exe" export "$tmp/globe.obj" --scheme c2ps --level 3 --samples 64 --memory-budget 30M -o "$tmp/fifo.ply" \
+  2> "$tmp/err.txt"
+[ $? -eq 1 ] && grep -q "over the memory budget" "$tmp/err.txt" || fail "a refused export opened a FIFO: $(cat "$tmp/err.txt")"
+printf 'earlier lines\n' > "$tmp/log.txt"
+refused -o /dev/stdout --format ply >> "$tmp/log.txt" 2> /dev/null
+[ "$(cat "$tmp/log.txt")" = "earlier lines" ] || fail "a refused export to /dev/stdout truncated the log"
+
 echo "atomic_output: $failures failures"
 [ $failures -eq 0 ]

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
-#include <ostream>
 
 #include <glm/geometric.hpp>
 
@@ -222,16 +221,6 @@ std::string glbBytes(const Tessellation& mesh, const TessellationFileInfo& info)
   appendBits(out, 2, 4);
   appendBits(out, 12 + chunks.size(), 4);
   return out + chunks;
-}
-
-void writePly(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info) {
-  const std::string bytes = plyBytes(mesh, info);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
-
-void writeGlb(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info) {
-  const std::string bytes = glbBytes(mesh, info);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
 }  // namespace polarview

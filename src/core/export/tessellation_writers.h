@@ -5,7 +5,6 @@
 
 #include <glm/vec3.hpp>
 
-#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -33,9 +32,5 @@ std::string plyBytes(const Tessellation& mesh, const TessellationFileInfo& info)
 // level, samples and colouring. Throws InputError as plyBytes, and for values past float's range.
 // [O(vertices + triangles)]
 std::string glbBytes(const Tessellation& mesh, const TessellationFileInfo& info);
-
-// The same bytes written to `out` (the file is the caller's: atomic_file.h writeFileAtomically).
-void writePly(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info);
-void writeGlb(std::ostream& out, const Tessellation& mesh, const TessellationFileInfo& info);
 
 }  // namespace polarview

@@ -1,7 +1,7 @@
 // Atomic output files: a reader of PATH sees the old file or the whole new one, never a part, and
-// no temporary is left behind. Every file polarview writes goes through here: each format's writer
-// writes to a std::ostream (OBJ, .bv, STEP, IGES, PLY, glb) or makes its bytes (PNG), and
-// writeFileAtomically makes the file of it. POSIX.
+// no temporary is left behind. Every output file polarview writes goes through here: each format's
+// writer writes to a std::ostream (OBJ, .bv, STEP, IGES) or makes its bytes first (PLY, glb, PNG),
+// and writeFileAtomically makes the file of it. POSIX.
 #pragma once
 
 #include <functional>
