@@ -13,8 +13,8 @@ using polarview::Args;
 
 // refine IN.obj: the mesh refined uniformly, written as OBJ (c2ps-u, rts-u: the Section-6 variant).
 CommandParser refineCommand();
-// export IN.obj: the limit surface in BezierView's .bv format, feature-adaptive (or uniform),
-// written atomically.
+// export IN.obj: the limit surface in a format of surface_export.h's table (.bv, STEP, IGES, PLY,
+// glb), feature-adaptive (or uniform), written atomically.
 CommandParser exportCommand();
 // continuity IN.obj: position, normal and curvature differences across every seam of the
 // feature-adaptive patches, per kind of seam (core/spline/continuity.h).

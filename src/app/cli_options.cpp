@@ -43,15 +43,14 @@ size_t checkMemoryBudget(const PolyMesh& mesh, const SurfaceArgs& o, bool adapti
 }
 
 RefineRequest refineRequest(const SurfaceArgs& o, bool uniform) {
-  return RefineRequest{{o.scheme, o.levels, o.uniformFirstStep}, uniform, o.memoryBudget, 0};
+  return RefineRequest::withinMemory({o.scheme, o.levels, o.uniformFirstStep},
+                                     uniform ? RefinePath::Uniform : RefinePath::FeatureAdaptive, o.memoryBudget);
 }
 
 // The name a scheme prints as: "c2ps-u" for C2PS with the uniform first step.
 std::string cliSchemeName(Scheme scheme, bool uniformFirstStep) { return schemeVariantName({scheme, uniformFirstStep}); }
 
 
-// Which scheme variants a command takes (every one, or those with a property of the scheme table).
-using SchemeFilter = bool (*)(const SchemeVariant&);
 bool anyScheme(const SchemeVariant&) { return true; }
 bool polarScheme(const SchemeVariant& v) { return schemeTraits(v.scheme).polar(); }
 // spectrum: a scheme-table row as it is (the Section-6 first step is no subdivision matrix of its own).
@@ -77,7 +76,7 @@ OptionRow schemeRow(Scheme* scheme, bool* given, bool* uniform, SchemeFilter acc
 }
 // --scheme S for the commands that read IN.obj; `listed`: the schemes the help names.
 OptionRow schemeRow(SurfaceArgs& o, const std::string& help, SchemeFilter listed) {
-  return schemeRow(&o.scheme, &o.schemeGiven, &o.uniformScheme, anyScheme,
+  return schemeRow(&o.scheme, nullptr, &o.uniformScheme, anyScheme,
                    help + " (" + schemeNames(listed, "|") + ")");
 }
 

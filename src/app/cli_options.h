@@ -19,7 +19,6 @@ namespace polarview::cli {
 struct SurfaceArgs {
   std::string input;
   Scheme scheme = Scheme::C2PS;
-  bool schemeGiven = false;
   bool uniformScheme = false;     // --scheme c2ps-u or rts-u
   bool uniformFlag = false;       // --uniform-first-step
   bool uniformFirstStep = false;  // either of the two (checkFirstStep)

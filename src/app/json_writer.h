@@ -1,5 +1,5 @@
-// The JSON writer lives in the pipeline (the Python module writes the same reports): this name stays
-// for the CLI's files.
+// The JSON writer lives in the pipeline (the reports print through it): this name stays for the
+// CLI's files.
 #pragma once
 
 #include "pipeline/json_writer.h"

@@ -1,5 +1,5 @@
-// A minimal JSON writer for the machine-readable output of the CLI and the Python module (numbers
-// round-trip doubles).
+// A minimal JSON writer for the CLI's machine-readable output (numbers round-trip doubles); the
+// reports the Python module shares are trees (report_value.h) printed through it.
 #pragma once
 
 #include <cmath>

@@ -5,24 +5,19 @@
 #include <cstddef>
 #include <string>
 
+#include "pipeline/memory_budget.h"
 #include "pipeline/model.h"
 #include "pipeline/scheme_choice.h"
 #include "pipeline/surface_key.h"
 
 namespace polarview {
 
-// Memory one view's surface may take while it is built, and what a face of the feature-adaptive
-// refinement costs there (its levels and the patches: peak RSS 500-514 bytes a face, C2PS level 12
-// on the default model, a valence-64 cap at level 10 and catmark_car at level 8, `bench --adaptive`;
-// the sparse steps make about 2 faces a patch, so a face carries half a patch). The face budget of
-// a level (all its adaptive levels together) follows; above it a level is refused with a message.
+// Memory one view's surface may take while it is built; the face budget of a level (all its adaptive
+// levels together) follows at kBytesPerAdaptiveFace (memory_budget.h); above it a level is refused
+// with a message. The viewer's "refined control mesh" export refuses levels whose uniform mesh would
+// not fit it at kBytesPerUniformFace.
 constexpr size_t kViewMemoryBudget = size_t(640) << 20;
-constexpr size_t kBytesPerAdaptiveFace = 520;
 constexpr size_t kDefaultFaceBudget = kViewMemoryBudget / kBytesPerAdaptiveFace;
-// What a face of the finest level of a uniform refinement costs (`refine`'s measure: 236-248 bytes
-// of peak memory a face, Catmull-Clark on a cube): the viewer's "refined control mesh" export
-// refuses levels whose uniform mesh would not fit the view's memory budget.
-constexpr size_t kBytesPerUniformFace = 300;
 
 // RTS and BPS are not C2 at the pole, so their Taylor cap (docs/rings-and-pole.md) has a curvature of
 // its own, and its seam with the last ring shows as a ring in curvature maps at shallow levels. The

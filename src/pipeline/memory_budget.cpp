@@ -6,7 +6,6 @@
 
 #include "core/subdiv/adaptive_refiner.h"
 #include "core/subdiv/refiner.h"
-#include "pipeline/level_limits.h"
 
 namespace polarview {
 
@@ -43,7 +42,7 @@ BudgetRefusal budgetRefusal(const std::string& source, int level, bool requested
 
 }  // namespace
 
-// Faces cost kBytesPerUniformFace (uniform) or kBytesPerAdaptiveFace (level_limits.h, measured).
+// Faces cost kBytesPerUniformFace (uniform) or kBytesPerAdaptiveFace (memory_budget.h, measured).
 size_t checkMemoryBudget(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, size_t requested,
                          bool adaptive) {
   const size_t budget = memoryBudgetBytes(requested);

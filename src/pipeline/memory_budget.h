@@ -19,6 +19,14 @@ class BudgetRefusal : public InputError {
   using InputError::InputError;
 };
 
+// What a face costs at peak: of the feature-adaptive refinement (its levels and the patches: peak RSS
+// 500-514 bytes a face, C2PS level 12 on the default model, a valence-64 cap at level 10 and
+// catmark_car at level 8, `bench --adaptive`; the sparse steps make about 2 faces a patch, so a face
+// carries half a patch), and of the finest level of a uniform refinement (`refine`'s measure:
+// 236-248 bytes a face, Catmull-Clark on a cube).
+constexpr size_t kBytesPerAdaptiveFace = 520;
+constexpr size_t kBytesPerUniformFace = 300;
+
 // The memory a refinement may take: `requested` bytes when > 0, else 80% of what the machine has
 // available now (MemAvailable), else 4 GiB where that cannot be read. [O(1)]
 size_t memoryBudgetBytes(size_t requested);

@@ -22,9 +22,9 @@ size_t faceLimit(const PolyMesh& mesh, const std::string& source, const RefineRe
 }  // namespace
 
 PatchSet makePatchSet(const PolyMesh& mesh, const std::string& source, const RefineRequest& request) {
-  const bool adaptive = !request.uniform;
+  const bool adaptive = request.path == RefinePath::FeatureAdaptive;
   const size_t maxFaces = faceLimit(mesh, source, request, adaptive) * (adaptive ? 2 : 1);
-  return exportPatchSet(mesh, request.options, source, request.uniform, maxFaces);
+  return exportPatchSet(mesh, request.options, source, !adaptive, maxFaces);
 }
 
 PolyMesh makeRefinedMesh(const PolyMesh& mesh, const std::string& source, const RefineRequest& request) {

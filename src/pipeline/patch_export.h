@@ -1,6 +1,7 @@
 // What the commands, the Python module and the viewer make of a mesh to hand out or write: the
-// limit surface's patches, the refined control mesh, each within a budget that refuses a level
-// before anything is allocated (memory_budget.h).
+// limit surface's patches, the refined control mesh, each within a budget: a memory budget refuses
+// a level before anything is allocated (memory_budget.h); a face budget is the caller's to check
+// first (the viewer's level limit) and the refiner's hard limit.
 #pragma once
 
 #include <cstddef>
@@ -17,12 +18,24 @@ namespace polarview {
 PatchSet exportPatchSet(const PolyMesh& mesh, const RefineOptions& options, const std::string& source, bool uniform,
                         size_t maxFaces);
 
-// What a caller asks to be refined, and the memory it may take.
+// Which refinement a patch set comes from: the feature-adaptive one (view, render, export's default)
+// or every face refined (export --uniform); both give the same patches.
+enum class RefinePath { FeatureAdaptive, Uniform };
+
+// What a caller asks to be refined, and what it may take: a memory budget (the commands, Python) or
+// a face limit it has checked itself (the viewer's level limit).
 struct RefineRequest {
   RefineOptions options;
-  bool uniform = false;     // patches: every face refined (Refinement), else feature-adaptive
+  RefinePath path = RefinePath::FeatureAdaptive;  // patches only: a refined mesh is always uniform
   size_t memoryBudget = 0;  // bytes, as --memory-budget (0: memory_budget.h's default)
-  size_t faceBudget = 0;    // when > 0, a face limit instead, checked by the caller (the viewer's)
+  size_t faceBudget = 0;    // when > 0, a face limit instead
+
+  static RefineRequest withinMemory(const RefineOptions& options, RefinePath path, size_t bytes) {
+    return {options, path, bytes, 0};
+  }
+  static RefineRequest withinFaces(const RefineOptions& options, RefinePath path, size_t faces) {
+    return {options, path, 0, faces};
+  }
 };
 
 // The patches of `request`: refused (BudgetRefusal, naming `source` and the deepest level that fits)

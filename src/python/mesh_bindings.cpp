@@ -125,7 +125,8 @@ py::dict tagsDict(const Mesh& m) {
 Mesh refineMesh(const Mesh& m, const std::string& scheme, int levels, size_t memoryBudget) {
   if (levels < 0 || levels > 64) throw py::value_error("levels must be in 0..64");
   const SchemeVariant variant = schemeArgument(scheme);
-  const RefineRequest request{{variant.scheme, levels, variant.uniformFirstStep}, true, memoryBudget, 0};
+  const RefineRequest request =
+      RefineRequest::withinMemory({variant.scheme, levels, variant.uniformFirstStep}, RefinePath::Uniform, memoryBudget);
   py::gil_scoped_release unlocked;
   return wrap(makeRefinedMesh(*m.mesh, m.source, request), m.source);  // as `polarview refine` writes
 }
@@ -161,8 +162,14 @@ void bindMeshes(py::module_& m) {
       .def_property_readonly("face_count", [](const Mesh& self) { return self.mesh->faceCount(); })
       .def("info", [](const Mesh& self) { return toPython(meshInfoValue(self.source, *self.mesh), IntegralNumbers::AsInt); },
            "what `polarview info --json` prints, as a dict")
-      .def("save", [](const Mesh& self, const std::string& path) { saveObj(path, *self.mesh, self.source); }, py::arg("path"),
-           "writes an OBJ atomically, as `polarview refine` does")
+      .def("save",
+           [](const Mesh& self, const py::object& path) {
+             // str or os.PathLike, as load() takes it (docs/python.md).
+             const py::object name = py::module_::import("os").attr("fspath")(path);
+             if (!py::isinstance<py::str>(name)) throw py::type_error("path must be a str or os.PathLike of str");
+             saveObj(name.cast<std::string>(), *self.mesh, self.source);
+           },
+           py::arg("path"), "writes an OBJ atomically, as `polarview refine` does; path: str or os.PathLike")
       .def("__repr__", [](const Mesh& self) {
         return "<polarview.Mesh " + self.source + ": " + std::to_string(self.mesh->vertexCount()) + " vertices, " +
                std::to_string(self.mesh->faceCount()) + " faces>";

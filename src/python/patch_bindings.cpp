@@ -30,7 +30,8 @@ Patches limitPatches(const Mesh& m, const std::string& scheme, int level, bool u
   if (level < 0 || level > 64) throw py::value_error("level must be in 0..64");
   const SchemeVariant variant = schemeArgument(scheme);
   const RefineOptions options{variant.scheme, level, variant.uniformFirstStep};
-  const RefineRequest request{options, uniform, memoryBudget, 0};  // as `export`
+  const RefineRequest request =  // as `export`
+      RefineRequest::withinMemory(options, uniform ? RefinePath::Uniform : RefinePath::FeatureAdaptive, memoryBudget);
   py::gil_scoped_release unlocked;
   Patches p{makePatchSet(*m.mesh, m.source, request), {}, level, schemeVariantName(variant)};
   p.absolute.reserve(p.set.patches.size());

@@ -359,61 +359,73 @@ DocumentResult Document::startExport(SurfaceExport what, const BuiltSurface* sho
   if (!model_.mesh) return {};
   if (exportJob_.running()) return withNotice(info("still writing " + exportTarget_), false);
   // What the active view shows: its scheme and level, on the model's current points.
-  const int v = settings.clampedActiveView();
   if (!shown || shown->key.model != model_.generation)
-    return editFailed("view " + std::to_string(v + 1) + " shows no surface of this model yet");
-  const SchemeChoice scheme = shown->key.scheme;
-  const int level = shown->key.level;
-  const RefineOptions options = refineOptionsFor(scheme, level);
+    return editFailed("view " + std::to_string(settings.clampedActiveView() + 1) + " shows no surface of this model yet");
+  const ExportStart start = what == SurfaceExport::LimitSurface ? startSurfaceExport(shown->key, settings.edit)
+                                                                : startRefinedMeshExport(shown->key, settings.edit);
+  if (!start.error.empty()) return editFailed(start.error);
+  exportTarget_ = start.path;
+  return withNotice(info("writing " + start.path + "..."));
+}
+
+Document::ExportStart Document::startSurfaceExport(const SurfaceKey& shown, const EditSettings& paths) {
+  const SchemeChoice scheme = shown.scheme;
+  const int level = shown.level;
+  const std::string path =
+      paths.surfacePath.empty() ? defaultSurfacePath(scheme, level, paths.surfaceFormat) : paths.surfacePath;
+  // The format from the file's extension, as `polarview export` chooses it.
+  const ExportFormat* format = exportFormatForPath(path);
+  if (!format) return {path, "cannot tell the format of " + path + ": name it " + exportFormatExtensions()};
+  ExportSettings written;
+  written.source = model_.name;
+  written.schemeLabel = schemeChoiceLabel(scheme);
+  written.level = level;
+  // The view's own refinement path and limit (the shown level is within it).
+  const RefineRequest request =
+      RefineRequest::withinFaces(refineOptionsFor(scheme, level), RefinePath::FeatureAdaptive, faceBudget_);
   const Model model = model_;  // the mesh is immutable: the worker keeps this version
-  std::string path;
-  if (what == SurfaceExport::LimitSurface) {
-    const EditSettings& paths = settings.edit;
-    path = paths.surfacePath.empty() ? defaultSurfacePath(scheme, level, paths.surfaceFormat) : paths.surfacePath;
-    // The format from the file's extension, as `polarview export` chooses it.
-    const ExportFormat* format = exportFormatForPath(path);
-    if (!format) return editFailed("cannot tell the format of " + path + ": name it " + exportFormatExtensions());
-    ExportSettings written;
-    written.source = model.name;
-    written.schemeLabel = schemeChoiceLabel(scheme);
-    written.level = level;
-    // The view's own refinement path and limit (the shown level is within it).
-    const RefineRequest request{options, false, 0, faceBudget_};
-    exportJob_.start([model, request, path, scheme, level, format, written] {
-      const PatchSet set = makePatchSet(*model.mesh, model.name, request);
-      const std::string summary = exportSummary(writeSurfaceFile(path, set, *format, written));
-      return "wrote " + absolutePath(path) + ": " + summary + " (" + schemeChoiceLabel(scheme) + " level " +
-             std::to_string(level) + ", feature-adaptive)";
-    });
-  } else {
-    const std::string& typed = settings.edit.refinedObjPath;
-    path = typed.empty() ? (outputFolder() / (outputStem() + outputTag(scheme, level) + "_refined.obj")).string() : typed;
-    // Uniform refinement: every face x4 a level (x2 where RTS/BPS refine radially); refused at once
-    // when its estimate exceeds what a view may take.
-    const size_t budget = faceBudget_ * kBytesPerAdaptiveFace / kBytesPerUniformFace;
-    const bool radial = model.radialForRtsBps && schemeTraits(options.scheme).keepsValence;
-    const UniformLevelEstimate estimate = estimateUniformLevel(*model.mesh, options, radial, budget);
-    if (!estimate.fits)
-      return editFailed(std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
-                          std::to_string(level) + " would have about " + std::to_string(estimate.faces) +
-                          " faces, over the budget of " + std::to_string(budget) + " (level " +
-                          std::to_string(estimate.deepestFitting) + " fits)");
-    exportJob_.start([model, options, path, budget, scheme, level] {
-      std::string done;
-      {
-        const PolyMesh refined = makeRefinedMesh(*model.mesh, model.name, {options, true, 0, budget});  // as `refine`
-        saveObj(path, refined, model.name);
-        done = "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
-               " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +
-               std::to_string(refined.vertexCount()) + " vertices)";
-      }
-      // The refinement's tables went to the pool (up to half the RAM): a viewer keeps none idle.
-      clearTablePool();
-      return done;
-    });
-  }
-  exportTarget_ = path;
-  return withNotice(info("writing " + path + "..."));
+  exportJob_.start([model, request, path, scheme, level, format, written] {
+    const PatchSet set = makePatchSet(*model.mesh, model.name, request);
+    const std::string summary = exportSummary(writeSurfaceFile(path, set, *format, written));
+    return "wrote " + absolutePath(path) + ": " + summary + " (" + schemeChoiceLabel(scheme) + " level " +
+           std::to_string(level) + ", feature-adaptive)";
+  });
+  return {path, {}};
+}
+
+Document::ExportStart Document::startRefinedMeshExport(const SurfaceKey& shown, const EditSettings& paths) {
+  const SchemeChoice scheme = shown.scheme;
+  const int level = shown.level;
+  const std::string& typed = paths.refinedObjPath;
+  const std::string path =
+      typed.empty() ? (outputFolder() / (outputStem() + outputTag(scheme, level) + "_refined.obj")).string() : typed;
+  // Uniform refinement: every face x4 a level (x2 where RTS/BPS refine radially); refused at once
+  // when its estimate exceeds what a view may take.
+  const RefineOptions options = refineOptionsFor(scheme, level);
+  const size_t budget = faceBudget_ * kBytesPerAdaptiveFace / kBytesPerUniformFace;
+  const bool radial = model_.radialForRtsBps && schemeTraits(options.scheme).keepsValence;
+  const UniformLevelEstimate estimate = estimateUniformLevel(*model_.mesh, options, radial, budget);
+  if (!estimate.fits)
+    return {path, std::string("refined control mesh refused: ") + schemeChoiceLabel(scheme) + " level " +
+                      std::to_string(level) + " would have about " + std::to_string(estimate.faces) +
+                      " faces, over the budget of " + std::to_string(budget) + " (level " +
+                      std::to_string(estimate.deepestFitting) + " fits)"};
+  const Model model = model_;
+  const RefineRequest request = RefineRequest::withinFaces(options, RefinePath::Uniform, budget);
+  exportJob_.start([model, request, path, scheme, level] {
+    std::string done;
+    {
+      const PolyMesh refined = makeRefinedMesh(*model.mesh, model.name, request);  // as `refine` writes it
+      saveObj(path, refined, model.name);
+      done = "wrote " + absolutePath(path) + ": the " + schemeChoiceLabel(scheme) + " level " + std::to_string(level) +
+             " control mesh (" + std::to_string(refined.faceCount()) + " faces, " +
+             std::to_string(refined.vertexCount()) + " vertices)";
+    }
+    // The refinement's tables went to the pool (up to half the RAM): a viewer keeps none idle.
+    clearTablePool();
+    return done;
+  });
+  return {path, {}};
 }
 
 DocumentResult Document::pollExport() {

@@ -127,6 +127,12 @@ class Document {
   void recordEditCost(const EditCost& cost);
 
  private:
+  // An export job started (its path), or refused before starting (why).
+  struct ExportStart {
+    std::string path, error;
+  };
+  ExportStart startSurfaceExport(const SurfaceKey& shown, const EditSettings& paths);
+  ExportStart startRefinedMeshExport(const SurfaceKey& shown, const EditSettings& paths);
   // Shows `model` as the next model generation (what Ctrl+Z returns to is the one shown now).
   DocumentResult adoptModel(Model model, const std::string& path);
   DocumentResult loadFailed(const std::string& path, const std::string& error);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # No include cycle in src/: a unit is a header with its .cpp (core/subdiv/refiner.h + refiner.cpp),
 # and unit A depends on unit B when A's header or source includes B's header. A cycle among units
-# means none of them can be understood, tested or moved without the others (docs/code-map.md).
+# means none of them can be understood, tested or moved without the others (docs/README.md, "No include cycle").
 # Prints every cycle as "a -> b -> ... -> a" with the include line that closes each step.
 # Usage: bash include_cycles.sh <polarview-exe> <repo>
 set -u

@@ -1,5 +1,6 @@
-// The GL-free surface pipeline (pipeline/model.h, level_limits.h, surface_build.h, surface_job.h): what a view shows, built, stepped
-// between levels, refreshed after edits, and the statistics behind the colour range. No display.
+// The GL-free surface pipeline (pipeline/model.h, level_limits.h, surface_build.h, surface_job.h):
+// what a view shows, built, stepped between levels, refreshed after edits, and the statistics behind
+// the colour range. No display.
 #include <doctest/doctest.h>
 
 #include <algorithm>

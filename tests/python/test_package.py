@@ -70,3 +70,12 @@ def test_values_out_of_range_raise_value_error(call, message):
 def test_numpy_integers_are_ints():
     mesh = pv.load(asset("default"))
     assert pv.refine(mesh, "cc", np.int64(1)).vertex_count == pv.refine(mesh, "cc", 1).vertex_count
+
+
+def test_save_takes_a_path_like(tmp_path):
+    mesh = pv.shape("cube")
+    out = tmp_path / "cube.obj"
+    mesh.save(out)
+    assert pv.load(out).face_count == mesh.face_count
+    with pytest.raises(TypeError):
+        mesh.save(42)

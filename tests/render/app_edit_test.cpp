@@ -6,8 +6,8 @@
 #include <GLFW/glfw3.h>
 
 #include "app_test_support.h"
-#include "core/spline/bezierview_export.h"
 #include "pipeline/patch_export.h"
+#include "pipeline/surface_export.h"
 #include "app/viewer_app.h"
 #include "session/settings_rules.h"
 #include "pipeline/vertex_edit.h"
@@ -381,7 +381,7 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   fs::remove_all(dir);
   fs::create_directories(dir);
 
-  // .bv: the same bytes as exportPatchSet + writeBezierView of the edited mesh.
+  // .bv: the same bytes as exportPatchSet + writeSurfaceFile (`export`) of the edited mesh.
   CHECK(status.edit.defaultSurfacePath == "default_c2ps_2.bv");
   settings.edit.surfacePath = (dir / "view.bv").string();
   app->session().queueCommand("export.surface");
@@ -391,10 +391,9 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   CHECK(status.edit.error.empty());
   const RefineOptions options = refineOptionsFor(SchemeChoice::C2PS, 2);
   const PatchSet set = exportPatchSet(*app->model().mesh, options, app->model().name, false, 2 * kDefaultFaceBudget);
-  {
-    std::ofstream cli(dir / "cli.bv", std::ios::binary);
-    writeBezierView(cli, set, BezierViewOptions{}, app->model().name);
-  }
+  ExportSettings written;
+  written.source = app->model().name;
+  writeSurfaceFile((dir / "cli.bv").string(), set, *exportFormatNamed("bv"), written);  // as `export` writes it
   auto bytes = [](const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::ostringstream s;
