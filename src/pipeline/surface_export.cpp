@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <limits>
 #include <memory>
@@ -17,6 +18,7 @@
 
 #include "core/export/iges_writer.h"
 #include "core/mesh/atomic_file.h"
+#include "core/mesh/input_error.h"
 #include "core/export/step_writer.h"
 #include "core/export/tessellation_writers.h"
 #include "pipeline/memory_budget.h"
@@ -136,6 +138,21 @@ std::string baseName(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+// The time CAD files say they were written: now, or SOURCE_DATE_EPOCH (seconds since 1970, UTC)
+// where it is set, so that the same export makes the same bytes (reproducible-builds.org's
+// convention); a malformed value is refused rather than ignored.
+std::time_t fileTime() {
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  if (!epoch) return std::time(nullptr);
+  const std::string text = epoch;
+  // At most year 9999: the stamp has four digits for the year.
+  const bool digits = !text.empty() && text.size() <= 12 && text.find_first_not_of("0123456789") == std::string::npos;
+  const long long seconds = digits ? std::stoll(text) : -1;
+  if (!digits || seconds > 253402300799LL)
+    throw InputError("SOURCE_DATE_EPOCH", 0, "expects whole seconds since 1970-01-01 UTC (up to 9999-12-31), got '" + text + "'");
+  return std::time_t(seconds);
+}
+
 // What the CAD file says about itself: names, the time it is written (UTC) and its unit.
 CadFileInfo cadFileInfo(const ExportSettings& settings) {
   CadFileInfo info;
@@ -143,9 +160,9 @@ CadFileInfo cadFileInfo(const ExportSettings& settings) {
   info.productName = baseName(settings.source);
   info.description = "polarview limit surface: " + settings.schemeLabel + " level " + std::to_string(settings.level) +
                      " of " + info.productName;
-  const std::time_t now = std::time(nullptr);
+  const std::time_t when = fileTime();
   std::tm utc{};
-  gmtime_r(&now, &utc);
+  gmtime_r(&when, &utc);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
   info.timestamp = stamp;
