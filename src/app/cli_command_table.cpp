@@ -5,6 +5,7 @@
 
 #include "app/bench_command.h"
 #include "app/cli_commands.h"
+#include "app/measure_command.h"
 #include "pipeline/scheme_choice.h"
 #ifdef POLARVIEW_HAVE_VIEWER
 #include "app/figure_command.h"
@@ -32,6 +33,8 @@ const std::vector<CliCommand> kCommands = {
     {"continuity", "position, normal and curvature jumps across the limit surface's seams", cli::continuityCommand, false,
      FailureSubject::FirstArgument},
     {"convert", "extraordinary vertices into poles (paper Fig. 14), n-gons into triangle fans", cli::convertCommand, false,
+     FailureSubject::FirstArgument},
+    {"measure", "area, enclosed volume, centroid and inertia of the limit surface", cli::measureCommand, false,
      FailureSubject::FirstArgument},
     {"info", "faces, boundaries, poles and extraordinary vertices of a mesh", cli::infoCommand, false,
      FailureSubject::FirstArgument},

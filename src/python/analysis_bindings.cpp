@@ -1,5 +1,6 @@
 // The analysis: pole() (`polarview pole --json`), spectrum() (`polarview spectrum`, the paper's
-// Table 1) and subdivision_matrix() (one step as a scipy.sparse matrix).
+// Table 1), subdivision_matrix() (one step as a scipy.sparse matrix) and measure() (`polarview
+// measure`).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -11,9 +12,12 @@
 
 #include "core/subdiv/refiner.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/model.h"
+#include "pipeline/patch_export.h"
 #include "pipeline/pole_report.h"
 #include "pipeline/scheme_choice.h"
 #include "pipeline/spectrum_report.h"
+#include "pipeline/surface_measures.h"
 #include "python/bindings.h"
 
 namespace polarview::python {
@@ -101,6 +105,40 @@ void checkAgainstStep(py::object matrix, const PolyMesh& mesh, const std::vector
 // no stencil tables (the polar rules are O(n) Fourier sums), but a step is linear in the points:
 // column j is the step applied to the unit vector e_j. Each pass carries three columns, one per
 // coordinate. The result is checked against the step applied to the mesh's own points.
+py::array_t<double> vectorArray(const Point& p) { return py::array_t<double>(3, &p.x); }
+py::array_t<double> tensorArray(const glm::dmat3& t) {
+  py::array_t<double> out({3, 3});
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = t[j][i];
+  return out;
+}
+
+// `polarview measure --json` as a dict, centroids (3,) and inertia tensors (3, 3) as arrays; the
+// solid's entries are None for an open surface.
+py::dict measure(const Mesh& m, const std::string& scheme, int level, int points, size_t memoryBudget) {
+  if (level < 0 || level > 64) throw py::value_error("level must be in 0..64");
+  if (points < 2 || points > 16) throw py::value_error("points must be in 2..16");
+  const SchemeVariant variant = schemeArgument(scheme);
+  requireCurvatureExtent(*m.mesh, m.source);
+  const RefineRequest request = RefineRequest::withinMemory({variant.scheme, level, variant.uniformFirstStep},
+                                                            RefinePath::FeatureAdaptive, memoryBudget);
+  SurfaceMeasures r;
+  {
+    py::gil_scoped_release unlocked;
+    r = measureSurface(makePatchSet(*m.mesh, m.source, request), meshIsClosed(*m.mesh), points);
+  }
+  py::dict d;
+  d["scheme"] = schemeVariantName(variant), d["level"] = level, d["patches"] = r.patches, d["points"] = r.points;
+  d["closed"] = r.closed, d["area"] = r.area, d["area_error"] = r.areaError;
+  d["area_centroid"] = vectorArray(r.areaCentroid), d["shell_inertia"] = tensorArray(r.shellInertia);
+  const py::object none = py::none();
+  d["volume"] = r.closed ? py::object(py::float_(r.volume)) : none;
+  d["volume_error"] = r.closed ? py::object(py::float_(r.volumeError)) : none;
+  d["centroid"] = r.closed ? py::object(vectorArray(r.centroid)) : none;
+  d["inertia"] = r.closed ? py::object(tensorArray(r.inertia)) : none;
+  return d;
+}
+
 py::object subdivisionMatrix(const Mesh& m, const std::string& scheme) {
   const SchemeVariant variant = schemeArgument(scheme);
   const RefineOptions options{variant.scheme, 1, variant.uniformFirstStep};
@@ -148,6 +186,8 @@ void bindAnalysis(py::module_& m) {
   m.def("spectrum", &spectrum, py::arg("scheme"), py::arg("valence"), py::arg("count") = 8, py::arg("steps") = 8,
         "the leading eigenvalues with their eigenvectors and the matrix, as `polarview spectrum --vectors`; "
         "c2ps: Lemma 5 measured over `steps` steps");
+  m.def("measure", &measure, py::arg("mesh"), py::arg("scheme") = "c2ps", py::arg("level") = 3, py::arg("points") = 8,
+        py::arg("memory_budget") = 0, "area, enclosed volume, centroid and inertia of the limit surface");
   m.def("subdivision_matrix", &subdivisionMatrix, py::arg("mesh"), py::arg("scheme") = "c2ps",
         "one refinement step as a scipy.sparse.csr_matrix: rows the new points (as refine(mesh, scheme, 1) "
         "lists them), columns the mesh's vertices");

@@ -79,3 +79,20 @@ def test_save_takes_a_path_like(tmp_path):
     assert pv.load(out).face_count == mesh.face_count
     with pytest.raises(TypeError):
         mesh.save(42)
+
+
+def test_measure_is_the_cli_report(tmp_path):
+    import json
+    import os
+    import subprocess
+    mesh = pv.load(asset("cube_cc2"))
+    ours = pv.measure(mesh, scheme="cc", level=2)
+    cli = json.loads(subprocess.run([os.environ["POLARVIEW_BIN"], "measure", asset("cube_cc2"), "--scheme", "cc",
+                                     "--level", "2", "--json"], check=True, capture_output=True, text=True).stdout)
+    assert ours["closed"] and ours["area"] == cli["area"] and ours["volume"] == cli["volume"]
+    assert np.array_equal(ours["centroid"], cli["centroid"]) and np.array_equal(ours["inertia"], cli["inertia"])
+    assert ours["inertia"].shape == (3, 3)
+    cap = pv.measure(pv.load(asset("cap6_saddle")), scheme="rts", level=2)
+    assert not cap["closed"] and cap["volume"] is None and cap["area"] > 0
+    with pytest.raises(ValueError):
+        pv.measure(mesh, points=1)

@@ -27,6 +27,8 @@ for s in cc c2ps c2ps-u rts rts-u bps; do
   run "continuity-$s" "$pv" continuity "$a/cap6_cone.obj" --scheme "$s" --level 2 --json
   run "continuity-text-$s" "$pv" continuity "$a/cap6_cone.obj" --scheme "$s" --level 2
 done
+run measure-globe "$pv" measure "$a/globe.obj" --scheme c2ps --level 3 --json
+run measure-cap "$pv" measure "$a/cap6_saddle.obj" --scheme rts --level 2
 run export-uniform "$pv" export "$a/cap8_paraboloid.obj" --scheme c2ps --level 2 --uniform -o export-uniform.bv
 run export-iges "$pv" export "$a/globe.obj" --scheme rts --level 2 --units inch -o export.igs
 run export-glb "$pv" export "$a/globe.obj" --scheme c2ps --level 2 --samples 4 -o export.glb
@@ -54,7 +56,7 @@ run spectrum-c2ps "$pv" spectrum --scheme c2ps --valence 8
 run spectrum-json-c2ps "$pv" spectrum --scheme c2ps --valence 6 --json
 run help "$pv" help
 run help-keys "$pv" help keys
-for c in view render figure refine export continuity convert info pole bench shape spectrum; do
+for c in view render figure refine export continuity measure convert info pole bench shape spectrum; do
   run "help-$c" "$pv" "$c" --help
 done
 # Bad input: the one-line errors and exit codes.

@@ -16,7 +16,7 @@ from . import _core
 from ._core import Mesh, Patches
 
 __all__ = ["Mesh", "Patches", "SCHEMES", "POLAR_SCHEMES", "schemes", "scheme_name", "load", "shape", "refine",
-           "limit_patches", "evaluate", "pole", "spectrum", "subdivision_matrix"]
+           "limit_patches", "evaluate", "pole", "spectrum", "subdivision_matrix", "measure"]
 
 # The scheme names in menu order and those with polar rules, from the C++ scheme table.
 SCHEMES = tuple(row["name"] for row in _core.schemes())
@@ -135,3 +135,13 @@ def subdivision_matrix(mesh, scheme="c2ps"):
     """One refinement step as a scipy.sparse.csr_matrix: rows the new points (as refine(mesh,
     scheme, 1) lists them), columns the mesh's vertices."""
     return _core.subdivision_matrix(_instance("mesh", mesh, Mesh), _scheme(scheme))
+
+
+def measure(mesh, scheme="c2ps", level=3, points=8, memory_budget=0):
+    """Area, enclosed volume, centroid and inertia of the limit surface after ``level`` (0..64)
+    levels, as ``polarview measure --json`` reports them: a dict with ``area``, ``area_error``,
+    ``area_centroid`` (3,), ``shell_inertia`` (3, 3), ``closed`` and, for a closed surface,
+    ``volume``, ``volume_error``, ``centroid`` (3,) and ``inertia`` (3, 3) about the centroid (unit
+    density; None when open). ``points`` (2..16) Gauss-Legendre points per direction per patch."""
+    return _core.measure(_instance("mesh", mesh, Mesh), _scheme(scheme), _integer("level", level),
+                         _integer("points", points), _memory_budget(memory_budget))
