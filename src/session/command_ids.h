@@ -31,7 +31,8 @@
   X(kCameraPaste, "camera.paste")                            \
   X(kShade, "shade")                                         \
   X(kScreenshot, "screenshot")                               \
-  X(kPolesInspect, "poles.inspect")
+  X(kPolesInspect, "poles.inspect")                          \
+  X(kSurfaceMeasure, "surface.measure")
 
 namespace polarview::command_ids {
 

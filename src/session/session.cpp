@@ -62,6 +62,7 @@ void Session::updatePanels() {
   updatePoleZoom();
   updatePoleInspector();
   updateSpectrum();
+  updateMeasures();
   updateColourRange();
   document_.reportEdit(activeSurface(), settings_, status_.edit);
 }
@@ -157,6 +158,44 @@ void Session::raiseLevelsForZoom(const std::vector<int>& shortViews, int needed)
     for (View& view : settings_.views) view.level = std::max(view.level, needed);
   } else {
     for (int v : shortViews) settings_.views[size_t(v)].level = needed;
+  }
+}
+
+void Session::startMeasure() {
+  const BuiltSurface* shown = activeSurface();
+  if (measureJob_.running()) return;
+  if (!shown) {
+    const std::string view = std::to_string(settings_.clampedActiveView() + 1);
+    notices_.post(info("view " + view + " shows no surface yet: nothing to measure"));
+    return;
+  }
+  measured_ = std::string(schemeChoiceLabel(shown->key.scheme)) + " level " + std::to_string(shown->key.level);
+  status_.measures = {true, {}};
+  // The shown patches (the level asked for, caps closed as shown), kept alive by the job.
+  measureJob_.start([surface = surfaces_.shown(settings_.clampedActiveView()), closed = meshIsClosed(*model().mesh)] {
+    PatchSet set;
+    set.patches = surface->patches;
+    return measureSurface(set, closed);
+  });
+}
+
+void Session::updateMeasures() {
+  if (!measureJob_.finished()) return;
+  MeasureStatus& shown = status_.measures;
+  shown.computing = false;
+  try {
+    const SurfaceMeasures m = *measureJob_.poll();
+    char text[256];
+    std::snprintf(text, sizeof text, "%s: area %.10g (± %.1g)", measured_.c_str(), m.area, m.areaError);
+    shown.text = text;
+    if (m.closed) {
+      std::snprintf(text, sizeof text, ", volume %.10g (± %.1g)", m.volume, m.volumeError);
+      shown.text += text;
+    } else {
+      shown.text += ", open: no volume";
+    }
+  } catch (const std::exception& e) {
+    shown.text = std::string("could not measure: ") + e.what();
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "pipeline/background_job.h"
 #include "pipeline/level_limits.h"
+#include "pipeline/surface_measures.h"
 #include "pipeline/model.h"
 #include "pipeline/surface_build.h"
 #include "session/command_queue.h"
@@ -86,6 +87,8 @@ class Session {
 
   // What only the window does (the commands' clipboard, framing and screenshots).
   WindowServices& window() { return window_; }
+  // Measures the active view's shown surface in the background (area, volume; status().measures).
+  void startMeasure();
   // The surface the active view shows (what the exports write); nullptr before its first.
   const BuiltSurface* activeSurface() const;
 
@@ -93,6 +96,7 @@ class Session {
   void collectColourSamples();
   void updateSpectrum();
   void updatePoleInspector();
+  void updateMeasures();
   void updatePoleZoom();
   void raiseLevelsForZoom(const std::vector<int>& shortViews, int needed);
   SurfaceRequest surfaceRequest() const { return polarview::surfaceRequest(settings_, document_.model()); }
@@ -113,6 +117,9 @@ class Session {
   BackgroundJob<std::vector<PoleInspection>> inspectJob_;
   std::string inspectRunning_, inspectShown_;
   uint64_t inspectPolesOf_ = 0;
+  // The measure job (surface.measure) and what it measures ("C2PS level 3").
+  BackgroundJob<SurfaceMeasures> measureJob_;
+  std::string measured_;
 };
 
 }  // namespace polarview

@@ -126,6 +126,12 @@ struct PoleInspectorStatus {
   std::string error;
 };
 
+// The active view's surface measured (command surface.measure; pipeline/surface_measures.h).
+struct MeasureStatus {
+  bool computing = false;
+  std::string text;  // "area 16.699 (± 8.5e-06), volume 4.7666 (± 2e-13) of C2PS level 3"; empty: none yet
+};
+
 struct ViewerStatus {
   std::array<ViewStatus, kMaxViews> views{};
   ColourStatus colour;
@@ -134,6 +140,7 @@ struct ViewerStatus {
   ReadoutStatus readout;
   SpectrumStatus spectrum;
   PoleInspectorStatus poleInspector;
+  MeasureStatus measures;
   std::string lastScreenshot;  // the last file a screenshot wrote
   double frameMs = 0.0;        // CPU wall time of the last frame (to swap, GL finished)
   std::string glInfo;          // GL_VERSION / GL_RENDERER

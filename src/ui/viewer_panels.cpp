@@ -459,6 +459,16 @@ void drawPointPanel(const ReadoutStatus& readout) {
   ImGui::EndTable();
 }
 
+// Area and volume of the active view's surface, on demand (they take a while on deep levels).
+void drawMeasures(PanelContext& ui) {
+  commandButton(ui.commands, ids::kSurfaceMeasure);
+  ImGui::SameLine();
+  const MeasureStatus& m = ui.status.measures;
+  if (m.computing) ImGui::TextDisabled("measuring...");
+  else if (m.text.empty()) ImGui::TextDisabled("area, volume of the active view");
+  else ImGui::TextWrapped("%s", m.text.c_str());
+}
+
 void drawStatsPanel(const ViewerSettings& settings, const ViewerStatus& status) {
   ImGui::Text("Frame: %.1f ms", status.frameMs);
   const EditStatus& edit = status.edit;
@@ -890,7 +900,10 @@ void drawViewerPanels(PanelContext& ui) {
       drawPointPanel(ui.status.readout);
       if (ImGui::SmallButton("Copy##readout")) ImGui::SetClipboardText(ui.status.readout.text.c_str());
     }
-    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel(ui.settings, ui.status);
+    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) {
+      drawStatsPanel(ui.settings, ui.status);
+      drawMeasures(ui);
+    }
     ImGui::PopItemWidth();
   }
   ImGui::End();

@@ -8,6 +8,7 @@
 #include "app_test_support.h"
 #include "pipeline/patch_export.h"
 #include "pipeline/surface_export.h"
+#include "pipeline/surface_measures.h"
 #include "app/viewer_app.h"
 #include "session/settings_rules.h"
 #include "pipeline/vertex_edit.h"
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 namespace polarview {
 namespace {
@@ -425,6 +427,27 @@ TEST_CASE("export from the viewer: .bv of the shown surface as the export comman
   CHECK_FALSE(fs::exists(dir / "missing"));
   CHECK(noTemporariesIn(dir));
   fs::remove_all(dir);
+}
+
+TEST_CASE("measure from the viewer: the shown surface's area and volume are `measure`'s of the same patches") {
+  auto app = makeEditingApp(2);
+  app->session().queueCommand("surface.measure");
+  const MeasureStatus& measures = app->status().measures;
+  for (int frame = 0; frame < 2000 && (frame == 0 || measures.computing); ++frame) {
+    app->runFrame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  CAPTURE(measures.text);
+  const PatchSet set = exportPatchSet(*app->model().mesh, refineOptionsFor(SchemeChoice::C2PS, 2), app->model().name,
+                                      false, 2 * kDefaultFaceBudget);
+  const SurfaceMeasures expected = measureSurface(set, true);
+  char area[64], volume[64];
+  std::snprintf(area, sizeof area, "area %.10g ", expected.area);
+  std::snprintf(volume, sizeof volume, "volume %.10g ", expected.volume);
+  CHECK(measures.text.rfind("C2PS level 2: ", 0) == 0);
+  CHECK(measures.text.find(area) != std::string::npos);
+  CHECK(measures.text.find(volume) != std::string::npos);
+  CHECK(expected.volume > 4.0);  // the mushroom: about 4.77 at level 3
 }
 
 TEST_CASE("export from the viewer: a refined control mesh over the budget is refused with a message and writes nothing") {
