@@ -162,11 +162,13 @@ void Session::raiseLevelsForZoom(const std::vector<int>& shortViews, int needed)
 }
 
 void Session::startMeasure() {
-  const BuiltSurface* shown = activeSurface();
   if (measureJob_.running()) return;
+  const BuiltSurface* shown = activeSurface();
+  // Asked before the view shows its surface (`view --do` runs once the model loads): measured when
+  // it does (updateMeasures).
+  measurePending_ = !shown;
   if (!shown) {
-    const std::string view = std::to_string(settings_.clampedActiveView() + 1);
-    notices_.post(info("view " + view + " shows no surface yet: nothing to measure"));
+    status_.measures.computing = true;
     return;
   }
   measured_ = std::string(schemeChoiceLabel(shown->key.scheme)) + " level " + std::to_string(shown->key.level);
@@ -180,6 +182,7 @@ void Session::startMeasure() {
 }
 
 void Session::updateMeasures() {
+  if (measurePending_ && activeSurface()) startMeasure();
   if (!measureJob_.finished()) return;
   MeasureStatus& shown = status_.measures;
   shown.computing = false;

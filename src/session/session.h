@@ -120,6 +120,7 @@ class Session {
   // The measure job (surface.measure) and what it measures ("C2PS level 3").
   BackgroundJob<SurfaceMeasures> measureJob_;
   std::string measured_;
+  bool measurePending_ = false;  // asked for before the active view showed a surface
 };
 
 }  // namespace polarview
