@@ -80,7 +80,7 @@ int runMeasure(MeasureArgs& o) {
   PolyMesh mesh = loadInput(o.input);
   requireCurvatureExtent(mesh, o.input);
   const PatchSet set = makePatchSet(mesh, o.input, refineRequest(o, false));  // the patches `export` writes
-  const SurfaceMeasures measures = measureSurface(set, meshIsClosed(mesh), o.points);
+  const SurfaceMeasures measures = measureSurface(set.patches, meshIsClosed(mesh), o.points);
   const std::string json = measureJson(o, measures);  // also for text: it refuses a non-finite number
   if (o.json) std::cout << json << "\n";
   else printMeasures(o, measures);

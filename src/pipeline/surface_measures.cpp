@@ -61,10 +61,10 @@ void accumulate(Moments& m, const Point& x, const Point& n, double w) {
   }
 }
 
-Moments integrate(const PatchSet& set, const Point& o, int points) {
+Moments integrate(const std::vector<Patch>& patches, const Point& o, int points) {
   const QuadratureRule rule = gaussLegendre(points);
   Moments m;
-  for (const Patch& patch : set.patches)
+  for (const Patch& patch : patches)
     for (int a = 0; a < points; ++a)
       for (int b = 0; b < points; ++b) {
         const SurfacePoint s = evaluatePatch(patch, rule.nodes[size_t(a)], rule.nodes[size_t(b)]);
@@ -86,17 +86,17 @@ glm::dmat3 centralInertia(const glm::dmat3& second, double mass, const Point& ce
 
 }  // namespace
 
-SurfaceMeasures measureSurface(const PatchSet& set, bool closed, int points) {
+SurfaceMeasures measureSurface(const std::vector<Patch>& patches, bool closed, int points) {
   points = std::clamp(points, 2, 16);
   SurfaceMeasures r;
-  r.patches = set.patches.size();
+  r.patches = patches.size();
   r.points = points;
   r.closed = closed;
-  if (set.patches.empty()) return r;
+  if (patches.empty()) return r;
   // Relative to the patches' mean centre: the volume's and moments' terms stay the model's size.
   Point o(0.0);
-  for (const Patch& patch : set.patches) o += evaluatePatch(patch, 0.5, 0.5).position / double(set.patches.size());
-  const Moments m = integrate(set, o, points), coarse = integrate(set, o, std::max(points / 2, 1));
+  for (const Patch& patch : patches) o += evaluatePatch(patch, 0.5, 0.5).position / double(patches.size());
+  const Moments m = integrate(patches, o, points), coarse = integrate(patches, o, std::max(points / 2, 1));
   r.area = m.area;
   r.areaError = std::abs(m.area - coarse.area);
   if (m.area > 0.0) {
@@ -113,14 +113,18 @@ SurfaceMeasures measureSurface(const PatchSet& set, bool closed, int points) {
   return r;
 }
 
-bool meshIsClosed(const PolyMesh& mesh) {
+bool meshIsClosed(const PolyMesh& mesh, const MeshTopology& topology) {
   if (!mesh.tags.holes.empty() || mesh.faceCount() == 0) return false;
-  ManifoldSplit split;  // a non-manifold mesh is measured as it is refined: its split
-  MeshTopology topology;
-  refinableMesh(mesh, split, topology, "<mesh>");
   for (Index e = 0; e < topology.edgeCount; ++e)
     if (topology.edgeOnBoundary(e)) return false;
   return true;
+}
+
+bool meshIsClosed(const PolyMesh& mesh) {
+  ManifoldSplit split;  // a non-manifold mesh is measured as it is refined: its split
+  MeshTopology topology;
+  refinableMesh(mesh, split, topology, "<mesh>");
+  return meshIsClosed(mesh, topology);
 }
 
 }  // namespace polarview

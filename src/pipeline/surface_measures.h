@@ -10,8 +10,10 @@
 #include <glm/mat3x3.hpp>
 
 #include <cstddef>
+#include <vector>
 
-#include "core/spline/patch_extraction.h"
+#include "core/mesh/topology.h"
+#include "core/spline/patch.h"
 
 namespace polarview {
 
@@ -27,11 +29,15 @@ struct SurfaceMeasures {
   glm::dmat3 inertia{0.0};       // the solid's inertia tensor about its centroid (unit density)
 };
 
-// The measures of `set` with `points` Gauss-Legendre points per direction (2..16) on each patch;
-// `closed`: the surface bounds a solid (no boundary, no holes). [O(patches x points^2)]
-SurfaceMeasures measureSurface(const PatchSet& set, bool closed, int points = 8);
+// The measures of `patches` (a PatchSet's, or a view's) with `points` Gauss-Legendre points per
+// direction (2..16) on each; `closed`: the surface bounds a solid (no boundary, no holes).
+// [O(patches x points^2)]
+SurfaceMeasures measureSurface(const std::vector<Patch>& patches, bool closed, int points = 8);
 
-// Whether `mesh` bounds a solid: no boundary edge and no hole faces. [O(mesh)]
+// Whether `mesh` bounds a solid: no boundary edge and no hole faces; `topology` is that of the mesh
+// it is refined as (its manifold split where it has one: ModelAnalysis::topology). [O(edges)]
+bool meshIsClosed(const PolyMesh& mesh, const MeshTopology& topology);
+// The same, the tables built here. [O(mesh)]
 bool meshIsClosed(const PolyMesh& mesh);
 
 }  // namespace polarview

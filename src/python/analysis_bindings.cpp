@@ -125,7 +125,7 @@ py::dict measure(const Mesh& m, const std::string& scheme, int level, int points
   SurfaceMeasures r;
   {
     py::gil_scoped_release unlocked;
-    r = measureSurface(makePatchSet(*m.mesh, m.source, request), meshIsClosed(*m.mesh), points);
+    r = measureSurface(makePatchSet(*m.mesh, m.source, request).patches, meshIsClosed(*m.mesh), points);
   }
   py::dict d;
   d["scheme"] = schemeVariantName(variant), d["level"] = level, d["patches"] = r.patches, d["points"] = r.points;

@@ -173,11 +173,11 @@ void Session::startMeasure() {
   }
   measured_ = std::string(schemeChoiceLabel(shown->key.scheme)) + " level " + std::to_string(shown->key.level);
   status_.measures = {true, {}};
-  // The shown patches (the level asked for, caps closed as shown), kept alive by the job.
-  measureJob_.start([surface = surfaces_.shown(settings_.clampedActiveView()), closed = meshIsClosed(*model().mesh)] {
-    PatchSet set;
-    set.patches = surface->patches;
-    return measureSurface(set, closed);
+  // The shown patches (the level asked for, caps closed as shown), kept alive by the job, and the
+  // model's own tables for whether it is closed.
+  const bool closed = meshIsClosed(*model().mesh, model().analysis->topology());
+  measureJob_.start([surface = surfaces_.shown(settings_.clampedActiveView()), closed] {
+    return measureSurface(surface->patches, closed);
   });
 }
 

@@ -440,7 +440,7 @@ TEST_CASE("measure from the viewer: the shown surface's area and volume are `mea
   CAPTURE(measures.text);
   const PatchSet set = exportPatchSet(*app->model().mesh, refineOptionsFor(SchemeChoice::C2PS, 2), app->model().name,
                                       false, 2 * kDefaultFaceBudget);
-  const SurfaceMeasures expected = measureSurface(set, true);
+  const SurfaceMeasures expected = measureSurface(set.patches, true);
   char area[64], volume[64];
   std::snprintf(area, sizeof area, "area %.10g ", expected.area);
   std::snprintf(volume, sizeof volume, "volume %.10g ", expected.volume);
