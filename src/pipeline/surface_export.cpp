@@ -170,18 +170,37 @@ CadFileInfo cadFileInfo(const ExportSettings& settings) {
   return info;
 }
 
-// A CAD row: the surfaces (refused before the file is opened when not finite), then the file.
-template <void (*writeFile)(std::ostream&, const CadSurfaceSet&, const CadFileInfo&)>
-ExportWriter prepareCad(const PatchSet& set, const ExportSettings& settings) {
-  auto surfaces = std::make_shared<const CadSurfaceSet>(cadSurfaces(set, settings.source));
+CadStats cadStats(const CadSurfaceSet& surfaces, const ExportSettings& settings) {
   CadStats stats;
-  stats.surfaces = surfaces->surfaces.size();
-  stats.written = surfaces->written;
-  stats.capSectors = surfaces->capSectors;
-  stats.capRelativeDeviation = surfaces->capRelativeDeviation();
+  stats.surfaces = surfaces.surfaces.size();
+  stats.written = surfaces.written;
+  stats.capSectors = surfaces.capSectors;
+  stats.capRelativeDeviation = surfaces.capRelativeDeviation();
   stats.units = settings.units;
-  return [surfaces, info = cadFileInfo(settings), stats](std::ostream& out) -> ExportStats {
-    writeFile(out, *surfaces, info);
+  return stats;
+}
+
+// The IGES row: the surfaces (refused before the file is opened when not finite), then the file.
+ExportWriter prepareIges(const PatchSet& set, const ExportSettings& settings) {
+  auto surfaces = std::make_shared<const CadSurfaceSet>(cadSurfaces(set, settings.source));
+  return [surfaces, info = cadFileInfo(settings), stats = cadStats(*surfaces, settings)](std::ostream& out) -> ExportStats {
+    writeIges(out, *surfaces, info);
+    return stats;
+  };
+}
+
+// The STEP row: the surfaces and their shell, then the file.
+ExportWriter prepareStep(const PatchSet& set, const ExportSettings& settings) {
+  auto surfaces = std::make_shared<const CadSurfaceSet>(cadSurfaces(set, settings.source));
+  auto topology = std::make_shared<const CadTopology>(cadTopology(*surfaces));
+  CadStats stats = cadStats(*surfaces, settings);
+  stats.shell = true;
+  stats.closed = topology->closed();
+  stats.edges = topology->edges.size();
+  stats.freeEdges = topology->freeEdges;
+  stats.tJunctionSplits = topology->tJunctionSplits;
+  return [surfaces, topology, info = cadFileInfo(settings), stats](std::ostream& out) -> ExportStats {
+    writeStep(out, *surfaces, *topology, info);
     return stats;
   };
 }
@@ -225,6 +244,11 @@ std::string summary(const CadStats& stats) {
     std::snprintf(caps, sizeof caps, "; caps within %.2g of the bounding box", stats.capRelativeDeviation);
     text += caps;
   }
+  if (stats.shell && stats.closed)
+    text += "; one closed shell (a solid) of " + std::to_string(stats.edges) + " shared edges, " +
+            std::to_string(stats.tJunctionSplits) + " split at T-junctions";
+  else if (stats.shell)
+    text += "; one open shell of " + std::to_string(stats.edges) + " edges, " + std::to_string(stats.freeEdges) + " free";
   for (const LengthUnitInfo& unit : lengthUnits())
     if (unit.unit == stats.units) text += std::string(", units ") + unit.name;
   return text;
@@ -248,9 +272,9 @@ const std::vector<ExportFormat>& exportFormats() {
       {"bv", {".bv"}, "Bezier patches for BezierView (exact; caps within 1e-7 of the bounding box)", false, prepareBv},
       {"ply", {".ply"}, "watertight triangle mesh, binary PLY: exact normal, K and H per vertex, colours of K", true, preparePly},
       {"glb", {".glb"}, "watertight triangle mesh, glTF 2.0 binary: exact normal, K and H per vertex, colours of K", true, prepareGlb},
-      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces (exact; caps within 1e-7 of the bounding box)", false, prepareCad<writeStep>},
+      {"step", {".step", ".stp"}, "STEP AP214 B-spline faces sewn into one shell, a solid where closed (exact; caps within 1e-7 of the bounding box)", false, prepareStep},
       {"iges", {".igs", ".iges"}, "IGES 5.3 B-spline surfaces, entity 128 (exact; caps within 1e-7 of the bounding box)", false,
-       prepareCad<writeIges>},
+       prepareIges},
   };
   return formats;
 }

@@ -55,6 +55,10 @@ struct CadStats {
   size_t capSectors = 0;
   double capRelativeDeviation = 0.0;  // the caps' distance from the limit / bounding-box diagonal
   LengthUnit units = LengthUnit::Millimetre;
+  // STEP: the faces' shell (core/export/cad_topology.h); IGES writes separate surfaces.
+  bool shell = false;
+  bool closed = false;          // one closed shell: a solid
+  size_t edges = 0, freeEdges = 0, tJunctionSplits = 0;
 };
 
 // What a format's writer wrote: .bv, a tessellation, or CAD surfaces.

@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/export/cad_surfaces.h"
+#include "core/export/cad_topology.h"
 #include "core/export/iges_writer.h"
 #include "core/export/step_writer.h"
 #include "core/mesh/input_error.h"
@@ -169,9 +170,10 @@ TEST_CASE("cad export: STEP and IGES reals read back as the same double, in the 
   CHECK(igesString("MM") == "2HMM");
 }
 
-TEST_CASE("cad export: the STEP file holds every control point bit for bit, one face per surface, its unit") {
+TEST_CASE("cad export: the STEP file holds every control point bit for bit, one face per surface in one solid, its unit") {
   const Case c = cases()[3];  // default.obj, C2PS level 2: bicubic patches and caps
   const CadSurfaceSet surfaces = cadSurfaces(patchesOf(c), c.name);
+  const CadTopology topology = cadTopology(surfaces);
   const std::map<CadUnit, std::string> unitEntity = {
       {CadUnit::Millimetre, "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))"},
       {CadUnit::Metre, "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))"},
@@ -229,12 +231,26 @@ TEST_CASE("cad export: the STEP file holds every control point bit for bit, one 
         CHECK(Point(readReal(value[1]), readReal(value[2]), readReal(value[3])) == p);
       }
       CHECK(n == surfaces.surfaces[k].bezier.cp.size());
-      // Bicubic faces have four edges; a cap's collapsed side is left out.
+      // The face's loop is its sides' pieces (a cap's collapsed side left out, T-junctions split).
       const bool cap = surfaces.surfaces[k].kind == PatchKind::PoleCap;
       const std::string& bound = entities[std::stoi(parts[1])];
       const std::string& loop = entities[std::stoi(bound.substr(bound.find("#") + 1))];
-      CHECK(std::count(loop.begin(), loop.end(), '#') == (cap ? 3 : 4));
+      CHECK(size_t(std::count(loop.begin(), loop.end(), '#')) == topology.loops[k].size());
+      CHECK(topology.loops[k].size() >= (cap ? 3u : 4u));
     }
+    // A closed model is one solid: one closed shell of every face.
+    CHECK(topology.closed());
+    size_t solids = 0, closedShells = 0;
+    for (const auto& [id, body] : entities) {
+      solids += body.rfind("MANIFOLD_SOLID_BREP(", 0) == 0;
+      if (body.rfind("CLOSED_SHELL(", 0) == 0) {
+        ++closedShells;
+        CHECK(size_t(std::count(body.begin(), body.end(), '#')) == faces.size());
+      }
+      CHECK(body.rfind("OPEN_SHELL(", 0) != 0);
+    }
+    CHECK(solids == 1);
+    CHECK(closedShells == 1);
   }
 }
 

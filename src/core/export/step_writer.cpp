@@ -1,6 +1,7 @@
 // STEP writer (step_writer.h).
 #include "core/export/step_writer.h"
 
+#include <cmath>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -47,7 +48,7 @@ std::string faceName(const CadSurface& surface) {
 // the parameter square's sides.
 struct SharedEntities {
   int context2d = 0;
-  int alongU = 0, alongV = 0;
+  int plusU = 0, minusU = 0, plusV = 0, minusV = 0;  // DIRECTIONs in (u, v)
 };
 
 // Writes the unit, product and context entities; returns the 3D context's id.
@@ -89,69 +90,116 @@ void writeProduct(StepEntities& step, const CadFileInfo& info, int representatio
   step.add("SHAPE_DEFINITION_REPRESENTATION(" + ref(shape) + "," + ref(representation) + ")");
 }
 
-// One side of a face: the B-spline curve through `points` (ids of the surface's control points)
-// from vertex `start` to `end`, its pcurve the line from `origin` along `direction` in (u, v).
-int writeEdge(StepEntities& step, const SharedEntities& shared, int surface, int degree, const std::vector<int>& points,
-              int start, int end, const char* origin, int direction) {
-  const int curve = step.add("B_SPLINE_CURVE_WITH_KNOTS(''," + std::to_string(degree) + "," + refList(points) +
-                             ",.UNSPECIFIED.,.F.,.F.,(" + std::to_string(degree + 1) + "," + std::to_string(degree + 1) +
-                             "),(0.,1.),.PIECEWISE_BEZIER_KNOTS.)");
-  const int lineOrigin = step.add(std::string("CARTESIAN_POINT('',") + origin + ")");
-  const int vector = step.add("VECTOR(''," + ref(direction) + ",1.)");
-  const int line = step.add("LINE(''," + ref(lineOrigin) + "," + ref(vector) + ")");
-  const int representation = step.add("DEFINITIONAL_REPRESENTATION(''," + refList({line}) + "," + ref(shared.context2d) + ")");
-  const int pcurve = step.add("PCURVE(''," + ref(surface) + "," + ref(representation) + ")");
-  const int surfaceCurve = step.add("SURFACE_CURVE(''," + ref(curve) + "," + refList({pcurve}) + ",.PCURVE_S1.)");
-  return step.add("EDGE_CURVE(''," + ref(start) + "," + ref(end) + "," + ref(surfaceCurve) + ",.T.)");
-}
+// The surface of each face: its control points and B_SPLINE_SURFACE_WITH_KNOTS.
+struct WrittenSurface {
+  int id = 0;
+  std::vector<int> points;  // CARTESIAN_POINT ids, cp's order
+};
 
-// One ADVANCED_FACE (layout in the header); returns its id.
-int writeFace(StepEntities& step, const SharedEntities& shared, const CadSurface& surface) {
+WrittenSurface writeSurface(StepEntities& step, const CadSurface& surface) {
   const BezierPatch& b = surface.bezier;
   const int rows = b.degU + 1, columns = b.degV + 1;
-  std::vector<int> points(b.cp.size());
-  for (size_t k = 0; k < b.cp.size(); ++k) points[k] = step.add(cartesianPoint(b.cp[k]));
-  auto point = [&](int i, int j) { return points[size_t(columns * i + j)]; };
-  // The control points of row i (along v) and of column j (along u).
-  auto row = [&](int i) {
-    std::vector<int> ids;
-    for (int j = 0; j < columns; ++j) ids.push_back(point(i, j));
-    return ids;
-  };
-  auto column = [&](int j) {
-    std::vector<int> ids;
-    for (int i = 0; i < rows; ++i) ids.push_back(point(i, j));
-    return ids;
-  };
-
+  WrittenSurface out;
+  out.points.resize(b.cp.size());
+  for (size_t k = 0; k < b.cp.size(); ++k) out.points[k] = step.add(cartesianPoint(b.cp[k]));
   std::string net = "(";
-  for (int i = 0; i < rows; ++i) net += (i ? "," : "") + refList(row(i));
+  for (int i = 0; i < rows; ++i) {
+    std::vector<int> row(out.points.begin() + columns * i, out.points.begin() + columns * (i + 1));
+    net += (i ? "," : "") + refList(row);
+  }
   net += ")";
   const std::string knotsU = "(" + std::to_string(rows) + "," + std::to_string(rows) + ")";
   const std::string knotsV = "(" + std::to_string(columns) + "," + std::to_string(columns) + ")";
-  const int id = step.add("B_SPLINE_SURFACE_WITH_KNOTS(''," + std::to_string(b.degU) + "," + std::to_string(b.degV) + "," + net +
-                          ",.UNSPECIFIED.,.F.,.F.,.F.," + knotsU + "," + knotsV + ",(0.,1.),(0.,1.),.PIECEWISE_BEZIER_KNOTS.)");
+  out.id = step.add("B_SPLINE_SURFACE_WITH_KNOTS(''," + std::to_string(b.degU) + "," + std::to_string(b.degV) + "," + net +
+                    ",.UNSPECIFIED.,.F.,.F.,.F.," + knotsU + "," + knotsV + ",(0.,1.),(0.,1.),.PIECEWISE_BEZIER_KNOTS.)");
+  return out;
+}
 
-  // Corners (0,0), (1,0), (1,1), (0,1); a cap piece's (0,0) and (0,1) are the one pole vertex.
-  const int c00 = step.add("VERTEX_POINT(''," + ref(point(0, 0)) + ")");
-  const int c10 = step.add("VERTEX_POINT(''," + ref(point(rows - 1, 0)) + ")");
-  const int c11 = step.add("VERTEX_POINT(''," + ref(point(rows - 1, columns - 1)) + ")");
-  const int c01 = surface.collapsedAtU0() ? c00 : step.add("VERTEX_POINT(''," + ref(point(0, columns - 1)) + ")");
+// The ids of side `side`'s control points of a written surface, in the side's direction
+// (cadSideCurve's order).
+std::vector<int> sidePointIds(const CadSurface& surface, const WrittenSurface& written, int side) {
+  const int columns = surface.bezier.degV + 1, degU = surface.bezier.degU, degV = surface.bezier.degV;
+  auto point = [&](int i, int j) { return written.points[size_t(columns * i + j)]; };
+  std::vector<int> ids;
+  switch (side) {
+    case 0: for (int i = 0; i <= degU; ++i) ids.push_back(point(i, 0)); break;
+    case 1: for (int j = 0; j <= degV; ++j) ids.push_back(point(degU, j)); break;
+    case 2: for (int i = degU; i >= 0; --i) ids.push_back(point(i, degV)); break;
+    default: for (int j = degV; j >= 0; --j) ids.push_back(point(0, j)); break;
+  }
+  return ids;
+}
 
-  std::vector<std::string> loop;
-  auto oriented = [&](int edge, bool forward) {
-    loop.push_back(ref(step.add("ORIENTED_EDGE('',*,*," + ref(edge) + (forward ? ",.T.)" : ",.F.)"))));
-  };
-  oriented(writeEdge(step, shared, id, b.degU, column(0), c00, c10, "(0.,0.)", shared.alongU), true);   // v = 0
-  oriented(writeEdge(step, shared, id, b.degV, row(rows - 1), c10, c11, "(1.,0.)", shared.alongV), true);   // u = 1
-  oriented(writeEdge(step, shared, id, b.degU, column(columns - 1), c01, c11, "(0.,1.)", shared.alongU), false);  // v = 1
-  if (!surface.collapsedAtU0())
-    oriented(writeEdge(step, shared, id, b.degV, row(0), c00, c01, "(0.,0.)", shared.alongV), false);  // u = 0
-  std::string edges = "(";
-  for (size_t k = 0; k < loop.size(); ++k) edges += (k ? "," : "") + loop[k];
-  const int edgeLoop = step.add("EDGE_LOOP(''," + edges + "))");
-  const int bound = step.add("FACE_OUTER_BOUND(''," + ref(edgeLoop) + ",.T.)");
-  return step.add("ADVANCED_FACE(" + stepString(faceName(surface)) + "," + refList({bound}) + "," + ref(id) + ",.T.)");
+// The pcurve of one use of an edge: the line in the face's parameter square that the edge's
+// parameter s in [0, 1] runs along (cad_topology.h, SIDES).
+int writePcurve(StepEntities& step, const SharedEntities& shared, int surface, const CadCoedge& use) {
+  const glm::dvec2 from = cadSideParameter(use.side, use.forward ? use.t0 : use.t1);
+  const glm::dvec2 to = cadSideParameter(use.side, use.forward ? use.t1 : use.t0);
+  const glm::dvec2 along = to - from;
+  const double length = std::abs(along.x) + std::abs(along.y);  // sides are axis-parallel
+  const int direction = along.x > 0.0   ? shared.plusU
+                        : along.x < 0.0 ? shared.minusU
+                        : along.y > 0.0 ? shared.plusV
+                                        : shared.minusV;
+  const int origin = step.add("CARTESIAN_POINT('',(" + stepReal(from.x) + "," + stepReal(from.y) + "))");
+  const int vector = step.add("VECTOR(''," + ref(direction) + "," + stepReal(length) + ")");
+  const int line = step.add("LINE(''," + ref(origin) + "," + ref(vector) + ")");
+  const int representation =
+      step.add("DEFINITIONAL_REPRESENTATION(''," + refList({line}) + "," + ref(shared.context2d) + ")");
+  return step.add("PCURVE(''," + ref(surface) + "," + ref(representation) + ")");
+}
+
+// Every EDGE_CURVE of the shell: its curve (the first use's side piece), a pcurve per use and its
+// vertices. Returns the EDGE_CURVE ids.
+std::vector<int> writeEdges(StepEntities& step, const SharedEntities& shared, const CadSurfaceSet& set,
+                            const CadTopology& topology, const std::vector<WrittenSurface>& surfaces) {
+  std::vector<int> vertices(topology.vertices.size());
+  for (size_t v = 0; v < vertices.size(); ++v) {
+    const int point = step.add(cartesianPoint(topology.vertices[v]));
+    vertices[v] = step.add("VERTEX_POINT(''," + ref(point) + ")");
+  }
+  // The uses of each edge, as (surface, coedge).
+  std::vector<std::vector<std::pair<size_t, CadCoedge>>> uses(topology.edges.size());
+  for (size_t s = 0; s < topology.loops.size(); ++s)
+    for (const CadCoedge& coedge : topology.loops[s]) uses[size_t(coedge.edge)].push_back({s, coedge});
+
+  std::vector<int> edges(topology.edges.size());
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    const CadEdge& edge = topology.edges[e];
+    const CadSurface& surface = set.surfaces[edge.surface];
+    std::vector<int> points;
+    if (edge.t0 == 0.0 && edge.t1 == 1.0) {
+      points = sidePointIds(surface, surfaces[edge.surface], edge.side);
+    } else {
+      for (const Point& p : bezierSegment(cadSideCurve(surface, edge.side), edge.t0, edge.t1))
+        points.push_back(step.add(cartesianPoint(p)));
+    }
+    const int degree = int(points.size()) - 1;
+    const int curve = step.add("B_SPLINE_CURVE_WITH_KNOTS(''," + std::to_string(degree) + "," + refList(points) +
+                               ",.UNSPECIFIED.,.F.,.F.,(" + std::to_string(degree + 1) + "," +
+                               std::to_string(degree + 1) + "),(0.,1.),.PIECEWISE_BEZIER_KNOTS.)");
+    std::vector<int> pcurves;
+    for (const auto& [s, use] : uses[e]) pcurves.push_back(writePcurve(step, shared, surfaces[s].id, use));
+    const int surfaceCurve = step.add("SURFACE_CURVE(''," + ref(curve) + "," + refList(pcurves) + ",.PCURVE_S1.)");
+    edges[e] = step.add("EDGE_CURVE(''," + ref(vertices[size_t(edge.start)]) + "," + ref(vertices[size_t(edge.end)]) +
+                        "," + ref(surfaceCurve) + ",.T.)");
+  }
+  return edges;
+}
+
+// One ADVANCED_FACE: its loop of oriented edges (layout in the header); returns its id.
+// `reversed`: the face's normal is the surface's turned round (same_sense false), and its loop,
+// counter-clockwise about the surface's normal, is used backwards (ISO 10303-42 FACE_BOUND).
+int writeFace(StepEntities& step, const CadSurface& surface, int surfaceId, const std::vector<CadCoedge>& loop,
+              const std::vector<int>& edges, bool reversed) {
+  std::vector<int> oriented;
+  for (const CadCoedge& use : loop)
+    oriented.push_back(
+        step.add("ORIENTED_EDGE('',*,*," + ref(edges[size_t(use.edge)]) + (use.forward ? ",.T.)" : ",.F.)")));
+  const int edgeLoop = step.add("EDGE_LOOP(''," + refList(oriented) + ")");
+  const int bound = step.add("FACE_OUTER_BOUND(''," + ref(edgeLoop) + (reversed ? ",.F.)" : ",.T.)"));
+  return step.add("ADVANCED_FACE(" + stepString(faceName(surface)) + "," + refList({bound}) + "," + ref(surfaceId) +
+                  (reversed ? ",.F.)" : ",.T.)"));
 }
 
 }  // namespace
@@ -170,6 +218,10 @@ std::string stepString(const std::string& text) {
 std::string stepReal(double value) { return cadReal(value, 'E'); }
 
 void writeStep(std::ostream& out, const CadSurfaceSet& set, const CadFileInfo& info) {
+  writeStep(out, set, cadTopology(set), info);
+}
+
+void writeStep(std::ostream& out, const CadSurfaceSet& set, const CadTopology& topology, const CadFileInfo& info) {
   out << "ISO-10303-21;\nHEADER;\n"
       << "FILE_DESCRIPTION((" << stepString(info.description) << "),'2;1');\n"
       << "FILE_NAME(" << stepString(info.fileName) << "," << stepString(info.timestamp)
@@ -180,21 +232,32 @@ void writeStep(std::ostream& out, const CadSurfaceSet& set, const CadFileInfo& i
   SharedEntities shared;
   shared.context2d = step.add("(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()"
                               "REPRESENTATION_CONTEXT('2D SPACE',''))");
-  shared.alongU = step.add("DIRECTION('',(1.,0.))");
-  shared.alongV = step.add("DIRECTION('',(0.,1.))");
+  shared.plusU = step.add("DIRECTION('',(1.,0.))");
+  shared.minusU = step.add("DIRECTION('',(-1.,0.))");
+  shared.plusV = step.add("DIRECTION('',(0.,1.))");
+  shared.minusV = step.add("DIRECTION('',(0.,-1.))");
 
+  std::vector<WrittenSurface> surfaces;
+  surfaces.reserve(set.surfaces.size());
+  for (const CadSurface& surface : set.surfaces) surfaces.push_back(writeSurface(step, surface));
+  const std::vector<int> edges = writeEdges(step, shared, set, topology, surfaces);
   std::vector<int> faces;
   faces.reserve(set.surfaces.size());
-  for (const CadSurface& surface : set.surfaces) faces.push_back(writeFace(step, shared, surface));
-  const int shell = step.add("OPEN_SHELL(''," + refList(faces) + ")");
-  const int model = step.add("SHELL_BASED_SURFACE_MODEL(''," + refList({shell}) + ")");
+  for (size_t s = 0; s < set.surfaces.size(); ++s)
+    if (!topology.loops[s].empty())  // a surface shrunk to a point bounds nothing
+      faces.push_back(writeFace(step, set.surfaces[s], surfaces[s].id, topology.loops[s], edges, topology.inwards));
+  // A closed shell bounds a solid; an open one is a surface model.
+  const bool closed = topology.closed();
+  const int shell = step.add(std::string(closed ? "CLOSED_SHELL" : "OPEN_SHELL") + "(''," + refList(faces) + ")");
+  const int model = closed ? step.add("MANIFOLD_SOLID_BREP(" + stepString(info.productName) + "," + ref(shell) + ")")
+                           : step.add("SHELL_BASED_SURFACE_MODEL(''," + refList({shell}) + ")");
   const int origin = step.add("CARTESIAN_POINT('',(0.,0.,0.))");
   const int axisZ = step.add("DIRECTION('',(0.,0.,1.))");
   const int axisX = step.add("DIRECTION('',(1.,0.,0.))");
   const int placement = step.add("AXIS2_PLACEMENT_3D(''," + ref(origin) + "," + ref(axisZ) + "," + ref(axisX) + ")");
+  const char* kind = closed ? "ADVANCED_BREP_SHAPE_REPRESENTATION(" : "MANIFOLD_SURFACE_SHAPE_REPRESENTATION(";
   const int representation =
-      step.add("MANIFOLD_SURFACE_SHAPE_REPRESENTATION(" + stepString(info.productName) + "," + refList({placement, model}) + "," +
-               ref(context3d) + ")");
+      step.add(kind + stepString(info.productName) + "," + refList({placement, model}) + "," + ref(context3d) + ")");
   writeProduct(step, info, representation);
   out << "ENDSEC;\nEND-ISO-10303-21;\n";
 }
