@@ -96,3 +96,63 @@ def test_measure_is_the_cli_report(tmp_path):
     assert not cap["closed"] and cap["volume"] is None and cap["area"] > 0
     with pytest.raises(ValueError):
         pv.measure(mesh, points=1)
+
+
+# --- type stubs (src/python/polarview/*.pyi): the names, parameters and defaults editors see are the
+# package's and the extension's own ---
+
+def _stub_tree(name):
+    import ast
+    return ast.parse((pathlib.Path(pv.__file__).parent / name).read_text())
+
+
+def _stub_parameters(node):
+    """(name, default source or None) of a stub function's parameters, self left out."""
+    import ast
+    args = node.args
+    positional = args.args
+    defaults = [None] * (len(positional) - len(args.defaults)) + [ast.literal_eval(d) for d in args.defaults]
+    return [(a.arg, d) for a, d in zip(positional, defaults) if a.arg != "self"]
+
+
+def _runtime_parameters(function):
+    """The same for a Python function, or a pybind11 function from its signature line."""
+    import inspect
+    try:
+        signature = inspect.signature(function)
+        return [(p.name, None if p.default is inspect.Parameter.empty else p.default)
+                for p in signature.parameters.values() if p.name != "self"]
+    except ValueError:  # pybind11: "name(a: T, b: T = default) -> R"
+        import ast
+        line = function.__doc__.split("\n")[0]
+        tree = ast.parse("def f(" + line[line.index("(") + 1:line.rindex(")")] + "): pass").body[0]
+        return _stub_parameters(tree)
+
+
+@pytest.mark.parametrize("stub, module", [("__init__.pyi", pv), ("_core.pyi", pv._core)])
+def test_type_stubs_match_the_package(stub, module):
+    import ast
+    tree = _stub_tree(stub)
+    functions = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+    classes = {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
+    public = {n for n in dir(module) if not n.startswith("_") and callable(getattr(module, n))
+              and not isinstance(getattr(module, n), type(pv))}
+    public -= {"Mesh", "Patches"} if module is pv else set()
+    public = {n for n in public if getattr(getattr(module, n), "__module__", module.__name__) in (module.__name__, None)
+              or module is pv._core}
+    assert set(functions) - {"Mesh", "Patches"} == public - set(classes), (set(functions), public)
+    for name, node in functions.items():
+        assert _stub_parameters(node) == _runtime_parameters(getattr(module, name)), name
+    for name, node in classes.items():
+        runtime = getattr(module, name)
+        stubbed = {n.name for n in node.body if isinstance(n, ast.FunctionDef) and n.name != "__init__"}
+        stubbed |= {n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+        members = {n for n in dir(runtime) if not n.startswith("_")}
+        assert stubbed == members, (name, stubbed ^ members)
+    if module is pv:
+        assert ast.literal_eval(next(n.value for n in ast.parse(pathlib.Path(pv.__file__).read_text()).body
+                                     if isinstance(n, ast.Assign) and n.targets[0].id == "__all__")) == pv.__all__
+        exported = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+        exported |= {n.target.id for n in tree.body if isinstance(n, ast.AnnAssign)}
+        exported |= {a.asname or a.name for n in tree.body if isinstance(n, ast.ImportFrom) for a in n.names}
+        assert set(pv.__all__) <= exported, set(pv.__all__) - exported
