@@ -32,15 +32,15 @@ std::vector<Patch> randomBSplinePatches(std::mt19937& rng, PatchKind kind, int c
 }
 
 // Random Taylor caps: random p0..p5 (p1, p2 roughly orthogonal so the tangent plane is regular;
-// p3..p5 zero for Taylor order 1, as extraction stores BPS's) and ring data near the expansion on
-// the circle r = R = kPoleCapRadius: boundary points b, first and second radial derivatives e, f.
+// p3..p5 zeroed for Taylor order 1, as extraction stores BPS's) and ring data near the full
+// expansion on the circle r = R = kPoleCapRadius: boundary points b, first and second radial
+// derivatives e, f.
 std::vector<Patch> randomPoleCaps(std::mt19937& rng, int n, int order) {
   std::uniform_real_distribution<double> noise(-0.1, 0.1);
   const double R = kPoleCapRadius;
   Point p[6] = {Point(noise(rng), noise(rng), 3.0),           Point(0.75, noise(rng), noise(rng)),
                 Point(noise(rng), 0.75, noise(rng)),          Point(noise(rng), noise(rng), 0.4),
                 Point(noise(rng), noise(rng), 0.15 + noise(rng)), Point(noise(rng), noise(rng), -0.1)};
-  if (order < 2) p[3] = p[4] = p[5] = Point(0.0);
   std::vector<Point> b(n), e(n), f(n);
   for (int j = 0; j < n; ++j) {
     const double t = 6.283185307179586 * j / n, c = std::cos(t), s = std::sin(t), x = R * c, y = R * s;
@@ -50,6 +50,8 @@ std::vector<Patch> randomPoleCaps(std::mt19937& rng, int n, int order) {
     e[j] = p[1] * c + p[2] * s + 2.0 * R * Q + Point(noise(rng), noise(rng), noise(rng));
     f[j] = 2.0 * Q + Point(noise(rng), noise(rng), noise(rng));
   }
+  // The ring is curved either way; an order-1 cap keeps the tangent plane only (BPS).
+  if (order < 2) p[3] = p[4] = p[5] = Point(0.0);
   std::vector<Patch> caps;
   for (int j = 0; j < n; ++j) {
     Patch patch;

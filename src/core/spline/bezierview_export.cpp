@@ -1,5 +1,5 @@
 // BezierView (.bv) export of a PatchSet: exact bicubic Bezier patches for the B-spline patches,
-// interpolating (4, d) Bezier patches for the pole caps (rules and accuracy in the header).
+// interpolating (5, d) Bezier patches for the pole caps (rules and accuracy in the header).
 #include "core/spline/bezierview_export.h"
 
 #include "core/mesh/constants.h"
@@ -176,7 +176,7 @@ std::vector<BezierPatch> approximatePoleCap(const Patch& cap, int split, int ang
       for (int k = 0; k <= dv; ++k)
         samples[size_t(m) * (dv + 1) + k] =
             evaluatePatch(cap, uNodes[size_t(m)], pieceParameter(piece, split, vNodes[size_t(k)])).position;
-    // Interpolate along u (exact: a quartic), then along v.
+    // Interpolate along u (exact: a quintic), then along v.
     for (int i = 0; i <= du; ++i)
       for (int k = 0; k <= dv; ++k) {
         Point sum(0.0);
