@@ -14,7 +14,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 "$exe" shape cube -o "$tmp/cube.obj"
 
 # Parses a .bv file (kinds 4/5 and Group lines only, every number finite); prints
-# "<patches> <groups> <group names, comma-separated> <patches of kind 5 degree 3 3> <degree 4 d>".
+# "<patches> <groups> <group names, comma-separated> <patches of kind 5 degree 3 3> <degree 5 d>" (caps: quintic in u).
 parse_bv() {
   python3 - "$1" <<'EOF'
 import math, sys
@@ -30,7 +30,7 @@ while k < len(tokens):
     values = [float(x) for x in tokens[k:k + n]]
     assert len(values) == n and all(math.isfinite(x) for x in values), 'truncated or non-finite patch'
     k += n; patches += 1
-    bicubic += (du, dv) == (3, 3); caps += du == 4
+    bicubic += (du, dv) == (3, 3); caps += du == 5
     assert groups, 'patch before any Group line'
 print(patches, len(groups), ','.join(groups), bicubic, caps)
 EOF

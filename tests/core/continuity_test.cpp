@@ -138,8 +138,8 @@ TEST_CASE("continuity: C2PS is G1 at every seam and C2 across its rings and its 
 
 // The cap matches ring L's position and first and second radial derivatives (patch.h: quintic
 // blends), so the ring-cap seam is C2 to round-off under every polar scheme, BPS's tangent-plane
-// cap included: K and H jumps at most 1e-9 of the model's largest |K|, |H| (the C1 cap left 4e-6
-// of it under C2PS at level 3, 8e-4 under BPS).
+// cap included: K and H jumps at most 1e-9 of the model's largest |K|, |H| (the C1 cap left K
+// jumps of 9e-5 of it under C2PS at level 3 on default.obj, 7e-3 under RTS, 1.7e-2 under BPS).
 TEST_CASE("continuity: the pole cap joins ring L with curvature continuity under every polar scheme") {
   struct Variant {
     const char* name;
@@ -168,8 +168,9 @@ TEST_CASE("continuity: the pole cap joins ring L with curvature continuity under
         REQUIRE(report.maxAbsMean > 0.0);
         CHECK(seam->maxPositionGap < kRoundOff);
         CHECK(seam->maxNormalAngle < kRoundOff);
-        CHECK(seam->maxGaussianJump <= 1e-9 * report.maxAbsGaussian);
-        CHECK(seam->maxMeanJump <= 1e-9 * report.maxAbsMean);
+        // SeamStats' jumps are relative to the model's largest |K| and |H| already.
+        CHECK(seam->maxGaussianJump <= 1e-9);
+        CHECK(seam->maxMeanJump <= 1e-9);
       }
     }
   }
