@@ -80,11 +80,13 @@ void main() {
     }
   }
 #endif
-  SurfacePoint s = evaluatePatch(cp, kind, u, sectorV);
+  vec3 secondLocal[4], secondWorld[4];  // a cap's f_j (patch_frame.glsl)
+  if (kind == kPatchPoleCap) fetchCapSecond(patchIndex, secondLocal, secondWorld);
+  SurfacePoint s = evaluatePatch(cp, secondLocal, kind, u, sectorV);
   // The position: a cap's from its frame; a B-spline patch's from the points shared with its
   // neighbours, its shared edges and corners alike on both sides (patch_frame.glsl).
   vec3 fromEye;
-  if (kind == kPatchPoleCap) fromEye = capPositionFromEye(points, u, sectorV);
+  if (kind == kPatchPoleCap) fromEye = capPositionFromEye(points, secondWorld, u, sectorV);
   else if (kind == kPatchEndCap) fromEye = positionFromEye(points, u, sectorV);
   else fromEye = watertightPositionFromEye(points, u, sectorV, outer, jumps, onEdge);
   // A T-junction edge's vertices are the same parameters on both sides but computed from each

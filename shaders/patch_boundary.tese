@@ -11,6 +11,7 @@ in vec3 tc_controlPoint[];
 patch in ivec2 tc_kindRing;
 patch in vec3 tc_originFromEye;
 patch in mat3 tc_axes;
+patch in vec3 tc_capSecond[4];
 flat out ivec2 be_kindRing;
 
 void main() {
@@ -21,7 +22,8 @@ void main() {
   float t = gl_TessCoord.x;
   vec2 uv = edge == 0 ? vec2(t, 0.0) : edge == 1 ? vec2(1.0, t) : edge == 2 ? vec2(t, 1.0)
                                                                               : vec2(0.0, t);
-  SurfacePoint s = evaluatePatch(cp, tc_kindRing.x, uv.x, uv.y);
+  vec3 second[4] = tc_capSecond;
+  SurfacePoint s = evaluatePatch(cp, second, tc_kindRing.x, uv.x, uv.y);
   be_kindRing = tc_kindRing;
   gl_Position = u_viewRotationProjection * vec4(tc_originFromEye + tc_axes * s.position, 1.0);
 }

@@ -45,11 +45,23 @@ vec3 relativeToEye(vec3 hi, vec3 lo) {
 }
 
 // A control point relative to the eye as patch.vert passes it on: a cap's vector and parameter
-// slots (all but p0 and b_j: 0, 6..9) as they are (patch_renderer.cpp, capSharedSlot). One function
-// for every stage, so that a point fetched in patch.tese is the same bits as patch.vert's.
+// slots (all but p0 and b_j: 0, 6..9) as they are, in hi (patch_renderer.cpp, capSharedSlot; their
+// lo texels carry the cap's f_j, fetchCapSecond). One function for every stage, so that a point
+// fetched in patch.tese is the same bits as patch.vert's.
 vec3 sharedPointFromEye(vec3 hi, vec3 lo, int kind, int slot) {
   bool capData = kind == 3 && slot != 0 && (slot < 6 || slot > 9);  // kind 3: kPatchPoleCap
-  return capData ? hi + lo : relativeToEye(hi, lo);
+  return capData ? hi : relativeToEye(hi, lo);
+}
+
+// A PoleCap's f_{j-1..j+2} (the ring's second radial derivative, patch.h): in the cap's GPU form
+// (its frame, as forward differences; for patch_eval.glsl's evaluatePoleCap) from the lo texels of
+// slots 12..15, and as world vectors (for capPositionFromEye) from those of slots 1..4.
+void fetchCapSecond(int patchIndex, out vec3 local[4], out vec3 world[4]) {
+  int base = 48 * patchIndex;
+  for (int k = 0; k < 4; ++k) {
+    local[k] = texelFetch(u_patchPoints, base + 3 * (12 + k) + 2).xyz;
+    world[k] = texelFetch(u_patchPoints, base + 3 * (1 + k) + 2).xyz;
+  }
 }
 
 // Patch `patchIndex`'s control points: in its frame (for evaluation) and relative to the eye.
@@ -77,12 +89,11 @@ PatchFrame patchFrame(int patchIndex) {
 }
 
 // Position of a PoleCap (patch_eval.glsl, evaluatePoleCap) in world axes relative to the eye, from
-// what neighbouring sectors share: p0 and b_j relative to the eye, p1..p5 and e_j as world vectors,
-// (j, n, R) in slot 10 and the Taylor order in slot 11 (patch_renderer.cpp, capSharedSlot). The angle is 2 pi (j + v) / n, so a
-// radial edge (v = 0 of sector j, v = 1 of sector j - 1) gets the same angle, basis and sums, and the
-// same position bits in both; the pole (u = 0) is p0 in every sector.
-vec3 capPositionFromEye(vec3 d[16], float u, float v) {
-  if (d[11].x < 1.5) d[3] = d[4] = d[5] = vec3(0.0);  // BPS: the tangent plane only (taylorOrder 1)
+// what neighbouring sectors share: p0 and b_j relative to the eye, p1..p5, e_j and (`second`) f_j as
+// world vectors, (j, n, R) in slot 10 (patch_renderer.cpp, capSharedSlot). The angle is
+// 2 pi (j + v) / n, so a radial edge (v = 0 of sector j, v = 1 of sector j - 1) gets the same
+// angle, basis and sums, and the same position bits in both; the pole (u = 0) is p0 in every sector.
+vec3 capPositionFromEye(vec3 d[16], vec3 second[4], float u, float v) {
   float n = d[10].y, R = d[10].z;
   float turn = d[10].x + v;  // whole at the edges; the last sector's end is sector 0's start
   if (turn >= n) turn -= n;
@@ -93,11 +104,14 @@ vec3 capPositionFromEye(vec3 d[16], float u, float v) {
   vec4 bv = vec4(sv * sv * sv, (3.0 * v - 6.0) * v * v + 4.0, ((-3.0 * v + 3.0) * v + 3.0) * v + 1.0, v * v * v) / 6.0;
   vec3 C = ((bv[0] * d[6] + bv[1] * d[7]) + bv[2] * d[8]) + bv[3] * d[9];
   vec3 E = ((bv[0] * d[12] + bv[1] * d[13]) + bv[2] * d[14]) + bv[3] * d[15];
+  vec3 F = ((bv[0] * second[0] + bv[1] * second[1]) + bv[2] * second[2]) + bv[3] * second[3];
+  vec3 Q = d[3] + c2 * d[4] + s2 * d[5];
   vec3 T = d[0] + (x * d[1] + y * d[2]) + ((x * x + y * y) * d[3] + (x * x - y * y) * d[4] + (2.0 * x * y) * d[5]);
-  vec3 Tb = d[0] + R * (c * d[1] + s * d[2]) + R * R * (d[3] + c2 * d[4] + s2 * d[5]);
-  vec3 Tr = c * d[1] + s * d[2] + 2.0 * R * (d[3] + c2 * d[4] + s2 * d[5]);
-  float h = u * u * u * (4.0 - 3.0 * u), g = u * u * u * (u - 1.0);
-  return T + (h * (C - Tb) + (R * g) * (E - Tr));
+  vec3 Tb = d[0] + R * (c * d[1] + s * d[2]) + R * R * Q;
+  vec3 Tr = c * d[1] + s * d[2] + 2.0 * R * Q;
+  float u3 = u * u * u;
+  float h = u3 * ((6.0 * u - 15.0) * u + 10.0), g = -u3 * (u - 1.0) * (3.0 * u - 4.0), k = 0.5 * u3 * (u - 1.0) * (u - 1.0);
+  return T + (h * (C - Tb) + (R * g) * (E - Tr) + (R * R * k) * (F - 2.0 * Q));
 }
 
 // Position of a B-spline patch (patch.h order) from its control points relative to the eye, in the

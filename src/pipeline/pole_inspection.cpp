@@ -203,9 +203,8 @@ std::vector<Patch> zoomAboutPole(const std::vector<Patch>& patches, int pole, in
     // Positions relative to the origin and vectors scale alike; the origin moves about the centre.
     Patch zoomed = patch;
     zoomed.origin = centre + s * (patch.origin - centre);
-    for (int k = 0; k < 16; ++k)
-      if (k != 10 || patch.kind != PatchKind::PoleCap) zoomed.cp[k] = s * patch.cp[k];
-    if (patch.kind == PatchKind::PoleCap) zoomed.cp[11] = patch.cp[11];
+    for (Point& c : zoomed.cp) c *= s;
+    for (Point& c : zoomed.capExtra) c *= s;
     out.push_back(zoomed);
   }
   return out;

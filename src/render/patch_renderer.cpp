@@ -126,7 +126,8 @@ PatchFrameCpu frameAt(const glm::dvec3& origin, const glm::dvec3& tangent, const
 }
 
 // (c0, c1, c2, c3) -> (c0, D c0, D^2 c0, D^3 c0), in place, for entries first, first + stride, ...
-void toForwardDifferences(std::array<glm::dvec3, 16>& c, int first, int stride) {
+template <size_t N>
+void toForwardDifferences(std::array<glm::dvec3, N>& c, int first, int stride) {
   glm::dvec3& c0 = c[first];
   glm::dvec3& c1 = c[first + stride];
   glm::dvec3& c2 = c[first + 2 * stride];
@@ -138,30 +139,30 @@ void toForwardDifferences(std::array<glm::dvec3, 16>& c, int first, int stride) 
 }
 
 // What a cap's non-position slot holds beside its GPU form (patch.vert passes it on as it is, not
-// relative to the eye): p1..p5 and e_j as world vectors, slot 10 (j, n, R) for sector j of n and
-// slot 11 the Taylor order.
+// relative to the eye): p1..p5 and e_j as world vectors, slot 10 (j, n, R) for sector j of n.
 // Neighbouring sectors place their shared radial edge from these and the shared world points in the
 // same operations (patch.tese, capPositionFromEye), so the edge is the same bits on both sides;
 // each sector's rotated frame alone left pinholes between 49,152 sub-pixel sectors (C2PS level 12).
 glm::dvec3 capSharedSlot(const Patch& patch, int k) {
   if (patch.kind != PatchKind::PoleCap) return glm::dvec3(0.0);
-  if (k == 10) {
-    const double n = std::round(1.0 / patch.cp[10].y);
-    return glm::dvec3(std::round(patch.cp[10].x * n), n, patch.cp[10].z);
-  }
+  if (k == 10) return glm::dvec3(patch.sector, patch.sectorCount, kPoleCapRadius);
+  if (k == 11) return glm::dvec3(0.0);
   return patch.cp[k];
 }
 
 // `value` of control slot k in GPU units: lengths times `perUnit` (a power of two, so exact); a
-// cap's slots 10 (tau, n, R: R in the cap's own radial unit) and 11 (the Taylor order) as they are.
+// cap's slot 10 (tau, n, R: R in the cap's own radial unit) as it is.
 glm::dvec3 inUnits(PatchKind kind, int k, const glm::dvec3& value, double perUnit) {
-  return kind == PatchKind::PoleCap && (k == 10 || k == 11) ? value : value * perUnit;
+  return kind == PatchKind::PoleCap && k == 10 ? value : value * perUnit;
 }
 
-// A patch as the GPU evaluates it (see the section's top), with its frame.
+// A patch as the GPU evaluates it (see the section's top), with its frame. A cap's f_{j-1..j+2}
+// (patch.h) go up in the lo texels of its vector slots (patch_frame.glsl, fetchCapSecond):
+// capSecond in the GPU form, capSecondWorld as world vectors.
 struct GpuPatch {
   PatchFrameCpu frame;
   std::array<glm::dvec3, 16> cp{};
+  std::array<glm::dvec3, 4> capSecond{}, capSecondWorld{};
 };
 
 // A ring patch goes up turned by its ringTurn (u outwards, v around: sector groups, patch.tese; its
@@ -174,7 +175,7 @@ GpuPatch gpuForm(const Patch& patch) {
   if (patch.kind == PatchKind::PoleCap) {
     // The sector's start angle theta0 moves into the coefficients: T's terms in (x, y) are
     // p1 cos + p2 sin (turned by theta0) and p4 cos 2 + p5 sin 2 (turned by 2 theta0).
-    const double theta0 = kTwoPi * patch.cp[10].x;
+    const double n = double(patch.sectorCount), theta0 = kTwoPi * (double(patch.sector) / n);
     const double c1 = std::cos(theta0), s1 = std::sin(theta0), c2 = std::cos(2.0 * theta0), s2 = std::sin(2.0 * theta0);
     std::array<glm::dvec3, 16> cp = patch.cp;
     cp[1] = c1 * patch.cp[1] + s1 * patch.cp[2];
@@ -186,11 +187,16 @@ GpuPatch gpuForm(const Patch& patch) {
     out.cp[0] = glm::dvec3(0.0);  // p0 is the origin
     for (int k = 1; k <= 5; ++k) out.cp[k] = f.toLocal * cp[k];
     for (int k = 6; k <= 9; ++k) out.cp[k] = f.toLocal * (cp[k] - f.origin);
-    out.cp[10] = glm::dvec3(0.0, cp[10].y, cp[10].z);
-    out.cp[11] = cp[11];
+    out.cp[10] = glm::dvec3(0.0, 1.0 / n, kPoleCapRadius);
+    out.cp[11] = glm::dvec3(0.0);
     for (int k = 12; k <= 15; ++k) out.cp[k] = f.toLocal * cp[k];
+    for (int k = 0; k < 4; ++k) {
+      out.capSecondWorld[size_t(k)] = capSecondPoint(patch, k);
+      out.capSecond[size_t(k)] = f.toLocal * capSecondPoint(patch, k);
+    }
     toForwardDifferences(out.cp, 6, 1);   // boundary curve b_{j-1..j+2}
-    toForwardDifferences(out.cp, 12, 1);  // cross-boundary derivative e_{j-1..j+2}
+    toForwardDifferences(out.cp, 12, 1);  // first radial derivative e_{j-1..j+2}
+    toForwardDifferences(out.capSecond, 0, 1);  // second radial derivative f_{j-1..j+2}
     out.frame.origin += patch.origin;     // the frame sat at p0 relative to the patch's origin
     return out;
   }
@@ -625,9 +631,16 @@ void packGpuPatches(const std::vector<Patch>& patches, size_t first, const glm::
       for (int k = 0; k < kControlPointsPerPatch; ++k, point += kFloatsPerPoint) {
         const glm::vec3 local(inUnits(patch.kind, k, gpu.cp[k], perUnit));
         point[0] = local.x, point[1] = local.y, point[2] = local.z;
-        splitHiLo(isPositionPoint(patch.kind, k) ? ((patch.origin - center) + drawnPoint(patch, k)) * perUnit
-                                                 : inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit),
-                  point + 3, point + 6);
+        if (isPositionPoint(patch.kind, k)) {
+          splitHiLo(((patch.origin - center) + drawnPoint(patch, k)) * perUnit, point + 3, point + 6);
+          continue;
+        }
+        // A cap's vector and parameter slots: the value in hi, its f_j in lo (GpuPatch).
+        const glm::vec3 hi = roundToFloat(inUnits(patch.kind, k, capSharedSlot(patch, k), perUnit));
+        glm::vec3 lo(0.0f);
+        if (k >= 1 && k <= 4) lo = roundToFloat(gpu.capSecondWorld[size_t(k - 1)] * perUnit);
+        if (k >= 12) lo = roundToFloat(gpu.capSecond[size_t(k - 12)] * perUnit);
+        for (int c = 0; c < 3; ++c) point[3 + c] = hi[c], point[6 + c] = lo[c];
       }
     }
   });

@@ -37,7 +37,8 @@ using PatchKey = std::tuple<int, int, int, int, long long, long long, long long>
 PatchKey keyOf(const Patch& patch, double scale) {
   Point centroid(0.0);
   for (const Point& p : patch.cp) centroid += p / 16.0;
-  if (patch.kind == PatchKind::PoleCap) centroid = patch.cp[7] + patch.cp[10];  // boundary point + sector
+  if (patch.kind == PatchKind::PoleCap)  // boundary point + sector
+    centroid = patch.cp[7] + Point(double(patch.sector) / patch.sectorCount, 1.0 / patch.sectorCount, 0.0);
   auto q = [&](double x) { return (long long)std::llround(x / scale * 1e7); };
   return {int(patch.kind), int(patch.level), patch.ring, patch.pole, q(centroid.x), q(centroid.y), q(centroid.z)};
 }

@@ -58,23 +58,35 @@ Patch randomBSplinePatch(std::mt19937& rng) {
   return patch;
 }
 
+// A cap of sector j of n (patch.h layout) with random Taylor data (p3..p5 zero for order 1, as
+// extraction stores BPS's tangent plane) and ring data b, e, f near the expansion's on the circle.
 Patch randomPoleCap(std::mt19937& rng, int n, int j, int order) {
   Patch cap;
   cap.kind = PatchKind::PoleCap;
+  cap.sector = j;
+  cap.sectorCount = n;
   cap.cp[0] = randomPoint(rng);
   cap.cp[1] = Point(1.0, 0.0, 0.0) + randomPoint(rng, 0.2);
   cap.cp[2] = Point(0.0, 1.0, 0.0) + randomPoint(rng, 0.2);
-  for (int k = 3; k < 6; ++k) cap.cp[k] = randomPoint(rng, 0.3);
-  const double R = 2.0;
+  for (int k = 3; k < 6; ++k) cap.cp[k] = order >= 2 ? randomPoint(rng, 0.3) : Point(0.0);
+  const double R = kPoleCapRadius;
   for (int k = 0; k < 4; ++k) {  // boundary control points near the circle r = R
     const double a = 2.0 * kPi * (j - 1 + k) / n;
     cap.cp[6 + k] = cap.cp[0] + R * std::cos(a) * cap.cp[1] + R * std::sin(a) * cap.cp[2] + randomPoint(rng, 0.1);
-    // Cross-boundary derivative points near the expansion's radial derivative.
+    // First and second radial derivative points near the expansion's.
     cap.cp[12 + k] = std::cos(a) * cap.cp[1] + std::sin(a) * cap.cp[2] + randomPoint(rng, 0.2);
+    capSecondPoint(cap, k) = randomPoint(rng, 0.3);
   }
-  cap.cp[10] = Point(double(j) / n, 1.0 / n, R);
-  cap.cp[11] = Point(order, 0.0, 0.0);
   return cap;
+}
+
+// The uniform cubic B-spline basis at v and its first and second derivatives.
+void bsplineAt(double v, double b[4], double db[4], double ddb[4]) {
+  const double s = 1.0 - v;
+  b[0] = s * s * s / 6.0, b[1] = (3 * v * v * v - 6 * v * v + 4) / 6.0;
+  b[2] = (-3 * v * v * v + 3 * v * v + 3 * v + 1) / 6.0, b[3] = v * v * v / 6.0;
+  db[0] = -s * s / 2.0, db[1] = (3 * v * v - 4 * v) / 2.0, db[2] = (-3 * v * v + 2 * v + 1) / 2.0, db[3] = v * v / 2.0;
+  ddb[0] = s, ddb[1] = 3 * v - 2, ddb[2] = 1 - 3 * v, ddb[3] = v;
 }
 
 // Central differences of position and first derivatives against the analytic derivatives.
@@ -201,7 +213,7 @@ TEST_CASE("pole cap: at u = 0 it is the Taylor expansion, with the Taylor K and 
       const GraphCurvature ref = taylorCurvature(p);
       const Point refNormal = glm::normalize(glm::cross(p[1], p[2]));
       for (int j = 0; j < n; ++j) {
-        cap.cp[10].x = double(j) / n;
+        cap.sector = j;
         for (double v : {0.0, 0.4, 1.0}) {
           const SurfacePoint sp = evaluatePatch(cap, 0.0, v);
           CHECK(glm::length(sp.position - p[0]) < 1e-14);
@@ -248,11 +260,13 @@ TEST_CASE("pole cap: it meets its boundary curve at u = 1 and its neighbour sect
   for (int order : {1, 2}) {
     const int n = 7;
     Patch a = randomPoleCap(rng, n, 2, order);
-    Patch b = a;  // sector 3 shares p0..p5; its boundary points are shifted by one column
-    b.cp[10].x = 3.0 / n;
-    for (int k = 0; k < 3; ++k) b.cp[6 + k] = a.cp[7 + k], b.cp[12 + k] = a.cp[13 + k];
+    Patch b = a;  // sector 3 shares p0..p5; its ring points are shifted by one column
+    b.sector = 3;
+    for (int k = 0; k < 3; ++k)
+      b.cp[6 + k] = a.cp[7 + k], b.cp[12 + k] = a.cp[13 + k], capSecondPoint(b, k) = capSecondPoint(a, k + 1);
     b.cp[9] = randomPoint(rng);
     b.cp[15] = randomPoint(rng);
+    capSecondPoint(b, 3) = randomPoint(rng);
     for (double t : {0.0, 0.3, 0.8, 1.0}) {
       // u = 1: the B-spline boundary curve (b_{j-1} + 4 b_j + b_{j+1}) / 6 at v = 0.
       const SurfacePoint edge = evaluatePatch(a, 1.0, 0.0);
@@ -264,23 +278,33 @@ TEST_CASE("pole cap: it meets its boundary curve at u = 1 and its neighbour sect
   }
 }
 
-TEST_CASE("pole cap: at u = 1 its radial derivative is the cross-boundary B-spline (C1 with the ring)") {
+TEST_CASE("pole cap: at u = 1 its value and first and second radial derivatives are the ring's (C2 with it)") {
   std::mt19937 rng(29);
   for (int order : {1, 2})
     for (int trial = 0; trial < 10; ++trial) {
       const int n = 5 + trial;
       const Patch cap = randomPoleCap(rng, n, trial % n, order);
-      const double R = cap.cp[10].z;
+      const double R = kPoleCapRadius;
       for (double v : {0.0, 0.35, 0.7, 1.0}) {
-        // The uniform cubic B-spline of cp[12..15] at v, and of the boundary points cp[6..9].
-        const double s = 1.0 - v;
-        const double b[4] = {s * s * s / 6.0, (3 * v * v * v - 6 * v * v + 4) / 6.0,
-                             (-3 * v * v * v + 3 * v * v + 3 * v + 1) / 6.0, v * v * v / 6.0};
-        Point E(0.0), C(0.0);
-        for (int k = 0; k < 4; ++k) E += b[k] * cap.cp[12 + k], C += b[k] * cap.cp[6 + k];
+        // The uniform cubic B-splines of b (cp[6..9]), e (cp[12..15]) and f (capSecondPoint) at v,
+        // with their v-derivatives: the ring patch's value, d/dr and d2/dr2 along link 2 (per unit
+        // r; u = r / R) and their derivatives along it.
+        double b[4], db[4], ddb[4];
+        bsplineAt(v, b, db, ddb);
+        Point C(0.0), Cv(0.0), Cvv(0.0), E(0.0), Ev(0.0), F(0.0);
+        for (int k = 0; k < 4; ++k) {
+          C += b[k] * cap.cp[6 + k], Cv += db[k] * cap.cp[6 + k], Cvv += ddb[k] * cap.cp[6 + k];
+          E += b[k] * cap.cp[12 + k], Ev += db[k] * cap.cp[12 + k];
+          F += b[k] * capSecondPoint(cap, k);
+        }
         const SurfacePoint edge = evaluatePatch(cap, 1.0, v);
+        const double scale = 1.0 + glm::length(R * R * F) + glm::length(R * E) + glm::length(Cvv);
         CHECK(glm::length(edge.position - C) < 1e-13);
-        CHECK(glm::length(edge.du - R * E) < 1e-12 * (1.0 + glm::length(R * E)));
+        CHECK(glm::length(edge.du - R * E) < 1e-12 * scale);
+        CHECK(glm::length(edge.dv - Cv) < 1e-12 * scale);
+        CHECK(glm::length(edge.duu - R * R * F) < 1e-12 * scale);
+        CHECK(glm::length(edge.duv - R * Ev) < 1e-12 * scale);
+        CHECK(glm::length(edge.dvv - Cvv) < 1e-12 * scale);
       }
     }
 }

@@ -358,7 +358,7 @@ TEST_CASE("extraction: the pole cap's boundary is ring L's inner boundary") {
     int checked = 0;
     for (const Patch& capPatch : set.patches) {
       if (capPatch.kind != PatchKind::PoleCap) continue;
-      const int j = int(std::lround(capPatch.cp[10].x * nL));
+      const int j = capPatch.sector;
       const Index a = config.links[size_t(nL) + j], b = config.links[size_t(nL) + (j + 1) % nL];
       for (const Patch& ring : set.patches) {
         if (ring.face < 0 || ring.level != refinement.levelCount() - 1 || ring.kind == PatchKind::PoleCap) continue;
@@ -411,7 +411,7 @@ TEST_CASE("extraction: the pole cap is C1 with ring L (same normal along the sea
       for (const Patch& cap : set.patches) {
         if (cap.kind != PatchKind::PoleCap) continue;
         const PolarConfig& config = finest.poles[cap.pole];
-        const int n = config.valence, j = int(std::lround(cap.cp[10].x * n));
+        const int n = config.valence, j = cap.sector;
         const Index a = config.links[size_t(n) + j], b = config.links[size_t(n) + (j + 1) % n];
         Index edge = -1;
         for (Index k = finest.topology.vertexEdgeStart[a]; k < finest.topology.vertexEdgeStart[a + 1]; ++k)

@@ -34,7 +34,7 @@ std::vector<Patch> deepGlobe(Scheme scheme, int levels) {
 // The cap of pole 0 that starts at angle 0.
 const Patch& firstCap(const std::vector<Patch>& patches) {
   for (const Patch& patch : patches)
-    if (patch.kind == PatchKind::PoleCap && patch.pole == 0 && patch.cp[10].x == 0.0) return patch;
+    if (patch.kind == PatchKind::PoleCap && patch.pole == 0 && patch.sector == 0) return patch;
   FAIL("no pole cap");
   return patches.front();
 }

@@ -31,36 +31,37 @@ std::vector<Patch> randomBSplinePatches(std::mt19937& rng, PatchKind kind, int c
   return patches;
 }
 
-// Random Taylor caps: random p0..p5 (p1, p2 roughly orthogonal so the tangent plane is regular)
-// and a boundary curve near the expansion on the circle, n sectors, Taylor order 2 or 1.
+// Random Taylor caps: random p0..p5 (p1, p2 roughly orthogonal so the tangent plane is regular;
+// p3..p5 zeroed for Taylor order 1, as extraction stores BPS's) and ring data near the full
+// expansion on the circle r = R = kPoleCapRadius: boundary points b, first and second radial
+// derivatives e, f.
 std::vector<Patch> randomPoleCaps(std::mt19937& rng, int n, int order) {
   std::uniform_real_distribution<double> noise(-0.1, 0.1);
-  const double R = 1.5;
-  Point p[6] = {Point(noise(rng), noise(rng), 3.0),           Point(1.0, noise(rng), noise(rng)),
-                Point(noise(rng), 1.0, noise(rng)),           Point(noise(rng), noise(rng), 0.7),
-                Point(noise(rng), noise(rng), 0.3 + noise(rng)), Point(noise(rng), noise(rng), -0.2)};
-  std::vector<Point> b(n);
+  const double R = kPoleCapRadius;
+  Point p[6] = {Point(noise(rng), noise(rng), 3.0),           Point(0.75, noise(rng), noise(rng)),
+                Point(noise(rng), 0.75, noise(rng)),          Point(noise(rng), noise(rng), 0.4),
+                Point(noise(rng), noise(rng), 0.15 + noise(rng)), Point(noise(rng), noise(rng), -0.1)};
+  std::vector<Point> b(n), e(n), f(n);
   for (int j = 0; j < n; ++j) {
-    const double t = 6.283185307179586 * j / n, x = R * std::cos(t), y = R * std::sin(t);
+    const double t = 6.283185307179586 * j / n, c = std::cos(t), s = std::sin(t), x = R * c, y = R * s;
+    const Point Q = p[3] + p[4] * (c * c - s * s) + p[5] * (2 * c * s);
     b[j] = p[0] + p[1] * x + p[2] * y + p[3] * (x * x + y * y) + p[4] * (x * x - y * y) +
            p[5] * (2 * x * y) + Point(noise(rng), noise(rng), noise(rng));
+    e[j] = p[1] * c + p[2] * s + 2.0 * R * Q + Point(noise(rng), noise(rng), noise(rng));
+    f[j] = 2.0 * Q + Point(noise(rng), noise(rng), noise(rng));
   }
-  // Cross-boundary derivative points (patch.h cp[12..15]): near the expansion's d/dr at r = R.
-  std::vector<Point> e(n);
-  for (int j = 0; j < n; ++j) {
-    const double t = 6.283185307179586 * j / n, c = std::cos(t), s = std::sin(t);
-    e[j] = p[1] * c + p[2] * s + 2.0 * R * (p[3] + p[4] * (c * c - s * s) + p[5] * (2 * c * s)) +
-           Point(noise(rng), noise(rng), noise(rng));
-  }
+  // The ring is curved either way; an order-1 cap keeps the tangent plane only (BPS).
+  if (order < 2) p[3] = p[4] = p[5] = Point(0.0);
   std::vector<Patch> caps;
   for (int j = 0; j < n; ++j) {
     Patch patch;
     patch.kind = PatchKind::PoleCap;
+    patch.sector = j;
+    patch.sectorCount = n;
     for (int k = 0; k < 6; ++k) patch.cp[k] = p[k];
     for (int k = 0; k < 4; ++k) patch.cp[6 + k] = b[(j - 1 + k + n) % n];
     for (int k = 0; k < 4; ++k) patch.cp[12 + k] = e[(j - 1 + k + n) % n];
-    patch.cp[10] = Point(double(j) / n, 1.0 / n, R);
-    patch.cp[11] = Point(order, 0, 0);
+    for (int k = 0; k < 4; ++k) capSecondPoint(patch, k) = f[(j - 1 + k + n) % n];
     caps.push_back(patch);
   }
   return caps;
@@ -252,8 +253,8 @@ TEST_CASE("gpu evaluator: neighbouring pole-cap sectors place their shared radia
   int n = 0;
   for (size_t k = 0; k < set.patches.size(); ++k)
     if (set.patches[k].kind == PatchKind::PoleCap && set.patches[k].pole == 0) {
-      n = int(std::lround(1.0 / set.patches[k].cp[10].y));
-      capOfSector[std::lround(set.patches[k].cp[10].x * n)] = int(k);
+      n = set.patches[k].sectorCount;
+      capOfSector[set.patches[k].sector] = int(k);
     }
   REQUIRE(n == 768);
   REQUIRE(capOfSector.size() == size_t(n));
@@ -265,7 +266,7 @@ TEST_CASE("gpu evaluator: neighbouring pole-cap sectors place their shared radia
   size_t compared = 0, differ = 0;
   for (const SurfaceProbe& p : probes) {
     if (p.v != 1.0f || set.patches[size_t(p.patch)].kind != PatchKind::PoleCap) continue;
-    const long j = std::lround(set.patches[size_t(p.patch)].cp[10].x * n);
+    const long j = set.patches[size_t(p.patch)].sector;
     const auto next = atEdge.find({capOfSector[(j + 1) % n], std::lround(p.u * 1e4)});
     if (next == atEdge.end()) continue;
     ++compared;

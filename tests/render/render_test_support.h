@@ -81,8 +81,10 @@ inline GraphCurvature graphCurvature(double fx, double fy, double fxx, double fy
 }
 
 // n PoleCap sectors (patch.h layout) of radius R with the Taylor expansion of the paraboloid
-// z = x^2 + y^2 (p1 = e_x, p2 = e_y, p3 = e_z: K = 4, H = 2 at the pole) and a boundary B-spline
-// through control points `boundaryScale` * T on the circle (any curve: the u^3 blend keeps the pole).
+// z = x^2 + y^2 (K = 4, H = 2 at the pole; in the cap's radial unit, where the hole is
+// r <= kPoleCapRadius: p1 = a e_x, p2 = a e_y, p3 = a^2 e_z, a = R / kPoleCapRadius) and a boundary
+// B-spline through control points `boundaryScale` * T on the circle, zero first and second radial
+// derivatives (any ring data: the u^3 blends keep the pole).
 inline std::vector<Patch> paraboloidCap(int n, double R, double boundaryScale = 1.0,
                                         const Point& offset = Point(0.0)) {
   std::vector<Point> b(n);
@@ -91,19 +93,20 @@ inline std::vector<Patch> paraboloidCap(int n, double R, double boundaryScale = 
     const double x = boundaryScale * R * std::cos(t), y = boundaryScale * R * std::sin(t);
     b[j] = offset + Point(x, y, R * R);
   }
+  const double a = R / kPoleCapRadius;
   std::vector<Patch> caps;
   for (int j = 0; j < n; ++j) {
     Patch patch;
     patch.kind = PatchKind::PoleCap;
     patch.ring = 0;
     patch.pole = 0;
+    patch.sector = j;
+    patch.sectorCount = n;
     patch.cp[0] = offset;
-    patch.cp[1] = Point(1, 0, 0);
-    patch.cp[2] = Point(0, 1, 0);
-    patch.cp[3] = Point(0, 0, 1);
+    patch.cp[1] = Point(a, 0, 0);
+    patch.cp[2] = Point(0, a, 0);
+    patch.cp[3] = Point(0, 0, a * a);
     for (int k = 0; k < 4; ++k) patch.cp[6 + k] = b[(j - 1 + k + n) % n];
-    patch.cp[10] = Point(double(j) / n, 1.0 / n, R);
-    patch.cp[11] = Point(2, 0, 0);
     caps.push_back(patch);
   }
   return caps;

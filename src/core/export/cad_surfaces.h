@@ -5,7 +5,7 @@
 // each of multiplicity deg + 1, i.e. a Bezier patch in B-spline form.
 //  * Regular, Boundary, PolarRing, EndCap patches: bicubicBezier (core/spline/bezierview_export.h),
 //    exact: the same polynomial as evaluatePatch up to round-off.
-//  * PoleCap sectors: fitPoleCap's (4, d) pieces, within 1e-7 of the bounding-box diagonal; each
+//  * PoleCap sectors: fitPoleCap's (5, d) pieces, within 1e-7 of the bounding-box diagonal; each
 //    piece covers v in [piece, piece + 1] / pieces of its sector, and its row u = 0 is the pole
 //    (a collapsed edge).
 // Parameters: u along the rows of BezierPatch::cp, v along its columns, so du x dv is

@@ -1,5 +1,5 @@
 // BezierView (.bv) export of a PatchSet: exact bicubic Bezier patches for the B-spline patches,
-// interpolating (4, d) Bezier patches for the pole caps (rules and accuracy in the header).
+// interpolating (5, d) Bezier patches for the pole caps (rules and accuracy in the header).
 #include "core/spline/bezierview_export.h"
 
 #include "core/mesh/constants.h"
@@ -26,7 +26,7 @@ namespace {
 double vectorLength(const Point& v) { return std::hypot(v.x, v.y, v.z); }
 
 
-constexpr int kCapRadialDegree = 4;  // the cap is a quartic in u (header)
+constexpr int kCapRadialDegree = 5;  // the cap is a quintic in u (header)
 
 bool isFinite(const Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -176,7 +176,7 @@ std::vector<BezierPatch> approximatePoleCap(const Patch& cap, int split, int ang
       for (int k = 0; k <= dv; ++k)
         samples[size_t(m) * (dv + 1) + k] =
             evaluatePatch(cap, uNodes[size_t(m)], pieceParameter(piece, split, vNodes[size_t(k)])).position;
-    // Interpolate along u (exact: a quartic), then along v.
+    // Interpolate along u (exact: a quintic), then along v.
     for (int i = 0; i <= du; ++i)
       for (int k = 0; k <= dv; ++k) {
         Point sum(0.0);
@@ -246,8 +246,9 @@ double patchBoxDiagonal(const PatchSet& set) {
 
 void checkFinitePatches(const PatchSet& set, const std::string& sourceName) {
   for (size_t k = 0; k < set.patches.size(); ++k)
-    for (const Point& p : set.patches[k].cp)
-      if (!isFinite(p) || !isFinite(set.patches[k].origin))
+    for (int c = 0; c < 18; ++c)
+      if (!isFinite(c < 16 ? set.patches[k].cp[size_t(c)] : set.patches[k].capExtra[size_t(c - 16)]) ||
+          !isFinite(set.patches[k].origin))
         throw InputError(sourceName, 0,
                          "patch " + std::to_string(k) + " (" + patchKindName(set.patches[k].kind) +
                              ") has a non-finite control point: the input's coordinates are too large, too small or degenerate");

@@ -20,15 +20,17 @@
 //    knot span) becomes one bicubic Bezier patch ("5 / 3 3", 16 points), converted per direction by
 //    b0 = (d0 + 4 d1 + d2) / 6, b1 = (2 d1 + d2) / 3, b2 = (d1 + 2 d2) / 3, b3 = (d1 + 4 d2 + d3) / 6.
 //    Exact: the same polynomial, up to round-off in the last digits.
-//  * PoleCap (patch.h's Taylor cap, sector j of a pole): T(x, y) + h(u) D0(v) + R g(u) D1(v) is a
-//    polynomial of degree 4 in u (T quadratic in r = R u, h and g quartics) but not a polynomial in
-//    v: T, D0 and D1 hold cos and sin of the angle and its double. Each sector is split along v into
-//    S equal sub-sectors, each written as a "5 / 4 d" patch (d = BezierViewOptions::capAngularDegree,
-//    default 5) that interpolates evaluatePatch at 5 equidistant u times d + 1 Chebyshev-Lobatto v
-//    nodes. Consequences:
-//      - along u the patch is exact (interpolating a quartic by a quartic);
+//  * PoleCap (patch.h's Taylor cap, sector j of a pole): T(x, y) + h(u) D0(v) + R g(u) D1(v)
+//    + R^2 k(u) D2(v) is a polynomial of degree 5 in u (T quadratic in r = R u, h, g, k quintics)
+//    but not a polynomial in v: T, D0, D1 and D2 hold cos and sin of the angle and its double. Each
+//    sector is split along v into S equal sub-sectors, each written as a "5 / 5 d" patch
+//    (d = BezierViewOptions::capAngularDegree, default 5) that interpolates evaluatePatch at 6
+//    equidistant u times d + 1 Chebyshev-Lobatto v nodes. Consequences:
+//      - along u the patch is exact (interpolating a quintic by a quintic);
 //      - the seam with ring L (u = 1) is exact: there the cap is the ring's cubic boundary curve,
-//        which degree-d interpolation reproduces (d >= 3);
+//        which degree-d interpolation reproduces (d >= 3); its cross-seam derivatives are not
+//        (they hold the angle's cos and sin): the written pieces meet the ring C2 only to the fit's
+//        accuracy;
 //      - the sub-sectors' radial edges (v = node 0 and node d) are exact, so neighbouring caps and
 //        sub-sectors meet watertight, and every patch's row u = 0 is the pole p0 itself (a collapsed
 //        edge, as on the Utah teapot's lid);
@@ -40,8 +42,11 @@
 //    maximum is reported (BezierViewStats), so a file never claims more accuracy than it has.
 //    Measured on 33 x 65 samples per sub-sector (tests/core/bezierview_export_test.cpp: caps of
 //    valence 5, 6, 8, 12, globes, the mushroom and the assets; C2PS, RTS, BPS; levels 0-2): at most
-//    6.8e-8 of the bounding-box diagonal (valence 6, level 0, one piece a sector), at most 5.1e-8 at
-//    level 2; C2PS's narrow sectors at level 2 stay below 4e-11. Valence 5 needs 2 pieces.
+//    9.9e-8 of the bounding-box diagonal (globe valence 5, BPS level 2, one piece a sector; RTS
+//    9.8e-8 there), 5.2e-8 for valence 6 at level 0; C2PS's narrow sectors at level 2 stay below
+//    1e-11. Valence 5 needs 2 pieces at level 0. (The C1 cap's quartic fit measured at most 6.8e-8,
+//    5.1e-8 at level 2: the C2 cap's extra angular terms, from F and d2T/dr2, cost up to twice
+//    that, still within the 1e-7 target.)
 #pragma once
 
 #include <array>
@@ -87,7 +92,7 @@ struct BezierViewStats {
 // The exact bicubic Bezier form of a B-spline patch (any kind but PoleCap). [O(1)]
 BezierPatch bicubicBezier(const Patch& patch);
 
-// A PoleCap split into `split` sub-sectors along v, each interpolated by a (4, angularDegree)
+// A PoleCap split into `split` sub-sectors along v, each interpolated by a (5, angularDegree)
 // Bezier patch (rules above), in order of v. [O(split * angularDegree^2)]
 std::vector<BezierPatch> approximatePoleCap(const Patch& cap, int split, int angularDegree);
 

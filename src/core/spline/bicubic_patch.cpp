@@ -117,29 +117,30 @@ void addHomogeneousTerm(int k, double r, double c, double s, const Point& F, con
   d.xy += r2 * (kd * (kd - 2.0) * c * s * F + (kd - 1.0) * (c * c - s * s) * Ft - c * s * Ftt);
 }
 
-// PoleCap (patch.h): T(x,y) + h(u) D0(v) + R g(u) D1(v), differentiated exactly in the Cartesian
-// parameters (x,y) = r (cos 2 pi tau, sin 2 pi tau), which are regular at the pole (u = 0) where
-// (u,v) is not. Normal, K, H come from the (x,y) derivatives; du..dvv are converted to (u,v).
+// PoleCap (patch.h): T(x,y) + h(u) D0(v) + R g(u) D1(v) + R^2 k(u) D2(v), differentiated exactly in
+// the Cartesian parameters (x,y) = r (cos 2 pi tau, sin 2 pi tau), which are regular at the pole
+// (u = 0) where (u,v) is not. Normal, K, H come from the (x,y) derivatives; du..dvv are converted
+// to (u,v).
 SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
   const Point& p0 = patch.cp[0];
   const Point& p1 = patch.cp[1];
   const Point& p2 = patch.cp[2];
-  const bool quadratic = patch.cp[11].x > 1.5;  // taylorOrder 2; order 1 keeps the tangent plane only
-  const Point p3 = quadratic ? patch.cp[3] : Point(0.0);
-  const Point p4 = quadratic ? patch.cp[4] : Point(0.0);
-  const Point p5 = quadratic ? patch.cp[5] : Point(0.0);
-  const double tau0 = patch.cp[10].x, dtau = patch.cp[10].y, R = patch.cp[10].z;
+  const Point& p3 = patch.cp[3];
+  const Point& p4 = patch.cp[4];
+  const Point& p5 = patch.cp[5];
+  const double n = double(patch.sectorCount), R = kPoleCapRadius;
+  const double tau0 = double(patch.sector) / n, dtau = 1.0 / n;
 
   // Angle and Cartesian parameters of (u,v).
   const double theta = kTwoPi * (tau0 + dtau * v);
   const double c = std::cos(theta), s = std::sin(theta);
   const double r = R * u, x = r * c, y = r * s;
 
-  // Boundary curve C(v) and cross-boundary derivative E(v), with theta-derivatives
-  // (d theta / d v = 2 pi dtau).
+  // The ring's boundary curve C(v) and its first and second radial derivatives E(v), F(v) at r = R,
+  // with theta-derivatives (d theta / d v = 2 pi dtau).
   double bv[4], dbv[4], ddbv[4];
   bsplineBasis(v, bv, dbv, ddbv);
-  Point C(0.0), Cv(0.0), Cvv(0.0), E(0.0), Ev(0.0), Evv(0.0);
+  Point C(0.0), Cv(0.0), Cvv(0.0), E(0.0), Ev(0.0), Evv(0.0), F(0.0), Fv(0.0), Fvv(0.0);
   for (int k = 0; k < 4; ++k) {
     C += bv[k] * patch.cp[6 + k];
     Cv += dbv[k] * patch.cp[6 + k];
@@ -147,29 +148,44 @@ SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
     E += bv[k] * patch.cp[12 + k];
     Ev += dbv[k] * patch.cp[12 + k];
     Evv += ddbv[k] * patch.cp[12 + k];
+    const Point& f = capSecondPoint(patch, k);
+    F += bv[k] * f;
+    Fv += dbv[k] * f;
+    Fvv += ddbv[k] * f;
   }
   const double vPerTheta = 1.0 / (kTwoPi * dtau), vPerTheta2 = vPerTheta * vPerTheta;
 
-  // Taylor expansion on the circle r = R and its radial derivative there, with theta-derivatives:
-  // T(Rc, Rs) = p0 + R (p1 c + p2 s) + R^2 (p3 + p4 c2 + p5 s2), dT/dr = p1 c + p2 s + 2R (...).
+  // Taylor expansion on the circle r = R and its first and second radial derivatives there, with
+  // theta-derivatives: T(Rc, Rs) = p0 + R (p1 c + p2 s) + R^2 Q, dT/dr = p1 c + p2 s + 2R Q,
+  // d2T/dr2 = 2 Q, Q = p3 + p4 c2 + p5 s2.
   const double c2 = std::cos(2.0 * theta), s2 = std::sin(2.0 * theta);
-  const Point Tcircle = p0 + R * (p1 * c + p2 * s) + R * R * (p3 + p4 * c2 + p5 * s2);
-  const Point TcircleT = R * (p2 * c - p1 * s) + 2.0 * R * R * (p5 * c2 - p4 * s2);
-  const Point TcircleTT = -R * (p1 * c + p2 * s) - 4.0 * R * R * (p4 * c2 + p5 * s2);
-  const Point Tr = p1 * c + p2 * s + 2.0 * R * (p3 + p4 * c2 + p5 * s2);
-  const Point TrT = p2 * c - p1 * s + 4.0 * R * (p5 * c2 - p4 * s2);
-  const Point TrTT = -(p1 * c + p2 * s) - 8.0 * R * (p4 * c2 + p5 * s2);
+  const Point Q = p3 + p4 * c2 + p5 * s2, Qt = 2.0 * (p5 * c2 - p4 * s2), Qtt = -4.0 * (p4 * c2 + p5 * s2);
+  const Point L = p1 * c + p2 * s, Lt = p2 * c - p1 * s, Ltt = -L;
+  const Point Tcircle = p0 + R * L + R * R * Q, TcircleT = R * Lt + R * R * Qt, TcircleTT = R * Ltt + R * R * Qtt;
+  const Point Tr = L + 2.0 * R * Q, TrT = Lt + 2.0 * R * Qt, TrTT = Ltt + 2.0 * R * Qtt;
+  const Point Trr = 2.0 * Q, TrrT = 2.0 * Qt, TrrTT = 2.0 * Qtt;
 
-  // Mismatches on the circle: D0 of position, D1 of the radial derivative.
+  // Mismatches on the circle: D0 of position, D1 of the first, D2 of the second radial derivative.
   const Point D0 = C - Tcircle, D0t = Cv * vPerTheta - TcircleT, D0tt = Cvv * vPerTheta2 - TcircleTT;
   const Point D1 = E - Tr, D1t = Ev * vPerTheta - TrT, D1tt = Evv * vPerTheta2 - TrTT;
+  const Point D2 = F - Trr, D2t = Fv * vPerTheta - TrrT, D2tt = Fvv * vPerTheta2 - TrrTT;
 
-  // h(r/R) D0 + R g(r/R) D1 = r^3 A + r^4 B: A = 4 D0 / R^3 - D1 / R^2, B = -3 D0 / R^4 + D1 / R^3.
-  const double iR = 1.0 / R, iR2 = iR * iR, iR3 = iR2 * iR, iR4 = iR3 * iR;
+  // h(r/R) D0 + R g(r/R) D1 + R^2 k(r/R) D2 = r^3 A + r^4 B + r^5 C with (h, g, k as polynomials:
+  // h = 10u^3 - 15u^4 + 6u^5, g = -4u^3 + 7u^4 - 3u^5, k = (u^3 - 2u^4 + u^5) / 2)
+  // A = (10 D0 - 4R D1 + R^2/2 D2) / R^3, B = (-15 D0 + 7R D1 - R^2 D2) / R^4,
+  // C = (6 D0 - 3R D1 + R^2/2 D2) / R^5.
+  const double iR = 1.0 / R, iR3 = iR * iR * iR, iR4 = iR3 * iR, iR5 = iR4 * iR;
+  const auto combine = [&](double w0, double w1, double w2, const Point& d0, const Point& d1, const Point& d2) {
+    return w0 * d0 + (w1 * R) * d1 + (w2 * R * R) * d2;
+  };
   CartesianDerivatives f;
-  addHomogeneousTerm(3, r, c, s, 4.0 * iR3 * D0 - iR2 * D1, 4.0 * iR3 * D0t - iR2 * D1t, 4.0 * iR3 * D0tt - iR2 * D1tt, f);
-  addHomogeneousTerm(4, r, c, s, -3.0 * iR4 * D0 + iR3 * D1, -3.0 * iR4 * D0t + iR3 * D1t,
-                     -3.0 * iR4 * D0tt + iR3 * D1tt, f);
+  const double weights[3][3] = {{10.0, -4.0, 0.5}, {-15.0, 7.0, -1.0}, {6.0, -3.0, 0.5}};
+  const double scale[3] = {iR3, iR4, iR5};
+  for (int t = 0; t < 3; ++t) {
+    const double* w = weights[t];
+    addHomogeneousTerm(3 + t, r, c, s, scale[t] * combine(w[0], w[1], w[2], D0, D1, D2),
+                       scale[t] * combine(w[0], w[1], w[2], D0t, D1t, D2t), scale[t] * combine(w[0], w[1], w[2], D0tt, D1tt, D2tt), f);
+  }
 
   // Taylor part (32) and its derivatives.
   const Point T = p0 + p1 * x + p2 * y + p3 * (x * x + y * y) + p4 * (x * x - y * y) + p5 * (2.0 * x * y);
@@ -180,8 +196,9 @@ SurfacePoint evaluatePoleCap(const Patch& patch, double u, double v) {
   const Point Pxy = 2.0 * p5 + f.xy;
 
   SurfacePoint sp;
-  const double h = u * u * u * (4.0 - 3.0 * u), g = u * u * u * (u - 1.0);
-  sp.position = T + h * D0 + (R * g) * D1;
+  const double u3 = u * u * u;
+  const double h = u3 * ((6.0 * u - 15.0) * u + 10.0), g = -u3 * (u - 1.0) * (3.0 * u - 4.0), k = 0.5 * u3 * (u - 1.0) * (u - 1.0);
+  sp.position = T + h * D0 + (R * g) * D1 + (R * R * k) * D2;
   computeCurvature(Px, Py, Pxx, Pxy, Pyy, sp);
 
   // (u,v) derivatives: u = r/R, theta = 2 pi (tau0 + dtau v).

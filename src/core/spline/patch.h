@@ -9,23 +9,32 @@
 //   For a polar ring patch one of u, v runs radially and the other around the pole; turned by
 //   Patch::ringTurn (turnedPatch), u runs outwards (link i -> i + 1) and v around.
 //
-// PoleCap (the Taylor cap closing the hole at a pole, paper (32)), per sector j of n:
-//   cp[0..5]  = p0..p5 (in the cap's own radial unit: the hole is r <= R)
-//   cp[6..9]  = B-spline control points b_{j-1..j+2} of the ring's inner boundary curve at r = R
-//   cp[10]    = (tau0, dtau, R): the sector covers tau in [tau0, tau0 + dtau] (tau in turns, [0,1))
-//   cp[11]    = (taylorOrder, 0, 0): 2 = full quadratic Taylor (C2PS, RTS), 1 = tangent plane (BPS)
-//   cp[12..15]= B-spline control points e_{j-1..j+2} of the ring's cross-boundary derivative at
-//               r = R, per unit r: e_j = (q3j - q1j) / 2 (the radial derivative of the ring patch
-//               between links 2-3 at link 2; vectors, not positions)
-//   Parameter: u = r / R in [0,1] (u = 0 is the pole), v in [0,1] along the sector.
-//   Position: T(x,y) + h(u) D0(v) + R g(u) D1(v), T = p0 + p1 x + p2 y + p3(x^2+y^2) + p4(x^2-y^2)
-//   + 2 p5 x y, (x,y) = r (cos 2 pi tau, sin 2 pi tau); D0 = C(v) - T(R c, R s) with C the boundary
-//   B-spline of cp[6..9]; D1 = E(v) - dT/dr(R c, R s) with E the derivative B-spline of cp[12..15];
-//   h(u) = u^3 (4 - 3u), g(u) = u^3 (u - 1). h(1) = 1, h'(1) = 0, g(1) = 0, g'(1) = 1, so position
-//   and radial derivative at u = 1 are the ring's (C1 across the seam); h, g and their first and
-//   second derivatives vanish at u = 0, so the value, normal and curvature at the pole are exactly
-//   those of the Taylor expansion.
-//
+// PoleCap (the Taylor cap closing the hole at a pole, paper (32)), per sector j of n
+// (Patch::sector = j, Patch::sectorCount = n):
+//   cp[0..5]   = p0..p5 (in the cap's own radial unit: the hole is r <= R = kPoleCapRadius = 2);
+//                p3..p5 are zero where the scheme gives the tangent plane only (BPS)
+//   cp[6..9]   = B-spline control points b_{j-1..j+2} of the ring's inner boundary curve at r = R:
+//                b_j = (q1j + 4 q2j + q3j) / 6
+//   cp[12..15] = B-spline control points e_{j-1..j+2} of the ring's first radial derivative at
+//                r = R, per unit r: e_j = (q3j - q1j) / 2
+//   cp[10], cp[11], capExtra[0], capExtra[1] = B-spline control points f_{j-1..j+2} of the ring's
+//                second radial derivative at r = R, per unit r^2: f_j = q1j - 2 q2j + q3j
+//                (capSecondPoint reads them in order)
+//   (q_ij: point i of column j of the pole's grid at the cap's level, link i at r = i; b, e, f
+//   are value, first and second derivative of the ring patches between links 2-3 at link 2; e and
+//   f are vectors, not positions.)
+//   Parameter: u = r / R in [0,1] (u = 0 is the pole), v in [0,1] along the sector, which covers
+//   tau = (j + v) / n turns.
+//   Position: T(x,y) + h(u) D0(v) + R g(u) D1(v) + R^2 k(u) D2(v), T = p0 + p1 x + p2 y
+//   + p3 (x^2+y^2) + p4 (x^2-y^2) + 2 p5 x y, (x,y) = r (cos 2 pi tau, sin 2 pi tau); on the circle
+//   r = R the mismatches D0 = C(v) - T, D1 = E(v) - dT/dr, D2 = F(v) - d2T/dr2 with C, E, F the
+//   B-splines of b, e, f. Quintic blends
+//     h(u) = u^3 (6u^2 - 15u + 10),  g(u) = -u^3 (u - 1)(3u - 4),  k(u) = u^3 (u - 1)^2 / 2,
+//   with h(1) = 1, g'(1) = 1, k''(1) = 1 and every other value, first and second derivative at
+//   u = 1 zero: position and first and second radial derivatives at u = 1 are the ring's (C2
+//   across the seam). h, g, k vanish to second order at u = 0 (factor u^3), so the value, normal and
+//   curvature at the pole are exactly those of the Taylor expansion. The blend is
+//   r^3 A(v) + r^4 B(v) + r^5 C(v) (homogeneous in r), so the cap is a polynomial of degree 5 in u.
 // EDGES (edgeLevelDelta): edge s runs from corner s to corner s+1 of the parameter square, i.e.
 //   s = 0: v = 0, s = 1: u = 1, s = 2: v = 1, s = 3: u = 0 (for a face-based patch: the face's side
 //   from vertex s to vertex s+1; for a PoleCap: 0 and 2 radial, 1 the boundary with the ring, 3 the
@@ -57,7 +66,7 @@ struct Patch {
   // The positions among cp (isPositionPoint) are relative to `origin`: a feature-adaptive
   // refinement keeps each part of a level in a frame of its own (adaptive_refiner.h, Precision), so
   // a patch at level 20 keeps double precision relative to its own size. Vectors (a PoleCap's
-  // p1..p5 and e_j) and parameters are not. Zero for patches of the uniform refinement.
+  // p1..p5, e_j and f_j) are not. Zero for patches of the uniform refinement.
   Point origin{0.0};
   PatchKind kind = PatchKind::Regular;
   uint8_t level = 0;   // refinement level the patch was extracted at
@@ -74,7 +83,18 @@ struct Patch {
   int16_t link = -1;
   int8_t ringTurn = 0;
   std::array<int8_t, 4> edgeLevelDelta{};  // per edge (order above): level jump to the neighbour
+  int32_t sectorCount = 0;                 // PoleCap: n, the sectors of its pole; 0 otherwise
+  // PoleCap: f_{j+1}, f_{j+2} (layout above: a cap needs 18 vectors); zero for every other kind.
+  std::array<Point, 2> capExtra{};
 };
+
+inline constexpr double kPoleCapRadius = 2.0;  // R: a cap covers r <= R, inside link 2
+
+// f_{j-1+k} (k = 0..3) of a PoleCap: the ring's second radial derivative (layout above). [O(1)]
+inline const Point& capSecondPoint(const Patch& cap, int k) {
+  return k < 2 ? cap.cp[size_t(10 + k)] : cap.capExtra[size_t(k - 2)];
+}
+inline Point& capSecondPoint(Patch& cap, int k) { return k < 2 ? cap.cp[size_t(10 + k)] : cap.capExtra[size_t(k - 2)]; }
 
 // Differential quantities of a patch at one parameter (u,v).
 struct SurfacePoint {

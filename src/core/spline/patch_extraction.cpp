@@ -600,17 +600,20 @@ void poleCaps(const PolarGrid& grid, const TaylorCoefficients& taylor, const Poi
               int pole) {
   const int n = grid.n;
   auto boundaryPoint = [&](int j) { return (grid.q(1, j) + 4.0 * grid.q(2, j) + grid.q(3, j)) / 6.0; };
-  // Radial derivative of the ring patch between links 2-3 at link 2 (per unit r: link i at r = i).
+  // First and second radial derivatives of the ring patch between links 2-3 at link 2 (per unit r:
+  // link i at r = i).
   auto crossDerivative = [&](int j) { return 0.5 * (grid.q(3, j) - grid.q(1, j)); };
+  auto secondDerivative = [&](int j) { return grid.q(1, j) - 2.0 * grid.q(2, j) + grid.q(3, j); };
   for (int j = 0; j < n; ++j) {
     Patch cap;
     cap.kind = PatchKind::PoleCap;
     cap.origin = origin;
-    for (int k = 0; k < 6; ++k) cap.cp[k] = taylor.p[k];
+    // The tangent plane only where the scheme has no quadratic terms (BPS): p3..p5 stay zero.
+    for (int k = 0; k < (taylor.order >= 2 ? 6 : 3); ++k) cap.cp[k] = taylor.p[k];
     for (int k = 0; k < 4; ++k) cap.cp[6 + k] = boundaryPoint(j - 1 + k);
     for (int k = 0; k < 4; ++k) cap.cp[12 + k] = crossDerivative(j - 1 + k);
-    cap.cp[10] = Point(double(j) / n, 1.0 / n, 2.0);
-    cap.cp[11] = Point(double(taylor.order), 0.0, 0.0);
+    for (int k = 0; k < 4; ++k) capSecondPoint(cap, k) = secondDerivative(j - 1 + k);
+    cap.sectorCount = n;
     cap.level = uint8_t(std::clamp(level, 0, 255));
     cap.ring = level;
     cap.pole = pole;
@@ -1056,6 +1059,7 @@ void refreshFromStack(const LevelStack& refinement, const PatchSources& sources,
                                                              : level.origin(level.mesh.faceVerts[level.mesh.faceStart[patch.face]]);
       for (size_t i = 0; i < made.size() && k + i < set.patches.size(); ++i) {
         set.patches[k + i].cp = made[i].cp;
+        set.patches[k + i].capExtra = made[i].capExtra;
         set.patches[k + i].origin = origin;
       }
       k += std::max<size_t>(made.size(), 1);

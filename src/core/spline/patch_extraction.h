@@ -18,9 +18,9 @@
 // At the finest level L:
 //  * PoleCap: every pole of finest().poles with Taylor data (RefinedLevel::poleTaylor) and at least
 //    3 links gets one cap per column j (patch.h layout): p0..p5 of poleTaylor, boundary points
-//    b_j = (q1j + 4 q2j + q3j) / 6 (the inner boundary of ring L), cross-boundary derivative points
-//    e_j = (q3j - q1j) / 2 (ring L's radial derivative there, so the cap is C1 with the ring),
-//    tau0 = j/n, dtau = 1/n, R = 2.
+//    b_j = (q1j + 4 q2j + q3j) / 6 (the inner boundary of ring L), first and second radial
+//    derivative points e_j = (q3j - q1j) / 2 and f_j = q1j - 2 q2j + q3j (ring L's there, so the
+//    cap is C2 with the ring), sector j of sectorCount n.
 //    They replace the faces between links 0-1 and 1-2.
 //  * EndCap: every other face not covered. Built in Bezier form and converted to the B-spline
 //    control points of patch.h (Bezier -> B-spline per direction: d0 = 6b0 - 7b1 + 2b2,
