@@ -387,7 +387,7 @@ TEST_CASE("extraction: the pole cap's boundary is ring L's inner boundary") {
   }
 }
 
-TEST_CASE("extraction: the pole cap is C1 with ring L (same normal along the seam) and keeps the pole's K, H") {
+TEST_CASE("extraction: the pole cap meets ring L with the same normal along the seam (C2: continuity_test) and keeps the pole's K, H") {
   struct Shape {
     const char* name;
     PolyMesh mesh;
