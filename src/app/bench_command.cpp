@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_floor.h"
 #include "app/bench_peer.h"
 #include "app/cli_options.h"
 #include "app/json_writer.h"
@@ -111,7 +112,12 @@ struct AdaptiveBench {
   bool compared = false, peerFailed = false;
   std::string comparison;
   AdaptivePeerTiming theirs;
+  AdaptiveFloorBytes floorBytes;  // bench_floor.h
+  StreamBandwidth bandwidth;
 };
+
+// A stage's floor: its bytes at the machine's all-thread triad bandwidth, in ms.
+double floorMs(double bytes, const StreamBandwidth& bandwidth) { return bytes / (bandwidth.allThreadsGBs * 1e6); }
 
 // One repetition of our path: the refinement, its patches and --edit's update.
 void timeAdaptiveRefinement(const BenchArgs& o, const PolyMesh& mesh, int rep, size_t budgetFaces, AdaptiveBench& b) {
@@ -126,6 +132,7 @@ void timeAdaptiveRefinement(const BenchArgs& o, const PolyMesh& mesh, int rep, s
   PatchSet set = extractPatches(refinement, &sources);
   b.patches.push_back(millisecondsSince(t0));
   b.patchCount = set.patches.size();
+  if (rep == 0) b.floorBytes = adaptiveFloorBytes(refinement, set);
   // The path's own peak: before the level steps keep more refinements and surfaces alive.
   if (rep == 0) b.peakRssMb = peakResidentMegabytes();
   b.totalFaces = refinement.totalFaces();
@@ -226,6 +233,19 @@ std::string adaptiveBenchJson(const BenchArgs& o, const std::string& scheme, con
   w.key("level_faces").beginArray();
   for (size_t faces : b.levelFaces) w.value(faces);
   w.endArray();
+  // The memory-bound floor (bench_floor.h): bytes, floor time at the all-thread triad bandwidth, and
+  // the fraction of the floor each stage reaches (floor time / measured time).
+  w.key("floor").beginObject().field("triad_gbs_one_thread", b.bandwidth.oneThreadGBs);
+  w.field("triad_gbs_all_threads", b.bandwidth.allThreadsGBs).field("threads", size_t(b.bandwidth.threads));
+  const std::pair<const char*, std::pair<double, double>> stages[] = {{"topology", {b.floorBytes.topology, b.topologyMs}},
+                                                                       {"positions", {b.floorBytes.positions, b.positionsMs}},
+                                                                       {"patches", {b.floorBytes.patches, b.patchesMs}}};
+  for (const auto& [name, bytesAndMs] : stages) {
+    const double ms = floorMs(bytesAndMs.first, b.bandwidth);
+    w.key(name).beginObject().field("bytes", bytesAndMs.first).field("floor_ms", ms);
+    w.field("fraction", ms / std::max(bytesAndMs.second, 1e-9)).endObject();
+  }
+  w.endObject();
   if (o.vsOpenSubdiv) {
     if (b.compared) {
       w.key("peer").beginObject().field("name", theirs.name);
@@ -261,6 +281,13 @@ void printAdaptiveBench(const BenchArgs& o, const std::string& scheme, const Ada
               "all levels; peak RSS %.1f MB\n",
               o.input.c_str(), scheme.c_str(), o.levels, b.topologyMs, b.positionsMs, b.patchesMs, b.patchCount, b.totalFaces,
               b.peakRssMb);
+  const auto fraction = [&](double bytes, double ms) { return 100.0 * floorMs(bytes, b.bandwidth) / std::max(ms, 1e-9); };
+  std::printf("memory-bound floor (triad %.1f GB/s on 1 thread, %.1f GB/s on %u): topology %.2f MB %.1f%%, positions %.2f MB "
+              "%.1f%%, patches %.2f MB %.1f%% of the floor's speed\n",
+              b.bandwidth.oneThreadGBs, b.bandwidth.allThreadsGBs, b.bandwidth.threads, b.floorBytes.topology / 1e6,
+              fraction(b.floorBytes.topology, b.topologyMs), b.floorBytes.positions / 1e6,
+              fraction(b.floorBytes.positions, b.positionsMs), b.floorBytes.patches / 1e6,
+              fraction(b.floorBytes.patches, b.patchesMs));
   if (o.edit) std::printf("edit (one base vertex moved -> new patches): %.3f ms\n", median(b.edits));
   if (o.levels >= 1)
     std::printf("level steps on the kept hierarchy: %d -> %d %.3f ms, back %.3f ms, again %.3f ms\n", o.levels - 1,
@@ -317,6 +344,7 @@ int runAdaptiveBench(const BenchArgs& o, const PolyMesh& mesh) {
   }
   b.positionsMs = median(b.positions), b.topologyMs = std::max(0.0, median(b.build) - b.positionsMs);
   b.patchesMs = median(b.patches);
+  b.bandwidth = measureTriad();  // in the same run as the timings
   compareWithAdaptivePeer(o, peer, peerWanted, b);
   const std::string json = adaptiveBenchJson(o, scheme, model, b);  // also for text: it refuses a non-finite number
   if (o.json) std::cout << json << "\n";
