@@ -35,6 +35,17 @@ def control_object(context):
     return obj, ""
 
 
+def show_colours_in_solid_mode(context):
+    """Solid mode shows the active colour attribute (Viewport Shading > Color > Attribute) in the 3D
+    views of the current screen that showed material colours, so the K colours appear at once."""
+    screen = context.screen
+    for area in (screen.areas if screen else ()):
+        if area.type == 'VIEW_3D':
+            shading = area.spaces.active.shading
+            if shading.color_type == 'MATERIAL':
+                shading.color_type = 'VERTEX'
+
+
 class POLARVIEW_OT_subdivide(bpy.types.Operator):
     """Make the exact limit surface of the active mesh as a new object beside it"""
     bl_idname = "polarview.subdivide"
@@ -66,6 +77,7 @@ class POLARVIEW_OT_subdivide(bpy.types.Operator):
             self.report({'ERROR'}, refusal(source, error))
             return {'CANCELLED'}
         live.remember(source)
+        show_colours_in_solid_mode(context)
         self.report({'INFO'}, summary)
         return {'FINISHED'}
 

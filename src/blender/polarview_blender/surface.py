@@ -109,9 +109,10 @@ def build_mesh(name, tess):
     me.polygons.foreach_set("loop_total", numpy.full(nt, 3, numpy.int32))
     me.polygons.foreach_set("use_smooth", numpy.ones(nt, bool))
     me.update(calc_edges=True)
-    # Exact normals as custom split normals (auto smooth must be on for Blender 3.x to use them).
-    me.use_auto_smooth = True
-    me.auto_smooth_angle = math.pi
+    # Exact normals as custom split normals (Blender 3.x uses them only with Auto Smooth on).
+    if hasattr(me, "use_auto_smooth"):  # gone in Blender 4.1, where custom normals need no switch
+        me.use_auto_smooth = True
+        me.auto_smooth_angle = math.pi
     me.normals_split_custom_set_from_vertices(tess["normals"].astype(numpy.float32))
     for attribute, values in ((GAUSSIAN, tess["gaussian"]), (MEAN, tess["mean"])):
         me.attributes.new(attribute, 'FLOAT', 'POINT').data.foreach_set("value", values.astype(numpy.float32))
