@@ -187,6 +187,42 @@ def check_measure(control, scheme, level, label):
     return measured
 
 
+class FakeLayout:
+    """Stands in for a panel's UILayout (a background Blender draws no panels): records the
+    labels, properties and operators a draw() asks for."""
+
+    def __init__(self):
+        self.lines, self.alert = [], False
+
+    def label(self, text="", icon='NONE'):
+        self.lines.append(text)
+
+    def prop(self, data, name, **options):
+        self.lines.append(f"[{name} = {getattr(data, name)}]")
+
+    def operator(self, idname, text="", icon='NONE'):
+        self.lines.append(f"<{idname} {text}>")
+        return type("OperatorProperties", (), {})()
+
+    def box(self):
+        return self
+
+    def row(self, align=False):
+        return self
+
+    def column(self, align=False):
+        return self
+
+
+def draw_panel():
+    """The sidebar panel's lines for the active object."""
+    import polarview_blender.panel as panel
+    cls = panel.POLARVIEW_PT_panel
+    fake = type("Panel", (), {"layout": FakeLayout(), "draw_report": cls.draw_report})()
+    cls.draw(fake, bpy.context)
+    return fake.layout.lines
+
+
 def subdivide(obj, **arguments):
     for other in bpy.context.selected_objects:
         other.select_set(False)
@@ -228,6 +264,11 @@ def case_surfaces():
     stats, got = compare_with_cli(model, result, "c2ps", 3, 4, "default")
     poles, pole_error = check_poles(model, got, "c2ps", "default", [12])
     measured = check_measure(model, "c2ps", 3, "default")
+    lines = draw_panel()
+    for expected in ("[scheme = c2ps]", "[level = 3]", "[samples = 4]", "Poles: 1",
+                     f"v0  valence 12  K {poles[0]['gaussian_curvature']:.6g}  H {poles[0]['mean_curvature']:.6g}",
+                     f"Area {measured['area']:.6g}", f"Volume {measured['volume']:.6g}", "<polarview.export STEP>"):
+        check(expected in lines, f"the panel does not show {expected!r}: {lines}")
     print(f"default c2ps 3 samples 4: {stats}; pole K {poles[0]['gaussian_curvature']:.9g}, "
           f"H {poles[0]['mean_curvature']:.9g} (worst relative error at the pole {pole_error:.3g}); "
           f"area {measured['area']:.9g}, volume {measured['volume']:.9g}")
@@ -246,6 +287,26 @@ def case_surfaces():
     check(subdivide(sphere, scheme="rts", level=2, samples=2) == {'FINISHED'}, "rts did not finish")
     compare_with_cli(sphere, sphere.polarview.result, "rts", 2, 2, "sphere_rts")
     check_poles(sphere, result_arrays(sphere.polarview.result), "rts", "sphere_rts", [32, 32])
+
+    # A Blender cylinder: n-gon caps, no poles until "N-gons to fans" makes each cap a fan.
+    bpy.ops.mesh.primitive_cylinder_add(location=(0.0, -4.0, 0.0))
+    cylinder = bpy.context.active_object
+    check(subdivide(cylinder, scheme="c2ps", level=2, samples=2) == {'FINISHED'}, "cylinder did not finish")
+    report = json.loads(cylinder.polarview.report)
+    check(report["poles"] == [] and report["fan_faces"] == 2, f"cylinder as it is: {report['poles']}, {report['fan_faces']}")
+    check("2 faces of 5+ sides: try N-gons to fans" in draw_panel(), "the panel does not suggest N-gons to fans")
+    check(subdivide(cylinder, ngon_to_fan=True) == {'FINISHED'}, "cylinder with fans did not finish")
+    report = json.loads(cylinder.polarview.report)
+    check([p["valence"] for p in report["poles"]] == [32, 32], f"the fanned caps are no poles: {report['poles']}")
+    path = os.path.join(args.work, "cylinder.obj")
+    write_obj(cylinder, path)
+    cli("convert", path, "--ngon-to-fan", "-o", os.path.join(args.work, "cylinder_fans.obj"))
+    fans = bpy.data.objects.new("cylinder_fans", bpy.data.meshes.new("cylinder_fans"))
+    lines = open(os.path.join(args.work, "cylinder_fans.obj")).read().split("\n")
+    fans.data.from_pydata([tuple(map(float, l.split()[1:4])) for l in lines if l.startswith("v ")], [],
+                          [[int(i.split("/")[0]) - 1 for i in l.split()[1:]] for l in lines if l.startswith("f ")])
+    compare_with_cli(fans, cylinder.polarview.result, "c2ps", 2, 2, "cylinder_fans")
+    bpy.data.objects.remove(fans)
 
     # Settings: arguments left out come from the panel's settings; a re-run reuses the result object.
     objects = len(bpy.data.objects)
@@ -328,6 +389,8 @@ def case_broken():
     check("no extension _core" in module.LOAD_ERROR, f"LOAD_ERROR does not say what is missing: {module.LOAD_ERROR}")
     bpy.ops.mesh.primitive_uv_sphere_add()
     print("refused:", expect_error("could not be loaded").strip())
+    lines = draw_panel()
+    check(lines[0] == "polarview could not load" and "could not be loaded" in " ".join(lines), f"the panel shows {lines}")
 
 
 {"surfaces": case_surfaces, "broken": case_broken}[args.case]()

@@ -51,8 +51,8 @@ def crease_count(obj):
 
 def control_mesh(obj, ngon_to_fan):
     """The module's Mesh of the object's control mesh (n-gons of 5 or more sides fanned when asked)
-    and the number of faces that were fanned. ValueError (the module's message) for a mesh it
-    refuses."""
+    and the number of faces of 5 or more sides (fanned or not). ValueError (the module's message)
+    for a mesh it refuses."""
     pv = require()
     if len(obj.data.polygons) == 0:
         raise ValueError(f"{obj.name} has no faces: the control mesh needs faces")
@@ -61,8 +61,7 @@ def control_mesh(obj, ngon_to_fan):
     fanned = int(numpy.count_nonzero(sizes >= MIN_FAN_SIDES))
     if ngon_to_fan and fanned:
         mesh, _ = pv.ngon_to_fan(mesh, MIN_FAN_SIDES)
-        return mesh, fanned
-    return mesh, 0
+    return mesh, fanned
 
 
 def analyse(mesh, scheme, level, fan_faces_left):
