@@ -9,7 +9,8 @@ packages=(cmake ninja-build pkg-config g++
           xvfb xauth mesa-utils libgl1-mesa-dri
           occt-draw libocct-draw-dev
           pybind11-dev python3-pybind11 python3-dev python3-pip python3-venv python3-setuptools python3-wheel python3-numpy python3-scipy python3-pytest python3-matplotlib
-          python3-meshio)
+          python3-meshio
+          blender)
 missing=()
 # npm (for the glTF validator below): the image's Node.js carries it; Debian's npm where it does not.
 command -v npm >/dev/null || packages+=(npm)

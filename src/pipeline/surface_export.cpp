@@ -72,36 +72,45 @@ void curvatureByArea(const Tessellation& mesh, const PatchSet& set, std::vector<
 // vertices, 5.13 GB peak RSS (304 bytes a vertex).
 constexpr double kBytesPerTessellationVertex = 320.0;
 
-// Refuses (BudgetRefusal, before any allocation) a tessellation whose estimate exceeds the memory
-// budget, naming the densest --samples that fits.
-void checkTessellationBudget(const PatchSet& set, const ExportSettings& settings) {
-  const auto bytesAt = [&](int samples) { return double(set.patches.size()) * samples * samples * kBytesPerTessellationVertex; };
-  const double budget = double(memoryBudgetBytes(settings.memoryBudget));
-  if (bytesAt(settings.samples) <= budget) return;
-  int fitting = settings.samples;
+}  // namespace
+
+void checkTessellationBudget(const PatchSet& set, int samples, size_t memoryBudget, const std::string& source) {
+  const auto bytesAt = [&](int n) { return double(set.patches.size()) * n * n * kBytesPerTessellationVertex; };
+  const double budget = double(memoryBudgetBytes(memoryBudget));
+  if (bytesAt(samples) <= budget) return;
+  int fitting = samples;
   while (fitting > 1 && bytesAt(fitting) > budget) --fitting;
   const std::string advice = bytesAt(fitting) <= budget ? "--samples " + std::to_string(fitting) + " fits"
                                                         : "a lower level is needed";
   char text[256];
   std::snprintf(text, sizeof text,
                 "a tessellation of %zu patches with --samples %d needs about %.3g GB, over the memory budget of %.3g GB (%s)",
-                set.patches.size(), settings.samples, bytesAt(settings.samples) / 1e9, budget / 1e9, advice.c_str());
-  throw BudgetRefusal(settings.source, 0, text);
+                set.patches.size(), samples, bytesAt(samples) / 1e9, budget / 1e9, advice.c_str());
+  throw BudgetRefusal(source, 0, text);
 }
+
+TessellationColouring colourTessellation(const Tessellation& mesh, const PatchSet& set) {
+  std::vector<double> values, weights;
+  curvatureByArea(mesh, set, values, weights);
+  TessellationColouring colouring;
+  colouring.range = values.empty() ? ColourInterval{} : colourStatistics(values, weights, kColourQuantile).automaticInterval();
+  const ShadingParams::ColorMap map = ShadingParams{}.colormap;
+  colouring.colours.reserve(mesh.positions.size());
+  for (double k : mesh.gaussian) colouring.colours.push_back(colorMapCpu(map, k, colouring.range));
+  return colouring;
+}
+
+namespace {
 
 // Tessellates `set`, colours K as the viewer's default Gaussian view does and makes the file's bytes
 // with `bytesOf` (which refuses non-finite values), all before the file is opened.
 ExportWriter prepareTessellation(const PatchSet& set, const ExportSettings& settings,
                                  std::string (*bytesOf)(const Tessellation&, const TessellationFileInfo&)) {
-  checkTessellationBudget(set, settings);
+  checkTessellationBudget(set, settings.samples, settings.memoryBudget, settings.source);
   const Tessellation mesh = tessellatePatchSet(set, settings.samples);
-  std::vector<double> values, weights;
-  curvatureByArea(mesh, set, values, weights);
-  const ColourInterval range = values.empty() ? ColourInterval{} : colourStatistics(values, weights, kColourQuantile).automaticInterval();
-  const ShadingParams::ColorMap map = ShadingParams{}.colormap;
-  TessellationFileInfo info{settings.source, settings.schemeLabel, settings.level, {}, {}};
-  info.colours.reserve(mesh.positions.size());
-  for (double k : mesh.gaussian) info.colours.push_back(colorMapCpu(map, k, range));
+  TessellationColouring coloured = colourTessellation(mesh, set);
+  const ColourInterval range = coloured.range;
+  TessellationFileInfo info{settings.source, settings.schemeLabel, settings.level, std::move(coloured.colours), {}};
   char colouring[96];
   std::snprintf(colouring, sizeof colouring, "K through the paper colour map over [%.6g, %.6g]", range.low, range.high);
   info.colouring = colouring;

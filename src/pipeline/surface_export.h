@@ -48,6 +48,20 @@ struct TessellationStats {
   ColourInterval colours;                       // the K the colour map spans
 };
 
+// The colours the tessellation files (PLY, glb) give their vertices: K through the viewer's default
+// colour map over its automatic range (the 10th and 90th percentiles of K by area, end caps left
+// out). The Python module's tessellate() hands out the same. [O(vertices log vertices)]
+struct TessellationColouring {
+  ColourInterval range;             // the K the colour map spans
+  std::vector<glm::vec3> colours;   // per vertex, sRGB in [0, 1]
+};
+TessellationColouring colourTessellation(const Tessellation& mesh, const PatchSet& set);
+
+// Refuses (BudgetRefusal named after `source`, before anything is allocated) a tessellation of `set`
+// with `samples` segments a patch edge whose estimate exceeds `memoryBudget` bytes (0: the default
+// of memory_budget.h), naming the densest --samples that fits. [O(1)]
+void checkTessellationBudget(const PatchSet& set, int samples, size_t memoryBudget, const std::string& source);
+
 // What a CAD file holds (STEP, IGES).
 struct CadStats {
   size_t surfaces = 0;

@@ -1,7 +1,8 @@
 // The Python module `polarview` (docs/python.md): numpy arrays in and out over the core and the
 // pipeline. One file per topic: meshes (mesh_bindings.cpp), patches and their evaluation
 // (patch_bindings.cpp), the analysis of poles, spectra and subdivision matrices
-// (analysis_bindings.cpp); report trees as dicts (report_conversion.cpp); module.cpp joins them and
+// (analysis_bindings.cpp), tessellations, surface files and the n-gon conversion
+// (export_bindings.cpp); report trees as dicts (report_conversion.cpp); module.cpp joins them and
 // maps errors to Python's. The package over it (python/polarview/__init__.py) checks the arguments.
 #pragma once
 
@@ -43,5 +44,6 @@ py::object toPython(const ReportValue& value, IntegralNumbers integral);
 void bindMeshes(py::module_& m);
 void bindPatches(py::module_& m);
 void bindAnalysis(py::module_& m);
+void bindExport(py::module_& m);
 
 }  // namespace polarview::python

@@ -68,4 +68,5 @@ PYBIND11_MODULE(_core, m) {
   bindMeshes(m);
   bindPatches(m);
   bindAnalysis(m);
+  bindExport(m);
 }

@@ -16,7 +16,8 @@ from . import _core
 from ._core import Mesh, Patches
 
 __all__ = ["Mesh", "Patches", "SCHEMES", "POLAR_SCHEMES", "schemes", "scheme_name", "load", "shape", "refine",
-           "limit_patches", "evaluate", "pole", "spectrum", "subdivision_matrix", "measure"]
+           "limit_patches", "evaluate", "pole", "spectrum", "subdivision_matrix", "measure",
+           "tessellate", "export_surface", "ngon_to_fan"]
 
 # The scheme names in menu order and those with polar rules, from the C++ scheme table.
 SCHEMES = tuple(row["name"] for row in _core.schemes())
@@ -145,3 +146,41 @@ def measure(mesh, scheme="c2ps", level=3, points=8, memory_budget=0):
     density; None when open). ``points`` (2..16) Gauss-Legendre points per direction per patch."""
     return _core.measure(_instance("mesh", mesh, Mesh), _scheme(scheme), _integer("level", level),
                          _integer("points", points), _memory_budget(memory_budget))
+
+
+def _flag(argument, value):
+    if not isinstance(value, (bool, numpy.bool_)):
+        raise TypeError(f"{argument} must be a bool, not {type(value).__name__}")
+    return bool(value)
+
+
+def tessellate(mesh, scheme="c2ps", level=3, samples=8, uniform=False, memory_budget=0):
+    """The watertight triangle mesh ``polarview export OUT.ply --samples N`` writes, as a dict of
+    arrays: ``positions``, ``normals`` (V, 3) float64 (exact unit normals), ``gaussian``, ``mean``
+    (V,) (exact K and H), ``triangles`` (T, 3) uint32 (counter-clockwise seen from the normal),
+    ``colours`` (V, 3) float32 (sRGB: K through the viewer's colour map over ``colour_range``, as
+    the file's), ``patch`` (V,) and ``uv`` (V, 2) (where each vertex was evaluated), the edge counts
+    ``boundary_edges``, ``non_manifold_edges``, ``misoriented_edges`` and ``watertight``.
+    ``samples`` (1..64): segments along each patch edge."""
+    return _core.tessellate(_instance("mesh", mesh, Mesh), _scheme(scheme), _integer("level", level),
+                            _integer("samples", samples), _flag("uniform", uniform), _memory_budget(memory_budget))
+
+
+def export_surface(mesh, path, scheme="c2ps", level=3, format=None, samples=8, units="mm", uniform=False,
+                   memory_budget=0):
+    """Writes the limit surface as ``polarview export`` does: bv, step, iges, ply or glb, from
+    ``format`` or the path's extension; ``units`` (mm, m, inch) for STEP and IGES. The file is made
+    atomically (nothing is left on an error). Returns the CLI's summary line."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a str or os.PathLike, not {type(path).__name__}")
+    return _core.export_surface(_instance("mesh", mesh, Mesh), os.fspath(path), _scheme(scheme),
+                                _integer("level", level), "" if format is None else _text("format", format),
+                                _integer("samples", samples), _text("units", units), _flag("uniform", uniform),
+                                _memory_budget(memory_budget))
+
+
+def ngon_to_fan(mesh, min_sides=5):
+    """``polarview convert --ngon-to-fan``: every face of ``min_sides`` (>= 3) or more corners
+    becomes a triangle fan around a new vertex at its centroid (a cylinder's n-gon caps become
+    poles). Returns ``(mesh, centres)``: the new Mesh and the ids of the new centre vertices."""
+    return _core.ngon_to_fan(_instance("mesh", mesh, Mesh), _integer("min_sides", min_sides))

@@ -35,3 +35,12 @@ def subdivision_matrix(mesh: Mesh, scheme: str = "c2ps") -> Any:
     """One refinement step as a scipy.sparse.csr_matrix."""
 def measure(mesh: Mesh, scheme: str = "c2ps", level: int = 3, points: int = 8, memory_budget: int = 0) -> dict[str, Any]:
     """Area, enclosed volume, centroids and inertia, as `polarview measure --json` reports them."""
+def tessellate(mesh: Mesh, scheme: str = "c2ps", level: int = 3, samples: int = 8, uniform: bool = False,
+               memory_budget: int = 0) -> dict[str, Any]:
+    """The watertight triangle mesh `polarview export OUT.ply --samples N` writes, as arrays."""
+def export_surface(mesh: Mesh, path: Union[str, PathLike[str]], scheme: str = "c2ps", level: int = 3,
+                   format: Optional[str] = None, samples: int = 8, units: str = "mm", uniform: bool = False,
+                   memory_budget: int = 0) -> str:
+    """Writes the limit surface as `polarview export` does (bv, step, iges, ply, glb); returns its summary."""
+def ngon_to_fan(mesh: Mesh, min_sides: int = 5) -> tuple[Mesh, list[int]]:
+    """`polarview convert --ngon-to-fan`: faces of min_sides or more corners become fans; (mesh, centres)."""
