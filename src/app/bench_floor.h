@@ -11,7 +11,8 @@
 namespace polarview::cli {
 
 // STREAM's triad a[i] = b[i] + s c[i] over three arrays of `doubles` each (far beyond the caches at
-// the default 2^23: 192 MB), best of `repeats`; 24 bytes an element, as STREAM counts it.
+// the default 2^23: 192 MB), best of `repeats`; 24 bytes an element, as STREAM counts it
+// (bench_peer.h triadGigabytesPerSecond, which the uniform bench prints too).
 struct StreamBandwidth {
   double oneThreadGBs = 0.0;   // one thread (the stages run on one)
   double allThreadsGBs = 0.0;  // every hardware thread, each on its part of the arrays

@@ -89,7 +89,7 @@ struct PoleArgs : SurfaceArgs {
 
 OptionTable refineTable(RefineArgs& o) {
   return {inputRow(o.input), outputRow(&o.output, "OUT.obj", "the finest level's mesh (OBJ)"), schemeRow(o),
-          levelsRow(o, {"--levels", "--level"}), uniformFirstStepRow(o), memoryBudgetRow(o)};
+          levelsRow(o, {"--levels", "--level"}), uniformFirstStepRow(o), memoryBudgetRow(o), threadsRow()};
 }
 
 int runRefine(RefineArgs& o) {
@@ -114,7 +114,7 @@ OptionTable exportTable(ExportArgs& o) {
                     &o.samples, 1, 64),
           flagOption({"--uniform"}, "refine every face (default: feature-adaptive, as view and render)", &o.uniform),
           uniformFirstStepRow(o),
-          memoryBudgetRow(o)};
+          memoryBudgetRow(o), threadsRow()};
 }
 
 // The row of surface_export.h's table that writes o.output: --format, else the extension.
@@ -162,7 +162,7 @@ OptionTable continuityTable(ContinuityArgs& o) {
           levelsRow(o, {"--level", "--levels"}),
           intOption({"--samples"}, "K", "points compared along each patch side (default 8)", &o.samples, 1, 64),
           uniformFirstStepRow(o),
-          memoryBudgetRow(o),
+          memoryBudgetRow(o), threadsRow(),
           jsonRow(&o.json)};
 }
 

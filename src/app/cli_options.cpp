@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/mesh/obj_io.h"
+#include "core/subdiv/parallel_for.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/scheme_choice.h"
 
@@ -106,6 +107,16 @@ OptionRow uniformFirstStepRow(SurfaceArgs& o) {
 OptionRow memoryBudgetRow(SurfaceArgs& o) {
   return actionOption({"--memory-budget"}, "SIZE", "refuse levels whose estimate needs more (2G, 500M, bytes; default 80% of "
                       "the available memory)", [&o](const std::string& text) { o.memoryBudget = parseByteSize("--memory-budget", text); });
+}
+OptionRow threadsRow() {
+  static int threads = 0;
+  OptionRow row = intOption({"--threads"}, "N", "the most threads a pass may use (default: POLARVIEW_THREADS, else the cores, at most "
+                            "8; the output is the same)", &threads, 1, 256);
+  row.store = [parse = row.store](const std::string& text) {
+    parse(text);
+    setThreadLimit(unsigned(threads));
+  };
+  return row;
 }
 OptionRow jsonRow(bool* json) { return flagOption({"--json"}, "print JSON", json); }
 

@@ -59,6 +59,8 @@ OptionRow levelsRow(SurfaceArgs& o, std::vector<std::string> names);
 std::string firstStepSchemes();
 OptionRow uniformFirstStepRow(SurfaceArgs& o);
 OptionRow memoryBudgetRow(SurfaceArgs& o);
+// --threads N: the process's thread limit (parallel_for.h setThreadLimit), set as it is parsed.
+OptionRow threadsRow();
 OptionRow jsonRow(bool* json);
 
 // After parsing: --scheme c2ps-u and --uniform-first-step are one choice. The Section-6 variant

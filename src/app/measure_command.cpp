@@ -27,7 +27,7 @@ OptionTable measureTable(MeasureArgs& o) {
           intOption({"--points"}, "N", "Gauss-Legendre points per direction on each patch (2..16, default 8)", &o.points, 2,
                     16),
           uniformFirstStepRow(o),
-          memoryBudgetRow(o),
+          memoryBudgetRow(o), threadsRow(),
           jsonRow(&o.json)};
 }
 

@@ -71,6 +71,26 @@ text = open('$tmp/v.txt').read()
 assert 'opensubdiv-3.5 adaptive:' in text and '(agree)' in text and 'speed-up' in text, text
 " || fail "bench --adaptive --vs-opensubdiv: $(cat "$tmp/v.json" "$tmp/t.json")"
 fi
+# The floor (bench_floor.h): the bytes each stage must move, recomputed here from what the bench
+# reports (faces of each level: 4-byte indices; the patches' count), never above what was measured.
+"$exe" bench "$tmp/cap64.obj" --scheme cc --levels 6 --adaptive --reps 3 --json > "$tmp/f.json" || fail "floor run"
+python3 - "$tmp/f.json" "$tmp/cap64.obj" <<'PY' || fail "the floor: $(cat "$tmp/f.json")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+f = d["floor"]
+assert f["triad_gbs_one_thread"] > 0.5 and f["triad_gbs_all_threads"] > 0.5 and f["threads"] >= 1, f
+faces = d["level_faces"]
+# Topology: each level >= 1 writes its quads' 4 indices and a parent per face, reads the parent's corners
+# (Catmull-Clark: quads from level 1 on; level 0's corners as the file has them).
+corners = [4 * n for n in faces]
+corners[0] = sum(len(line.split()) - 1 for line in open(sys.argv[2]) if line.startswith("f "))
+expected = sum(4 * (corners[m] + faces[m] + corners[m - 1]) for m in range(1, len(faces)))
+assert abs(f["topology"]["bytes"] - expected) <= 1e-9 * expected, (f["topology"]["bytes"], expected)
+assert f["patches"]["bytes"] > 400 * d["patches"], f
+for stage in ("topology", "positions", "patches"):
+    s = f[stage]
+    assert 0 < s["fraction"] <= 1 and abs(s["floor_ms"] - s["bytes"] / (f["triad_gbs_all_threads"] * 1e6)) < 1e-9, (stage, s)
+PY
 # --edit without --adaptive is a usage error.
 set +e
 "$exe" bench "$tmp/cap64.obj" --scheme cc --levels 1 --edit > /dev/null 2>&1

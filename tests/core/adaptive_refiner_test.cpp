@@ -19,6 +19,7 @@
 #include "core/spline/pole_taylor.h"
 #include "core/spline/ring_curvature.h"
 #include "core/subdiv/adaptive_refiner.h"
+#include "core/subdiv/parallel_for.h"
 #include "support/osd_shapes.h"
 
 using namespace polarview;
@@ -544,4 +545,37 @@ TEST_CASE("adaptive: the face estimate stops at its budget, however large the po
   const PolyMesh small64 = shapes::polarCap(64, 3);
   const std::vector<size_t> counted = estimateAdaptiveFaceCounts(small64, {Scheme::C2PS, 4, false}, 1 << 24);
   CHECK(counted[4] == AdaptiveRefinement(small64, {Scheme::C2PS, 4, false}).totalFaces());
+}
+
+TEST_CASE("adaptive: the refinement and its patches are the same bit for bit on 1, 2 and 3 threads") {
+  // Large enough that the extraction and the refiner's passes split (parallel_for.h thresholds).
+  const PolyMesh mesh = loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj");
+  auto run = [&](unsigned threads) {
+    setThreadLimit(threads);
+    AdaptiveRefinement refinement(mesh, {Scheme::C2PS, 7, false}, "default.obj");
+    PatchSources sources;
+    PatchSet set = extractPatches(refinement, &sources);
+    setThreadLimit(0);
+    return std::make_tuple(std::move(set), std::move(sources), refinement.level(refinement.levelCount() - 1).mesh.points);
+  };
+  const auto [one, oneSources, onePoints] = run(1);
+  REQUIRE(one.patches.size() > 3 * 1024);
+  for (unsigned threads : {2u, 3u}) {
+    CAPTURE(threads);
+    const auto [many, manySources, manyPoints] = run(threads);
+    CHECK(manyPoints == onePoints);
+    CHECK(many.kindCounts == one.kindCounts);
+    CHECK(manySources.stencil == oneSources.stencil);
+    CHECK(manySources.sidesMissing == oneSources.sidesMissing);
+    REQUIRE(many.patches.size() == one.patches.size());
+    size_t differing = 0;
+    for (size_t k = 0; k < one.patches.size(); ++k) {
+      const Patch &a = one.patches[k], &b = many.patches[k];
+      differing += !(a.cp == b.cp && a.origin == b.origin && a.kind == b.kind && a.level == b.level && a.ring == b.ring &&
+                     a.pole == b.pole && a.face == b.face && a.sector == b.sector && a.link == b.link &&
+                     a.ringTurn == b.ringTurn && a.edgeLevelDelta == b.edgeLevelDelta && a.capExtra == b.capExtra &&
+                     a.sectorCount == b.sectorCount);
+    }
+    CHECK(differing == 0);
+  }
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <thread>
 #include <vector>
 
@@ -10,12 +11,24 @@
 
 namespace polarview {
 
+// The most threads a pass starts: setThreadLimit's number (the CLI's --threads, POLARVIEW_THREADS),
+// else the hardware's concurrency up to 8 (measured to pay; more only when asked). Results never
+// depend on it.
+inline std::atomic<unsigned>& threadLimitSetting() {
+  static std::atomic<unsigned> limit{0};
+  return limit;
+}
+inline void setThreadLimit(unsigned threads) { threadLimitSetting() = threads; }
+inline unsigned threadLimit() {
+  const unsigned set = threadLimitSetting();
+  return set ? set : std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+}
+
 // Threads worth using for `work` elements: 1 below a size where starting threads costs more than it
-// saves, else the hardware's concurrency (at most 8). [O(1)]
+// saves, else up to threadLimit(). [O(1)]
 inline unsigned threadsFor(size_t work) {
   constexpr size_t kMinWorkPerThread = size_t(1) << 15;
-  const unsigned hardware = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-  return unsigned(std::min<size_t>(hardware, std::max<size_t>(1, work / kMinWorkPerThread)));
+  return unsigned(std::min<size_t>(threadLimit(), std::max<size_t>(1, work / kMinWorkPerThread)));
 }
 
 // The start of piece k of [0, count) cut into `parts` contiguous pieces (k = parts gives count). [O(1)]
