@@ -16,7 +16,13 @@ namespace polarview {
 
 std::string WebScene::loadObj(const std::string& path, const std::string& name) {
   LoadedModel loaded = readModelFile(path);
-  if (!loaded.error.empty()) return name + ": " + loaded.error;
+  if (!loaded.error.empty()) {
+    // The reader names the file by its path in the page's memory: the user knows it by its name.
+    std::string error = loaded.error;
+    if (error.compare(0, path.size(), path) == 0) error = name + error.substr(path.size());
+    else error = name + ": " + error;
+    return error;
+  }
   model_ = loaded.model;
   model_.name = name;
   model_.generation = ++generation_;
