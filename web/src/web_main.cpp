@@ -398,7 +398,7 @@ void WebApp::overlay(const std::vector<ScreenRect>& rects, const ScreenRect& are
   for (size_t v = 0; v < rects.size() && v < scene_.views().size(); ++v) {
     const ScreenRect& r = rects[v];
     const ViewMesh& view = scene_.views()[v];
-    std::string title = std::string(schemeChoiceLabel(view.scheme)) + " \xC2\xB7 " + std::to_string(view.level);
+    std::string title = std::string(schemeChoiceLabel(view.scheme)) + ", level " + std::to_string(view.level);
     if (!view.error.empty()) title += ": " + view.error;
     const ImVec2 size = font->CalcTextSizeA(fontSize, 1e9f, r.w - 20.0f, title.c_str());
     const ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 8.0f);
