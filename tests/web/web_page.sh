@@ -6,7 +6,9 @@
 #  3. screenshots the default model, C2PS | CC at level 3 with Gaussian curvature, and compares it
 #     with `polarview render` of the same view (compare_images.py says how, and why not pixel-exact);
 #  4. the first complete frame must come within 3 s of navigation (first_frame.mjs, real time);
-#  5. ?model=broken.obj: the page says why on the page (and keeps drawing the default model).
+#  5. ?model=broken.obj: the page says why on the page (and keeps drawing the default model);
+#  6. a reader's walkthrough in one browser (walkthrough.mjs: pick, drop, file chooser, link,
+#     Copy link, Screenshot (PNG), the address's parameters).
 # Skipped (exit 77, ctest SKIP_RETURN_CODE) where emscripten, chromium or ImGui's sources are
 # missing: bash third_party/install_deps.sh installs them.
 # Usage: web_page.sh POLARVIEW ROOT (needs a display for `render`: the README runs ctest under xvfb-run)
@@ -82,4 +84,20 @@ case "$message" in
   broken.obj*) ;;
   *) echo "FAIL: no message naming broken.obj on the page"; exit 1 ;;
 esac
+
+# --- 6. a reader's walkthrough (walkthrough.mjs): pick at the pole against `polarview pole`, a dropped
+#     OBJ (default.obj x 1000: same colours, range x 1e-6), Open OBJ..., a drag and its link reopened,
+#     Copy link, Screenshot (PNG), the address's parameters and bad ones ---
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2 * 1000, $3 * 1000, $4 * 1000; next} {print}' \
+  "$root/assets/default.obj" >"$work/default_x1000.obj"
+pole=$("$polarview" pole "$root/assets/default.obj" --json | /usr/bin/python3 -c 'import json, sys
+p = json.load(sys.stdin)["poles"][0]
+print(json.dumps({"position": p["limit"], "K": p["gaussian_curvature"], "H": p["mean_curvature"]}))')
+start=$(seconds)
+if ! node --no-warnings --experimental-websocket "$root/tests/web/walkthrough.mjs" "$base" "$work" "$root" "$pole"; then
+  mkdir -p "$root/build-web/test-output" && cp "$work"/*.png "$root/build-web/test-output/" 2>/dev/null || true
+  echo "FAIL: the walkthrough (its screenshots kept in build-web/test-output)"
+  exit 1
+fi
+echo "walkthrough: $(awk "BEGIN { printf \"%.1f\", $(seconds) - $start }") s"
 echo "web page: ok"

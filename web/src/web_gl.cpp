@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -60,6 +61,11 @@ void setUniform(unsigned program, const char* name, float v) { glUniform1f(glGet
 void setUniform(unsigned program, const char* name, int v) { glUniform1i(glGetUniformLocation(program, name), v); }
 void setUniform(unsigned program, const char* name, const glm::vec3& v) {
   glUniform3fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v));
+}
+
+float floatInRange(double value) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return std::isnan(value) ? 0.0f : float(std::clamp(value, -kMax, kMax));
 }
 
 // The part of `hint` perpendicular to `axis` (unit), as render/patch_renderer.cpp makes it.
@@ -184,8 +190,10 @@ void WebRenderer::drawView(size_t view, const WebDraw& draw) {
   const glm::vec3 keyView = glm::length(shading.keyLightView) > 1e-6f ? glm::normalize(shading.keyLightView) : glm::vec3(0, 0, 1);
   const glm::vec3 keyWorld = glm::normalize(glm::transpose(draw.viewRotation) * keyView);
   setUniform(program, "u_colormap", int(shading.colormap));
-  setUniform(program, "u_rangeLow", float(shading.range.low));
-  setUniform(program, "u_rangeHigh", float(shading.range.high));
+  // The range in the vertices' curvature units (render/patch_renderer.cpp does the same).
+  const double unit = shading.mode == ShadingParams::Mode::Gaussian ? draw.curvatureUnit * draw.curvatureUnit : draw.curvatureUnit;
+  setUniform(program, "u_rangeLow", floatInRange(shading.range.low * unit));
+  setUniform(program, "u_rangeHigh", floatInRange(shading.range.high * unit));
   setUniform(program, "u_curvatureLighting", shading.curvatureLighting);
   setUniform(program, "u_eye", draw.eye);
   setUniform(program, "u_keyLight", keyWorld);

@@ -23,7 +23,8 @@ struct WebDraw {
   glm::mat3 viewRotation{1.0f};  // world -> view axes (the key light is fixed in view space)
   glm::vec3 eye{0.0f};
   glm::ivec4 viewport{0, 0, 1, 1};  // framebuffer pixels, bottom-left origin
-  float radius = 1.0f;              // model bounding radius (light-line spacing and plane)
+  float radius = 1.0f;              // model bounding radius in units of curvatureUnit (light lines)
+  double curvatureUnit = 1.0;       // WebScene::unit(): the vertices' K and H are K * unit^2, H * unit
   ShadingParams shading;
 };
 

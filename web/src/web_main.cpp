@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,11 +73,32 @@ void showMessage(const std::string& text) {
   EM_ASM({ if (window.pvShowMessage) window.pvShowMessage(UTF8ToString($0)); }, text.c_str());
 }
 
+// What the canvas shows, also as text on the page's hidden #status element (data-KEY): the model's
+// name, the views, the colour range, the pick readout, where the pole markers and the buttons are.
+// Screen readers and the tests (tests/web/walkthrough.mjs) read it; set only when it changed.
+void publishStatus(const char* key, const std::string& value) {
+  static std::map<std::string, std::string> published;
+  std::string& known = published[key];
+  if (known == value && !value.empty()) return;
+  known = value;
+  EM_ASM({
+    const status = document.getElementById('status');
+    if (status) status.dataset[UTF8ToString($0)] = UTF8ToString($1);
+  }, key, value.c_str());
+}
+
+std::string rectJson(const ImVec2& min, const ImVec2& max) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "[%.1f,%.1f,%.1f,%.1f]", min.x, min.y, max.x, max.y);
+  return buffer;
+}
+
 class WebApp {
  public:
   bool start();
   void frame();
-  void loadObj(const std::string& path, const std::string& name);
+  // keepCamera: the address's model= (its camera= stays); otherwise the new model is framed.
+  void loadObj(const std::string& path, const std::string& name, bool keepCamera);
   void applyQuery(const std::string& query);
 
  private:
@@ -155,7 +177,7 @@ void WebApp::applyQuery(const std::string& query) {
   }
 }
 
-void WebApp::loadObj(const std::string& path, const std::string& name) {
+void WebApp::loadObj(const std::string& path, const std::string& name, bool keepCamera) {
   const std::string error = scene_.loadObj(path, name);
   if (!error.empty()) {
     // The previous model stays on screen; the message says why the new one is not shown.
@@ -167,7 +189,7 @@ void WebApp::loadObj(const std::string& path, const std::string& name) {
   showMessage("");
   hasReadout_ = false;
   readout_.clear();
-  framed_ = false;
+  framed_ = keepCamera && settings_.camera.has_value();
 }
 
 // [SECTION] Frame
@@ -220,6 +242,17 @@ void WebApp::frame() {
 
   if (screenshot_) takeScreenshot();
   publishLink();
+  publishStatus("model", scene_.model().name);
+  std::string views;
+  for (const ViewMesh& view : scene_.views())
+    views += (views.empty() ? "" : ";") + std::string(schemeChoiceCliName(view.scheme)) + " level " + std::to_string(view.level) + " " +
+             std::to_string(view.indices.size() / 3) + " triangles" + (view.error.empty() ? "" : ": " + view.error);
+  publishStatus("views", views);
+  char range[80];
+  std::snprintf(range, sizeof range, "%.9g %.9g", shading_.range.low, shading_.range.high);
+  publishStatus("range", range);
+  publishStatus("pick", readout_);
+  publishStatus("error", error_);
   if (!firstFrameReported_ && !scene_.views().empty() && ImGui::GetFrameCount() >= 2) {
     // ImGui draws auto-sized windows from their second frame: the page is complete from here.
     firstFrameReported_ = true;
@@ -245,13 +278,16 @@ WebDraw WebApp::drawOf(size_t view, const ScreenRect& rect, int framebufferHeigh
   const glm::dmat4 viewMatrix = camera.viewMatrix();
   const glm::dmat4 proj = camera.projectionMatrix(aspect, glm::dvec3(0.0), scene_.radius());
   WebDraw draw;
-  draw.viewProjection = glm::mat4(proj * viewMatrix);
+  // The vertices are in units of scene_.unit() (web_scene.h): so are the eye and the radius.
+  const double unit = scene_.unit();
+  draw.viewProjection = glm::mat4(proj * viewMatrix * glm::scale(glm::dmat4(1.0), glm::dvec3(unit)));
   draw.viewRotation = glm::mat3(glm::mat4(viewMatrix));
-  draw.eye = glm::vec3(camera.eye());
+  draw.eye = glm::vec3(camera.eye() / unit);
   const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
   draw.viewport = glm::ivec4(int(rect.x * scale), framebufferHeight - int((rect.y + rect.h) * scale), int(rect.w * scale),
                              int(rect.h * scale));
-  draw.radius = float(scene_.radius());
+  draw.radius = float(scene_.radius() / unit);
+  draw.curvatureUnit = unit;
   draw.shading = shading_;
   return draw;
 }
@@ -314,6 +350,7 @@ void WebApp::panels() {
   ImGui::Begin("polarview", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::TextWrapped("%s", scene_.model().name.c_str());
   if (ImGui::Button("Open OBJ...")) EM_ASM({ document.getElementById('file').click(); });
+  std::string buttons = "{\"open\":" + rectJson(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
   ImGui::SameLine();
   ImGui::TextDisabled("or drop a file on the page");
   if (!error_.empty()) {
@@ -380,8 +417,11 @@ void WebApp::panels() {
   }
   ImGui::Separator();
   if (ImGui::Button("Screenshot (PNG)")) screenshot_ = true;
+  buttons += ",\"screenshot\":" + rectJson(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
   ImGui::SameLine();
-  if (ImGui::Button("Copy link")) EM_ASM({ navigator.clipboard && navigator.clipboard.writeText(window.location.href); });
+  if (ImGui::Button("Copy link")) EM_ASM({ if (window.pvCopyLink) window.pvCopyLink(); });
+  buttons += ",\"copyLink\":" + rectJson(ImGui::GetItemRectMin(), ImGui::GetItemRectMax()) + "}";
+  publishStatus("buttons", buttons);
   for (size_t v = 0; v < scene_.views().size(); ++v) {
     const ViewMesh& view = scene_.views()[v];
     ImGui::TextDisabled("%s: %zu triangles, %d samples/edge, %.0f ms", schemeChoiceLabel(view.scheme), view.indices.size() / 3,
@@ -395,6 +435,7 @@ void WebApp::overlay(const std::vector<ScreenRect>& rects, const ScreenRect& are
   ImFont* font = ImGui::GetFont();
   const float fontSize = ImGui::GetFontSize();
   // Titles, the separating lines, pole markers and the picked point.
+  std::string poleMarkers = "[";
   for (size_t v = 0; v < rects.size() && v < scene_.views().size(); ++v) {
     const ScreenRect& r = rects[v];
     const ViewMesh& view = scene_.views()[v];
@@ -422,12 +463,16 @@ void WebApp::overlay(const std::vector<ScreenRect>& rects, const ScreenRect& are
       if (!project(pole, &at2)) continue;
       list->AddCircle(at2, 7.0f, IM_COL32(0, 0, 0, 200), 20, 3.0f);
       list->AddCircle(at2, 7.0f, IM_COL32(235, 235, 235, 255), 20, 1.5f);
+      char marker[64];
+      std::snprintf(marker, sizeof marker, "%s[%zu,%.2f,%.2f]", poleMarkers.size() > 1 ? "," : "", v, at2.x, at2.y);
+      poleMarkers += marker;
     }
     if (hasReadout_ && readoutView_ == int(v) && project(readoutPoint_, &at2)) {
       list->AddCircle(at2, 8.0f, IM_COL32(0, 0, 0, 200), 20, 3.0f);
       list->AddCircle(at2, 8.0f, IM_COL32(255, 200, 80, 255), 20, 1.5f);
     }
   }
+  publishStatus("poles", poleMarkers + "]");
   // One colour bar for every view (the range is shared), with the histogram of the shown values.
   const bool curvature = shading_.mode == ShadingParams::Mode::Gaussian || shading_.mode == ShadingParams::Mode::Mean;
   if (curvature) {
@@ -515,8 +560,8 @@ void frameCallback(void* app) { static_cast<WebApp*>(app)->frame(); }
 extern "C" {
 // The page's entry points (web/index.html): a file written to the in-memory file system by the
 // file picker, a drop or a model= address; a new query string.
-EMSCRIPTEN_KEEPALIVE void pv_load_obj(const char* path, const char* name) {
-  if (polarview::theApp) polarview::theApp->loadObj(path, name);
+EMSCRIPTEN_KEEPALIVE void pv_load_obj(const char* path, const char* name, int fromAddress) {
+  if (polarview::theApp) polarview::theApp->loadObj(path, name, fromAddress != 0);
 }
 EMSCRIPTEN_KEEPALIVE void pv_set_query(const char* query) {
   if (polarview::theApp) polarview::theApp->applyQuery(query);

@@ -34,6 +34,7 @@ std::string WebScene::loadObj(const std::string& path, const std::string& name) 
   }
   centre_ = 0.5 * (lo + hi);
   radius_ = std::max(0.5 * glm::length(hi - lo), 1e-300);
+  unit_ = std::ldexp(1.0, std::ilogb(radius_));
   views_.clear();
   poles_.clear();
   ++revision_;
@@ -65,16 +66,19 @@ ViewMesh WebScene::buildView(SchemeChoice scheme, int level) const {
     view.samples = std::clamp(int(std::floor(std::sqrt(perPatch))), 1, kWebMaxSamples);
     const Tessellation mesh = tessellatePatchSet(set, view.samples);
 
-    // Interleave: position relative to the centre, normal, K, H (float: the GPU's precision).
+    // Interleave: position relative to the centre in units of unit(), normal, K and H in those
+    // units (float: the GPU's precision and range; the camera and the colour range are scaled
+    // alike when drawn).
+    const double unitK = unit_ * unit_, unitH = unit_;
     view.vertices.resize(mesh.positions.size() * kWebVertexFloats);
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
       float* out = &view.vertices[v * kWebVertexFloats];
-      const glm::dvec3 p = mesh.positions[v] - centre_;
+      const glm::dvec3 p = (mesh.positions[v] - centre_) / unit_;
       const auto finite = [](double x) { return std::isfinite(x) ? float(std::clamp(x, -3e38, 3e38)) : 0.0f; };
       out[0] = float(p.x), out[1] = float(p.y), out[2] = float(p.z);
       out[3] = float(mesh.normals[v].x), out[4] = float(mesh.normals[v].y), out[5] = float(mesh.normals[v].z);
-      out[6] = finite(mesh.gaussian[v]);
-      out[7] = finite(mesh.mean[v]);
+      out[6] = finite(mesh.gaussian[v] * unitK);
+      out[7] = finite(mesh.mean[v] * unitH);
     }
     view.indices.reserve(mesh.triangles.size() * 3);
     for (const auto& t : mesh.triangles) view.indices.insert(view.indices.end(), t.begin(), t.end());
@@ -139,7 +143,7 @@ std::optional<PointReadout> WebScene::pick(int view, const glm::dvec3& origin, c
   double nearest = std::numeric_limits<double>::infinity();
   auto vertex = [&](uint32_t i) {
     const float* p = &mesh.vertices[size_t(i) * kWebVertexFloats];
-    return glm::dvec3(p[0], p[1], p[2]);
+    return unit_ * glm::dvec3(p[0], p[1], p[2]);
   };
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const glm::dvec3 a = vertex(mesh.indices[t]), b = vertex(mesh.indices[t + 1]), c = vertex(mesh.indices[t + 2]);

@@ -17,7 +17,9 @@
 
 namespace polarview {
 
-// Floats per vertex of ViewMesh::vertices: position (relative to the model centre), unit normal, K, H.
+// Floats per vertex of ViewMesh::vertices: position (relative to the model centre), unit normal,
+// K and H, all in units of WebScene::unit() (position / unit, K * unit^2, H * unit: the desktop's
+// GPU units).
 constexpr int kWebVertexFloats = 8;
 // Triangles one view's mesh may have; the samples per patch edge follow (1..kWebMaxSamples).
 constexpr size_t kWebTriangleBudget = 400000;
@@ -55,6 +57,11 @@ class WebScene {
   // Centre and radius of the control points' bounding box (the views' positions are relative to it).
   const glm::dvec3& centre() const { return centre_; }
   double radius() const { return radius_; }
+  // The power of two nearest below the radius (the desktop's PatchRenderer unit_): the vertices
+  // carry position / unit, K * unit^2 and H * unit, so a model of any size keeps float's precision
+  // and range (K of a model 1e20 across is below float's smallest normal, of one 1e-20 across above
+  // its largest; the shader's dot(P, P) of either over- or underflows).
+  double unit() const { return unit_; }
 
   // The views' meshes for `schemes` at `level`: rebuilt for what changed, kept otherwise. [O(output)]
   void setViews(const std::vector<SchemeChoice>& schemes, int level);
@@ -84,6 +91,7 @@ class WebScene {
   uint64_t generation_ = 0;
   glm::dvec3 centre_{0.0};
   double radius_ = 1.0;
+  double unit_ = 1.0;
   std::vector<ViewMesh> views_;
   uint64_t revision_ = 0;
   // What colourRange and poles computed, for the scene's revision (they run every frame).
