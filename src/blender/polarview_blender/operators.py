@@ -35,6 +35,18 @@ def control_object(context):
     return obj, ""
 
 
+def operand(operator, context):
+    """The control mesh an operator works on, or None after reporting why there is none (the module
+    did not load, or no mesh is active)."""
+    if pv is None:
+        operator.report({'ERROR'}, LOAD_ERROR)
+        return None
+    source, why = control_object(context)
+    if source is None:
+        operator.report({'ERROR'}, why)
+    return source
+
+
 def show_colours_in_solid_mode(context):
     """Solid mode shows the active colour attribute (Viewport Shading > Color > Attribute) in the 3D
     views of the current screen that showed material colours, so the K colours appear at once."""
@@ -58,12 +70,8 @@ class POLARVIEW_OT_subdivide(bpy.types.Operator):
     ngon_to_fan: bpy.props.BoolProperty(name="N-gons to fans", default=False)
 
     def execute(self, context):
-        if pv is None:
-            self.report({'ERROR'}, LOAD_ERROR)
-            return {'CANCELLED'}
-        source, why = control_object(context)
+        source = operand(self, context)
         if source is None:
-            self.report({'ERROR'}, why)
             return {'CANCELLED'}
         # Arguments not given come from the control mesh's panel settings.
         settings = source.polarview
@@ -89,12 +97,8 @@ class POLARVIEW_OT_analyse(bpy.types.Operator):
     bl_options = {'REGISTER'}
 
     def execute(self, context):
-        if pv is None:
-            self.report({'ERROR'}, LOAD_ERROR)
-            return {'CANCELLED'}
-        source, why = control_object(context)
+        source = operand(self, context)
         if source is None:
-            self.report({'ERROR'}, why)
             return {'CANCELLED'}
         import json
         from .surface import analyse, control_mesh, crease_count
@@ -141,12 +145,8 @@ class POLARVIEW_OT_export(bpy.types.Operator, ExportHelper):
         return {'RUNNING_MODAL'}
 
     def execute(self, context):
-        if pv is None:
-            self.report({'ERROR'}, LOAD_ERROR)
-            return {'CANCELLED'}
-        source, why = control_object(context)
+        source = operand(self, context)
         if source is None:
-            self.report({'ERROR'}, why)
             return {'CANCELLED'}
         from .surface import control_mesh
         s = source.polarview
