@@ -7,6 +7,7 @@
 
 #include "core/mesh/input_error.h"
 #include "core/mesh/obj_io.h"
+#include "core/mesh/sharp_features.h"
 #include "core/mesh/shape_catalog.h"
 #include "core/subdiv/refiner.h"
 #include "pipeline/memory_budget.h"
@@ -68,12 +69,41 @@ void addFaces(PolyMesh& mesh, const py::array_t<int64_t, py::array::c_style | py
   if (used != faces.size()) throw InputError(kArraySource, 0, "the sizes add up to fewer than the indices given");
 }
 
-Mesh meshFromArrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
-                    const py::array_t<int64_t, py::array::c_style | py::array::forcecast>& f,
-                    const std::optional<py::array_t<int64_t, py::array::c_style | py::array::forcecast>>& sizes) {
+using IntArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+using RealArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Mesh(..., crease_edges=(E, 2), crease_sharpness=(E,), corners=(C,), corner_sharpness=(C,)): the
+// tags an OBJ's `t crease` / `t corner` lines give (sharp_features.h).
+void setTagsFromArrays(PolyMesh& mesh, const std::optional<IntArray>& creaseEdges, const std::optional<RealArray>& creaseSharpness,
+                       const std::optional<IntArray>& corners, const std::optional<RealArray>& cornerSharpness) {
+  if (creaseEdges.has_value() != creaseSharpness.has_value())
+    throw InputError(kArraySource, 0, "crease_edges and crease_sharpness go together");
+  if (corners.has_value() != cornerSharpness.has_value()) throw InputError(kArraySource, 0, "corners and corner_sharpness go together");
+  auto id = [](int64_t v) { return v < 0 || v > int64_t(INT32_MAX) ? Index(-1) : Index(v); };  // out of range: refused below
+  std::vector<CreaseEdge> creases;
+  if (creaseEdges) {
+    if (creaseEdges->ndim() != 2 || creaseEdges->shape(1) != 2 || creaseSharpness->ndim() != 1 ||
+        creaseSharpness->shape(0) != creaseEdges->shape(0))
+      throw InputError(kArraySource, 0, "crease_edges must be (E, 2) vertex ids with crease_sharpness (E,)");
+    for (py::ssize_t e = 0; e < creaseEdges->shape(0); ++e)
+      creases.push_back({id(creaseEdges->at(e, 0)), id(creaseEdges->at(e, 1)), creaseSharpness->at(e)});
+  }
+  std::vector<CornerVertex> cornerList;
+  if (corners) {
+    if (corners->ndim() != 1 || cornerSharpness->ndim() != 1 || cornerSharpness->shape(0) != corners->shape(0))
+      throw InputError(kArraySource, 0, "corners must be (C,) vertex ids with corner_sharpness (C,)");
+    for (py::ssize_t c = 0; c < corners->shape(0); ++c) cornerList.push_back({id(corners->at(c)), cornerSharpness->at(c)});
+  }
+  setSharpFeatures(mesh, creases, cornerList, kArraySource);
+}
+
+Mesh meshFromArrays(const RealArray& v, const IntArray& f, const std::optional<IntArray>& sizes,
+                    const std::optional<IntArray>& creaseEdges, const std::optional<RealArray>& creaseSharpness,
+                    const std::optional<IntArray>& corners, const std::optional<RealArray>& cornerSharpness) {
   PolyMesh mesh;
   mesh.points = verticesFromArray(v);
   addFaces(mesh, f, sizes);
+  setTagsFromArrays(mesh, creaseEdges, creaseSharpness, corners, cornerSharpness);
   return wrap(std::move(mesh), kArraySource);
 }
 
@@ -143,7 +173,10 @@ Mesh namedShape(const std::string& name, std::optional<int> valence, std::option
 void bindMeshes(py::module_& m) {
   py::class_<Mesh>(m, "Mesh", "A polygon mesh (immutable: its arrays are read-only views)")
       .def(py::init(&meshFromArrays), py::arg("vertices"), py::arg("faces"), py::arg("sizes") = py::none(),
-           "Mesh(V, F): V (N, 3) float64; F an (M, k) int array, or flat 0-based indices with sizes (M,)")
+           py::arg("crease_edges") = py::none(), py::arg("crease_sharpness") = py::none(), py::arg("corners") = py::none(),
+           py::arg("corner_sharpness") = py::none(),
+           "Mesh(V, F): V (N, 3) float64; F an (M, k) int array, or flat 0-based indices with sizes (M,); crease edges "
+           "(E, 2) with their sharpness (E,) and corners (C,) with theirs, as an OBJ's t crease / t corner tags")
       .def_property_readonly("vertices", [](py::object self) {
             const PolyMesh& mesh = *self.cast<const Mesh&>().mesh;
             return readOnlyView(py::dtype::of<double>(), {mesh.vertexCount(), 3}, {sizeof(Point), sizeof(double)},

@@ -118,3 +118,46 @@ def test_unknown_names_raise_value_error():
         pv.shape("blob")
     with pytest.raises(ValueError, match="do not apply to valence20"):
         pv.shape("valence20", valence=8)
+
+
+def _cube_with_tags(tmp_path):
+    """A cube as arrays and as an OBJ with the same `t crease` / `t corner` tags (later ones override)."""
+    V = np.array([[x, y, z] for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)], float)
+    F = np.array([[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [1, 3, 7, 5], [3, 2, 6, 7], [2, 0, 4, 6]])
+    edges, sharpness = [[0, 1], [1, 3], [3, 2], [2, 0], [1, 0]], [2.5, 10, 10, 0.5, 3.0]
+    path = tmp_path / "tagged.obj"
+    with open(path, "w") as f:
+        f.writelines("v %r %r %r\n" % tuple(v) for v in V)
+        f.writelines("f " + " ".join(str(i + 1) for i in face) + "\n" for face in F)
+        f.writelines("t crease 2/1/0 %d %d %r\n" % (a, b, s) for (a, b), s in zip(edges, sharpness))
+        f.write("t corner 1/1/0 7 1.5\n")
+    return V, F, edges, sharpness, path
+
+
+def test_crease_and_corner_arrays_are_the_obj_tags(tmp_path):
+    V, F, edges, sharpness, path = _cube_with_tags(tmp_path)
+    ours = pv.Mesh(V, F, crease_edges=edges, crease_sharpness=sharpness, corners=[7], corner_sharpness=[1.5])
+    with pytest.warns(UserWarning):
+        theirs = pv.load(path)
+    for key in ("crease_edges", "crease_sharpness", "corners", "corner_sharpness"):
+        np.testing.assert_array_equal(ours.tags[key], theirs.tags[key])
+    assert ours.tags["crease_sharpness"].tolist() == [3.0, 0.5, 10.0, 10.0]  # (0, 1): the later 3.0
+    a, b = pv.limit_patches(ours, "cc", 3), pv.limit_patches(theirs, "cc", 3)
+    np.testing.assert_array_equal(a.control_points, b.control_points)
+    plain = pv.limit_patches(pv.Mesh(V, F), "cc", 3)
+    assert plain.control_points.shape != a.control_points.shape or not np.allclose(plain.control_points, a.control_points)
+
+
+@pytest.mark.parametrize("tags, message", [
+    (dict(crease_edges=[[0, 7]], crease_sharpness=[1.0]), "not an edge of any face"),
+    (dict(crease_edges=[[0, 99]], crease_sharpness=[1.0]), "out of range"),
+    (dict(crease_edges=[[0, 1]], crease_sharpness=[float("nan")]), "finite"),
+    (dict(crease_edges=[[0, 1]], crease_sharpness=[-1.0]), "finite and >= 0"),
+    (dict(crease_edges=[[0, 1]]), "go together"),
+    (dict(crease_edges=[0, 1], crease_sharpness=[1.0]), "(E, 2)"),
+    (dict(corners=[8], corner_sharpness=[1.0]), "out of range"),
+])
+def test_bad_crease_and_corner_arrays_are_refused(tmp_path, tags, message):
+    V, F, *_ = _cube_with_tags(tmp_path)
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        pv.Mesh(V, F, **tags)

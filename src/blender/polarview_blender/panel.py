@@ -83,7 +83,7 @@ class POLARVIEW_PT_panel(bpy.types.Panel):
         if report["fan_faces"]:
             box.label(text=f"{report['fan_faces']} faces of 5+ sides: try N-gons to fans", icon='INFO')
         if report.get("creases"):
-            box.label(text=f"{report['creases']} creased edges ignored (no crease input)", icon='INFO')
+            box.label(text=f"{report['creases']} creased edges and vertices (sharpness 10 c\u00b2)", icon='INFO')
         box.label(text=f"Area {_number(report['area'])}")
         box.label(text=f"Volume {_number(report['volume'])}" if report["closed"] else "Volume: open surface")
         if "vertices" in report:

@@ -39,14 +39,56 @@ def control_arrays(obj):
     return co.astype(numpy.float64).reshape(-1, 3), loops[order].astype(numpy.int64), sizes.astype(numpy.int64)
 
 
-def crease_count(obj):
-    """How many edges of the object's mesh carry a Blender edge crease (> 0)."""
+def crease_to_sharpness(crease):
+    """Blender's crease c in [0, 1] as the OpenSubdiv sharpness Blender's own Subdivision Surface
+    modifier gives it: 10 c^2 (c = 1 is infinitely sharp)."""
+    return 10.0 * numpy.square(numpy.clip(crease, 0.0, 1.0))
+
+
+def _layer_values(me, domain, legacy_attribute, attribute_name):
+    """A float per edge or vertex: the legacy property (Blender 3.x: MeshEdge.crease) or the
+    generic attribute (4.x: "crease_edge", "crease_vert"); None where the mesh has neither."""
+    items = me.edges if domain == "EDGE" else me.vertices
+    values = numpy.zeros(len(items), numpy.float32)
+    if len(items) and legacy_attribute and hasattr(items[0], legacy_attribute):
+        items.foreach_get(legacy_attribute, values)
+        return values
+    attribute = me.attributes.get(attribute_name)
+    if attribute is not None and attribute.domain == domain and attribute.data_type == 'FLOAT':
+        attribute.data.foreach_get("value", values)
+        return values
+    if domain == "POINT" and getattr(me, "vertex_creases", None):  # Blender 3.x's vertex crease layer
+        me.vertex_creases[0].data.foreach_get("value", values)
+        return values
+    return None
+
+
+def sharp_features(obj):
+    """The object's edge and vertex creases as the module's tags: crease edges (E, 2) with their
+    sharpness (E,) and corners (C,) with theirs, each crease c > 0 as crease_to_sharpness(c)."""
     me = obj.data
-    if not me.edges or not hasattr(me.edges[0], "crease"):
-        return 0
-    creases = numpy.empty(len(me.edges), numpy.float32)
-    me.edges.foreach_get("crease", creases)
-    return int(numpy.count_nonzero(creases > 0.0))
+    edges = numpy.zeros((0, 2), numpy.int64)
+    edge_sharpness = numpy.zeros(0)
+    creases = _layer_values(me, "EDGE", "crease", "crease_edge")
+    if creases is not None and numpy.any(creases > 0.0):
+        ends = numpy.empty(2 * len(me.edges), numpy.int32)
+        me.edges.foreach_get("vertices", ends)
+        chosen = creases > 0.0
+        edges = ends.reshape(-1, 2)[chosen].astype(numpy.int64)
+        edge_sharpness = crease_to_sharpness(creases[chosen].astype(numpy.float64))
+    corners = numpy.zeros(0, numpy.int64)
+    corner_sharpness = numpy.zeros(0)
+    vertex_creases = _layer_values(me, "POINT", None, "crease_vert")
+    if vertex_creases is not None and numpy.any(vertex_creases > 0.0):
+        corners = numpy.flatnonzero(vertex_creases > 0.0).astype(numpy.int64)
+        corner_sharpness = crease_to_sharpness(vertex_creases[corners].astype(numpy.float64))
+    return edges, edge_sharpness, corners, corner_sharpness
+
+
+def crease_count(obj):
+    """How many edges and vertices of the object's mesh carry a Blender crease (> 0)."""
+    edges, _, corners, _ = sharp_features(obj)
+    return int(len(edges) + len(corners))
 
 
 def control_mesh(obj, ngon_to_fan):
@@ -57,7 +99,9 @@ def control_mesh(obj, ngon_to_fan):
     if len(obj.data.polygons) == 0:
         raise ValueError(f"{obj.name} has no faces: the control mesh needs faces")
     vertices, indices, sizes = control_arrays(obj)
-    mesh = pv.Mesh(vertices, indices, sizes)
+    edges, edge_sharpness, corners, corner_sharpness = sharp_features(obj)
+    mesh = pv.Mesh(vertices, indices, sizes, crease_edges=edges, crease_sharpness=edge_sharpness, corners=corners,
+                   corner_sharpness=corner_sharpness)
     fanned = int(numpy.count_nonzero(sizes >= MIN_FAN_SIDES))
     if ngon_to_fan and fanned:
         mesh, _ = pv.ngon_to_fan(mesh, MIN_FAN_SIDES)

@@ -13,7 +13,9 @@ class Mesh:
     """A polygon mesh: vertices (N, 3) and faces of any size, with the OBJ's `t` tags."""
 
     def __init__(self, vertices: numpy.typing.ArrayLike, faces: numpy.typing.ArrayLike,
-                 sizes: Optional[numpy.typing.ArrayLike] = None) -> None: ...
+                 sizes: Optional[numpy.typing.ArrayLike] = None, crease_edges: Optional[numpy.typing.ArrayLike] = None,
+                 crease_sharpness: Optional[numpy.typing.ArrayLike] = None, corners: Optional[numpy.typing.ArrayLike] = None,
+                 corner_sharpness: Optional[numpy.typing.ArrayLike] = None) -> None: ...
     @property
     def vertices(self) -> FloatArray: ...
     @property
