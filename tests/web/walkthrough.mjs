@@ -5,7 +5,7 @@
 // and what the panel shows (model, views, colour range, pick readout, error).
 //  1. a click on the C2PS pole marker: the readout's position, K and H are the pole's
 //     (`polarview pole`, passed in); a click off the surface says so;
-//  2. a dropped OBJ, default.obj scaled by 1000: colour range x 1e-6, the same pixels as the
+//  2. a dropped OBJ, default.obj scaled by 1e20: colour range x 1e-40, the same pixels as the
 //     unscaled model (curvature units, web_scene.h unit());
 //  3. Open OBJ... (the file chooser) loads a model;
 //  4. orbit by a drag; the address bar's link (and Copy link's clipboard) reopened shows the same
@@ -32,7 +32,13 @@ const chromium = spawn('chromium', ['--headless=new', '--no-sandbox', '--use-ang
 const started = Date.now();
 const finish = code => {
   chromium.once('exit', () => {
-    fs.rmSync(profile, { recursive: true, force: true, maxRetries: 5 });
+    // Chromium's helper processes may still write there after the browser's exit: a profile left
+    // behind in the temporary directory is no test failure.
+    try {
+      fs.rmSync(profile, { recursive: true, force: true, maxRetries: 5 });
+    } catch (error) {
+      console.error(`note: ${profile} left behind (${error.code})`);
+    }
     process.exit(code);
   });
   chromium.kill();
@@ -173,20 +179,21 @@ await click(panel + 20, 60);  // the background, above the model
 s = await waitFor('a pick off the surface', s => s.pick === 'no surface under the cursor');
 ok('a click off the surface: "no surface under the cursor"');
 
-// --- 2. a dropped OBJ: default.obj x 1000 has the unscaled colours, its range x 1e-6 ---
-const scaled = path.join(work, 'default_x1000.obj');
+// --- 2. a dropped OBJ: default.obj x 1e20 has the unscaled colours, its range x 1e-40 (float-sized
+// curvature and clip coordinates at any scale) ---
+const scaled = path.join(work, 'default_x1e20.obj');
 const drag = type => page.send('Input.dispatchDragEvent', { type, x: 800, y: 350, data: { items: [], files: [scaled], dragOperationsMask: 1 } });
 await drag('dragEnter');
 await drag('dragOver');
 await drag('drop');
-s = await waitFor('the dropped default_x1000.obj', s => s.model === 'default_x1000.obj');
+s = await waitFor('the dropped default_x1e20.obj', s => s.model === 'default_x1e20.obj');
 await frames();
 s = await status();
 const scaledRange = s.range.split(' ').map(Number);
-if (!scaledRange.every((r, i) => Math.abs(r - 1e-6 * range[i]) <= 1e-9 * Math.abs(range[i])))
-  fail(`dropped default x 1000: colour range ${s.range}, expected 1e-6 x ${range.join(' ')}`);
-ok(`dropped default_x1000.obj: colour range ${s.range} (unscaled ${range.join(' ')})`);
-samePixels('default x 1000 has the unscaled model\'s colours', framed, await screenshot('dropped_x1000.png'), views, 0.005);
+if (!scaledRange.every((r, i) => Math.abs(r - 1e-40 * range[i]) <= 1e-8 * Math.abs(1e-40 * range[i])))
+  fail(`dropped default x 1e20: colour range ${s.range}, expected 1e-40 x ${range.join(' ')}`);
+ok(`dropped default_x1e20.obj: colour range ${s.range} (unscaled ${range.join(' ')})`);
+samePixels('default x 1e20 has the unscaled model\'s colours', framed, await screenshot('dropped_x1e20.png'), views, 0.005);
 
 // --- 3. Open OBJ...: the file chooser ---
 await page.send('Page.setInterceptFileChooserDialog', { enabled: true });

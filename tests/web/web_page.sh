@@ -27,6 +27,9 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
+# Chromium's profiles (first_frame.mjs, walkthrough.mjs: os.tmpdir()) go under $work too: a profile
+# a helper process still wrote to when the browser exited goes with it.
+export TMPDIR="$work"
 seconds() { date +%s.%N; }
 
 # --- 1. build (timed; the first build in a fresh checkout compiles the core, about a minute on 2 cores) ---
@@ -86,10 +89,10 @@ case "$message" in
 esac
 
 # --- 6. a reader's walkthrough (walkthrough.mjs): pick at the pole against `polarview pole`, a dropped
-#     OBJ (default.obj x 1000: same colours, range x 1e-6), Open OBJ..., a drag and its link reopened,
+#     OBJ (default.obj x 1e20: same colours, range x 1e-40), Open OBJ..., a drag and its link reopened,
 #     Copy link, Screenshot (PNG), the address's parameters and bad ones ---
-awk '/^v /{printf "v %.17g %.17g %.17g\n", $2 * 1000, $3 * 1000, $4 * 1000; next} {print}' \
-  "$root/assets/default.obj" >"$work/default_x1000.obj"
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2 * 1e20, $3 * 1e20, $4 * 1e20; next} {print}' \
+  "$root/assets/default.obj" >"$work/default_x1e20.obj"
 pole=$("$polarview" pole "$root/assets/default.obj" --json | /usr/bin/python3 -c 'import json, sys
 p = json.load(sys.stdin)["poles"][0]
 print(json.dumps({"position": p["limit"], "K": p["gaussian_curvature"], "H": p["mean_curvature"]}))')

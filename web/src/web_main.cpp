@@ -280,7 +280,10 @@ WebDraw WebApp::drawOf(size_t view, const ScreenRect& rect, int framebufferHeigh
   WebDraw draw;
   // The vertices are in units of scene_.unit() (web_scene.h): so are the eye and the radius.
   const double unit = scene_.unit();
-  draw.viewProjection = glm::mat4(proj * viewMatrix * glm::scale(glm::dmat4(1.0), glm::dvec3(unit)));
+  // Clip coordinates divided by `unit` too (homogeneous: the same picture and depth), so w is about
+  // the eye distance in units of `unit`: float-sized at any model scale. Unscaled, a model of size
+  // 1e20 gave w ~ 1e20, whose square the rasteriser's interpolation overflows (noisy depth).
+  draw.viewProjection = glm::mat4((1.0 / unit) * (proj * viewMatrix * glm::scale(glm::dmat4(1.0), glm::dvec3(unit))));
   draw.viewRotation = glm::mat3(glm::mat4(viewMatrix));
   draw.eye = glm::vec3(camera.eye() / unit);
   const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
