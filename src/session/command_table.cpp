@@ -244,7 +244,7 @@ void addWindowCommands(Rows rows) {
              [](ViewerSettings& settings) { settings.showPanels = !settings.showPanels; });
   rows.setting("help", "Help", {KeyChord{0, 0, U'?', 0}}, "this help",
              [](ViewerSettings& settings) { settings.showHelp = !settings.showHelp; });
-  rows.add("surface.measure", "Measure", {}, "area and enclosed volume of the active view's surface (Stats panel)",
+  rows.add("surface.measure", "Measure", {}, "area, enclosed volume and centroid of the active view's surface (Stats panel)",
            [](Session& s) { s.startMeasure(); });
   rows.setting("poles.inspect", "Inspect poles", {}, "open the Poles panel",
              [](ViewerSettings& settings) { settings.poleInspector.openRequested = true; });

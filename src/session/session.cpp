@@ -191,11 +191,15 @@ void Session::updateMeasures() {
     char text[256];
     std::snprintf(text, sizeof text, "%s: area %.10g (± %.1g)", measured_.c_str(), m.area, m.areaError);
     shown.text = text;
+    // The solid's centroid where the surface bounds one, else the shell's (`measure` prints both).
     if (m.closed) {
-      std::snprintf(text, sizeof text, ", volume %.10g (± %.1g)", m.volume, m.volumeError);
+      std::snprintf(text, sizeof text, ", volume %.10g (± %.1g), centroid (%.6g, %.6g, %.6g)", m.volume, m.volumeError,
+                    m.centroid.x, m.centroid.y, m.centroid.z);
       shown.text += text;
     } else {
-      shown.text += ", open: no volume";
+      std::snprintf(text, sizeof text, ", open: no volume; area centroid (%.6g, %.6g, %.6g)", m.areaCentroid.x,
+                    m.areaCentroid.y, m.areaCentroid.z);
+      shown.text += text;
     }
   } catch (const std::exception& e) {
     shown.text = std::string("could not measure: ") + e.what();

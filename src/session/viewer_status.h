@@ -129,7 +129,8 @@ struct PoleInspectorStatus {
 // The active view's surface measured (command surface.measure; pipeline/surface_measures.h).
 struct MeasureStatus {
   bool computing = false;
-  std::string text;  // "area 16.699 (± 8.5e-06), volume 4.7666 (± 2e-13) of C2PS level 3"; empty: none yet
+  // "C2PS level 3: area 16.699 (± 8e-06), volume 4.7666 (± 5e-14), centroid (0, 0, 0.437)"; empty: none yet
+  std::string text;
 };
 
 struct ViewerStatus {

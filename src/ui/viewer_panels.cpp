@@ -465,7 +465,7 @@ void drawMeasures(PanelContext& ui) {
   ImGui::SameLine();
   const MeasureStatus& m = ui.status.measures;
   if (m.computing) ImGui::TextDisabled("measuring...");
-  else if (m.text.empty()) ImGui::TextDisabled("area, volume of the active view");
+  else if (m.text.empty()) ImGui::TextDisabled("area, volume, centroid of the active view");
   else ImGui::TextWrapped("%s", m.text.c_str());
 }
 

@@ -447,6 +447,10 @@ TEST_CASE("measure from the viewer: the shown surface's area and volume are `mea
   CHECK(measures.text.rfind("C2PS level 2: ", 0) == 0);
   CHECK(measures.text.find(area) != std::string::npos);
   CHECK(measures.text.find(volume) != std::string::npos);
+  char centroid[96];
+  std::snprintf(centroid, sizeof centroid, "centroid (%.6g, %.6g, %.6g)", expected.centroid.x, expected.centroid.y,
+                expected.centroid.z);
+  CHECK(measures.text.find(centroid) != std::string::npos);
   CHECK(expected.volume > 4.0);  // the mushroom: about 4.77 at level 3
 }
 
