@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "pipeline/weighted_statistics.h"
 
@@ -146,6 +147,15 @@ std::vector<float> weightedHistogram(const std::vector<double>& values, const st
   if (largest > 0.0f)
     for (float& h : histogram) h /= largest;
   return histogram;
+}
+
+glm::vec3 perpendicularTo(const glm::vec3& axis, const glm::vec3& hint) {
+  glm::vec3 p = hint - glm::dot(hint, axis) * axis;
+  if (glm::dot(p, p) < 1e-8f) {  // hint along the axis: any perpendicular, the least aligned axis's
+    p = std::abs(axis.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    p -= glm::dot(p, axis) * axis;
+  }
+  return glm::normalize(p);
 }
 
 }  // namespace polarview

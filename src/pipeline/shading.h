@@ -114,6 +114,10 @@ struct ViewParams {
 };
 
 // Colours used for DisplayFlags::BoundaryColor::Kind (index = PatchKind), also for a UI legend.
+// The unit vector perpendicular to `axis` (unit) nearest to `hint`: the plane the highlight lines
+// lie in (highlightPlaneNormal made perpendicular to highlightDir), for the desktop's and the web
+// page's renderers alike. [O(1)]
+glm::vec3 perpendicularTo(const glm::vec3& axis, const glm::vec3& hint);
 glm::vec3 patchKindColor(PatchKind kind);
 // Colour for a ring index (cycles through a qualitative palette; -1 = grey).
 glm::vec3 ringColor(int ring);

@@ -366,16 +366,6 @@ void setUniform(GLuint program, const char* name, int value) {
   glProgramUniform1i(program, glGetUniformLocation(program, name), value);
 }
 
-// A unit vector perpendicular to `axis` that is closest to `hint`.
-glm::vec3 perpendicularTo(const glm::vec3& axis, const glm::vec3& hint) {
-  glm::vec3 p = hint - glm::dot(hint, axis) * axis;
-  if (glm::dot(p, p) < 1e-8f) {
-    p = std::abs(axis.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    p -= glm::dot(p, axis) * axis;
-  }
-  return glm::normalize(p);
-}
-
 }  // namespace
 
 // [SECTION] GL state

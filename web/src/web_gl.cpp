@@ -68,16 +68,6 @@ float floatInRange(double value) {
   return std::isnan(value) ? 0.0f : float(std::clamp(value, -kMax, kMax));
 }
 
-// The part of `hint` perpendicular to `axis` (unit), as render/patch_renderer.cpp makes it.
-glm::vec3 perpendicularTo(const glm::vec3& axis, const glm::vec3& hint) {
-  glm::vec3 p = hint - glm::dot(hint, axis) * axis;
-  if (glm::dot(p, p) < 1e-8f) {
-    p = std::abs(axis.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    p -= glm::dot(p, axis) * axis;
-  }
-  return glm::normalize(p);
-}
-
 }  // namespace
 
 std::string loadShaderSource(const std::string& path, const std::string& defines) {
