@@ -579,3 +579,92 @@ TEST_CASE("adaptive: the refinement and its patches are the same bit for bit on 
     CHECK(differing == 0);
   }
 }
+
+namespace {
+
+// Every table, flag and point of two refinements of the same mesh, level for level: equal.
+void requireSameLevels(const AdaptiveRefinement& a, const AdaptiveRefinement& b, const std::string& what) {
+  INFO(what);
+  REQUIRE(a.levelCount() == b.levelCount());
+  CHECK(a.totalFaces() == b.totalFaces());
+  for (int m = 0; m < a.levelCount(); ++m) {
+    CAPTURE(m);
+    const RefinedLevel &x = a.level(m), &y = b.level(m);
+    CHECK(x.mesh.faceStart == y.mesh.faceStart);
+    CHECK(x.mesh.faceVerts == y.mesh.faceVerts);
+    CHECK(x.mesh.points == y.mesh.points);
+    CHECK(x.faceParent == y.faceParent);
+    CHECK(x.faceHole == y.faceHole);
+    CHECK(x.sharpness.edge == y.sharpness.edge);
+    CHECK(x.sharpness.vertex == y.sharpness.vertex);
+    CHECK(x.frameOrigins == y.frameOrigins);
+    CHECK(x.vertexFrame == y.vertexFrame);
+    CHECK(x.topology.cornerEdge == y.topology.cornerEdge);
+    CHECK(x.topology.edgeVerts == y.topology.edgeVerts);
+    CHECK(x.topology.edgeFaces == y.topology.edgeFaces);
+    CHECK(x.topology.vertexFaces == y.topology.vertexFaces);
+    CHECK(x.topology.vertexCorners == y.topology.vertexCorners);
+    CHECK(x.topology.vertexEdges == y.topology.vertexEdges);
+    CHECK(a.neededFaces(m) == b.neededFaces(m));
+    CHECK(a.exactVertices(m) == b.exactVertices(m));
+    CHECK(a.radiallyRefinedFaces(m) == b.radiallyRefinedFaces(m));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("adaptive: levels past a fixed point are copies, bit for bit what refining them again makes") {
+  // Around isolated extraordinary vertices the sparse step soon makes a level equal to its parent
+  // (docs/performance.md, "Fixed points"); from there the refinement copies levels and the
+  // extraction reuses stencils. Against the same refinement with every level refined anew.
+  std::vector<std::pair<std::string, PolyMesh>> meshes = {{"cube", shapes::cube()},
+                                                          {"creased cube", creasedCube()},
+                                                          {"torus", shapes::torus(6, 5)},
+                                                          {"default.obj", loadObj(std::string(POLARVIEW_ASSET_DIR) + "/default.obj")}};
+  const std::filesystem::path dir = testing::osdShapeDirectory(POLARVIEW_OSD_SHAPES);
+  for (const std::filesystem::path& file : testing::osdShapeFiles(dir))
+    meshes.emplace_back(file.filename().string(), parseObjText(testing::osdShapeText(file, true), file.filename().string()));
+  const int levels = 8;
+  int repeating = 0, cubeRepeats = 0;
+  const size_t generated = 4;  // C2PS too on these (poles: no fixed point, every level anew)
+  int refinements = 0;
+  for (size_t i = 0; i < meshes.size(); ++i)
+    for (Scheme scheme : {Scheme::CatmullClark, Scheme::C2PS}) {
+      if (scheme == Scheme::C2PS && i >= generated) continue;
+      const auto& [name, mesh] = meshes[i];
+      ++refinements;
+      const std::string what = name + " " + schemeName(scheme);
+      RefineOptions copying{scheme, levels, false}, anew = copying;
+      anew.copyFixedPointLevels = false;
+      AdaptiveRefinement a(mesh, copying), b(mesh, anew);
+      requireSameLevels(a, b, what);
+      bool repeats = false;
+      for (int m = 1; m < a.levelCount(); ++m) {
+        repeats = repeats || a.repeatsParentLevel(m);
+        CHECK(!b.repeatsParentLevel(m));
+      }
+      repeating += repeats;
+      if (name == "cube" && scheme == Scheme::CatmullClark) cubeRepeats = repeats;
+      // Patches, one-off with and without sources, and through a level cache stepping up.
+      PatchSources sa, sb;
+      const PatchSet pa = extractPatches(a, &sa), pb = extractPatches(b, &sb);
+      requireIdentical(pb, sb, pa, sa, what + " patches");
+      const PatchSet bare = extractPatches(a);
+      REQUIRE(bare.patches.size() == pb.patches.size());
+      for (size_t k = 0; k < bare.patches.size(); ++k) REQUIRE((bare.patches[k].cp == pb.patches[k].cp && bare.patches[k].level == pb.patches[k].level));
+      LevelPatchCache cache;
+      PatchSources cached;
+      for (int level : {5, levels}) (void)cache.patchSet(a, level, &cached);
+      requireIdentical(pb, sb, cache.patchSet(a, levels, &cached), cached, what + " cached");
+      // Extended level by level, then moved points (an edit): the same again.
+      AdaptiveRefinement c(mesh, RefineOptions{scheme, 2, false});
+      for (int m = 3; m <= levels; ++m) c.extend(1);
+      std::vector<Point> moved = mesh.points;
+      moved[0] += Point(0.125, -0.25, 0.5);
+      c.updatePositions(moved);
+      b.updatePositions(moved);
+      requireSameLevels(c, b, what + " extended and moved");
+    }
+  CHECK(cubeRepeats == 1);  // the cube's valence-3 corners reach a fixed point: the copies were made
+  MESSAGE(repeating, " of ", refinements, " refinements reached a fixed point by level ", levels);
+}

@@ -32,12 +32,16 @@ struct LevelStack {
   std::vector<const RefinedLevel*> levels;
   std::vector<const std::vector<uint8_t>*> needed, exact;  // adaptive only
   std::vector<const std::vector<uint8_t>*> radialRefined;  // adaptive only: faces refined radially
+  // Adaptive only, per level: it equals its parent level in faces, tables and flags (a fixed point,
+  // AdaptiveRefinement::repeatsParentLevel): its classification and stencils are the parent's.
+  std::vector<uint8_t> repeatsParent;
   bool radial = false;
 
   // Levels 0..count()-1; an adaptive refinement may hold deeper ones, which this stack ignores.
   int count() const { return int(levels.size()); }
   const RefinedLevel& level(int m) const { return *levels[size_t(m)]; }
   bool adaptive() const { return !needed.empty(); }
+  bool repeats(int m) const { return m >= 1 && size_t(m) < repeatsParent.size() && repeatsParent[size_t(m)]; }
   // Whether face f of level m was refined radially (its children keep its columns).
   // The finest level of the stack refines nothing.
   bool refinedRadially(int m, Index f) const { return adaptive() && m + 1 < count() && (*radialRefined[size_t(m)])[f]; }
@@ -160,10 +164,25 @@ void classifyAllFaces(const LevelStack& stack, int m, const LevelFaces* parent, 
   }
 }
 
+// A level that repeats its parent (LevelStack::repeats): the parent's classification, its entries
+// of `index` appended again at level m (the same faces, the same faces across). [O(patches)]
+LevelFaces repeatClassification(const LevelFaces& parent, int m, SetIndex& index) {
+  LevelFaces faces;
+  faces.capFaces = parent.capFaces;
+  faces.vertexClass = parent.vertexClass;
+  faces.quadsOnly = parent.quadsOnly;
+  faces.firstPatch = index.size();
+  faces.patchCount = parent.patchCount;
+  index.reserve(index.size() + parent.patchCount);  // no reallocation while its own entries are read
+  for (size_t k = parent.firstPatch; k < parent.firstPatch + parent.patchCount; ++k) index.add(index.face[k], m, index.across[k]);
+  return faces;
+}
+
 // Classifies level m, its regular patches' entries appended to `index`. `parent`: level m-1's
 // classification (uniform stacks inherit from it; null at level 0).
 LevelFaces classifyLevel(const LevelStack& stack, int m, const LevelFaces* parent, SetIndex& index) {
   const RefinedLevel& level = stack.level(m);
+  if (parent && stack.repeats(m)) return repeatClassification(*parent, m, index);
   LevelFaces faces;
   faces.vertexClass.assign(size_t(level.mesh.vertexCount()), VertexClass::Unknown);
   markSharpVertices(level.mesh, level.topology, level.sharpness, faces.vertexClass.data());
@@ -793,21 +812,35 @@ void setRegularKind(const RingMembership& rings, int m, const std::array<Index, 
   }
 }
 
+// The stencils of a level's regular patches, in their order (ids, and bit s of sidesMissing for
+// side s), reused by a level that repeats it (LevelStack::repeats): the same vertex ids.
+struct StencilRun {
+  const std::array<Index, 16>* ids = nullptr;
+  const uint8_t* sidesMissing = nullptr;
+};
+
 // Appends level m's regular patches (`faces`' entries of `index`, in order) to `out`, with their
-// level jumps (`deltas`, per entry of `index`; empty: none yet) and, when asked, their sources.
+// level jumps (`deltas`, per entry of `index`; empty: none yet) and, when asked, their sources;
+// `reuse`: the stencils of the level it repeats, taken instead of gathered.
 // Throws std::logic_error if a stencil reads a vertex that is not exact (checked only where some
 // vertex of the level is not).
 void extractRegular(const LevelStack& stack, int m, LevelFaces& faces, const SetIndex& index, const LevelDeltas& deltas,
-                    PatchOutput out) {
+                    PatchOutput out, StencilRun reuse = {}) {
   const RefinedLevel& level = stack.level(m);
   const PolyMesh& mesh = level.mesh;
-  const bool checkIds = !stack.everyVertexExact(m);
+  const bool checkIds = !reuse.ids && !stack.everyVertexExact(m);  // a repeated level's: checked on its parent
   const RingMembership rings = markRingLinks(level);
   std::array<Index, 16> ids;
   std::array<bool, 4> sideMissing;
   for (size_t k = faces.firstPatch; k < faces.firstPatch + faces.patchCount; ++k) {
     const Index f = index.face[k];
-    gatherStencil(level, faces, f, index.across[k], ids, sideMissing);
+    if (reuse.ids) {
+      const size_t i = k - faces.firstPatch;
+      ids = reuse.ids[i];
+      for (int side = 0; side < 4; ++side) sideMissing[size_t(side)] = (reuse.sidesMissing[i] >> side) & 1;
+    } else {
+      gatherStencil(level, faces, f, index.across[k], ids, sideMissing);
+    }
     if (checkIds)
       for (Index id : ids)
         if (id >= 0) stack.checkExact(m, id, f);
@@ -958,9 +991,25 @@ PatchSet extractFromStack(const LevelStack& stack, PatchSources* sources) {
   set.patches.reserve(index.size());
   startSources(sources, index.size());
   PatchOutput out{set.patches, set.kindCounts, sources ? &sources->stencil : nullptr, sources ? &sources->sidesMissing : nullptr};
+  // Levels that repeat their parent take its stencils: from the sources, or (none asked) from the
+  // first level of the run, kept aside.
+  std::vector<std::array<Index, 16>> keptStencil;
+  std::vector<uint8_t> keptMissing;
+  size_t parentFirst = 0;
   for (int m = 0; m <= finest; ++m) {
-    extractRegular(stack, m, faces[size_t(m)], index, deltas, out);
-    if (m < finest) faces[size_t(m)] = LevelFaces();  // the children have inherited
+    LevelFaces& level = faces[size_t(m)];
+    StencilRun reuse;
+    PatchOutput levelOut = out;
+    if (stack.repeats(m)) {
+      reuse = sources ? StencilRun{sources->stencil.data() + parentFirst, sources->sidesMissing.data() + parentFirst}
+                      : StencilRun{keptStencil.data(), keptMissing.data()};
+    } else if (!sources && m < finest && stack.repeats(m + 1)) {
+      keptStencil.reserve(level.patchCount), keptMissing.reserve(level.patchCount);
+      levelOut.stencil = &keptStencil, levelOut.sidesMissing = &keptMissing;
+    }
+    parentFirst = level.firstPatch;
+    extractRegular(stack, m, level, index, deltas, levelOut, reuse);
+    if (m < finest) level = LevelFaces();  // the children have inherited
   }
   appendCaps(stack, finest, caps, deltas, regular, set);
   finishSources(sources, set.patches.size());
@@ -1081,6 +1130,7 @@ LevelStack stackOf(const AdaptiveRefinement& refinement, int finest = -1) {
     stack.needed.push_back(&refinement.neededFaces(m));
     stack.exact.push_back(&refinement.exactVertices(m));
     stack.radialRefined.push_back(&refinement.radiallyRefinedFaces(m));
+    stack.repeatsParent.push_back(refinement.repeatsParentLevel(m));
   }
   stack.radial = refinement.radialOnly();
   return stack;
@@ -1123,12 +1173,24 @@ void LevelPatchCache::prepare(const AdaptiveRefinement& refinement, int finest) 
   Impl& cache = *impl_;
   for (int m = int(cache.regular.size()); m <= finest; ++m) {
     LevelRegularPatches level;
-    level.index.reserve(regularBound(stack, m));
-    LevelFaces faces = classifyLevel(stack, m, nullptr, level.index);  // adaptive stacks inherit nothing
+    LevelFaces faces;
+    StencilRun reuse;
+    if (stack.repeats(m)) {  // the parent's faces and stencils (LevelStack::repeats)
+      const LevelRegularPatches& parent = cache.regular[size_t(m) - 1];
+      level.index = parent.index;
+      std::fill(level.index.level.begin(), level.index.level.end(), uint8_t(std::min(m, 255)));
+      faces.capFaces = parent.capFaces;
+      faces.patchCount = parent.patches.size();
+      reuse = StencilRun{parent.stencil.data(), parent.sidesMissing.data()};
+    } else {
+      level.index.reserve(regularBound(stack, m));
+      faces = classifyLevel(stack, m, nullptr, level.index);  // adaptive stacks inherit nothing
+    }
     level.patches.reserve(faces.patchCount);
     level.stencil.reserve(faces.patchCount);
     level.sidesMissing.reserve(faces.patchCount);
-    extractRegular(stack, m, faces, level.index, {}, PatchOutput{level.patches, level.kindCounts, &level.stencil, &level.sidesMissing});
+    extractRegular(stack, m, faces, level.index, {}, PatchOutput{level.patches, level.kindCounts, &level.stencil, &level.sidesMissing},
+                   reuse);
     level.capFaces = std::move(faces.capFaces);
     cache.regular.push_back(std::move(level));
   }

@@ -725,6 +725,7 @@ void AdaptiveRefinement::start(const PolyMesh& input, const PolyMesh& base, Mesh
   totalFacesAt_.push_back(totalFaces_);
   levels_.push_back(std::move(level0));
   radialRefined_.push_back(std::vector<uint8_t>(levels_.back().mesh.faceCount(), 0));
+  repeats_.push_back(0);
   const int levels = options_.levels;
   options_.levels = 0;
   addLevels(levels, maxFaces);
@@ -755,6 +756,7 @@ void AdaptiveRefinement::truncate(int levels) {
   exact_.resize(count);
   states_.resize(count);
   totalFacesAt_.resize(count);
+  repeats_.resize(count);
   radialRefined_.resize(count);
   radialRefined_.back().assign(levels_.back().mesh.faceCount(), 0);  // the finest level refines nothing
   steps_.resize(size_t(levels));
@@ -771,6 +773,10 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
   const bool mixedRadialPoles = schemeTraits(scheme).keepsValence && !radial_;
   const int target = options_.levels + count;
   for (int m = options_.levels; m < target; ++m) {
+    if (repeats_[size_t(m)]) {
+      copyFixedPointStep(m, target, maxFaces);
+      continue;
+    }
     const RefinedLevel& level = levels_[m];
     const LevelState& state = states_[m];
     const std::vector<uint8_t> refine = facesToRefine(level, needed_[m]);
@@ -806,10 +812,7 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
     const std::vector<uint8_t> split = !radial_ && schemeTraits(scheme).polar() ? splitPoleCorners(level, sparsePoles) : std::vector<uint8_t>{};
     const size_t sparseChildren = radial_ ? 0 : sparseChildFaces(level, selected, split);
     childFaces += sparseChildren;
-    if (totalFaces_ + copiedFaces + childFaces > maxFaces)
-      throw InputError(sourceName, 0,
-                       "level " + std::to_string(target) + " would need more than " + std::to_string(maxFaces) +
-                           " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
+    checkBudget(copiedFaces + childFaces, target, m, maxFaces);
 
     RefinedLevel child;
     LevelState childState;
@@ -838,8 +841,57 @@ void AdaptiveRefinement::addLevels(int count, size_t maxFaces) {
     exact_.push_back(std::move(childExact));
     states_.push_back(std::move(childState));
     steps_.push_back(std::move(step));
+    repeats_.push_back(options_.copyFixedPointLevels && stepInputsEqualParent(m + 1));
     options_.levels = m + 1;
   }
+}
+
+void AdaptiveRefinement::checkBudget(size_t newFaces, int target, int m, size_t maxFaces) const {
+  if (totalFaces_ + newFaces > maxFaces)
+    throw InputError(sourceName_, 0,
+                     "level " + std::to_string(target) + " would need more than " + std::to_string(maxFaces) +
+                         " faces (feature-adaptive, all levels together); level " + std::to_string(m) + " is the deepest that fits");
+}
+
+// Fixed points (docs/performance.md): around isolated extraordinary vertices and features the
+// sparse step soon makes a level that is its parent again, face for face and flag for flag (the
+// refined neighbourhood keeps its size and shape, only its points shrink). Step m reads level m's
+// faces and tables (a function of the faces), sharpness, holes, needed faces, exact and complete
+// vertices, and poles and radial state (none here); where all equal level m-1's, step m is step
+// m-1 and level m+1 level m, index for index.
+bool AdaptiveRefinement::stepInputsEqualParent(int m) const {
+  if (m < 1 || radial_) return false;
+  const RefinedLevel &level = levels_[size_t(m)], &parent = levels_[size_t(m) - 1];
+  const LevelState &state = states_[size_t(m)], &parentState = states_[size_t(m) - 1];
+  auto sameSharpness = [](const CreaseSharpness& a, const CreaseSharpness& b) {
+    return a.edge == b.edge && a.vertex == b.vertex && a.chaikin == b.chaikin && a.smoothTriangles == b.smoothTriangles;
+  };
+  return level.poles.empty() && parent.poles.empty() && !state.tail && !parentState.tail && state.radialGrids.empty() &&
+         parentState.radialGrids.empty() && level.mesh.vertexCount() == parent.mesh.vertexCount() &&
+         level.mesh.faceStart == parent.mesh.faceStart && level.mesh.faceVerts == parent.mesh.faceVerts &&
+         level.faceHole == parent.faceHole && sameSharpness(level.sharpness, parent.sharpness) &&
+         needed_[size_t(m)] == needed_[size_t(m) - 1] && exact_[size_t(m)] == exact_[size_t(m) - 1] &&
+         state.complete == parentState.complete;
+}
+
+void AdaptiveRefinement::copyFixedPointStep(int m, int target, size_t maxFaces) {
+  const size_t faces = size_t(levels_[size_t(m)].mesh.faceCount());
+  checkBudget(faces, target, m, maxFaces);
+  RefinedLevel child = levels_[size_t(m)];  // points too: computePoints writes them
+  Step step = steps_[size_t(m) - 1];
+  LevelState childState = states_[size_t(m)];
+  std::vector<uint8_t> childNeeded = needed_[size_t(m)], childExact = exact_[size_t(m)];
+  radialRefined_[size_t(m)] = radialRefined_[size_t(m) - 1];
+  radialRefined_.push_back(std::vector<uint8_t>(faces, 0));
+  totalFaces_ += faces;
+  totalFacesAt_.push_back(totalFaces_);
+  levels_.push_back(std::move(child));
+  needed_.push_back(std::move(childNeeded));
+  exact_.push_back(std::move(childExact));
+  states_.push_back(std::move(childState));
+  steps_.push_back(std::move(step));
+  repeats_.push_back(1);
+  options_.levels = m + 1;
 }
 
 // A tail step's poles (RTS/BPS outside caps and globes): their regions (`polar`) copied out, refined

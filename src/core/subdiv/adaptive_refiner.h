@@ -69,6 +69,11 @@ class AdaptiveRefinement {
   const std::vector<uint8_t>& radiallyRefinedFaces(int m) const { return radialRefined_[m]; }
   // True when RTS/BPS refine radially (caps and globes), as Refinement::radialOnly.
   bool radialOnly() const { return radial_; }
+  // Whether level m (>= 1) equals level m-1 in its faces, tables and every flag a step reads (found
+  // as it was made; always false without RefineOptions::copyFixedPointLevels): the hierarchy is at
+  // a fixed point there, so every deeper level was made as a copy of it (its points its own), and
+  // patch extraction reuses level m-1's classification and stencils. [O(1)]
+  bool repeatsParentLevel(int m) const { return m >= 1 && m < levelCount() && repeats_[size_t(m)] != 0; }
   // Faces of all levels and of the copied-out parts (what the budget counts). [O(1)]
   size_t totalFaces() const { return totalFaces_; }
 
@@ -94,6 +99,12 @@ class AdaptiveRefinement {
   void start(const PolyMesh& input, const PolyMesh& base, MeshTopology topology, std::vector<Index> sourceVertex,
              const std::vector<PolarConfig>& configs, size_t maxFaces);
   void addLevels(int count, size_t maxFaces);
+  // Level m (>= 1) reads as level m-1 in everything a sparse step reads. [O(level m)]
+  bool stepInputsEqualParent(int m) const;
+  // Level m+1 and step m as copies of level m and step m-1 (repeatsParentLevel(m)). [O(level m), copies]
+  void copyFixedPointStep(int m, int target, size_t maxFaces);
+  // Throws InputError when `newFaces` more would exceed maxFaces (a step of level m towards `target`).
+  void checkBudget(size_t newFaces, int target, int m, size_t maxFaces) const;
   void appendTail(const RefinedLevel& level, const std::vector<uint8_t>& polar, int m, Step& step, RefinedLevel& child,
                   std::vector<uint8_t>& childExact, std::vector<uint8_t>& childComplete) const;
   void computePoints(size_t firstStep);
@@ -108,6 +119,7 @@ class AdaptiveRefinement {
   std::vector<Step> steps_;
   std::vector<LevelState> states_;
   std::vector<size_t> totalFacesAt_;  // totalFaces() of the refinement ending at each level
+  std::vector<uint8_t> repeats_;      // per level: repeatsParentLevel(m)
   size_t totalFaces_ = 0;
 };
 

@@ -70,6 +70,11 @@ struct RefineOptions {
   // a third fewer bytes for a caller that only reads its faces and points (`refine`). Walking
   // around its vertices (patch extraction) needs Refinement::completeFinestTopology first.
   bool finestVertexRings = true;
+  // AdaptiveRefinement: a level whose step inputs (faces, sharpness, holes, which faces are needed,
+  // which vertices exact and complete) equal its parent level's is a fixed point of the sparse step,
+  // so its step and child are copies of the previous ones (docs/performance.md, "Fixed points").
+  // false refines every level anew (the tests compare both).
+  bool copyFixedPointLevels = true;
 };
 
 }  // namespace polarview
