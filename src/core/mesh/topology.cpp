@@ -33,6 +33,9 @@ class TopologyBuilder {
     for (Index f = 0; f < t_.faceCount; ++f)
       std::fill(t_.cornerFace.begin() + mesh_.faceStart[f], t_.cornerFace.begin() + mesh_.faceStart[f + 1], f);
     buildEdgesFromTwins(twin);
+    twin_ = &twin;
+    quadsOnly_ = true;
+    for (Index f = 0; f <= t_.faceCount && quadsOnly_; ++f) quadsOnly_ = mesh_.faceStart[f] == 4 * f;
     buildVertexRings();
     return std::move(t_);
   }
@@ -53,7 +56,10 @@ class TopologyBuilder {
   std::string edgeName(Index a, Index b) const { return "(" + vertexName(std::min(a, b)) + " - " + vertexName(std::max(a, b)) + ")"; }
 
   Index cornerNext(Index c) const { return c + 1 == mesh_.faceStart[t_.cornerFace[c] + 1] ? mesh_.faceStart[t_.cornerFace[c]] : c + 1; }
-  Index cornerPrev(Index c) const { return c == mesh_.faceStart[t_.cornerFace[c]] ? mesh_.faceStart[t_.cornerFace[c] + 1] - 1 : c - 1; }
+  Index cornerPrev(Index c) const {
+    if (quadsOnly_) return (c & ~Index(3)) | ((c + 3) & 3);
+    return c == mesh_.faceStart[t_.cornerFace[c]] ? mesh_.faceStart[t_.cornerFace[c] + 1] - 1 : c - 1;
+  }
 
   // Face sizes, index ranges, repeated vertices; fills cornerFace.
   void validateFaces() {
@@ -220,12 +226,15 @@ class TopologyBuilder {
         t_.vertexEdges[edgePos++] = t_.cornerEdge[c];
         ++pos;
         const Index incoming = cornerPrev(c);
+        // The next face's corner at v starts the twin of the incoming half-edge (none: boundary).
         const Index e = t_.cornerEdge[incoming];
-        if (t_.edgeOnBoundary(e)) {
+        const Index next = twin_ ? (*twin_)[size_t(incoming)] : t_.edgeOnBoundary(e) ? -1
+                                   : edgeCorners_[2 * e] == incoming ? edgeCorners_[2 * e + 1] : edgeCorners_[2 * e];
+        if (next < 0) {
           t_.vertexEdges[edgePos++] = e;
           break;
         }
-        c = edgeCorners_[2 * e] == incoming ? edgeCorners_[2 * e + 1] : edgeCorners_[2 * e];
+        c = next;
         if (c == start || pos - first == count) break;
       }
       if (pos - first != count) failNonManifoldFan(v, cornersOfVertex.data() + first, count, pos - first);
@@ -261,6 +270,8 @@ class TopologyBuilder {
   const std::string& source_;
   MeshTopology t_;
   std::vector<Index> edgeCorners_;  // per edge: the corner starting each side's half-edge (-1 on a boundary)
+  const std::vector<Index>* twin_ = nullptr;  // buildFromTwins: per corner, the twin half-edge's corner
+  bool quadsOnly_ = false;                     // face f's corners are 4f..4f+3 (a refinement's quads)
   std::vector<Index> scratch_;
 };
 

@@ -15,6 +15,7 @@
 #include "core/mesh/manifold_split.h"
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/face_regularity.h"
+#include "core/subdiv/parallel_for.h"
 #include "core/subdiv/refine_steps.h"
 #include "core/subdiv/refine_topology.h"
 
@@ -569,6 +570,10 @@ std::vector<Index> sparseChildTwins(const RefinedLevel& level, const std::vector
   return twin;
 }
 
+// Levels of at least this many corners split a sparse step into two tasks on two threads (a
+// thread's start, ~20-50 us here, against ~0.1 us a corner of work moved; docs/performance.md).
+constexpr size_t kTwoTaskCorners = 8192;
+
 // One sparse step of `level` (adaptive_refiner.h): per face, the child faces at its selected corners
 // (Catmull-Clark's quads, or C2PS's two triangles at a split pole corner); the child vertices they
 // use, numbered [face points | edge points | vertex points] by parent id; the child's tables,
@@ -607,42 +612,63 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
   for (Index v = 0; v < topo.vertexCount; ++v)
     if (selected[size_t(v)]) vertexChild[size_t(v)] = edgeEnd + Index(children.vertices.size()), children.vertices.push_back(v);
 
-  // Child faces in parent face and corner order, shaped as refine_topology.h's.
-  child.mesh.faceStart.reserve(childFaces + 1);
-  child.mesh.faceVerts.reserve(childFaces * 4);
-  child.faceParent.reserve(childFaces);
-  std::vector<Index> childCorner(mesh.faceVerts.size(), -1);  // per parent corner: its child face's first corner
-  for (size_t i = 0; i < children.faces.size(); ++i) {
-    const Index f = children.faces[i];
-    if (i > 0 && children.faces[i - 1] == f) continue;  // a second face point of the same face
-    const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
-    for (Index c = begin; c < end; ++c) {
-      if (!selected[size_t(mesh.faceVerts[c])]) continue;
-      const Index prev = c == begin ? end - 1 : c - 1;
-      const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = cornerFacePoint[size_t(c)];
-      const Index next = edgeChild[size_t(topo.cornerEdge[c])], before = edgeChild[size_t(topo.cornerEdge[prev])];
-      childCorner[size_t(c)] = Index(child.mesh.faceVerts.size());
-      if (!split.empty() && split[size_t(c)]) {
-        child.mesh.addFace({vertex, next, face});
-        child.mesh.addFace({vertex, face, before});
+  // The child's faces and tables on this thread; its vertices' exactness and frames, which read
+  // only level m and the numbering, on a second one where the level is large enough to pay for
+  // it (the same results either way: each task writes its own tables).
+  auto facesAndTables = [&] {
+    // Child faces in parent face and corner order, shaped as refine_topology.h's.
+    child.mesh.faceStart.reserve(childFaces + 1);
+    child.mesh.faceVerts.reserve(childFaces * 4);
+    child.faceParent.reserve(childFaces);
+    std::vector<Index> childCorner(mesh.faceVerts.size(), -1);  // per parent corner: its child face's first corner
+    for (size_t i = 0; i < children.faces.size(); ++i) {
+      const Index f = children.faces[i];
+      if (i > 0 && children.faces[i - 1] == f) continue;  // a second face point of the same face
+      const Index begin = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+      for (Index c = begin; c < end; ++c) {
+        if (!selected[size_t(mesh.faceVerts[c])]) continue;
+        const Index prev = c == begin ? end - 1 : c - 1;
+        const Index vertex = vertexChild[size_t(mesh.faceVerts[c])], face = cornerFacePoint[size_t(c)];
+        const Index next = edgeChild[size_t(topo.cornerEdge[c])], before = edgeChild[size_t(topo.cornerEdge[prev])];
+        childCorner[size_t(c)] = Index(child.mesh.faceVerts.size());
+        if (!split.empty() && split[size_t(c)]) {
+          child.mesh.addFace({vertex, next, face});
+          child.mesh.addFace({vertex, face, before});
+          child.faceParent.push_back(f);
+        } else {
+          child.mesh.addFace({vertex, next, face, before});
+        }
         child.faceParent.push_back(f);
-      } else {
-        child.mesh.addFace({vertex, next, face, before});
       }
-      child.faceParent.push_back(f);
     }
-  }
-  child.mesh.points.assign(children.count(), Point(0.0));
-  child.topology = buildTopologyFromTwins(child.mesh, sparseChildTwins(level, childCorner, split));
-  if (!level.sharpness.empty()) child.sharpness = sparseChildSharpness(topo, level.sharpness, children, child.topology);
+    child.mesh.points.assign(children.count(), Point(0.0));
+    // Tables are a function of the faces: a child with its parent's faces (a fixed point,
+    // AdaptiveRefinement::repeatsParentLevel) takes the parent's.
+    if (child.mesh.vertexCount() == mesh.vertexCount() && child.mesh.faceStart == mesh.faceStart && child.mesh.faceVerts == mesh.faceVerts)
+      child.topology = topo;
+    else
+      child.topology = buildTopologyFromTwins(child.mesh, sparseChildTwins(level, childCorner, split));
+    if (!level.sharpness.empty()) child.sharpness = sparseChildSharpness(topo, level.sharpness, children, child.topology);
+  };
+  auto flagsAndFrames = [&] {
+    markSparseChildren(level, part, selected, exact, complete, childExact, childComplete);
+    // Frames: each child vertex in its parent element's component.
+    const std::vector<int32_t> component = sparseComponents(level, touched, poles, part);
+    child.vertexFrame.resize(children.count());
+    for (size_t i = 0; i < children.faces.size(); ++i)
+      child.vertexFrame[i] = uint32_t(component[size_t(mesh.faceVerts[mesh.faceStart[children.faces[i]]])]);
+    for (size_t i = 0; i < children.edges.size(); ++i)
+      child.vertexFrame[size_t(faceCount) + i] = uint32_t(component[size_t(topo.edgeVerts[2 * children.edges[i]])]);
+    for (size_t i = 0; i < children.vertices.size(); ++i)
+      child.vertexFrame[size_t(edgeEnd) + i] = uint32_t(component[size_t(children.vertices[i])]);
+  };
+  runBoth(threadLimit() > 1 && mesh.faceVerts.size() >= kTwoTaskCorners, facesAndTables, flagsAndFrames);
   auto childOf = [&](Index full) {  // catmull_clark.h's full child numbering -> the sparse child's
     if (full < topo.faceCount) return faceChild[size_t(full)];
     if (full < topo.faceCount + topo.edgeCount) return edgeChild[size_t(full - topo.faceCount)];
     return vertexChild[size_t(full - topo.faceCount - topo.edgeCount)];
   };
   for (const PolarConfig& config : poles) child.poles.push_back(sparseChildConfig(level, config, selected, childOf));
-
-  markSparseChildren(level, part, selected, exact, complete, childExact, childComplete);
   for (size_t k = 0; k < poles.size(); ++k) {
     const PolarConfig& parent = poles[k];
     const PolarConfig& config = child.poles[k];
@@ -656,16 +682,6 @@ SparsePart refineSparse(const RefinedLevel& level, const std::vector<uint8_t>& s
       for (Index v : config.links) childExact[size_t(v)] = 1;
     }
   }
-
-  // Frames: each child vertex in its parent element's component.
-  const std::vector<int32_t> component = sparseComponents(level, touched, poles, part);
-  child.vertexFrame.resize(children.count());
-  for (size_t i = 0; i < children.faces.size(); ++i)
-    child.vertexFrame[i] = uint32_t(component[size_t(mesh.faceVerts[mesh.faceStart[children.faces[i]]])]);
-  for (size_t i = 0; i < children.edges.size(); ++i)
-    child.vertexFrame[size_t(faceCount) + i] = uint32_t(component[size_t(topo.edgeVerts[2 * children.edges[i]])]);
-  for (size_t i = 0; i < children.vertices.size(); ++i)
-    child.vertexFrame[size_t(edgeEnd) + i] = uint32_t(component[size_t(children.vertices[i])]);
   return part;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -53,6 +54,34 @@ void runParts(unsigned parts, Fn&& fn) {
 template <class Fn>
 void parallelRanges(Index count, unsigned parts, Fn&& fn) {
   runParts(parts, [&](unsigned k) { fn(partBound(count, parts, k), partBound(count, parts, k + 1)); });
+}
+
+// Runs a() on this thread and b() on a second one at once when `parallel`, else a() then b(); an
+// exception from either is rethrown here once both have finished. For two tasks that write
+// disjoint data, so results never depend on `parallel`. [one thread started]
+template <class A, class B>
+void runBoth(bool parallel, A&& a, B&& b) {
+  if (!parallel) {
+    a();
+    b();
+    return;
+  }
+  std::exception_ptr failed;
+  std::thread worker([&] {
+    try {
+      b();
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  });
+  try {
+    a();
+  } catch (...) {
+    worker.join();
+    throw;
+  }
+  worker.join();
+  if (failed) std::rethrow_exception(failed);
 }
 
 }  // namespace polarview
