@@ -11,6 +11,7 @@
 
 #include "core/subdiv/catmull_clark.h"
 #include "core/subdiv/face_regularity.h"
+#include "core/subdiv/parallel_for.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -971,6 +972,22 @@ void finishSources(PatchSources* sources, size_t count) {
   sources->sidesMissing.resize(count);
 }
 
+// Appends `from` to `to`, each patch with its level jumps (`deltas` from `to`'s end; empty: none),
+// a few at a time so that a patch is still in cache when its jumps are written.
+void appendWithJumps(const std::vector<Patch>& from, const LevelDeltas& deltas, std::vector<Patch>& to) {
+  constexpr size_t kChunk = 64;
+  for (size_t begin = 0; begin < from.size(); begin += kChunk) {
+    const size_t first = to.size(), end = std::min(begin + kChunk, from.size());
+    to.insert(to.end(), from.begin() + std::ptrdiff_t(begin), from.begin() + std::ptrdiff_t(end));
+    if (deltas.empty()) continue;
+    for (size_t k = first; k < to.size(); ++k) to[k].edgeLevelDelta = deltas[k];
+  }
+}
+
+// Sets with at least this many caps make them on a second thread (a thread's start, ~10-50 us
+// here, against ~2 us a cap).
+constexpr size_t kCapsOnSecondThread = 256;
+
 // Each level classified, the set indexed and its level jumps found first, so that the set (and
 // its sources) is allocated once, at its size, and each patch is made in place there, whole: no
 // per-level copies (which would hold the patches twice at the peak) and no second pass over the
@@ -985,33 +1002,50 @@ PatchSet extractFromStack(const LevelStack& stack, PatchSources* sources) {
   const size_t regular = index.size();
   const CapPlan caps = planCaps(stack, finest, faces.back().capFaces);
   index.append(caps.index);
-  const LevelDeltas deltas = levelJumps(stack, caps.holeFaces, regular, index);
 
   PatchSet set;
-  set.patches.reserve(index.size());
-  startSources(sources, index.size());
-  PatchOutput out{set.patches, set.kindCounts, sources ? &sources->stencil : nullptr, sources ? &sources->sidesMissing : nullptr};
-  // Levels that repeat their parent take its stencils: from the sources, or (none asked) from the
-  // first level of the run, kept aside.
-  std::vector<std::array<Index, 16>> keptStencil;
-  std::vector<uint8_t> keptMissing;
-  size_t parentFirst = 0;
-  for (int m = 0; m <= finest; ++m) {
-    LevelFaces& level = faces[size_t(m)];
-    StencilRun reuse;
-    PatchOutput levelOut = out;
-    if (stack.repeats(m)) {
-      reuse = sources ? StencilRun{sources->stencil.data() + parentFirst, sources->sidesMissing.data() + parentFirst}
-                      : StencilRun{keptStencil.data(), keptMissing.data()};
-    } else if (!sources && m < finest && stack.repeats(m + 1)) {
-      keptStencil.reserve(level.patchCount), keptMissing.reserve(level.patchCount);
-      levelOut.stencil = &keptStencil, levelOut.sidesMissing = &keptMissing;
+  LevelDeltas deltas;
+  auto regularPatches = [&] {
+    deltas = levelJumps(stack, caps.holeFaces, regular, index);
+    set.patches.reserve(index.size());
+    startSources(sources, index.size());
+    PatchOutput out{set.patches, set.kindCounts, sources ? &sources->stencil : nullptr, sources ? &sources->sidesMissing : nullptr};
+    // Levels that repeat their parent take its stencils: from the sources, or (none asked) from
+    // the first level of the run, kept aside.
+    std::vector<std::array<Index, 16>> keptStencil;
+    std::vector<uint8_t> keptMissing;
+    size_t parentFirst = 0;
+    for (int m = 0; m <= finest; ++m) {
+      LevelFaces& level = faces[size_t(m)];
+      StencilRun reuse;
+      PatchOutput levelOut = out;
+      if (stack.repeats(m)) {
+        reuse = sources ? StencilRun{sources->stencil.data() + parentFirst, sources->sidesMissing.data() + parentFirst}
+                        : StencilRun{keptStencil.data(), keptMissing.data()};
+      } else if (!sources && m < finest && stack.repeats(m + 1)) {
+        keptStencil.reserve(level.patchCount), keptMissing.reserve(level.patchCount);
+        levelOut.stencil = &keptStencil, levelOut.sidesMissing = &keptMissing;
+      }
+      parentFirst = level.firstPatch;
+      extractRegular(stack, m, level, index, deltas, levelOut, reuse);
+      if (m < finest) level = LevelFaces();  // the children have inherited
     }
-    parentFirst = level.firstPatch;
-    extractRegular(stack, m, level, index, deltas, levelOut, reuse);
-    if (m < finest) level = LevelFaces();  // the children have inherited
+  };
+  // The finest level's caps (limit frames, Bezier nets: ~15% of a set's time) need neither the
+  // level jumps nor the regular patches: made on a second thread where there are enough of them,
+  // then copied after the regular patches (the same set either way).
+  if (threadLimit() > 1 && caps.index.size() >= kCapsOnSecondThread) {
+    std::vector<Patch> capPatches;
+    runBoth(true, regularPatches, [&] {
+      capPatches.reserve(caps.index.size());
+      extractCaps(stack, finest, caps, capPatches);
+    });
+    appendWithJumps(capPatches, deltas, set.patches);
+    for (const Patch& patch : capPatches) ++set.kindCounts[size_t(patch.kind)];
+  } else {
+    regularPatches();
+    appendCaps(stack, finest, caps, deltas, regular, set);
   }
-  appendCaps(stack, finest, caps, deltas, regular, set);
   finishSources(sources, set.patches.size());
   return set;
 }
@@ -1034,18 +1068,6 @@ struct FinestLevelCaps {
   std::vector<Patch> patches;
   std::array<size_t, 5> kindCounts{};
 };
-
-// Appends `from` to `to`, each patch with its level jumps (`deltas` from `to`'s end; empty: none),
-// a few at a time so that a patch is still in cache when its jumps are written.
-void appendWithJumps(const std::vector<Patch>& from, const LevelDeltas& deltas, std::vector<Patch>& to) {
-  constexpr size_t kChunk = 64;
-  for (size_t begin = 0; begin < from.size(); begin += kChunk) {
-    const size_t first = to.size(), end = std::min(begin + kChunk, from.size());
-    to.insert(to.end(), from.begin() + std::ptrdiff_t(begin), from.begin() + std::ptrdiff_t(end));
-    if (deltas.empty()) continue;
-    for (size_t k = first; k < to.size(); ++k) to[k].edgeLevelDelta = deltas[k];
-  }
-}
 
 // The set of a LevelPatchCache from the levels it keeps (so copied, not moved) and the finest
 // level's caps, level jumps set as they are copied. [O(patches)]
