@@ -986,7 +986,7 @@ void appendWithJumps(const std::vector<Patch>& from, const LevelDeltas& deltas, 
 
 // Sets with at least this many caps make them on a second thread (a thread's start, ~10-50 us
 // here, against ~2 us a cap).
-constexpr size_t kCapsOnSecondThread = 256;
+constexpr size_t kCapsOnSecondThread = 1024;
 
 // Each level classified, the set indexed and its level jumps found first, so that the set (and
 // its sources) is allocated once, at its size, and each patch is made in place there, whole: no

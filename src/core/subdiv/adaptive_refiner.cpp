@@ -570,9 +570,9 @@ std::vector<Index> sparseChildTwins(const RefinedLevel& level, const std::vector
   return twin;
 }
 
-// Levels of at least this many corners split a sparse step into two tasks on two threads (a
+// Levels of at least this many corners (8,192 quads) split a sparse step into two tasks on two threads (a
 // thread's start, ~20-50 us here, against ~0.1 us a corner of work moved; docs/performance.md).
-constexpr size_t kTwoTaskCorners = 8192;
+constexpr size_t kTwoTaskCorners = 32768;
 
 // One sparse step of `level` (adaptive_refiner.h): per face, the child faces at its selected corners
 // (Catmull-Clark's quads, or C2PS's two triangles at a split pole corner); the child vertices they
