@@ -163,27 +163,29 @@ void compareTail(const PatchSet& uniform, const PatchSet& adaptive, double size,
   CHECK(missing == 0);
 }
 
+// Two tables of the same mesh, entry for entry.
+void checkEqualTables(const MeshTopology& built, const MeshTopology& t) {
+  CHECK(built.edgeCount == t.edgeCount);
+  CHECK(built.cornerEdge == t.cornerEdge);
+  CHECK(built.cornerFace == t.cornerFace);
+  CHECK(built.edgeVerts == t.edgeVerts);
+  CHECK(built.edgeFaces == t.edgeFaces);
+  CHECK(built.vertexFaceStart == t.vertexFaceStart);
+  CHECK(built.vertexFaces == t.vertexFaces);
+  CHECK(built.vertexCorners == t.vertexCorners);
+  CHECK(built.vertexEdgeStart == t.vertexEdgeStart);
+  CHECK(built.vertexEdges == t.vertexEdges);
+  CHECK(built.vertexOnBoundary == t.vertexOnBoundary);
+  CHECK(built.vertexUsed == t.vertexUsed);
+}
+
 // Every level's tables (the sparse steps derive them from the parent's twins) equal those built
 // from its mesh, entry for entry.
 void checkLevelTables(const AdaptiveRefinement& refinement, const std::string& what) {
   INFO(what);
   for (int m = 1; m < refinement.levelCount(); ++m) {
-    const RefinedLevel& level = refinement.level(m);
-    const MeshTopology built = buildTopology(level.mesh);
-    const MeshTopology& t = level.topology;
     CAPTURE(m);
-    CHECK(built.edgeCount == t.edgeCount);
-    CHECK(built.cornerEdge == t.cornerEdge);
-    CHECK(built.cornerFace == t.cornerFace);
-    CHECK(built.edgeVerts == t.edgeVerts);
-    CHECK(built.edgeFaces == t.edgeFaces);
-    CHECK(built.vertexFaceStart == t.vertexFaceStart);
-    CHECK(built.vertexFaces == t.vertexFaces);
-    CHECK(built.vertexCorners == t.vertexCorners);
-    CHECK(built.vertexEdgeStart == t.vertexEdgeStart);
-    CHECK(built.vertexEdges == t.vertexEdges);
-    CHECK(built.vertexOnBoundary == t.vertexOnBoundary);
-    CHECK(built.vertexUsed == t.vertexUsed);
+    checkEqualTables(buildTopology(refinement.level(m).mesh), refinement.level(m).topology);
   }
 }
 
@@ -606,12 +608,7 @@ void requireSameLevels(const AdaptiveRefinement& a, const AdaptiveRefinement& b,
     CHECK(x.sharpness.vertex == y.sharpness.vertex);
     CHECK(x.frameOrigins == y.frameOrigins);
     CHECK(x.vertexFrame == y.vertexFrame);
-    CHECK(x.topology.cornerEdge == y.topology.cornerEdge);
-    CHECK(x.topology.edgeVerts == y.topology.edgeVerts);
-    CHECK(x.topology.edgeFaces == y.topology.edgeFaces);
-    CHECK(x.topology.vertexFaces == y.topology.vertexFaces);
-    CHECK(x.topology.vertexCorners == y.topology.vertexCorners);
-    CHECK(x.topology.vertexEdges == y.topology.vertexEdges);
+    checkEqualTables(x.topology, y.topology);
     CHECK(a.neededFaces(m) == b.neededFaces(m));
     CHECK(a.exactVertices(m) == b.exactVertices(m));
     CHECK(a.radiallyRefinedFaces(m) == b.radiallyRefinedFaces(m));
