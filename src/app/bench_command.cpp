@@ -383,7 +383,7 @@ struct UniformBench {
 // last repetition's refinement (for --vs-opensubdiv's check).
 void timeUniformRefinement(const BenchArgs& o, const PolyMesh& mesh, UniformBench& b, std::optional<Refinement>& kept) {
   RefineOptions options{o.scheme, o.levels, o.uniformFirstStep};
-  options.finestVertexRings = false;
+  options.fullFinestTopology = false;
   for (int rep = 0; rep < o.reps; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
     Refinement refinement(mesh, options, o.input);

@@ -30,7 +30,7 @@ PatchSet makePatchSet(const PolyMesh& mesh, const std::string& source, const Ref
 PolyMesh makeRefinedMesh(const PolyMesh& mesh, const std::string& source, const RefineRequest& request) {
   const size_t maxFaces = faceLimit(mesh, source, request, false);
   RefineOptions options = request.options;
-  options.finestVertexRings = false;  // only the finest level's faces and points are handed out
+  options.fullFinestTopology = false;  // only the finest level's faces and points are handed out
   return Refinement(mesh, options, source, maxFaces).takeOutputMesh();
 }
 

@@ -121,8 +121,34 @@ void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Sp
     CHECK(lazy.topology.vertexUsed == rebuilt.vertexUsed);
     CHECK(lazy.topology.vertexFaces.empty());
     CHECK(lazy.topology.vertexEdgeStart.empty());
-    completeVertexRings(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy.topology, ringless);
+    completeChildTopology(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy, ringless);
     requireSameTopology(lazy.topology, rebuilt);
+    CHECK(lazy.links == out.links);  // kept as the lean step made them
+
+    // Faces only (OpenSubdiv's minimal last level): the same faces, parents, counts and vertex
+    // flags, no edges; completed, every table of the full step and the points left as they were.
+    ConnectivityOptions facesOnly = ringless;
+    facesOnly.edges = false;
+    RefinedConnectivity minimal;
+    refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, minimal, facesOnly);
+    CHECK(minimal.mesh.faceStart == reference.faceStart);
+    CHECK(minimal.mesh.faceVerts == reference.faceVerts);
+    CHECK(minimal.faceParent == faceParent);
+    CHECK(minimal.topology.vertexCount == rebuilt.vertexCount);
+    CHECK(minimal.topology.edgeCount == rebuilt.edgeCount);
+    CHECK(minimal.topology.faceCount == rebuilt.faceCount);
+    CHECK(minimal.topology.vertexOnBoundary == rebuilt.vertexOnBoundary);
+    CHECK(minimal.topology.vertexUsed == rebuilt.vertexUsed);
+    CHECK(minimal.topology.cornerEdge.empty());
+    CHECK(minimal.topology.edgeVerts.empty());
+    CHECK(minimal.topology.vertexFaces.empty());
+    for (size_t v = 0; v < minimal.mesh.points.size(); ++v) minimal.mesh.points[v] = Point(double(v), 1.0, -2.0);
+    const std::vector<Point> marked = minimal.mesh.points;
+    completeChildTopology(mesh, topo, links, splits == Splits::None ? nullptr : &split, minimal, facesOnly);
+    requireSameTopology(minimal.topology, rebuilt);
+    CHECK(minimal.mesh.faceVerts == reference.faceVerts);
+    CHECK(minimal.faceParent == faceParent);
+    CHECK(minimal.mesh.points == marked);
 
     mesh = out.mesh;
     topo = out.topology;
@@ -279,7 +305,7 @@ TEST_CASE("Catmull-Clark points are bit-identical on 1, 2, 3 and 7 threads") {
   }
 }
 
-TEST_CASE("a refinement without the finest level's rings: same faces, points and tags; rings made on demand equal the full ones") {
+TEST_CASE("a refinement with the finest level's faces only: same faces, points and tags; tables made on demand equal the full ones") {
   const std::vector<std::pair<std::string, PolyMesh>> meshes = {
       {"mushroom", shapes::mushroom(12)}, {"cap", shapes::polarCap(5, 3)}, {"open grid", shapes::grid(4, 3)}, {"creased cube", creasedCube()}};
   for (const auto& [name, mesh] : meshes)
@@ -288,20 +314,22 @@ TEST_CASE("a refinement without the finest level's rings: same faces, points and
       CAPTURE(int(scheme));
       RefineOptions options{scheme, 3};
       const Refinement full(mesh, options);
-      options.finestVertexRings = false;
+      options.fullFinestTopology = false;
       Refinement lazy(mesh, options);
       const RefinedLevel &a = full.finest(), &b = lazy.finest();
       CHECK(b.mesh.faceVerts == a.mesh.faceVerts);
       CHECK(b.mesh.points == a.mesh.points);
-      CHECK(b.topology.edgeVerts == a.topology.edgeVerts);
-      // RTS refines the cap radially, creases decay through the rings: both keep them.
+      CHECK(b.faceParent == a.faceParent);
+      CHECK(b.topology.edgeCount == a.topology.edgeCount);
+      // RTS refines the cap radially, creases decay through the rings: both keep every table.
       if (!lazy.radialOnly() && mesh.tags.creases.empty()) {
-        CHECK_FALSE(lazy.finestHasVertexRings());
+        CHECK_FALSE(lazy.finestTopologyComplete());
+        CHECK(b.topology.edgeVerts.empty());
         CHECK(b.topology.vertexFaces.empty());
         CHECK_THROWS_AS(extractPatches(lazy), std::logic_error);
       }
       lazy.completeFinestTopology();
-      CHECK(lazy.finestHasVertexRings());
+      CHECK(lazy.finestTopologyComplete());
       requireSameTopology(b.topology, a.topology);
       const PatchSet fromFull = extractPatches(full), fromLazy = extractPatches(lazy);
       REQUIRE(fromLazy.patches.size() == fromFull.patches.size());

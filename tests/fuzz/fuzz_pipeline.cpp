@@ -153,7 +153,7 @@ void runRefinements(const PolyMesh& mesh, const Variant& variant, int levels, bo
     // Every other input as `refine` and `bench` make it: the finest level's rings left out, then
     // made on demand (both paths stay fuzzed).
     RefineOptions uniformOptions = options;
-    uniformOptions.finestVertexRings = (mesh.faceVerts.size() + size_t(levels)) % 2 == 0;
+    uniformOptions.fullFinestTopology = (mesh.faceVerts.size() + size_t(levels)) % 2 == 0;
     Refinement refinement(mesh, uniformOptions, kSource, kMaxFinestFaces);
     gStage = where + ": completeFinestTopology";
     refinement.completeFinestTopology();

@@ -1161,8 +1161,8 @@ LevelStack stackOf(const AdaptiveRefinement& refinement, int finest = -1) {
 }  // namespace
 
 PatchSet extractPatches(const Refinement& refinement) {
-  if (!refinement.finestHasVertexRings())
-    throw std::logic_error("extractPatches: the finest level has no vertex rings (Refinement::completeFinestTopology)");
+  if (!refinement.finestTopologyComplete())
+    throw std::logic_error("extractPatches: the finest level has its faces only (Refinement::completeFinestTopology)");
   LevelStack stack;
   for (int m = 0; m < refinement.levelCount(); ++m) stack.levels.push_back(&refinement.level(m));
   stack.radial = refinement.radialOnly();

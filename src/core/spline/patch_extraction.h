@@ -78,7 +78,7 @@ struct PatchSources {
 
 // Extracts the patches of every level of `refinement` (rules above), with Patch::edgeLevelDelta
 // filled (all 0 for RTS/BPS radial levels, whose levels keep the columns). The finest level needs
-// its vertex rings (std::logic_error otherwise: RefineOptions::finestVertexRings,
+// all its tables (std::logic_error otherwise: RefineOptions::fullFinestTopology,
 // Refinement::completeFinestTopology). [O(faces of all levels)]
 PatchSet extractPatches(const Refinement& refinement);
 // The same patches from a feature-adaptive refinement: only its needed faces give patches, end caps

@@ -33,13 +33,14 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence; the child's poles are derived from the parent's
 // (column j -> 2j, links K -> 2K). `links` holds the parent's corner links on entry and the child's
-// on return (none when `finest`; the parent's still when `finest` without `vertexRings`, for
-// completeGenericRings). [O(corners)]
+// on return (none when `finest`; the parent's still when `finest` without `fullTopology`, for
+// completeGenericTopology). A `finest` level without `fullTopology` has its faces, face parents,
+// counts and vertex flags only (OpenSubdiv's minimal last level). [O(corners)]
 RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
-                                   bool vertexRings = true);
-// The vertex rings a refineGenericTopology(parent, splitPoleQuads, true, links, false) left out of
-// `child` (`links`: the parent's, as that call left them). [O(corners)]
-void completeGenericRings(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child);
+                                   bool fullTopology = true);
+// The tables a refineGenericTopology(parent, splitPoleQuads, true, links, false) left out of
+// `child` (`links`: the parent's, as that call left them); its points stay. [O(corners)]
+void completeGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child);
 
 // A polar region refined radially: pole A, `links` rings of n points, then pole B (closed) or
 // nothing (the last ring is a boundary). Rows: 0 = A, 1..links = rings, links+1 = B.

@@ -14,6 +14,7 @@
 #include "core/subdiv/refine_topology.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/mesh/check.h"
 #include "core/subdiv/parallel_for.h"
@@ -90,9 +91,13 @@ class ConnectivityBuilder {
       : parent_(parent), topo_(topo), parentLinks_(links.data()), split_(splitCorner), out_(out), options_(options) {}
 
   void build() {
+    if (!options_.edges && options_.vertexRings) throw std::logic_error("refineCatmullClarkConnectivity: rings need the edges");
     countAndNumber();
     sizeTables();
-    buildFacesAndEdges();
+    if (options_.edges)
+      buildFacesAndEdges();
+    else
+      buildFaces();
     if (options_.vertexRings)
       buildVertexRings();
     else
@@ -164,6 +169,12 @@ class ConnectivityBuilder {
     counts_.assign(parts_ + 1, PartCounts());
     runParts(parts_, [&](unsigned k) {
       PartCounts count;
+      if (!options_.edges) {  // faces only: just the splits (no edges to number, no rings)
+        if (kSplit)
+          for (Index c = parent_.faceStart[faceBound(k)]; c < parent_.faceStart[faceBound(k + 1)]; ++c) count.splitCorners += split_[c];
+        counts_[k + 1] = count;
+        return;
+      }
       for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
         const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
         for (Index c = begin; c < end; ++c) {
@@ -202,15 +213,17 @@ class ConnectivityBuilder {
     t.vertexCount = topo_.faceCount + topo_.edgeCount + topo_.vertexCount;
     t.faceCount = C + splitCount_;
     t.edgeCount = 2 * topo_.edgeCount + C + splitCount_;
-    POLARVIEW_CHECK_EQ(counts_[parts_].newEdges, t.edgeCount);
+    if (options_.edges) POLARVIEW_CHECK_EQ(counts_[parts_].newEdges, t.edgeCount);
     const size_t corners = size_t(childCorners_), faces = size_t(t.faceCount) + 1, vertices = size_t(t.vertexCount);
     PolyMesh& mesh = out_.mesh;
     mesh.faceLine.clear();
     if (!options_.childLinks) out_.links.clear();
 
-    faceTables_ = {tableJob(mesh.faceVerts, corners), tableJob(t.cornerEdge, corners), tableJob(t.cornerFace, corners),
-                   tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)), tableJob(t.edgeFaces, 2 * size_t(t.edgeCount)),
-                   tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1)};
+    faceTables_ = {tableJob(mesh.faceVerts, corners), tableJob(mesh.faceStart, faces), tableJob(out_.faceParent, faces - 1)};
+    if (options_.edges)
+      for (TableJob job : {tableJob(t.cornerEdge, corners), tableJob(t.cornerFace, corners), tableJob(t.edgeVerts, 2 * size_t(t.edgeCount)),
+                           tableJob(t.edgeFaces, 2 * size_t(t.edgeCount))})
+        faceTables_.push_back(job);
     if (options_.childLinks) faceTables_.push_back(tableJob(out_.links, 2 * corners));
     ringTables_ = ringJobs();
     ringTables_.push_back(tableJob(mesh.points, vertices));
@@ -374,6 +387,45 @@ class ConnectivityBuilder {
     POLARVIEW_CHECK_EQ(nextEdge, counts_[k + 1].newEdges);
   }
 
+  // Faces only (no edges, no twins): each parent corner's child quad, or its two triangles.
+  void buildFaces() {
+    touchTables(faceTables_);
+    Index* faceVerts = out_.mesh.faceVerts.data();
+    Index* faceStart = out_.mesh.faceStart.data();
+    Index* faceParent = out_.faceParent.data();
+    const Index* parentStart = parent_.faceStart.data();
+    const Index* parentVerts = parent_.faceVerts.data();
+    const Index* parentEdge = topo_.cornerEdge.data();
+    const Index edgePointBase = topo_.faceCount;
+    faceStart[0] = 0;
+    runParts(parts_, [&](unsigned k) {
+      for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
+        const Index begin = parentStart[f], end = parentStart[f + 1];
+        for (Index c = begin; c < end; ++c) {
+          const Index prev = c == begin ? end - 1 : c - 1;
+          const Index V = vertexPointBase_ + parentVerts[c], Ea = edgePointBase + parentEdge[c],
+                      Eb = edgePointBase + parentEdge[prev];
+          const Index x = base(c), face = childFace(c);
+          faceVerts[x] = V;
+          faceVerts[x + 1] = Ea;
+          faceVerts[x + 2] = f;
+          faceParent[face] = f;
+          if (!isSplit(c)) {
+            faceVerts[x + 3] = Eb;
+            faceStart[face + 1] = x + 4;
+          } else {  // (V, E_a, F) and (V, F, E_b), as buildFacesAndEdgesOfPart writes them
+            faceStart[face + 1] = x + 3;
+            faceVerts[x + 3] = V;
+            faceVerts[x + 4] = f;
+            faceVerts[x + 5] = Eb;
+            faceStart[face + 2] = x + 6;
+            faceParent[face + 1] = f;
+          }
+        }
+      }
+    });
+  }
+
   // Appends (face, corner) to the ring of the cursor's child vertex.
   void put(RingCursor& at, Index face, Index corner) {
     vertexFaces_[at.facePos] = face;
@@ -502,16 +554,24 @@ class ConnectivityBuilder {
 
 }  // namespace
 
-void completeVertexRings(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
-                         const std::vector<uint8_t>* splitCorner, MeshTopology& child, const ConnectivityOptions& options) {
-  // The builder writes a RefinedConnectivity's topology: lend it the child's.
-  RefinedConnectivity connectivity;
-  connectivity.topology = std::move(child);
-  if (splitCorner)
-    ConnectivityBuilder<true>(parent, topo, links, splitCorner->data(), connectivity, options).completeRings();
-  else
-    ConnectivityBuilder<false>(parent, topo, links, nullptr, connectivity, options).completeRings();
-  child = std::move(connectivity.topology);
+void completeChildTopology(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
+                           const std::vector<uint8_t>* splitCorner, RefinedConnectivity& child, const ConnectivityOptions& options) {
+  ConnectivityOptions complete = options;
+  complete.vertexRings = complete.edges = true;
+  complete.childLinks = false;
+  const bool hasEdges = child.topology.cornerEdge.size() == child.mesh.faceVerts.size() && !child.mesh.faceVerts.empty();
+  // Without edges: the whole step again (it rewrites the faces as they are and keeps the points,
+  // whose size it sets to theirs); with them, the ring pass alone.
+  std::vector<Index> keptLinks;
+  keptLinks.swap(child.links);
+  if (splitCorner) {
+    ConnectivityBuilder<true> builder(parent, topo, links, splitCorner->data(), child, complete);
+    hasEdges ? builder.completeRings() : builder.build();
+  } else {
+    ConnectivityBuilder<false> builder(parent, topo, links, nullptr, child, complete);
+    hasEdges ? builder.completeRings() : builder.build();
+  }
+  child.links.swap(keptLinks);
 }
 
 void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,

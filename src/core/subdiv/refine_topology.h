@@ -35,8 +35,13 @@ struct ConnectivityOptions {
   // Fill the child's vertex rings (vertexFaceStart, vertexFaces, vertexEdgeStart, vertexEdges,
   // vertexCorners). Without them (a finest level nobody walks around: OpenSubdiv's
   // fullTopologyInLastLevel = false) those tables stay empty, vertexOnBoundary and vertexUsed are
-  // still filled, and completeVertexRings adds the rings later: a third fewer bytes to write.
+  // still filled, and completeChildTopology adds the rings later: a third fewer bytes to write.
   bool vertexRings = true;
+  // Fill the child's edges (cornerEdge, cornerFace, edgeVerts, edgeFaces; needs vertexRings = false
+  // too). Without them the child has its faces only (faceVerts, faceStart, faceParent), its counts
+  // and vertexOnBoundary / vertexUsed: OpenSubdiv's minimal topology of the last uniform level, what
+  // the points and `refine` read. completeChildTopology adds the rest later.
+  bool edges = true;
   unsigned threads = 0;    // 0: as many as pay for the mesh size (parallel_for.h); results never depend on it
 };
 
@@ -47,10 +52,12 @@ void refineCatmullClarkConnectivity(const PolyMesh& parent, const MeshTopology& 
                                     const std::vector<uint8_t>* splitCorner, RefinedConnectivity& out,
                                     const ConnectivityOptions& options = {});
 
-// The vertex rings a refineCatmullClarkConnectivity(..., vertexRings = false) left out, from the same
-// parent, `links` and `splitCorner`: `child` then equals what the full step gives. [O(corners)]
-void completeVertexRings(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
-                         const std::vector<uint8_t>* splitCorner, MeshTopology& child,
-                         const ConnectivityOptions& options = {});
+// The tables a refineCatmullClarkConnectivity(..., vertexRings = false, edges = true or false) left
+// out, from the same parent, `links` and `splitCorner`: the child's mesh (its points untouched),
+// faceParent and topology then equal what the full step gives; its links stay as they were.
+// [O(corners)]
+void completeChildTopology(const PolyMesh& parent, const MeshTopology& topo, const std::vector<Index>& links,
+                           const std::vector<uint8_t>* splitCorner, RefinedConnectivity& child,
+                           const ConnectivityOptions& options = {});
 
 }  // namespace polarview

@@ -148,14 +148,14 @@ std::vector<uint8_t> poleCornerSplits(const RefinedLevel& parent, bool splitPole
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
 // and the child's on return (none after the `finest` level; the parent's still when that one is
-// made without `vertexRings`, for completeGenericRings).
+// made with its faces only, `fullTopology` false, for completeGenericTopology).
 RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
-                                   bool vertexRings) {
+                                   bool fullTopology) {
   std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
   RefinedConnectivity connectivity;
   ConnectivityOptions options;
   options.childLinks = !finest;
-  options.vertexRings = vertexRings || !finest;
+  options.vertexRings = options.edges = fullTopology || !finest;
   refineCatmullClarkConnectivity(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, connectivity, options);
   RefinedLevel child;
   child.mesh = std::move(connectivity.mesh);
@@ -170,9 +170,17 @@ RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQua
   return child;
 }
 
-void completeGenericRings(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child) {
+void completeGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child) {
   std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
-  completeVertexRings(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, child.topology);
+  // The builder completes a RefinedConnectivity: lend it the child's mesh, tables and parents.
+  RefinedConnectivity connectivity;
+  connectivity.mesh = std::move(child.mesh);
+  connectivity.topology = std::move(child.topology);
+  connectivity.faceParent = std::move(child.faceParent);
+  completeChildTopology(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, connectivity);
+  child.mesh = std::move(connectivity.mesh);
+  child.topology = std::move(connectivity.topology);
+  child.faceParent = std::move(connectivity.faceParent);
   releaseToPool(split);
 }
 
@@ -351,9 +359,9 @@ struct Refinement::Plan {
   std::vector<Index> sourceVertex;  // non-manifold input: per level-0 vertex, the input's (manifold_split.h)
   std::vector<std::vector<RadialRegion>> regions;  // radial mode: per level
   std::string source;
-  // The finest level made without vertex rings (RefineOptions::finestVertexRings): its parent's
+  // The finest level made with its faces only (RefineOptions::fullFinestTopology): its parent's
   // corner links, kept for completeFinestTopology.
-  bool finestRingsMissing = false;
+  bool finestTopologyMissing = false;
   std::vector<Index> finestParentLinks;
 };
 
@@ -437,9 +445,9 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
       plan_->regions.push_back(std::move(childRegions));
     } else {
       // Creases decay along the child's edges, found through its rings (childSharpness): kept then.
-      const bool finestRings = options.finestVertexRings || creases;
+      const bool fullFinest = options.fullFinestTopology || creases;
       levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links,
-                                              finestRings));
+                                              fullFinest));
       if (creases) {
         const RefinedLevel& parent = levels_[levels_.size() - 2];
         RefinedLevel& child = levels_.back();
@@ -454,20 +462,20 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
     for (size_t f = 0; f < child.faceHole.size(); ++f)
       if (child.faceHole[f]) child.mesh.tags.holes.push_back(Index(f));
   }
-  if (!plan_->radial && options.levels > 0 && !options.finestVertexRings && !creases) {
-    plan_->finestRingsMissing = true;
+  if (!plan_->radial && options.levels > 0 && !options.fullFinestTopology && !creases) {
+    plan_->finestTopologyMissing = true;
     plan_->finestParentLinks = std::move(links);
   }
   updatePositions(input.points);
 }
 
-bool Refinement::finestHasVertexRings() const { return !plan_->finestRingsMissing; }
+bool Refinement::finestTopologyComplete() const { return !plan_->finestTopologyMissing; }
 
 void Refinement::completeFinestTopology() {
-  if (!plan_->finestRingsMissing) return;
-  completeGenericRings(levels_[levels_.size() - 2], schemeTraits(options_.scheme).polar(), plan_->finestParentLinks, levels_.back());
+  if (!plan_->finestTopologyMissing) return;
+  completeGenericTopology(levels_[levels_.size() - 2], schemeTraits(options_.scheme).polar(), plan_->finestParentLinks, levels_.back());
   releaseToPool(plan_->finestParentLinks);
-  plan_->finestRingsMissing = false;
+  plan_->finestTopologyMissing = false;
 }
 
 // The big tables go to the pool for the next refinement (table_pool.h).

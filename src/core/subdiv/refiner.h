@@ -58,11 +58,11 @@ class Refinement {
   // the Refinement is spent. [O(1) unsplit]
   PolyMesh takeOutputMesh() &&;
 
-  // Whether the finest level has its vertex rings (RefineOptions::finestVertexRings, or
-  // completeFinestTopology since). Extracting patches or walking around its vertices needs them.
-  bool finestHasVertexRings() const;
-  // Builds the finest level's vertex rings when they were left out; then its MeshTopology equals
-  // buildTopology(finest mesh). [O(corners of the finest level)]
+  // Whether the finest level has all its tables (RefineOptions::fullFinestTopology, or
+  // completeFinestTopology since). Extracting patches, its edges or walking around its vertices need them.
+  bool finestTopologyComplete() const;
+  // Builds the finest level's edges and vertex rings when they were left out; then its MeshTopology
+  // equals buildTopology(finest mesh). [O(corners of the finest level)]
   void completeFinestTopology();
 
   // Recomputes every level's points from new base points (same count as the base, else

@@ -65,11 +65,12 @@ struct RefineOptions {
   Scheme scheme = Scheme::C2PS;
   int levels = 3;
   bool uniformFirstStep = false;  // paper Section 6: first step's 2-link by uniform bi-3 rules
-  // Refinement (uniform): false leaves the finest level's vertex rings out where Catmull-Clark's
-  // connectivity made it, as OpenSubdiv's RefineUniform does by default (fullTopologyInLastLevel):
-  // a third fewer bytes for a caller that only reads its faces and points (`refine`). Walking
-  // around its vertices (patch extraction) needs Refinement::completeFinestTopology first.
-  bool finestVertexRings = true;
+  // Refinement (uniform): false gives the finest level its faces, face parents, counts and vertex
+  // flags only where Catmull-Clark's connectivity made it, as OpenSubdiv's RefineUniform does by
+  // default (fullTopologyInLastLevel = false): what a caller that reads only its faces and points
+  // needs (`refine`). Its edges and vertex rings (patch extraction, walking around its vertices)
+  // need Refinement::completeFinestTopology first.
+  bool fullFinestTopology = true;
   // AdaptiveRefinement: a level whose step inputs (faces, sharpness, holes, which faces are needed,
   // which vertices exact and complete) equal its parent level's is a fixed point of the sparse step,
   // so its step and child are copies of the previous ones (docs/performance.md, "Fixed points").
