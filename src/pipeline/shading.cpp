@@ -116,8 +116,11 @@ glm::vec3 colorMapCpu(ShadingParams::ColorMap map, double value, const ColourInt
 
 ColourStatistics colourStatistics(const std::vector<double>& values, const std::vector<double>& weights, float quantile) {
   ColourStatistics statistics;
-  statistics.symmetricRange = weightedSymmetricRange(values, weights, quantile);
-  statistics.percentiles = {weightedPercentile(values, weights, 1.0 - quantile), weightedPercentile(values, weights, quantile)};
+  const double upper = symmetricRangeFraction(quantile);
+  const std::vector<double> percentiles =
+      weightedPercentiles(values, weights, {1.0 - upper, upper, 1.0 - quantile, double(quantile)});
+  statistics.symmetricRange = symmetricRange(percentiles[0], percentiles[1]);
+  statistics.percentiles = {percentiles[2], percentiles[3]};
   const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
   statistics.min = *lowest;
   statistics.max = *highest;

@@ -6,7 +6,8 @@
 
 namespace polarview {
 
-double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction) {
+std::vector<double> weightedPercentiles(const std::vector<double>& values, const std::vector<double>& weights,
+                                        const std::vector<double>& fractions) {
   std::vector<std::pair<double, double>> sorted;  // (value, weight) by value
   double total = 0.0;
   for (size_t i = 0; i < values.size() && i < weights.size(); ++i) {
@@ -14,21 +15,39 @@ double weightedPercentile(const std::vector<double>& values, const std::vector<d
     sorted.emplace_back(values[i], weights[i]);
     total += weights[i];
   }
-  if (sorted.empty() || !(total > 0.0)) return 0.0;
+  std::vector<double> percentiles(fractions.size(), 0.0);
+  if (sorted.empty() || !(total > 0.0)) return percentiles;
   std::sort(sorted.begin(), sorted.end());
-  const double needed = std::clamp(fraction, 0.0, 1.0) * total;
-  double sum = 0.0;
-  for (const auto& [value, weight] : sorted) {
-    sum += weight;
-    if (sum >= needed) return value;
+  for (size_t k = 0; k < fractions.size(); ++k) {
+    const double needed = std::clamp(fractions[k], 0.0, 1.0) * total;
+    double sum = 0.0;
+    percentiles[k] = sorted.back().first;
+    for (const auto& [value, weight] : sorted) {
+      sum += weight;
+      if (sum >= needed) {
+        percentiles[k] = value;
+        break;
+      }
+    }
   }
-  return sorted.back().first;
+  return percentiles;
+}
+
+double weightedPercentile(const std::vector<double>& values, const std::vector<double>& weights, double fraction) {
+  return weightedPercentiles(values, weights, {fraction})[0];
+}
+
+double symmetricRangeFraction(float quantile) { return std::clamp(double(quantile), 0.5, 1.0); }
+
+double symmetricRange(double lowPercentile, double highPercentile) {
+  const double range = std::max(-lowPercentile, highPercentile);
+  return range > 0.0 && std::isfinite(range) ? range : 1.0;  // also when there is no weight
 }
 
 double weightedSymmetricRange(const std::vector<double>& values, const std::vector<double>& weights, float quantile) {
-  const double upper = std::clamp(double(quantile), 0.5, 1.0);
-  const double range = std::max(-weightedPercentile(values, weights, 1.0 - upper), weightedPercentile(values, weights, upper));
-  return range > 0.0 && std::isfinite(range) ? range : 1.0;  // also when there is no weight
+  const double upper = symmetricRangeFraction(quantile);
+  const std::vector<double> p = weightedPercentiles(values, weights, {1.0 - upper, upper});
+  return symmetricRange(p[0], p[1]);
 }
 
 }  // namespace polarview

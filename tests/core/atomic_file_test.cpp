@@ -19,6 +19,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "temp_dir.h"
 #include "core/mesh/atomic_file.h"
@@ -84,6 +85,29 @@ TEST_CASE("atomic file: the whole content replaces the file, and nothing else is
     fs::current_path(cwd);
     CHECK(readFile(dir.path / "relative.txt") == "r");
   }
+}
+
+TEST_CASE("atomic file: a stream's pieces of every size arrive whole and in order") {
+  // Short pieces join the 64 KiB block; pieces filling it, or larger than it, go around it.
+  TempDir dir;
+  const fs::path out = dir.path / "pieces.txt";
+  std::mt19937 random(7);
+  std::string expected;
+  std::vector<std::string> pieces;
+  for (size_t size : {size_t(1), size_t(65535), size_t(3), size_t(65536), size_t(65537), size_t(0), size_t(200000), size_t(17)}) {
+    std::string piece(size, ' ');
+    for (char& c : piece) c = char('a' + random() % 26);
+    pieces.push_back(piece);
+  }
+  for (int i = 0; i < 5000; ++i) pieces.push_back(std::to_string(i) + ' ');
+  writeFileAtomically(out.string(), [&](std::ostream& stream) {
+    for (const std::string& piece : pieces) {
+      stream << piece;
+      stream.put('|');
+      expected += piece + '|';
+    }
+  });
+  CHECK(readFile(out) == expected);
 }
 
 TEST_CASE("atomic file: a user's OUT.tmp and symlinks named like temporaries are never touched") {

@@ -88,6 +88,10 @@ TEST_CASE("colour histogram: area-weighted bins over the bar's two slopes, value
   CHECK(weightedPercentile(values, weights, 0.5f) == 0.5f);  // running weight 0.5, 1.5, 3.5 of 4.5
   CHECK(weightedPercentile(values, weights, 0.0f) == -8.0f);
   CHECK(weightedPercentile(values, weights, 1.0f) == 3.0f);
+  // Several fractions from one sort, each as on its own (running weight 0.5, 1.5, 3.5, 4.5).
+  CHECK(weightedPercentiles(values, weights, {0.5, 0.0, 1.0, 0.1, 0.12, 0.33, 0.34}) ==
+        std::vector<double>{0.5, -8.0, 3.0, -8.0, -1.0, -1.0, 0.5});
+  CHECK(weightedPercentiles({}, {}, {0.5, 0.9}) == std::vector<double>{0.0, 0.0});
 }
 
 TEST_CASE("automatic colour range: a tight corner on a few percent of the area does not set the range") {

@@ -36,8 +36,9 @@ double controlBoxDiagonal(const PatchSet& set, Point& low) {
   return glm::length(high - low);
 }
 
-// Vertices on patch borders by position: a uniform grid of cells `tolerance` wide, each listing
-// its vertices (a chain through next_), so a query looks at the 27 cells around a point.
+// Vertices on patch borders by position: a uniform grid of cells kCellWidth tolerances wide, each
+// listing its vertices (a chain through next_). A query looks at its own cell and, per axis, the
+// neighbour it lies within the tolerance of (most points: one cell; at most 8).
 class SeamWelder {
  public:
   SeamWelder(const Point& origin, double tolerance) : origin_(origin), tolerance_(tolerance) {}
@@ -45,12 +46,20 @@ class SeamWelder {
   // The nearest vertex within the tolerance of `p`, or kNoVertex. [O(1) expected]
   uint32_t find(const Point& p, const std::vector<Point>& positions) const {
     if (!usable(p)) return kNoVertex;
-    const Cell centre = cellOf(p);
+    const Point q = scaled(p);
+    const Cell centre = cellOf(q);
+    // Per axis, the cells within the tolerance: [low, high] of {-1, 0, 1}.
+    std::array<int, 3> low{}, high{};
+    for (int a = 0; a < 3; ++a) {
+      const double inside = q[a] - std::floor(q[a]);  // in cells
+      low[size_t(a)] = inside * kCellWidth <= 1.0 ? -1 : 0;
+      high[size_t(a)] = (1.0 - inside) * kCellWidth <= 1.0 ? 1 : 0;
+    }
     uint32_t best = kNoVertex;
     double bestDistance = tolerance_;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = low[2]; dz <= high[2]; ++dz)
+      for (int dy = low[1]; dy <= high[1]; ++dy)
+        for (int dx = low[0]; dx <= high[0]; ++dx) {
           const auto it = cells_.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
           if (it == cells_.end()) continue;
           for (uint32_t id = it->second; id != kNoVertex; id = next_[id]) {
@@ -65,7 +74,7 @@ class SeamWelder {
   void insert(const Point& p, uint32_t id) {
     if (!usable(p)) return;
     if (next_.size() <= id) next_.resize(size_t(id) + 1, kNoVertex);
-    uint32_t& head = cells_.try_emplace(cellOf(p), kNoVertex).first->second;
+    uint32_t& head = cells_.try_emplace(cellOf(scaled(p)), kNoVertex).first->second;
     next_[id] = head;
     head = id;
   }
@@ -77,14 +86,16 @@ class SeamWelder {
       return size_t(uint64_t(c[0]) * 73856093u ^ uint64_t(c[1]) * 19349663u ^ uint64_t(c[2]) * 83492791u);
     }
   };
+  static constexpr double kCellWidth = 4.0;  // in tolerances
   // Finite and within the range the cells can index (a position far outside the patches' box).
   bool usable(const Point& p) const {
     const Point q = (p - origin_) / tolerance_;
     return tolerance_ > 0.0 && std::abs(q.x) < 4e18 && std::abs(q.y) < 4e18 && std::abs(q.z) < 4e18;
   }
-  Cell cellOf(const Point& p) const {
-    const Point q = glm::floor((p - origin_) / tolerance_);
-    return {int64_t(q.x), int64_t(q.y), int64_t(q.z)};
+  Point scaled(const Point& p) const { return (p - origin_) / (kCellWidth * tolerance_); }  // in cells
+  static Cell cellOf(const Point& q) {
+    const Point cell = glm::floor(q);
+    return {int64_t(cell.x), int64_t(cell.y), int64_t(cell.z)};
   }
 
   Point origin_;
@@ -108,8 +119,61 @@ struct BorderSegment {
   double u0, v0, u1, v1;
 };
 
-uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a; }
 uint64_t directedKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
+
+// The triangles' sides grouped by their smaller vertex (CSR), each bucket sorted by the other end,
+// then direction, then triangle: every use of an unordered edge lies in one short run. Hash maps of
+// all edges (millions of nodes) cost most of an export before (docs/performance.md, Exports).
+class TriangleSides {
+ public:
+  struct Side {
+    uint32_t other;     // the larger vertex
+    uint32_t backward;  // 1 when the triangle runs from the larger vertex to the smaller
+    uint32_t triangle;
+    bool operator<(const Side& s) const {
+      return other != s.other ? other < s.other : backward != s.backward ? backward < s.backward : triangle < s.triangle;
+    }
+  };
+
+  TriangleSides(const std::vector<std::array<uint32_t, 3>>& triangles, size_t vertexCount) : start_(vertexCount + 1, 0) {
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) ++start_[size_t(std::min(t[size_t(k)], t[size_t(k + 1) % 3])) + 1];
+    for (size_t v = 0; v < vertexCount; ++v) start_[v + 1] += start_[v];
+    sides_.resize(start_.back());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (uint32_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = triangles[i][size_t(k)], b = triangles[i][size_t(k + 1) % 3];
+        sides_[fill[std::min(a, b)]++] = {std::max(a, b), a > b ? 1u : 0u, i};
+      }
+    for (size_t v = 0; v < vertexCount; ++v) std::sort(sides_.begin() + start_[v], sides_.begin() + start_[v + 1]);
+  }
+
+  // The uses of edge {a, b} (a run of sides, both directions). [O(log valence)]
+  std::pair<const Side*, const Side*> uses(uint32_t a, uint32_t b) const {
+    const Side* first = sides_.data() + start_[std::min(a, b)];
+    const Side* last = sides_.data() + start_[size_t(std::min(a, b)) + 1];
+    const uint32_t other = std::max(a, b);
+    first = std::lower_bound(first, last, other, [](const Side& s, uint32_t o) { return s.other < o; });
+    last = std::upper_bound(first, last, other, [](uint32_t o, const Side& s) { return o < s.other; });
+    return {first, last};
+  }
+  // Every vertex's run of sides, in order: f(smaller vertex, first, last) per edge.
+  template <class F>
+  void forEachEdge(F&& f) const {
+    for (size_t v = 0; v + 1 < start_.size(); ++v)
+      for (size_t i = start_[v]; i < start_[v + 1];) {
+        size_t j = i + 1;
+        while (j < start_[v + 1] && sides_[j].other == sides_[i].other) ++j;
+        f(&sides_[i], &sides_[j]);
+        i = j;
+      }
+  }
+
+ private:
+  std::vector<size_t> start_;
+  std::vector<Side> sides_;
+};
 
 class TessellationBuilder {
  public:
@@ -237,19 +301,20 @@ void TessellationBuilder::recordBorder(const Sample& x, const Sample& y) {
 }
 
 void TessellationBuilder::splitMixedLevelJunctions() {
-  // Which border segments nobody shares.
-  std::unordered_map<uint64_t, uint32_t> uses;
-  for (const auto& t : mesh_.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[edgeKey(t[size_t(k)], t[size_t(k + 1) % 3])];
-  std::vector<BorderSegment> open;
-  for (const BorderSegment& segment : border_)
-    if (uses[edgeKey(segment.from, segment.to)] == 1) open.push_back(segment);
-  if (open.empty()) return;
-
-  // Directed edge -> triangle, to find the triangle a segment belongs to.
+  // Which border segments nobody shares, and the triangle each belongs to (directed edge ->
+  // triangle; kept up to date below for the segments' halves, the only edges looked up again).
   std::unordered_map<uint64_t, uint32_t> owner;
-  for (uint32_t t = 0; t < mesh_.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) owner[directedKey(mesh_.triangles[t][size_t(k)], mesh_.triangles[t][size_t(k + 1) % 3])] = t;
+  std::vector<BorderSegment> open;
+  {
+    const TriangleSides sides(mesh_.triangles, mesh_.positions.size());
+    for (const BorderSegment& segment : border_) {
+      const auto [first, last] = sides.uses(segment.from, segment.to);
+      if (last - first != 1) continue;
+      open.push_back(segment);
+      owner[directedKey(segment.from, segment.to)] = first->triangle;
+    }
+  }
+  if (open.empty()) return;
 
   while (!open.empty()) {
     const BorderSegment s = open.back();
@@ -292,21 +357,15 @@ Tessellation tessellatePatchSet(const PatchSet& set, int samples) {
 
 TessellationEdges countTessellationEdges(const Tessellation& mesh) {
   // Per unordered edge: uses one way and the other.
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> uses;
-  uses.reserve(mesh.triangles.size() * 2);
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = t[size_t(k)], b = t[size_t(k + 1) % 3];
-      ++uses[edgeKey(a, b)][a < b ? 0 : 1];
-    }
   TessellationEdges count;
-  count.edges = uses.size();
-  for (const auto& entry : uses) {
-    const uint32_t forward = entry.second[0], backward = entry.second[1];
+  TriangleSides(mesh.triangles, mesh.positions.size()).forEachEdge([&](const TriangleSides::Side* first, const TriangleSides::Side* last) {
+    size_t forward = 0, backward = 0;
+    for (const TriangleSides::Side* s = first; s != last; ++s) ++(s->backward ? backward : forward);
+    ++count.edges;
     if (forward + backward == 1) ++count.boundary;
     else if (forward + backward > 2) ++count.nonManifold;
     else if (forward != 1) ++count.misoriented;
-  }
+  });
   return count;
 }
 

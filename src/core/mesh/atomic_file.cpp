@@ -314,9 +314,21 @@ class AtomicFileBuffer : public std::streambuf {
     }
     return traits_type::not_eof(c);
   }
+  // Short pieces (a number, a keyword) join the block; only pieces as large as it go straight
+  // to the file (a write per `<<` cost most of a STEP export: docs/performance.md, Exports).
   std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n < epptr() - pptr()) {
+      std::memcpy(pptr(), s, size_t(n));
+      pbump(int(n));
+      return n;
+    }
     drain();
-    file_.write(std::string_view(s, size_t(n)));
+    if (size_t(n) < sizeof block_) {
+      std::memcpy(pptr(), s, size_t(n));
+      pbump(int(n));
+    } else {
+      file_.write(std::string_view(s, size_t(n)));
+    }
     return n;
   }
   int sync() override {
