@@ -5,62 +5,38 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
+
+#include "core/export/point_grid.h"
 
 namespace polarview {
 
 namespace {
 
-// Corners welded within a tolerance: a hash of cells of the tolerance's size, a point looked up in
-// its cell and the 26 around it.
+// Corners welded within a tolerance (point_grid.h).
 class VertexWelder {
  public:
-  explicit VertexWelder(double tolerance) : tolerance_(tolerance) {}
+  explicit VertexWelder(double tolerance) : grid_(Point(0.0), tolerance) {}
 
   // The vertex within the tolerance of p, or -1.
   int find(const Point& p) const {
-    const Cell c = cellOf(p);
-    int best = -1;
-    double bestDistance = tolerance_;
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(hash({c.x + dx, c.y + dy, c.z + dz}));
-          if (it == cells_.end()) continue;
-          for (int v : it->second) {
-            const double d = glm::distance(points_[size_t(v)], p);
-            if (d <= bestDistance) best = v, bestDistance = d;
-          }
-        }
-    return best;
+    const uint32_t found = grid_.find(p, points_);
+    return found == PointGrid::kNone ? -1 : int(found);
   }
   // The vertex within the tolerance of p, made when there is none.
   int weld(const Point& p) {
     const int found = find(p);
     if (found >= 0) return found;
     points_.push_back(p);
-    cells_[hash(cellOf(p))].push_back(int(points_.size() - 1));
+    grid_.insert(p, uint32_t(points_.size() - 1));
     return int(points_.size() - 1);
   }
   std::vector<Point> take() { return std::move(points_); }
 
  private:
-  struct Cell {
-    int64_t x, y, z;
-  };
-  Cell cellOf(const Point& p) const {
-    return {int64_t(std::floor(p.x / tolerance_)), int64_t(std::floor(p.y / tolerance_)),
-            int64_t(std::floor(p.z / tolerance_))};
-  }
-  static uint64_t hash(const Cell& c) {
-    return uint64_t(c.x) * 0x9E3779B97F4A7C15ull ^ uint64_t(c.y) * 0xC2B2AE3D27D4EB4Full ^
-           uint64_t(c.z) * 0x165667B19E3779F9ull;
-  }
-  double tolerance_;
+  PointGrid grid_;
   std::vector<Point> points_;
-  std::unordered_map<uint64_t, std::vector<int>> cells_;  // a hash collision only costs a distance test
 };
 
 // A piece [t0, t1] of a surface's side, from vertex a to vertex b.

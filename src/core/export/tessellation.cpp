@@ -9,11 +9,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/export/point_grid.h"
+
 namespace polarview {
 
 namespace {
 
-constexpr uint32_t kNoVertex = std::numeric_limits<uint32_t>::max();
+constexpr uint32_t kNoVertex = PointGrid::kNone;
 
 // The diagonal of the box around the patches' control positions (the surface lies in it: convex
 // hull of B-spline patches; a cap stays near its boundary points and pole). Non-finite points are
@@ -36,79 +38,11 @@ double controlBoxDiagonal(const PatchSet& set, Point& low) {
   return glm::length(high - low);
 }
 
-// Vertices on patch borders by position: a uniform grid of cells kCellWidth tolerances wide, each
-// listing its vertices (a chain through next_). A query looks at its own cell and, per axis, the
-// neighbour it lies within the tolerance of (most points: one cell; at most 8).
-class SeamWelder {
- public:
-  SeamWelder(const Point& origin, double tolerance) : origin_(origin), tolerance_(tolerance) {}
-
-  // The nearest vertex within the tolerance of `p`, or kNoVertex. [O(1) expected]
-  uint32_t find(const Point& p, const std::vector<Point>& positions) const {
-    if (!usable(p)) return kNoVertex;
-    const Point q = scaled(p);
-    const Cell centre = cellOf(q);
-    // Per axis, the cells within the tolerance: [low, high] of {-1, 0, 1}.
-    std::array<int, 3> low{}, high{};
-    for (int a = 0; a < 3; ++a) {
-      const double inside = q[a] - std::floor(q[a]);  // in cells
-      low[size_t(a)] = inside * kCellWidth <= 1.0 ? -1 : 0;
-      high[size_t(a)] = (1.0 - inside) * kCellWidth <= 1.0 ? 1 : 0;
-    }
-    uint32_t best = kNoVertex;
-    double bestDistance = tolerance_;
-    for (int dz = low[2]; dz <= high[2]; ++dz)
-      for (int dy = low[1]; dy <= high[1]; ++dy)
-        for (int dx = low[0]; dx <= high[0]; ++dx) {
-          const auto it = cells_.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
-          if (it == cells_.end()) continue;
-          for (uint32_t id = it->second; id != kNoVertex; id = next_[id]) {
-            const double distance = glm::length(positions[id] - p);
-            if (distance <= bestDistance) best = id, bestDistance = distance;
-          }
-        }
-    return best;
-  }
-
-  // Makes vertex `id` at `p` findable. [O(1) expected]
-  void insert(const Point& p, uint32_t id) {
-    if (!usable(p)) return;
-    if (next_.size() <= id) next_.resize(size_t(id) + 1, kNoVertex);
-    uint32_t& head = cells_.try_emplace(cellOf(scaled(p)), kNoVertex).first->second;
-    next_[id] = head;
-    head = id;
-  }
-
- private:
-  using Cell = std::array<int64_t, 3>;
-  struct CellHash {
-    size_t operator()(const Cell& c) const {
-      return size_t(uint64_t(c[0]) * 73856093u ^ uint64_t(c[1]) * 19349663u ^ uint64_t(c[2]) * 83492791u);
-    }
-  };
-  static constexpr double kCellWidth = 4.0;  // in tolerances
-  // Finite and within the range the cells can index (a position far outside the patches' box).
-  bool usable(const Point& p) const {
-    const Point q = (p - origin_) / tolerance_;
-    return tolerance_ > 0.0 && std::abs(q.x) < 4e18 && std::abs(q.y) < 4e18 && std::abs(q.z) < 4e18;
-  }
-  Point scaled(const Point& p) const { return (p - origin_) / (kCellWidth * tolerance_); }  // in cells
-  static Cell cellOf(const Point& q) {
-    const Point cell = glm::floor(q);
-    return {int64_t(cell.x), int64_t(cell.y), int64_t(cell.z)};
-  }
-
-  Point origin_;
-  double tolerance_;
-  std::unordered_map<Cell, uint32_t, CellHash> cells_;  // cell -> its last vertex
-  std::vector<uint32_t> next_;                          // vertex -> next vertex of its cell
-};
-
-// The welder of a patch set's seams: cells of kWeldTolerance times its box's diagonal.
-SeamWelder seamWelderFor(const PatchSet& set) {
+// The welder of a patch set's seams (vertices on patch borders): kWeldTolerance times its box's diagonal.
+PointGrid seamWelderFor(const PatchSet& set) {
   Point low;
   const double diagonal = controlBoxDiagonal(set, low);
-  return SeamWelder(low, kWeldTolerance * diagonal);
+  return PointGrid(low, kWeldTolerance * diagonal);
 }
 
 // A triangle side on its patch's border, with the parameters of its ends: where a mixed-level
@@ -206,7 +140,7 @@ class TessellationBuilder {
 
   const PatchSet& set_;
   int n_;
-  SeamWelder welder_;
+  PointGrid welder_;
   Tessellation mesh_;
   std::vector<BorderSegment> border_;
   // The patch being triangulated: its index, parameter denominator (2 N 2^dmax: grid, refined
