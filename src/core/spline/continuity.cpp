@@ -11,6 +11,8 @@
 #include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/subdiv/parallel_for.h"
+
 namespace polarview {
 
 namespace {
@@ -31,6 +33,8 @@ constexpr SeamKind kSeamKindTable[5][5] = {
 
 // Points per side (ends included) for its polyline in the hash and the projection's first guess.
 constexpr int kDenseSamples = 9;
+// A patch evaluation in threadsFor's units of work (parallel_for.h: ~32,768 units pay for a thread).
+constexpr size_t kWorkPerEvaluation = 64;
 // A sample meets a side within this fraction of its own side's length ...
 constexpr double kMatchRelativeToSide = 1e-6;
 // ... and never closer than this fraction of the diagonal (round-off of far-off coordinates).
@@ -80,27 +84,35 @@ double distanceToSegment(const Point& p, const Point& a, const Point& b) {
 // The sides that can meet another: all four of a face-based patch, sides 0-2 of a PoleCap (side 3
 // is the pole point), each with its dense points; the slack is twice the largest distance of a
 // segment's parameter midpoint from the segment (a cubic strays from its chord about that much).
+// Split over the threads by patches, joined in patch order.
 std::vector<Side> collectSides(const PatchSet& set, double diagonal) {
+  const Index count = Index(set.patches.size());
+  const unsigned parts = threadsFor(size_t(count) * 4 * (2 * kDenseSamples) * kWorkPerEvaluation);
+  std::vector<std::vector<Side>> collected(parts);
+  runParts(parts, [&](unsigned part) {
+    std::vector<Side>& sides = collected[part];
+    for (uint32_t i = uint32_t(partBound(count, parts, part)); i < uint32_t(partBound(count, parts, part + 1)); ++i) {
+      const Patch& patch = set.patches[i];
+      for (int s = 0; s < 4; ++s) {
+        if (patch.kind == PatchKind::PoleCap && s == 3) continue;
+        Side side{i, s};
+        constexpr double kStep = 1.0 / (kDenseSamples - 1);
+        double stray = 0.0;
+        for (int k = 0; k < kDenseSamples; ++k) {
+          side.dense[k] = sideCurve(patch, s, k * kStep).position;
+          if (k == 0) continue;
+          side.length += glm::distance(side.dense[k], side.dense[k - 1]);
+          const Point middle = sideCurve(patch, s, (k - 0.5) * kStep).position;
+          stray = std::max(stray, distanceToSegment(middle, side.dense[k - 1], side.dense[k]));
+        }
+        side.slack = 2.0 * stray + matchTolerance(side.length, diagonal);
+        sides.push_back(side);
+      }
+    }
+  });
   std::vector<Side> sides;
   sides.reserve(set.patches.size() * 4);
-  for (uint32_t i = 0; i < set.patches.size(); ++i) {
-    const Patch& patch = set.patches[i];
-    for (int s = 0; s < 4; ++s) {
-      if (patch.kind == PatchKind::PoleCap && s == 3) continue;
-      Side side{i, s};
-      constexpr double kStep = 1.0 / (kDenseSamples - 1);
-      double stray = 0.0;
-      for (int k = 0; k < kDenseSamples; ++k) {
-        side.dense[k] = sideCurve(patch, s, k * kStep).position;
-        if (k == 0) continue;
-        side.length += glm::distance(side.dense[k], side.dense[k - 1]);
-        const Point middle = sideCurve(patch, s, (k - 0.5) * kStep).position;
-        stray = std::max(stray, distanceToSegment(middle, side.dense[k - 1], side.dense[k]));
-      }
-      side.slack = 2.0 * stray + matchTolerance(side.length, diagonal);
-      sides.push_back(side);
-    }
-  }
+  for (const std::vector<Side>& part : collected) sides.insert(sides.end(), part.begin(), part.end());
   return sides;
 }
 
@@ -198,19 +210,35 @@ SeamSample compare(const SurfacePoint& pa, const SurfacePoint& pb) {
 }
 
 // The model's largest |K| and |H| over a grid of interior parameters of every patch, and the box of
-// those points.
+// those points (maxima and minima: the same on any number of threads).
 void sampleCurvature(const PatchSet& set, int grid, ContinuityReport& report, Point& lo, Point& hi) {
+  struct Extremes {
+    double gaussian = 0.0, mean = 0.0;
+    Point lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+  };
+  const Index count = Index(set.patches.size());
+  const unsigned parts = threadsFor(size_t(count) * size_t(grid * grid) * kWorkPerEvaluation);
+  std::vector<Extremes> extremes(parts);
+  runParts(parts, [&](unsigned k) {
+    Extremes& out = extremes[k];
+    for (Index n = partBound(count, parts, k); n < partBound(count, parts, k + 1); ++n)
+      for (int i = 0; i < grid; ++i)
+        for (int j = 0; j < grid; ++j) {
+          const SurfacePoint p = evaluatePatch(set.patches[size_t(n)], (i + 0.5) / grid, (j + 0.5) / grid);
+          if (std::isfinite(p.gaussian)) out.gaussian = std::max(out.gaussian, std::abs(p.gaussian));
+          if (std::isfinite(p.mean)) out.mean = std::max(out.mean, std::abs(p.mean));
+          out.lo = glm::min(out.lo, p.position);
+          out.hi = glm::max(out.hi, p.position);
+        }
+  });
   lo = Point(std::numeric_limits<double>::max());
   hi = Point(-std::numeric_limits<double>::max());
-  for (const Patch& patch : set.patches)
-    for (int i = 0; i < grid; ++i)
-      for (int j = 0; j < grid; ++j) {
-        const SurfacePoint p = evaluatePatch(patch, (i + 0.5) / grid, (j + 0.5) / grid);
-        if (std::isfinite(p.gaussian)) report.maxAbsGaussian = std::max(report.maxAbsGaussian, std::abs(p.gaussian));
-        if (std::isfinite(p.mean)) report.maxAbsMean = std::max(report.maxAbsMean, std::abs(p.mean));
-        lo = glm::min(lo, p.position);
-        hi = glm::max(hi, p.position);
-      }
+  for (const Extremes& e : extremes) {
+    report.maxAbsGaussian = std::max(report.maxAbsGaussian, e.gaussian);
+    report.maxAbsMean = std::max(report.maxAbsMean, e.mean);
+    lo = glm::min(lo, e.lo);
+    hi = glm::max(hi, e.hi);
+  }
 }
 
 // Every seam's samples: each side's interior samples looking for the side through them.
@@ -219,51 +247,76 @@ struct SeamSearch {
   std::vector<std::vector<uint32_t>> partners;  // per side, the distinct sides it meets
 };
 
+// What one sample of side `a` found: the side it lies on (UINT32_MAX: none) and the comparison.
+struct SeamHit {
+  uint32_t a, b;
+  SeamSample sample;
+};
+
+// The hits of side ia's samples, appended to `hits` in sample order. Reads only. [O(samples x near sides)]
+void searchSide(const PatchSet& set, const std::vector<Side>& sides, const SegmentHash& hash, double diagonal,
+                int samplesPerSide, uint32_t ia, std::vector<uint32_t>& candidates, std::vector<SeamHit>& hits) {
+  const Side& a = sides[ia];
+  const Patch& patchA = set.patches[a.patch];
+  const double tolerance = matchTolerance(a.length, diagonal);
+  for (int k = 0; k < samplesPerSide; ++k) {
+    const double t = (k + 0.5) / samplesPerSide;
+    const glm::dvec2 uvA = sideParameter(a.s, t);
+    const SurfacePoint pa = evaluatePatch(patchA, uvA.x, uvA.y);
+    // The sides of other patches whose polylines pass within their slack of this point ...
+    candidates.clear();
+    hash.forEachNear(pa.position, [&](uint32_t ib, uint32_t segment) {
+      const Side& b = sides[ib];
+      if (b.patch != a.patch && distanceToSegment(pa.position, b.dense[segment], b.dense[segment + 1]) <= b.slack + tolerance)
+        candidates.push_back(ib);
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    // ... and of them the nearest whose curve passes within the tolerance.
+    uint32_t best = UINT32_MAX;
+    double bestDistance = tolerance, bestT = 0.0;
+    for (uint32_t ib : candidates) {
+      const double tb = projectOnSide(set, sides[ib], pa.position);
+      const double distance = glm::distance(sideCurve(set.patches[sides[ib].patch], sides[ib].s, tb).position, pa.position);
+      if (distance <= bestDistance) best = ib, bestDistance = distance, bestT = tb;
+    }
+    if (best == UINT32_MAX) continue;
+    const glm::dvec2 uvB = sideParameter(sides[best].s, bestT);
+    const SurfacePoint pb = evaluatePatch(set.patches[sides[best].patch], uvB.x, uvB.y);
+    hits.push_back({ia, best, compare(pa, pb)});
+  }
+}
+
+// The sides are searched in blocks, each split over the threads, its hits filed in side order: the
+// same seams, samples and order as one thread's.
 SeamSearch findSeams(const PatchSet& set, const std::vector<Side>& sides, const SegmentHash& hash, double diagonal,
                      int samplesPerSide) {
   SeamSearch search;
   search.partners.resize(sides.size());
   std::unordered_map<uint64_t, size_t> seamIndex;
-  std::vector<uint32_t> candidates;
-  for (uint32_t ia = 0; ia < sides.size(); ++ia) {
-    const Side& a = sides[ia];
-    const Patch& patchA = set.patches[a.patch];
-    const double tolerance = matchTolerance(a.length, diagonal);
-    for (int k = 0; k < samplesPerSide; ++k) {
-      const double t = (k + 0.5) / samplesPerSide;
-      const glm::dvec2 uvA = sideParameter(a.s, t);
-      const SurfacePoint pa = evaluatePatch(patchA, uvA.x, uvA.y);
-      // The sides of other patches whose polylines pass within their slack of this point ...
-      candidates.clear();
-      hash.forEachNear(pa.position, [&](uint32_t ib, uint32_t segment) {
-        const Side& b = sides[ib];
-        if (b.patch != a.patch &&
-            distanceToSegment(pa.position, b.dense[segment], b.dense[segment + 1]) <= b.slack + tolerance)
-          candidates.push_back(ib);
-      });
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      // ... and of them the nearest whose curve passes within the tolerance.
-      uint32_t best = UINT32_MAX;
-      double bestDistance = tolerance, bestT = 0.0;
-      for (uint32_t ib : candidates) {
-        const double tb = projectOnSide(set, sides[ib], pa.position);
-        const double distance = glm::distance(sideCurve(set.patches[sides[ib].patch], sides[ib].s, tb).position, pa.position);
-        if (distance <= bestDistance) best = ib, bestDistance = distance, bestT = tb;
+  constexpr uint32_t kBlock = 8192;  // sides a block: bounds the hits kept at once
+  const uint32_t sideCount = uint32_t(sides.size());
+  for (uint32_t first = 0; first < sideCount; first += kBlock) {
+    const Index count = Index(std::min(kBlock, sideCount - first));
+    const unsigned parts = threadsFor(size_t(count) * size_t(samplesPerSide) * 4 * kWorkPerEvaluation);
+    std::vector<std::vector<SeamHit>> hits(parts);
+    runParts(parts, [&](unsigned k) {
+      std::vector<uint32_t> candidates;
+      for (Index i = partBound(count, parts, k); i < partBound(count, parts, k + 1); ++i)
+        searchSide(set, sides, hash, diagonal, samplesPerSide, first + uint32_t(i), candidates, hits[k]);
+    });
+    // File each sample under the unordered pair of sides.
+    for (const std::vector<SeamHit>& part : hits)
+      for (const SeamHit& hit : part) {
+        const uint32_t lo = std::min(hit.a, hit.b), hi = std::max(hit.a, hit.b);
+        const auto [it, added] = seamIndex.emplace(uint64_t(lo) << 32 | hi, search.seams.size());
+        if (added) {
+          search.seams.push_back({lo, hi, {}});
+          search.partners[lo].push_back(hi);
+          search.partners[hi].push_back(lo);
+        }
+        search.seams[it->second].samples.push_back(hit.sample);
       }
-      if (best == UINT32_MAX) continue;
-      const glm::dvec2 uvB = sideParameter(sides[best].s, bestT);
-      const SurfacePoint pb = evaluatePatch(set.patches[sides[best].patch], uvB.x, uvB.y);
-      // File the sample under the unordered pair of sides.
-      const uint32_t lo = std::min(ia, best), hi = std::max(ia, best);
-      const auto [it, added] = seamIndex.emplace(uint64_t(lo) << 32 | hi, search.seams.size());
-      if (added) {
-        search.seams.push_back({lo, hi, {}});
-        search.partners[lo].push_back(hi);
-        search.partners[hi].push_back(lo);
-      }
-      search.seams[it->second].samples.push_back(compare(pa, pb));
-    }
   }
   return search;
 }
