@@ -1,11 +1,13 @@
-// Splits index ranges over a few std::threads (the refiner's passes write disjoint ranges of flat
-// tables, so they need no locks). Results never depend on the thread count.
+// Splits index ranges over a few threads (the refiner's passes write disjoint ranges of flat
+// tables, so they need no locks). Results never depend on the thread count. The threads are a
+// small pool started once (parallel_for.cpp): handing a part to a parked worker costs ~4 us here,
+// starting and joining a std::thread ~50 us (docs/performance.md, Threads).
 #pragma once
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "core/mesh/poly_mesh.h"
@@ -35,19 +37,24 @@ inline unsigned threadsFor(size_t work) {
 // The start of piece k of [0, count) cut into `parts` contiguous pieces (k = parts gives count). [O(1)]
 inline Index partBound(Index count, unsigned parts, unsigned k) { return Index(int64_t(count) * k / parts); }
 
-// Calls fn(k) for k = 0..parts-1, each on its own thread (the caller's thread takes k = 0), and
-// waits for all. [O(1) threads started per part]
+namespace detail {
+// Runs call(context, k) for k = 0..parts-1 on the pool's workers and this thread; returns when all
+// have finished, rethrowing the first exception of any. [O(1) a part]
+void runPartsOnPool(unsigned parts, void (*call)(void*, unsigned), void* context);
+}  // namespace detail
+
+// Calls fn(k) for k = 0..parts-1, at once on up to `parts` threads (this thread takes parts too;
+// parts nobody else is free for, it runs itself, so a part may call runParts again), and waits
+// for all; an exception from any part is rethrown here once all have finished.
 template <class Fn>
 void runParts(unsigned parts, Fn&& fn) {
   if (parts <= 1) {
     fn(0u);
     return;
   }
-  std::vector<std::thread> workers;
-  workers.reserve(parts - 1);
-  for (unsigned k = 1; k < parts; ++k) workers.emplace_back([&fn, k] { fn(k); });
-  fn(0u);
-  for (std::thread& worker : workers) worker.join();
+  using Callable = std::remove_reference_t<Fn>;
+  detail::runPartsOnPool(parts, [](void* context, unsigned k) { (*static_cast<Callable*>(context))(k); },
+                         const_cast<void*>(static_cast<const void*>(&fn)));
 }
 
 // Calls fn(begin, end) on `parts` contiguous pieces of [0, count), one thread each. [O(count / parts) wall time]
@@ -56,9 +63,9 @@ void parallelRanges(Index count, unsigned parts, Fn&& fn) {
   runParts(parts, [&](unsigned k) { fn(partBound(count, parts, k), partBound(count, parts, k + 1)); });
 }
 
-// Runs a() on this thread and b() on a second one at once when `parallel`, else a() then b(); an
-// exception from either is rethrown here once both have finished. For two tasks that write
-// disjoint data, so results never depend on `parallel`. [one thread started]
+// Runs a() and b() at once when `parallel` (two parts of runParts), else a() then b(); an exception
+// from either is rethrown here once both have finished. For two tasks that write disjoint data, so
+// results never depend on `parallel`.
 template <class A, class B>
 void runBoth(bool parallel, A&& a, B&& b) {
   if (!parallel) {
@@ -66,22 +73,12 @@ void runBoth(bool parallel, A&& a, B&& b) {
     b();
     return;
   }
-  std::exception_ptr failed;
-  std::thread worker([&] {
-    try {
+  runParts(2, [&](unsigned k) {
+    if (k == 0)
+      a();
+    else
       b();
-    } catch (...) {
-      failed = std::current_exception();
-    }
   });
-  try {
-    a();
-  } catch (...) {
-    worker.join();
-    throw;
-  }
-  worker.join();
-  if (failed) std::rethrow_exception(failed);
 }
 
 }  // namespace polarview
