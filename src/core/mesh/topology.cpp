@@ -5,6 +5,7 @@
 #include "core/mesh/topology.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/mesh/input_error.h"
 
@@ -196,19 +197,25 @@ class TopologyBuilder {
     const Index cornerCount = static_cast<Index>(mesh_.faceVerts.size());
     const Index V = t_.vertexCount;
 
-    // Corners by vertex (counting sort): the face-list sizes.
-    t_.vertexFaceStart.assign(size_t(V) + 1, 0);
-    for (Index c = 0; c < cornerCount; ++c) ++t_.vertexFaceStart[mesh_.faceVerts[c] + 1];
-    for (Index v = 0; v < V; ++v) t_.vertexFaceStart[v + 1] += t_.vertexFaceStart[v];
-    std::vector<Index> cornersOfVertex(cornerCount), fill(t_.vertexFaceStart.begin(), t_.vertexFaceStart.end() - 1);
-    for (Index c = 0; c < cornerCount; ++c) cornersOfVertex[fill[mesh_.faceVerts[c]]++] = c;
+    // Where each ring starts; fills vertexFaceStart (the face-list sizes) and vertexOnBoundary.
+    std::vector<Index> cornersOfVertex, ringStart;
+    if (twin_) {
+      ringStartsFromTwins(ringStart);
+    } else {
+      // Corners by vertex (counting sort): the face-list sizes.
+      t_.vertexFaceStart.assign(size_t(V) + 1, 0);
+      for (Index c = 0; c < cornerCount; ++c) ++t_.vertexFaceStart[mesh_.faceVerts[c] + 1];
+      for (Index v = 0; v < V; ++v) t_.vertexFaceStart[v + 1] += t_.vertexFaceStart[v];
+      cornersOfVertex.resize(size_t(cornerCount));
+      std::vector<Index> fill(t_.vertexFaceStart.begin(), t_.vertexFaceStart.end() - 1);
+      for (Index c = 0; c < cornerCount; ++c) cornersOfVertex[fill[mesh_.faceVerts[c]]++] = c;
+      t_.vertexOnBoundary.assign(V, 0);
+      for (Index e = 0; e < t_.edgeCount; ++e)
+        if (t_.edgeOnBoundary(e)) t_.vertexOnBoundary[t_.edgeVerts[2 * e]] = t_.vertexOnBoundary[t_.edgeVerts[2 * e + 1]] = 1;
+    }
 
     t_.vertexUsed.assign(V, 0);
     for (Index v = 0; v < V; ++v) t_.vertexUsed[v] = t_.faceValence(v) > 0;
-    t_.vertexOnBoundary.assign(V, 0);
-    for (Index e = 0; e < t_.edgeCount; ++e)
-      if (t_.edgeOnBoundary(e)) t_.vertexOnBoundary[t_.edgeVerts[2 * e]] = t_.vertexOnBoundary[t_.edgeVerts[2 * e + 1]] = 1;
-
     t_.vertexEdgeStart.assign(size_t(V) + 1, 0);
     for (Index v = 0; v < V; ++v) t_.vertexEdgeStart[v + 1] = t_.vertexEdgeStart[v] + t_.faceValence(v) + t_.vertexOnBoundary[v];
     t_.vertexFaces.resize(cornerCount);
@@ -218,7 +225,7 @@ class TopologyBuilder {
     for (Index v = 0; v < V; ++v) {
       const Index first = t_.vertexFaceStart[v], count = t_.faceValence(v);
       if (count == 0) continue;
-      const Index start = fanStart(v, cornersOfVertex.data() + first, count);
+      const Index start = twin_ ? ringStart[size_t(v)] : fanStart(v, cornersOfVertex.data() + first, count);
       Index pos = first, edgePos = t_.vertexEdgeStart[v];
       for (Index c = start;;) {
         t_.vertexFaces[pos] = t_.cornerFace[c];
@@ -237,8 +244,33 @@ class TopologyBuilder {
         c = next;
         if (c == start || pos - first == count) break;
       }
-      if (pos - first != count) failNonManifoldFan(v, cornersOfVertex.data() + first, count, pos - first);
+      if (pos - first == count) continue;
+      if (twin_) throw std::logic_error("buildTopologyFromTwins: the twins leave " + vertexName(v) + " with more than one fan");
+      failNonManifoldFan(v, cornersOfVertex.data() + first, count, pos - first);
     }
+  }
+
+  // buildVertexRings' starts from the twins, in one pass over the corners instead of a counting
+  // sort: an interior ring starts at its vertex's smallest corner, a boundary ring at the corner
+  // leaving along the boundary (its twin is missing), as fanStart picks them.
+  void ringStartsFromTwins(std::vector<Index>& ringStart) {
+    const std::vector<Index>& twin = *twin_;
+    const Index cornerCount = static_cast<Index>(mesh_.faceVerts.size());
+    const Index V = t_.vertexCount;
+    t_.vertexFaceStart.assign(size_t(V) + 1, 0);
+    t_.vertexOnBoundary.assign(V, 0);
+    ringStart.assign(size_t(V), -1);
+    for (Index c = 0; c < cornerCount; ++c) {
+      const Index v = mesh_.faceVerts[c];
+      ++t_.vertexFaceStart[v + 1];
+      if (twin[size_t(c)] < 0) {  // a boundary edge: both its ends lie on the boundary
+        ringStart[size_t(v)] = c;
+        t_.vertexOnBoundary[v] = t_.vertexOnBoundary[mesh_.faceVerts[cornerNext(c)]] = 1;
+      } else if (ringStart[size_t(v)] < 0) {
+        ringStart[size_t(v)] = c;
+      }
+    }
+    for (Index v = 0; v < V; ++v) t_.vertexFaceStart[v + 1] += t_.vertexFaceStart[v];
   }
 
   // The corner a vertex's walk starts at: any corner for an interior vertex, the one whose
