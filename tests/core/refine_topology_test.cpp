@@ -108,47 +108,47 @@ void checkDerivedEqualsRebuilt(const std::string& name, const PolyMesh& base, Sp
     else
       CHECK(out.links.empty());
 
-    // Without the rings (a finest level): the same faces, edges and vertex flags, no rings; the
-    // rings made afterwards are the full step's.
-    ConnectivityOptions ringless = options;
-    ringless.vertexRings = false;
-    RefinedConnectivity lazy;
-    refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy, ringless);
-    CHECK(lazy.mesh.faceVerts == reference.faceVerts);
-    CHECK(lazy.topology.cornerEdge == rebuilt.cornerEdge);
-    CHECK(lazy.topology.edgeFaces == rebuilt.edgeFaces);
-    CHECK(lazy.topology.vertexOnBoundary == rebuilt.vertexOnBoundary);
-    CHECK(lazy.topology.vertexUsed == rebuilt.vertexUsed);
-    CHECK(lazy.topology.vertexFaces.empty());
-    CHECK(lazy.topology.vertexEdgeStart.empty());
-    completeChildTopology(mesh, topo, links, splits == Splits::None ? nullptr : &split, lazy, ringless);
-    requireSameTopology(lazy.topology, rebuilt);
-    CHECK(lazy.links == out.links);  // kept as the lean step made them
-
-    // Faces only (OpenSubdiv's minimal last level): the same faces, parents, counts and vertex
-    // flags, no edges; completed, every table of the full step and the points left as they were.
-    ConnectivityOptions facesOnly = ringless;
-    facesOnly.edges = false;
-    RefinedConnectivity minimal;
-    refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, minimal, facesOnly);
-    CHECK(minimal.mesh.faceStart == reference.faceStart);
-    CHECK(minimal.mesh.faceVerts == reference.faceVerts);
-    CHECK(minimal.faceParent == faceParent);
-    CHECK(minimal.topology.vertexCount == rebuilt.vertexCount);
-    CHECK(minimal.topology.edgeCount == rebuilt.edgeCount);
-    CHECK(minimal.topology.faceCount == rebuilt.faceCount);
-    CHECK(minimal.topology.vertexOnBoundary == rebuilt.vertexOnBoundary);
-    CHECK(minimal.topology.vertexUsed == rebuilt.vertexUsed);
-    CHECK(minimal.topology.cornerEdge.empty());
-    CHECK(minimal.topology.edgeVerts.empty());
-    CHECK(minimal.topology.vertexFaces.empty());
-    for (size_t v = 0; v < minimal.mesh.points.size(); ++v) minimal.mesh.points[v] = Point(double(v), 1.0, -2.0);
-    const std::vector<Point> marked = minimal.mesh.points;
-    completeChildTopology(mesh, topo, links, splits == Splits::None ? nullptr : &split, minimal, facesOnly);
-    requireSameTopology(minimal.topology, rebuilt);
-    CHECK(minimal.mesh.faceVerts == reference.faceVerts);
-    CHECK(minimal.faceParent == faceParent);
-    CHECK(minimal.mesh.points == marked);
+    // Lean steps (a finest level): without the rings, or with the faces only (OpenSubdiv's minimal
+    // last level, no edges and so no links). Each has the full step's faces, parents, counts and
+    // vertex flags, no rings (faces only: no edges either); completed, every table of the full
+    // step, its points and links as they were.
+    for (bool edges : {true, false}) {
+      CAPTURE(edges);
+      ConnectivityOptions lean = options;
+      lean.vertexRings = false;
+      lean.edges = edges;
+      lean.childLinks = edges && options.childLinks;
+      RefinedConnectivity child;
+      refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, child, lean);
+      CHECK(child.mesh.faceStart == reference.faceStart);
+      CHECK(child.mesh.faceVerts == reference.faceVerts);
+      CHECK(child.faceParent == faceParent);
+      CHECK(child.topology.vertexCount == rebuilt.vertexCount);
+      CHECK(child.topology.edgeCount == rebuilt.edgeCount);
+      CHECK(child.topology.faceCount == rebuilt.faceCount);
+      CHECK(child.topology.vertexOnBoundary == rebuilt.vertexOnBoundary);
+      CHECK(child.topology.vertexUsed == rebuilt.vertexUsed);
+      CHECK(child.topology.vertexFaces.empty());
+      CHECK(child.topology.vertexEdgeStart.empty());
+      CHECK(child.topology.cornerEdge == (edges ? rebuilt.cornerEdge : std::vector<Index>{}));
+      CHECK(child.topology.edgeFaces == (edges ? rebuilt.edgeFaces : std::vector<Index>{}));
+      CHECK(child.links == (lean.childLinks ? out.links : std::vector<Index>{}));
+      for (size_t v = 0; v < child.mesh.points.size(); ++v) child.mesh.points[v] = Point(double(v), 1.0, -2.0);
+      const std::vector<Point> marked = child.mesh.points;
+      const std::vector<Index> leanLinks = child.links;
+      completeChildTopology(mesh, topo, links, splits == Splits::None ? nullptr : &split, child, lean);
+      requireSameTopology(child.topology, rebuilt);
+      CHECK(child.mesh.faceVerts == reference.faceVerts);
+      CHECK(child.faceParent == faceParent);
+      CHECK(child.mesh.points == marked);
+      CHECK(child.links == leanLinks);
+    }
+    // Faces only cannot give the links or rings, which need the edges.
+    ConnectivityOptions noEdges = options;
+    noEdges.edges = false;
+    RefinedConnectivity refused;
+    CHECK_THROWS_AS(refineCatmullClarkConnectivity(mesh, topo, links, splits == Splits::None ? nullptr : &split, refused, noEdges),
+                    std::logic_error);
 
     mesh = out.mesh;
     topo = out.topology;

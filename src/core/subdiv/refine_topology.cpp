@@ -91,7 +91,8 @@ class ConnectivityBuilder {
       : parent_(parent), topo_(topo), parentLinks_(links.data()), split_(splitCorner), out_(out), options_(options) {}
 
   void build() {
-    if (!options_.edges && options_.vertexRings) throw std::logic_error("refineCatmullClarkConnectivity: rings need the edges");
+    if (!options_.edges && (options_.vertexRings || options_.childLinks))
+      throw std::logic_error("refineCatmullClarkConnectivity: rings and links need the edges");
     countAndNumber();
     sizeTables();
     if (options_.edges)

@@ -37,8 +37,8 @@ struct ConnectivityOptions {
   // fullTopologyInLastLevel = false) those tables stay empty, vertexOnBoundary and vertexUsed are
   // still filled, and completeChildTopology adds the rings later: a third fewer bytes to write.
   bool vertexRings = true;
-  // Fill the child's edges (cornerEdge, cornerFace, edgeVerts, edgeFaces; needs vertexRings = false
-  // too). Without them the child has its faces only (faceVerts, faceStart, faceParent), its counts
+  // Fill the child's edges (cornerEdge, cornerFace, edgeVerts, edgeFaces; false needs vertexRings
+  // and childLinks false too, else std::logic_error). Without them the child has its faces only (faceVerts, faceStart, faceParent), its counts
   // and vertexOnBoundary / vertexUsed: OpenSubdiv's minimal topology of the last uniform level, what
   // the points and `refine` read. completeChildTopology adds the rest later.
   bool edges = true;
