@@ -92,7 +92,7 @@ class TriangleSides {
     last = std::upper_bound(first, last, other, [](uint32_t o, const Side& s) { return o < s.other; });
     return {first, last};
   }
-  // Every vertex's run of sides, in order: f(smaller vertex, first, last) per edge.
+  // Calls f(first, last) for each edge's run of sides, edges by their smaller vertex.
   template <class F>
   void forEachEdge(F&& f) const {
     for (size_t v = 0; v + 1 < start_.size(); ++v)

@@ -247,7 +247,7 @@ struct SeamSearch {
   std::vector<std::vector<uint32_t>> partners;  // per side, the distinct sides it meets
 };
 
-// What one sample of side `a` found: the side it lies on (UINT32_MAX: none) and the comparison.
+// A sample of side `a` that found side `b` through it, and the two patches' comparison there.
 struct SeamHit {
   uint32_t a, b;
   SeamSample sample;

@@ -55,7 +55,7 @@ class WorkerPool {
       while (workers_.size() + 1 < job.parts && workers_.size() < kMostWorkers) workers_.emplace_back([this] { work(); });
       queue_.push_back(&job);
     }
-    wake_.notify_all();
+    for (unsigned k = 1; k < job.parts; ++k) wake_.notify_one();  // a worker a part, not all of them
     for (unsigned k = job.next.fetch_add(1); k < job.parts; k = job.next.fetch_add(1)) job.run(k);
     {
       std::lock_guard<std::mutex> lock(mutex_);  // no worker claims from it after this
