@@ -148,6 +148,16 @@ class ConnectivityBuilder {
 
   Index faceBound(unsigned k) const { return partBound(topo_.faceCount, parts_, k); }
   Index vertexBound(unsigned k) const { return partBound(topo_.vertexCount, parts_, k); }
+  // Part k's parent faces, their corners and its parent vertices, computed once: a bound in a loop
+  // condition is a division the compiler must redo after every store (an Index store may alias
+  // the counts it reads).
+  struct PartRange {
+    Index fBegin, fEnd, cBegin, cEnd, vBegin, vEnd;
+  };
+  PartRange partRange(unsigned k) const {
+    const Index fBegin = faceBound(k), fEnd = faceBound(k + 1);
+    return {fBegin, fEnd, parent_.faceStart[fBegin], parent_.faceStart[fEnd], vertexBound(k), vertexBound(k + 1)};
+  }
 
   // Split mode: each parent corner's first child face (corners before it, plus splits before it),
   // filled by the parts from their split counts.
@@ -157,7 +167,8 @@ class ConnectivityBuilder {
     firstChildFace_.resize(parentCorners_);
     runParts(parts_, [&](unsigned k) {
       Index splits = counts_[k].splitCorners;
-      for (Index c = parent_.faceStart[faceBound(k)]; c < parent_.faceStart[faceBound(k + 1)]; ++c) {
+      const PartRange part = partRange(k);
+      for (Index c = part.cBegin; c < part.cEnd; ++c) {
         firstChildFace_[c] = c + splits;
         splits += split_[c] ? 1 : 0;
       }
@@ -170,13 +181,14 @@ class ConnectivityBuilder {
     counts_.assign(parts_ + 1, PartCounts());
     runParts(parts_, [&](unsigned k) {
       PartCounts count;
+      const PartRange part = partRange(k);
       if (!options_.edges) {  // faces only: just the splits (no edges to number, no rings)
         if (kSplit)
-          for (Index c = parent_.faceStart[faceBound(k)]; c < parent_.faceStart[faceBound(k + 1)]; ++c) count.splitCorners += split_[c];
+          for (Index c = part.cBegin; c < part.cEnd; ++c) count.splitCorners += split_[c];
         counts_[k + 1] = count;
         return;
       }
-      for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
+      for (Index f = part.fBegin; f < part.fEnd; ++f) {
         const Index begin = parent_.faceStart[f], end = parent_.faceStart[f + 1];
         for (Index c = begin; c < end; ++c) {
           const Index twin = twinOf(c), twinPrev = twinOf(c == begin ? end - 1 : c - 1);
@@ -187,7 +199,7 @@ class ConnectivityBuilder {
           count.interiorLeaders += twin > c;
         }
       }
-      for (Index v = vertexBound(k); v < vertexBound(k + 1); ++v) {
+      for (Index v = part.vBegin; v < part.vEnd; ++v) {
         count.boundaryVertices += topo_.vertexOnBoundary[v];
         if (kSplit)
           for (Index i = topo_.vertexFaceStart[v]; i < topo_.vertexFaceStart[v + 1]; ++i)
@@ -251,21 +263,28 @@ class ConnectivityBuilder {
   // vertex; an unused parent vertex's point is unused).
   void buildVertexFlags() {
     touchTables(ringTables_);
-    MeshTopology& t = out_.topology;
+    uint8_t* onBoundary = out_.topology.vertexOnBoundary.data();
+    uint8_t* used = out_.topology.vertexUsed.data();
+    const uint8_t* parentOnBoundary = topo_.vertexOnBoundary.data();
+    const uint8_t* parentUsed = topo_.vertexUsed.data();
+    const Index* edgeFaces = topo_.edgeFaces.data();
     const Index F = topo_.faceCount, E = topo_.edgeCount, V = topo_.vertexCount;
+    // A boundary edge has boundary ends: without boundary vertices the edges' flags are all 0,
+    // and the 8-byte stride through edgeFaces (a tenth of this step) is skipped.
+    const bool anyBoundary = std::find(parentOnBoundary, parentOnBoundary + V, uint8_t(1)) != parentOnBoundary + V;
     runParts(parts_, [&](unsigned k) {
-      for (Index f = partBound(F, parts_, k); f < partBound(F, parts_, k + 1); ++f) {
-        t.vertexOnBoundary[f] = 0;
-        t.vertexUsed[f] = 1;
-      }
-      for (Index e = partBound(E, parts_, k); e < partBound(E, parts_, k + 1); ++e) {
-        t.vertexOnBoundary[F + e] = topo_.edgeOnBoundary(e);
-        t.vertexUsed[F + e] = 1;
-      }
-      for (Index v = partBound(V, parts_, k); v < partBound(V, parts_, k + 1); ++v) {
-        t.vertexOnBoundary[F + E + v] = topo_.vertexOnBoundary[v];
-        t.vertexUsed[F + E + v] = topo_.vertexUsed[v];
-      }
+      const Index fBegin = partBound(F, parts_, k), fEnd = partBound(F, parts_, k + 1);
+      const Index eBegin = partBound(E, parts_, k), eEnd = partBound(E, parts_, k + 1);
+      const Index vBegin = partBound(V, parts_, k), vEnd = partBound(V, parts_, k + 1);
+      std::fill(onBoundary + fBegin, onBoundary + fEnd, uint8_t(0));
+      std::fill(used + fBegin, used + fEnd, uint8_t(1));
+      if (anyBoundary)
+        for (Index e = eBegin; e < eEnd; ++e) onBoundary[F + e] = edgeFaces[2 * e + 1] < 0;
+      else
+        std::fill(onBoundary + F + eBegin, onBoundary + F + eEnd, uint8_t(0));
+      std::fill(used + F + eBegin, used + F + eEnd, uint8_t(1));
+      std::copy(parentOnBoundary + vBegin, parentOnBoundary + vEnd, onBoundary + F + E + vBegin);
+      std::copy(parentUsed + vBegin, parentUsed + vEnd, used + F + E + vBegin);
     });
   }
 
@@ -399,8 +418,14 @@ class ConnectivityBuilder {
     const Index* parentEdge = topo_.cornerEdge.data();
     const Index edgePointBase = topo_.faceCount;
     faceStart[0] = 0;
+    const bool stream = !kSplit && reinterpret_cast<uintptr_t>(faceVerts) % 16 == 0;
     runParts(parts_, [&](unsigned k) {
-      for (Index f = faceBound(k); f < faceBound(k + 1); ++f) {
+      const PartRange part = partRange(k);
+      if (stream) {
+        streamQuads(part.fBegin, part.fEnd, faceVerts, faceStart, faceParent);
+        return;
+      }
+      for (Index f = part.fBegin; f < part.fEnd; ++f) {
         const Index begin = parentStart[f], end = parentStart[f + 1];
         for (Index c = begin; c < end; ++c) {
           const Index prev = c == begin ? end - 1 : c - 1;
@@ -425,6 +450,26 @@ class ConnectivityBuilder {
         }
       }
     });
+  }
+
+  // buildFaces without splits (child face = parent corner c, its quad at 4c: 16 aligned bytes):
+  // streamed past the caches, as nothing reads a finest level's faces before its points are done.
+  // Every input in a local, so no store makes the compiler reload it.
+  void streamQuads(Index fBegin, Index fEnd, Index* faceVerts, Index* faceStart, Index* faceParent) const {
+    const Index* parentStart = parent_.faceStart.data();
+    const Index* parentVerts = parent_.faceVerts.data();
+    const Index* parentEdge = topo_.cornerEdge.data();
+    const Index edgePointBase = topo_.faceCount, vertexPointBase = vertexPointBase_;
+    for (Index f = fBegin; f < fEnd; ++f) {
+      const Index begin = parentStart[f], end = parentStart[f + 1];
+      for (Index c = begin, prev = end - 1; c < end; prev = c++) {
+        streamStore4(faceVerts + 4 * size_t(c), vertexPointBase + parentVerts[c], edgePointBase + parentEdge[c], f,
+                     edgePointBase + parentEdge[prev]);
+        streamStore(faceParent + c, f);
+        streamStore(faceStart + c + 1, 4 * c + 4);
+      }
+    }
+    storeFence();
   }
 
   // Appends (face, corner) to the ring of the cursor's child vertex.
