@@ -32,14 +32,15 @@ PolarConfig deriveChildConfig(const PolarConfig& parent, const PolyMesh& mesh, c
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence; the child's poles are derived from the parent's
-// (column j -> 2j, links K -> 2K). `links` holds the parent's corner links on entry and the child's
-// on return (none when `finest`; the parent's still when `finest` without `fullTopology`, for
-// completeGenericTopology). A `finest` level without `fullTopology` has its faces, face parents,
-// counts and vertex flags only (OpenSubdiv's minimal last level). [O(corners)]
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
+// (column j -> 2j, links K -> 2K). `links` holds the parent's corner links on entry and on return
+// the child's (`childLinks`: the next step is a full one), none (no `childLinks`), or, for
+// completeGenericTopology, still the parent's when the child is made without `fullTopology`: its
+// faces, face parents, counts and vertex flags only (OpenSubdiv's minimal last level). [O(corners)]
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, std::vector<Index>& links, bool childLinks,
                                    bool fullTopology = true);
-// The tables a refineGenericTopology(parent, splitPoleQuads, true, links, false) left out of
-// `child` (`links`: the parent's, as that call left them); its points stay. [O(corners)]
+// The tables a refineGenericTopology(parent, splitPoleQuads, links, false, false) left out of
+// `child` (`links`: the parent's, cornerLinks(parent) when the parent was made without them); its
+// points stay. [O(corners)]
 void completeGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, const std::vector<Index>& links, RefinedLevel& child);
 
 // A polar region refined radially: pole A, `links` rings of n points, then pole B (closed) or

@@ -24,22 +24,30 @@
 namespace polarview {
 
 std::vector<Index> cornerLinks(const PolyMesh& mesh, const MeshTopology& topo) {
-  std::vector<Index> links(2 * mesh.faceVerts.size(), -1);
-  const Index* faceStart = mesh.faceStart.data();
+  std::vector<Index> links;
+  reserveFromPool(links, 2 * mesh.faceVerts.size());  // a refinement's completion hands it back
+  links.assign(2 * mesh.faceVerts.size(), -1);
+  const Index *faceStart = mesh.faceStart.data(), *ringStart = topo.vertexFaceStart.data();
+  const Index *ringCorners = topo.vertexCorners.data(), *ringFaces = topo.vertexFaces.data();
+  const uint8_t* onBoundary = topo.vertexOnBoundary.data();
+  Index* out = links.data();
   // Consecutive ring corners r_i, r_i+1 at v: r_i+1 starts the opposite half-edge of r_i's incoming
-  // one, and the corner after r_i+1 in its face is the twin's successor.
-  for (Index v = 0; v < topo.vertexCount; ++v) {
-    const Index first = topo.vertexFaceStart[v], last = topo.vertexFaceStart[v + 1];
-    for (Index i = first; i < last; ++i) {
-      const Index corner = topo.vertexCorners[i], face = topo.vertexFaces[i];
-      const Index incoming = corner == faceStart[face] ? faceStart[face + 1] - 1 : corner - 1;
-      if (i + 1 == last && topo.vertexOnBoundary[v]) continue;  // the boundary edge: no twin
-      const Index j = i + 1 == last ? first : i + 1;
-      const Index twin = topo.vertexCorners[j], twinFace = topo.vertexFaces[j];
-      links[2 * size_t(incoming)] = twin;
-      links[2 * size_t(incoming) + 1] = twin + 1 == faceStart[twinFace + 1] ? faceStart[twinFace] : twin + 1;
+  // one, and the corner after r_i+1 in its face is the twin's successor. Each incoming half-edge
+  // lies in one ring: vertex ranges write disjoint entries.
+  parallelRanges(topo.vertexCount, threadsFor(mesh.faceVerts.size()), [&](Index vBegin, Index vEnd) {
+    for (Index v = vBegin; v < vEnd; ++v) {
+      const Index first = ringStart[v], last = ringStart[v + 1];
+      for (Index i = first; i < last; ++i) {
+        const Index corner = ringCorners[i], face = ringFaces[i];
+        const Index incoming = corner == faceStart[face] ? faceStart[face + 1] - 1 : corner - 1;
+        if (i + 1 == last && onBoundary[v]) continue;  // the boundary edge: no twin
+        const Index j = i + 1 == last ? first : i + 1;
+        const Index twin = ringCorners[j], twinFace = ringFaces[j];
+        out[2 * size_t(incoming)] = twin;
+        out[2 * size_t(incoming) + 1] = twin + 1 == faceStart[twinFace + 1] ? faceStart[twinFace] : twin + 1;
+      }
     }
-  }
+  });
   return links;
 }
 

@@ -147,15 +147,15 @@ std::vector<uint8_t> poleCornerSplits(const RefinedLevel& parent, bool splitPole
 // One Catmull-Clark step of the connectivity, derived from the parent's tables (refine_topology.h);
 // with `splitPoleQuads` each quad at a pole's corner is split along its diagonal (pole - face point)
 // into two triangles, doubling the polar valence. `links` holds the parent's corner links on entry
-// and the child's on return (none after the `finest` level; the parent's still when that one is
+// and the child's on return (none without `childLinks`; the parent's still when the child is
 // made with its faces only, `fullTopology` false, for completeGenericTopology).
-RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, bool finest, std::vector<Index>& links,
+RefinedLevel refineGenericTopology(const RefinedLevel& parent, bool splitPoleQuads, std::vector<Index>& links, bool childLinks,
                                    bool fullTopology) {
   std::vector<uint8_t> split = poleCornerSplits(parent, splitPoleQuads);
   RefinedConnectivity connectivity;
   ConnectivityOptions options;
-  options.childLinks = !finest;
-  options.vertexRings = options.edges = fullTopology || !finest;
+  options.childLinks = childLinks && fullTopology;
+  options.vertexRings = options.edges = fullTopology;
   refineCatmullClarkConnectivity(parent.mesh, parent.topology, links, split.empty() ? nullptr : &split, connectivity, options);
   RefinedLevel child;
   child.mesh = std::move(connectivity.mesh);
@@ -445,9 +445,11 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
       plan_->regions.push_back(std::move(childRegions));
     } else {
       // Creases decay along the child's edges, found through its rings (childSharpness): kept then.
+      // A faces-only finest level reads no links of its parent: those are made if it is completed.
       const bool fullFinest = options.fullFinestTopology || creases;
-      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), m == options.levels, links,
-                                              fullFinest));
+      const bool childLinks = m < options.levels && (m + 1 < options.levels || fullFinest);
+      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), links, childLinks,
+                                              m < options.levels || fullFinest));
       if (creases) {
         const RefinedLevel& parent = levels_[levels_.size() - 2];
         RefinedLevel& child = levels_.back();
@@ -473,7 +475,9 @@ bool Refinement::finestTopologyComplete() const { return !plan_->finestTopologyM
 
 void Refinement::completeFinestTopology() {
   if (!plan_->finestTopologyMissing) return;
-  completeGenericTopology(levels_[levels_.size() - 2], schemeTraits(options_.scheme).polar(), plan_->finestParentLinks, levels_.back());
+  const RefinedLevel& parent = levels_[levels_.size() - 2];
+  if (plan_->finestParentLinks.empty()) plan_->finestParentLinks = cornerLinks(parent.mesh, parent.topology);
+  completeGenericTopology(parent, schemeTraits(options_.scheme).polar(), plan_->finestParentLinks, levels_.back());
   releaseToPool(plan_->finestParentLinks);
   plan_->finestTopologyMissing = false;
 }
