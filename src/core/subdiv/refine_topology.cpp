@@ -64,11 +64,14 @@ struct PartCounts {
   Index splitCorners = 0;      // split corners among the part's faces
 };
 
-// Sizing one output table: reserve (a pooled buffer or an allocation) and resize (first touch) may
-// run on different threads. Every entry is written later, so a pooled buffer's old contents never show.
+// Sizing one output table: reserve (a pooled buffer or an allocation), map its fresh pages (a
+// share per part: one table can be most of a step's new memory) and resize (first touch: the zero
+// fill) may run on different threads. Every entry is written later, so a pooled buffer's old
+// contents never show.
 struct TableJob {
   size_t bytes;
   void (*reserve)(void* table, size_t size);
+  void (*prefaultShare)(void* table, size_t size, unsigned part, unsigned parts);
   void (*resize)(void* table, size_t size);
   void* table;
   size_t size;
@@ -76,12 +79,14 @@ struct TableJob {
 template <class T>
 TableJob tableJob(std::vector<T>& table, size_t size) {
   return {size * sizeof(T), [](void* v, size_t n) { reserveFromPool(*static_cast<std::vector<T>*>(v), n); },
-          [](void* v, size_t n) {
+          [](void* v, size_t n, unsigned part, unsigned parts) {
             std::vector<T>& t = *static_cast<std::vector<T>*>(v);
-            if (t.size() < n) prefault(t.data() + t.size(), (n - t.size()) * sizeof(T));  // fresh pages: map at once
-            t.resize(n);
+            if (t.size() >= n) return;  // no fresh pages (a pooled buffer)
+            const size_t fresh = n - t.size();
+            const size_t begin = t.size() + fresh * part / parts, end = t.size() + fresh * (part + 1) / parts;
+            prefault(t.data() + begin, (end - begin) * sizeof(T));  // within the reserved capacity
           },
-          &table, size};
+          [](void* v, size_t n) { static_cast<std::vector<T>*>(v)->resize(n); }, &table, size};
 }
 
 constexpr Index kPrefetchDistance = 16;  // ring entries ahead
@@ -296,8 +301,9 @@ class ConnectivityBuilder {
     });
   }
 
-  // Sizes (first touch: the kernel's page faults, the zero fill) a pass's tables on all parts,
-  // largest first, each to the least loaded part; just before the pass, so they are still cached.
+  // Sizes a pass's tables just before the pass, so they are still cached: first every part maps its
+  // share of every table's fresh pages (the kernel's faults, the bigger cost), then the zero fill,
+  // largest table first, each to the least loaded part.
   void touchTables(std::vector<TableJob>& jobs) {
     std::sort(jobs.begin(), jobs.end(), [](const TableJob& a, const TableJob& b) { return a.bytes > b.bytes; });
     std::vector<size_t> load(parts_, 0);
@@ -306,6 +312,9 @@ class ConnectivityBuilder {
       owner[j] = unsigned(std::min_element(load.begin(), load.end()) - load.begin());
       load[owner[j]] += jobs[j].bytes;
     }
+    runParts(parts_, [&](unsigned k) {
+      for (const TableJob& job : jobs) job.prefaultShare(job.table, job.size, k, parts_);
+    });
     runParts(parts_, [&](unsigned k) {
       for (size_t j = 0; j < jobs.size(); ++j)
         if (owner[j] == k) jobs[j].resize(jobs[j].table, jobs[j].size);
