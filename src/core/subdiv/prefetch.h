@@ -1,5 +1,6 @@
-// Software prefetch: asks for the cache line at `address`, which a later iteration reads at a
-// data-dependent place (the point rules' and ring builder's gathers are latency-bound).
+// Memory hints. Software prefetch: asks for the cache line at `address`, which a later iteration
+// reads at a data-dependent place (the point rules' and ring builder's gathers are latency-bound).
+// Non-temporal stores: below.
 #pragma once
 
 #include <cstdint>

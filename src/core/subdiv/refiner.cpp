@@ -447,9 +447,9 @@ Refinement::Refinement(const PolyMesh& input, const RefineOptions& options, cons
       // Creases decay along the child's edges, found through its rings (childSharpness): kept then.
       // A faces-only finest level reads no links of its parent: those are made if it is completed.
       const bool fullFinest = options.fullFinestTopology || creases;
-      const bool childLinks = m < options.levels && (m + 1 < options.levels || fullFinest);
-      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), links, childLinks,
-                                              m < options.levels || fullFinest));
+      const bool finest = m == options.levels, nextFacesOnly = m + 1 == options.levels && !fullFinest;
+      levels_.push_back(refineGenericTopology(levels_.back(), schemeTraits(options.scheme).polar(), links,
+                                              !finest && !nextFacesOnly, !finest || fullFinest));
       if (creases) {
         const RefinedLevel& parent = levels_[levels_.size() - 2];
         RefinedLevel& child = levels_.back();
